@@ -1,0 +1,20 @@
+// The dtlab subcommands. Each add_*_command() registers one subcommand, its
+// options and its callback on the root CLI11 app; call each once, before
+// parsing. A callback reports failure by throwing CLI::RuntimeError(exit_code)
+// after printing its message to stderr; it never calls exit() itself.
+#pragma once
+
+namespace CLI {
+class App;
+}
+
+namespace dtlab::app {
+
+// Exit codes shared by every subcommand.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInvalid = 1;  // the input is wrong (protocol, CSV, database); message on stderr
+inline constexpr int kExitUsage = 2;    // the command line is wrong (CLI11's own exit code for parse errors)
+inline constexpr int kExitFailure = 3;  // the environment failed (I/O, GL context, SQLite)
+
+void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
+}  // namespace dtlab::app

@@ -1,0 +1,35 @@
+// dtlab: the one executable (DESIGN.md, "Command line contract"). main() only
+// builds the CLI11 tree and maps errors to exit codes; every subcommand lives
+// in its own cmd_*.cpp. Subcommands appear here when they work, never before.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "app/commands.h"
+#include "study/common/version.h"
+
+int main(int argc, char** argv) {
+  CLI::App root{
+      "dtlab: run, author and analyse user studies of occlusion management in 3D.\n"
+      "The reference study is Elmqvist, Assarsson & Tsigas (2008), protocols/elmqvist2008.toml."};
+  root.set_version_flag("--version", std::string(dtlab::version_string()));
+  root.require_subcommand(1);
+  root.fallthrough(false);
+
+  dtlab::app::add_version_command(root);
+
+  try {
+    root.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a subcommand failed; it has printed its message
+  } catch (const CLI::ParseError& e) {
+    const int rc = root.exit(e);  // prints help, version or the usage error
+    return rc == 0 ? dtlab::app::kExitOk : dtlab::app::kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "dtlab: internal error: " << e.what() << "\n";
+    return dtlab::app::kExitFailure;
+  }
+  return dtlab::app::kExitOk;
+}
