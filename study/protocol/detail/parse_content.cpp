@@ -1,0 +1,345 @@
+// Internal: the content half of a protocol: [scenarios.*] with their tasks,
+// [rendering.*] and [questionnaire.*]. Scene parameters cascade task ->
+// scenario -> built-in default for the scenario kind (docs/protocol.md).
+// Checks that every level of the scenario and rendering factors has its table
+// and every table belongs to a level, and that each task fits its scenario.
+#include <algorithm>
+
+#include "study/protocol/detail/parser.h"
+
+namespace dtlab::protocol::detail {
+
+namespace {
+
+const std::vector<std::string> kAbstractKinds = {"sphere", "cone", "box", "torus"};
+const std::vector<std::string> kWalkthroughKinds = {"pet", "vehicle", "furniture"};
+const std::vector<std::string> kLetters = {"C", "K", "R", "X", "Y"};  // STUDY.md, T2 (Fig. 5)
+const char* const kSceneKeys[] = {"objects",      "extent",      "grid",         "cell_size", "object_kinds",
+                                  "object_radius", "target_ratio", "letters",     "count_range"};
+
+// Built-in defaults: the reference study's values (STUDY.md) where it gives them.
+SceneParams defaults_for(ScenarioKind kind) {
+  SceneParams sp;
+  sp.kind = kind;
+  if (kind == ScenarioKind::abstract) {
+    sp.objects = 200;
+    sp.extent = 100.0;
+    sp.object_kinds = kAbstractKinds;
+    sp.object_radius = {3.0, 6.0};
+    sp.target_ratio = {0.10, 0.20};
+    sp.letters = kLetters;
+  } else {
+    sp.objects = 50;
+    sp.grid_width = sp.grid_height = 16;
+    sp.cell_size = 4.0;
+    sp.object_kinds = kWalkthroughKinds;
+    sp.count_range = {3, 8};
+  }
+  return sp;
+}
+
+ScenarioKind scenario_kind_of(TaskType t) {
+  return t == TaskType::count_targets || t == TaskType::identify_letter ? ScenarioKind::abstract
+                                                                         : ScenarioKind::walkthrough;
+}
+
+// Reads the scene keys present in a scenario or task table over `scene`.
+void read_scene_keys(TableReader& r, SceneParams& scene, ParseState& s) {
+  const bool abstract = scene.kind == ScenarioKind::abstract;
+  const auto only = [&](const char* key, bool applies) {
+    if (!applies && r.has(key))
+      s.d.error(r.pos(key), r.field(key),
+                std::string("applies only to ") + (abstract ? "walkthrough" : "abstract") +
+                    " scenarios; this one is kind = \"" + std::string(to_string(scene.kind)) + "\"");
+    return applies;
+  };
+  if (auto v = r.integer("objects", false, 1, abstract ? 10000 : 1000)) scene.objects = static_cast<int>(*v);
+  if (only("extent", abstract))
+    if (auto v = r.number("extent", false, 1.0, 1e6)) scene.extent = *v;
+  if (only("grid", !abstract))
+    if (auto v = r.int_pair("grid", false, 2, 64)) {
+      scene.grid_width = v->first;
+      scene.grid_height = v->second;
+    }
+  if (only("cell_size", !abstract))
+    if (auto v = r.number("cell_size", false, 0.1, 1000.0)) scene.cell_size = *v;
+  if (auto v = r.strings("object_kinds", false, 1, 8, abstract ? kAbstractKinds : kWalkthroughKinds))
+    scene.object_kinds = *v;
+  if (only("object_radius", abstract))
+    if (auto v = r.number_range("object_radius", false, 0.01, 1e6)) scene.object_radius = *v;
+  if (only("target_ratio", abstract))
+    if (auto v = r.number_range("target_ratio", false, 0.001, 1.0)) scene.target_ratio = *v;
+  if (only("letters", abstract))
+    if (auto v = r.strings("letters", false, 1, kLetters.size(), kLetters)) scene.letters = *v;
+  if (only("count_range", !abstract))
+    if (auto v = r.int_range("count_range", false, 1, 1000)) scene.count_range = *v;
+}
+
+// Checks a task's final scene parameters (after the cascade) against its type.
+void check_task_scene(const Task& task, Pos at, const std::string& path, ParseState& s) {
+  const SceneParams& sc = task.scene;
+  if (task.type == TaskType::identify_letter &&
+      std::find(sc.object_kinds.begin(), sc.object_kinds.end(), "cone") == sc.object_kinds.end())
+    s.d.error(at, path + ".object_kinds", "task type \"identify-letter\" draws its letter with cones; "
+                                          "object_kinds must include \"cone\"");
+  if (task.type == TaskType::count_kind && sc.count_range.max > sc.objects)
+    s.d.error(at, path + ".count_range", "count_range max " + std::to_string(sc.count_range.max) +
+                                             " exceeds objects = " + std::to_string(sc.objects));
+  if (task.type == TaskType::count_targets && sc.target_ratio.min * sc.objects < 1.0)
+    s.d.warning(at, path + ".target_ratio", "target_ratio min x objects < 1: a trial may have no target to count");
+}
+
+// Keys of the scenario/rendering tables must be exactly the levels of the factor with that role.
+bool match_levels(ParseState& s, const std::string& section, int factor, Pos section_pos,
+                  const std::vector<std::pair<std::string, Pos>>& tables) {
+  const Protocol& p = s.p;
+  bool ok = true;
+  if (factor < 0) {
+    if (tables.size() != 1) {
+      s.d.error(section_pos, section,
+                "declares " + std::to_string(tables.size()) + " tables; without a factor with role = \"" +
+                    (section == "scenarios" ? std::string("scenario") : std::string("rendering")) +
+                    "\" exactly one [" + section + ".<name>] is used for every condition");
+      ok = false;
+    }
+    return ok;
+  }
+  const Factor& f = p.factors[factor];
+  for (const auto& [name, at] : tables) {
+    if (find_index(f.levels, name) < 0) {
+      s.d.error(at, join(section, name),
+                "no level \"" + name + "\" in factor '" + f.name + "' (levels: " + quoted_list(f.levels) +
+                    "); each [" + section + ".<level>] belongs to one level");
+      ok = false;
+    }
+  }
+  for (const auto& level : f.levels) {
+    const bool found = std::any_of(tables.begin(), tables.end(), [&](const auto& t) { return t.first == level; });
+    if (!found) {
+      s.d.error(s.factor_levels_pos[factor], join(section, level),
+                "level \"" + level + "\" of factor '" + f.name + "' has no [" + section + "." + level + "] table");
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+void parse_task(const toml::key& k, const toml::node& n, const std::string& tasks_path, Scenario& sc,
+                std::vector<std::pair<std::string, std::string>>& task_ids, ParseState& s) {
+  const std::string id(k.str());
+  const std::string path = join(tasks_path, id);
+  if (!is_identifier(id))
+    s.d.error(pos_of(k), path, "task id \"" + id + "\" is not an identifier (letters, digits, '_', '-')");
+  for (const auto& [other, where] : task_ids)
+    if (other == id) s.d.error(pos_of(k), path, "task id \"" + id + "\" is already used in " + where);
+  task_ids.emplace_back(id, path);
+  if (!n.is_table()) {
+    s.d.error(pos_of(n), path, "expected a table [" + path + "] with type and trials, got " + type_name(n));
+    return;
+  }
+  TableReader tr(*n.as_table(), path, s.d, pos_of(k));
+  Task task;
+  task.id = id;
+  task.scene = sc.scene;
+  const auto type = tr.choice("type", true, {"count-targets", "identify-letter", "find-unique", "count-kind"});
+  if (type)
+    task.type = *type == "count-targets"     ? TaskType::count_targets
+                : *type == "identify-letter" ? TaskType::identify_letter
+                : *type == "find-unique"     ? TaskType::find_unique
+                                             : TaskType::count_kind;
+  if (auto v = tr.integer("trials", true, 1, 100)) task.trials = static_cast<int>(*v);
+  read_scene_keys(tr, task.scene, s);
+  tr.finish();
+  if (!type) return;
+  if (scenario_kind_of(task.type) != sc.scene.kind) {
+    s.d.error(tr.pos("type"), tr.field("type"),
+              "task type \"" + *type + "\" needs a " + std::string(to_string(scenario_kind_of(task.type))) +
+                  " scenario; this one is kind = \"" + std::string(to_string(sc.scene.kind)) + "\"");
+    return;
+  }
+  if (task.type != TaskType::identify_letter && tr.has("letters"))
+    s.d.warning(tr.pos("letters"), tr.field("letters"), "has no effect for type = \"" + *type + "\"");
+  if (task.type != TaskType::count_kind && tr.has("count_range"))
+    s.d.warning(tr.pos("count_range"), tr.field("count_range"), "has no effect for type = \"" + *type + "\"");
+  check_task_scene(task, tr.pos(), path, s);
+  sc.tasks.push_back(std::move(task));
+}
+
+}  // namespace
+
+void parse_scenarios(TableReader& root, ParseState& s) {
+  Protocol& p = s.p;
+  const int errors_before = s.d.errors();
+  const toml::table* t = root.table("scenarios", true);
+  if (!t) return;
+  std::vector<std::pair<std::string, Pos>> names;
+  std::vector<std::pair<std::string, std::string>> task_ids;
+  for (const auto& [k, n] : in_file_order(*t)) {
+    const std::string name(k->str());
+    const std::string path = join("scenarios", name);
+    names.emplace_back(name, pos_of(*k));
+    if (!n->is_table()) {
+      s.d.error(pos_of(*n), path, "expected a table [" + path + "] with kind and tasks, got " + type_name(*n));
+      continue;
+    }
+    TableReader sr(*n->as_table(), path, s.d, pos_of(*k));
+    Scenario sc;
+    sc.name = name;
+    const auto kind = sr.choice("kind", true, {"abstract", "walkthrough"});
+    if (!kind) {  // scene keys cannot be checked without a kind; do not call them unknown
+      for (const char* key : kSceneKeys) sr.has(key);
+      sr.has("tasks");
+      sr.finish();
+      continue;
+    }
+    sc.scene = defaults_for(*kind == "abstract" ? ScenarioKind::abstract : ScenarioKind::walkthrough);
+    read_scene_keys(sr, sc.scene, s);
+    if (const toml::table* tasks = sr.table("tasks", true)) {
+      const auto entries = in_file_order(*tasks);
+      if (entries.empty())
+        s.d.error(sr.pos("tasks"), sr.field("tasks"), "expected at least one task, e.g. [" + path + ".tasks.T1]");
+      for (const auto& [tk, tn] : entries) parse_task(*tk, *tn, sr.field("tasks"), sc, task_ids, s);
+    }
+    sr.finish();
+    p.scenarios.push_back(std::move(sc));
+  }
+  if (names.empty()) {
+    s.d.error(root.pos("scenarios"), "scenarios", "expected at least one scenario, e.g. [scenarios.abstract]");
+    return;
+  }
+  if (!s.factors_ok || s.d.errors() != errors_before) return;
+  s.scenarios_ok = match_levels(s, "scenarios", s.scenario_factor, root.pos("scenarios"), names);
+}
+
+void parse_renderings(TableReader& root, ParseState& s) {
+  Protocol& p = s.p;
+  const int errors_before = s.d.errors();
+  const toml::table* t = root.table("rendering", true);
+  if (!t) return;
+  std::vector<std::pair<std::string, Pos>> names;
+  for (const auto& [k, n] : in_file_order(*t)) {
+    const std::string name(k->str());
+    const std::string path = join("rendering", name);
+    names.emplace_back(name, pos_of(*k));
+    if (!n->is_table()) {
+      s.d.error(pos_of(*n), path, "expected a table [" + path + "] with method = \"...\", got " + type_name(*n));
+      continue;
+    }
+    TableReader rr(*n->as_table(), path, s.d, pos_of(*k));
+    Rendering r;
+    r.name = name;
+    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference"})) r.method = *v;
+    if (auto v = rr.number("a0", false, 0.0, 1.0)) r.a0 = *v;
+    if (auto v = rr.number("aT", false, 0.0, 1.0)) r.aT = *v;
+    if (auto v = rr.integer("gradient_width", false, 0, 64)) r.gradient_width = static_cast<int>(*v);
+    if (auto v = rr.integer("mask_resolution", false, 16, 4096)) r.mask_resolution = static_cast<int>(*v);
+    if (auto v = rr.choice("mask_shape", false, {"outline", "circle", "ellipse"})) r.mask_shape = *v;
+    if (auto v = rr.choice("mode", false, {"passive", "active"})) r.mode = *v;
+    if (auto v = rr.integer("layer_limit", false, 0, 64)) r.layer_limit = static_cast<int>(*v);
+    rr.finish();
+    if (r.method == "standard") {
+      for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "mode", "layer_limit"})
+        if (rr.has(key))
+          s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"standard\" (no transparency)");
+    } else if (r.a0 > r.aT) {
+      s.d.warning(rr.pos("a0"), rr.field("a0"),
+                  "a0 > aT: the gradient starts more opaque than the surfaces in front of the target "
+                  "(the reference design uses a low a0 and a higher aT)");
+    }
+    p.renderings.push_back(std::move(r));
+  }
+  if (names.empty()) {
+    s.d.error(root.pos("rendering"), "rendering", "expected at least one rendering, e.g. [rendering.off]");
+    return;
+  }
+  if (!s.factors_ok || s.d.errors() != errors_before) return;
+  s.renderings_ok = match_levels(s, "rendering", s.rendering_factor, root.pos("rendering"), names);
+}
+
+void parse_questionnaire(TableReader& root, ParseState& s) {
+  Protocol& p = s.p;
+  const toml::table* t = root.table("questionnaire", false);
+  if (!t) return;
+  std::vector<std::string> scenario_names, rendering_names;
+  for (const auto& sc : p.scenarios) scenario_names.push_back(sc.name);
+  for (const auto& r : p.renderings) rendering_names.push_back(r.name);
+  for (const auto& [k, n] : in_file_order(*t)) {
+    const std::string id(k->str());
+    const std::string path = join("questionnaire", id);
+    if (!is_identifier(id))
+      s.d.error(pos_of(*k), path, "item id \"" + id + "\" is not an identifier (letters, digits, '_', '-')");
+    if (!n->is_table()) {
+      s.d.error(pos_of(*n), path, "expected a table [" + path + "] with type and prompt, got " + type_name(*n));
+      continue;
+    }
+    TableReader qr(*n->as_table(), path, s.d, pos_of(*k));
+    QuestionnaireItem item;
+    item.id = id;
+    const auto type = qr.choice("type", true, {"rating", "choice", "depth-test"});
+    if (auto v = qr.string("prompt", true)) item.prompt = *v;
+    const auto scale = qr.int_range("scale", false, -100, 100, true);
+    const auto per = qr.strings("per", false, 0, 8);
+    const auto factor = qr.string("factor", false);
+    const auto options = qr.strings("options", false, 2, 32);
+    const auto scenario = qr.string("scenario", false);
+    const auto rendering = qr.string("rendering", false);
+    const auto pairs = qr.integer("pairs", false, 1, 20);
+    qr.finish();
+    if (!type) continue;
+    item.type = *type == "rating" ? ItemType::rating : *type == "choice" ? ItemType::choice : ItemType::depth_test;
+    const auto only = [&](const char* key, ItemType applies) {
+      if (item.type != applies && qr.has(key))
+        s.d.error(qr.pos(key), qr.field(key),
+                  "applies only to type = \"" + std::string(to_string(applies)) + "\"; this item is \"" + *type +
+                      "\"");
+    };
+    for (const char* key : {"scale", "per"}) only(key, ItemType::rating);
+    for (const char* key : {"factor", "options"}) only(key, ItemType::choice);
+    for (const char* key : {"scenario", "rendering", "pairs"}) only(key, ItemType::depth_test);
+    const auto known = [&](const char* key, const std::string& name, const std::vector<std::string>& names,
+                           const char* what) {
+      if (find_index(names, name) >= 0) return true;
+      s.d.error(qr.pos(key), qr.field(key),
+                std::string("no ") + what + " named '" + name + "' (declared: " + quoted_list(names) + ")");
+      return false;
+    };
+    switch (item.type) {
+      case ItemType::rating:
+        if (scale) {
+          item.scale_min = scale->min;
+          item.scale_max = scale->max;
+        }
+        if (per) {
+          const toml::array& a = *qr.node("per")->as_array();
+          for (std::size_t i = 0; i < per->size(); ++i)
+            if (find_index(factor_names(p), (*per)[i]) < 0)
+              s.d.error(pos_of(*a.get(i)), indexed(qr.field("per"), i),
+                        "no factor named '" + (*per)[i] + "' (factors: " + quoted_list(factor_names(p)) + ")");
+          item.per = *per;
+        }
+        break;
+      case ItemType::choice:
+        if (!qr.has("options") && !qr.has("factor"))
+          s.d.error(qr.pos(), path, "a choice needs factor = \"<factor>\" (its levels are the options) or "
+                                    "options = [...]");
+        else if (qr.has("factor") && qr.has("options"))
+          s.d.error(qr.pos("options"), qr.field("options"), "give either factor or options, not both");
+        if (factor && known("factor", *factor, factor_names(p), "factor")) item.factor = *factor;
+        if (options) item.options = *options;
+        if (!item.factor.empty()) item.options = p.factors[find_index(factor_names(p), item.factor)].levels;
+        break;
+      case ItemType::depth_test:
+        if (!qr.has("scenario"))
+          s.d.error(qr.pos(), qr.field("scenario"), "missing required key 'scenario' (the scenario shown)");
+        if (!qr.has("rendering"))
+          s.d.error(qr.pos(), qr.field("rendering"), "missing required key 'rendering' (the rendering used)");
+        if (scenario && known("scenario", *scenario, scenario_names, "scenario")) item.scenario = *scenario;
+        if (rendering && known("rendering", *rendering, rendering_names, "rendering")) item.rendering = *rendering;
+        if (pairs) item.pairs = static_cast<int>(*pairs);
+        break;
+    }
+    p.questionnaire.push_back(std::move(item));
+  }
+}
+
+}  // namespace dtlab::protocol::detail

@@ -1,0 +1,257 @@
+// Loading and validating protocol files: reads the bytes (at most 1 MiB),
+// refuses empty and binary files, parses TOML with toml++ and hands the
+// document to detail/parse_*.cpp. Every failure, including a TOML syntax
+// error, becomes a Diagnostic with file:line:column and the field at fault;
+// nothing here throws to the caller or aborts.
+#include "study/protocol/protocol.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "study/common/hash.h"
+#include "study/protocol/detail/parser.h"
+
+namespace dtlab::protocol {
+
+namespace {
+
+constexpr std::size_t kMaxProtocolBytes = 1 << 20;
+
+struct Outcome {
+  Protocol protocol;
+  std::vector<Diagnostic> diagnostics;
+};
+
+// Best guess at the field a TOML syntax error is in: the last [table] header
+// at or before the error line, plus the key written on the error line.
+// A plain scan, no regex: the text may be arbitrary bytes.
+std::string field_near(std::string_view text, int line) {
+  const auto is_key_char = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+           c == '.';
+  };
+  std::string table, field;
+  int current = 1;
+  std::size_t start = 0;
+  while (start <= text.size() && current <= line) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view l = text.substr(start, end - start);
+    const std::size_t b = l.find_first_not_of(" \t");
+    if (b != std::string_view::npos) {
+      l.remove_prefix(b);
+      if (l.front() == '[') {  // [table] or [[array.of.tables]]
+        std::size_t i = l.find_first_not_of("[ \t");
+        std::size_t j = i;
+        while (j < l.size() && is_key_char(l[j])) ++j;
+        if (i != std::string_view::npos && j > i) table = std::string(l.substr(i, j - i));
+      } else if (current == line) {  // key = value
+        std::size_t j = 0;
+        while (j < l.size() && is_key_char(l[j])) ++j;
+        const std::size_t eq = l.find_first_not_of(" \t", j);
+        if (j > 0 && eq != std::string_view::npos && l[eq] == '=') field = std::string(l.substr(0, j));
+      }
+    }
+    start = end + 1;
+    ++current;
+  }
+  if (field.empty()) return table;
+  return table.empty() ? field : table + "." + field;
+}
+
+Outcome parse_text(std::string_view text, const std::string& path) {
+  Outcome out;
+  detail::Diagnostics d(path);
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+    d.error({1, 1}, "",
+            "the file is empty; a protocol declares at least id, title, participants, master_seed, "
+            "[factors.*], [order], [scenarios.*] and [rendering.*] (docs/protocol.md)");
+    out.diagnostics = d.take();
+    return out;
+  }
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const std::string_view before = text.substr(0, nul);
+    const int line = 1 + static_cast<int>(std::count(before.begin(), before.end(), '\n'));
+    const std::size_t bol = before.rfind('\n');
+    const int column = static_cast<int>(nul - (bol == std::string_view::npos ? 0 : bol + 1)) + 1;
+    d.error({line, column}, "", "binary data (a NUL byte); a protocol is a UTF-8 TOML text file");
+    out.diagnostics = d.take();
+    return out;
+  }
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const int line = static_cast<int>(e.source().begin.line);
+    const int column = static_cast<int>(e.source().begin.column);
+    d.error({line, column}, field_near(text, line), "TOML syntax error: " + std::string(e.description()));
+    out.diagnostics = d.take();
+    return out;
+  } catch (const std::exception& e) {
+    d.error({0, 0}, "", std::string("cannot parse the file: ") + e.what());
+    out.diagnostics = d.take();
+    return out;
+  }
+  detail::ParseState s{d, out.protocol};
+  detail::parse_document(root, s);
+  out.diagnostics = d.take();
+  return out;
+}
+
+// The file's bytes, or an error diagnostic.
+std::optional<std::string> read_file(const std::string& path, std::vector<Diagnostic>& diags) {
+  const auto fail = [&](std::string message) {
+    diags.push_back({Severity::error, Error{path, 0, 0, "", std::move(message)}});
+    return std::nullopt;
+  };
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st)) return fail("cannot read the protocol: no such file");
+  if (std::filesystem::is_directory(st)) return fail("cannot read the protocol: it is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail(std::string("cannot read the protocol: ") + std::strerror(errno));
+  std::string bytes;
+  bytes.resize(kMaxProtocolBytes + 1);
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (in.bad()) return fail(std::string("cannot read the protocol: ") + std::strerror(errno));
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  if (bytes.size() > kMaxProtocolBytes)
+    return fail("the file is larger than 1 MiB; a protocol is a small TOML text file");
+  return bytes;
+}
+
+Result<Protocol> to_result(Outcome out, std::string_view text, const std::string& path) {
+  for (const auto& d : out.diagnostics)
+    if (d.severity == Severity::error) return d.where;
+  Protocol p = std::move(out.protocol);
+  p.source_path = path;
+  p.source_text = std::string(text);
+  p.sha256 = sha256_hex(text);
+  return p;
+}
+
+}  // namespace
+
+Result<Protocol> load_protocol(const std::string& path) {
+  std::vector<Diagnostic> diags;
+  const auto text = read_file(path, diags);
+  if (!text) return diags.front().where;
+  return to_result(parse_text(*text, path), *text, path);
+}
+
+Result<Protocol> load_protocol_text(std::string_view text, const std::string& source_path) {
+  return to_result(parse_text(text, source_path), text, source_path);
+}
+
+std::vector<Diagnostic> validate_protocol_file(const std::string& path) {
+  std::vector<Diagnostic> diags;
+  const auto text = read_file(path, diags);
+  if (!text) return diags;
+  return parse_text(*text, path).diagnostics;
+}
+
+std::vector<Diagnostic> validate_protocol_text(std::string_view text, const std::string& source_path) {
+  return parse_text(text, source_path).diagnostics;
+}
+
+bool has_errors(const std::vector<Diagnostic>& diagnostics) {
+  for (const auto& d : diagnostics)
+    if (d.severity == Severity::error) return true;
+  return false;
+}
+
+std::string_view to_string(FactorRole role) {
+  switch (role) {
+    case FactorRole::scenario: return "scenario";
+    case FactorRole::rendering: return "rendering";
+    case FactorRole::none: break;
+  }
+  return "none";
+}
+
+std::string_view to_string(Scheme scheme) {
+  switch (scheme) {
+    case Scheme::latin_square: return "latin-square";
+    case Scheme::williams: return "williams";
+    case Scheme::full_permutation: return "full-permutation";
+    case Scheme::random: return "random";
+    case Scheme::fixed: break;
+  }
+  return "fixed";
+}
+
+std::string_view to_string(OrderUnit unit) { return unit == OrderUnit::blocks ? "blocks" : "conditions"; }
+
+std::string_view to_string(ScenarioKind kind) {
+  return kind == ScenarioKind::walkthrough ? "walkthrough" : "abstract";
+}
+
+std::string_view to_string(TaskType type) {
+  switch (type) {
+    case TaskType::identify_letter: return "identify-letter";
+    case TaskType::find_unique: return "find-unique";
+    case TaskType::count_kind: return "count-kind";
+    case TaskType::count_targets: break;
+  }
+  return "count-targets";
+}
+
+std::string_view to_string(ItemType type) {
+  switch (type) {
+    case ItemType::choice: return "choice";
+    case ItemType::depth_test: return "depth-test";
+    case ItemType::rating: break;
+  }
+  return "rating";
+}
+
+int scheme_rows(Scheme scheme, int n, int random_rows) {
+  constexpr std::int64_t kMax = std::numeric_limits<int>::max();
+  switch (scheme) {
+    case Scheme::latin_square: return n;
+    case Scheme::williams: return n % 2 == 0 ? n : 2 * n;
+    case Scheme::full_permutation: {
+      std::int64_t f = 1;
+      for (int i = 2; i <= n && f <= kMax; ++i) f *= i;
+      return static_cast<int>(std::min(f, kMax));
+    }
+    case Scheme::random: return random_rows;
+    case Scheme::fixed: break;
+  }
+  return 1;
+}
+
+int declared_order_rows(const Protocol& p) {
+  const Ordering& o = p.order;
+  if (o.unit == OrderUnit::conditions) {
+    int n = 1;
+    for (const auto& f : p.factors) n *= static_cast<int>(f.levels.size());
+    return scheme_rows(o.scheme, n, o.rows);
+  }
+  if (o.block_factor < 0 || o.block_factor >= static_cast<int>(p.factors.size())) return 0;
+  int nested = 1;
+  for (int f = 0; f < static_cast<int>(p.factors.size()); ++f)
+    if (f != o.block_factor) nested *= static_cast<int>(p.factors[f].levels.size());
+  const std::int64_t rows =
+      static_cast<std::int64_t>(
+          scheme_rows(o.scheme, static_cast<int>(p.factors[o.block_factor].levels.size()), o.rows)) *
+      scheme_rows(o.nested_scheme, nested, o.nested_rows);
+  return static_cast<int>(std::min<std::int64_t>(rows, std::numeric_limits<int>::max()));
+}
+
+int condition_index(const Protocol& p, const std::vector<int>& levels) {
+  if (levels.size() != p.factors.size()) return -1;
+  int index = 0;
+  for (std::size_t f = 0; f < levels.size(); ++f) {
+    const int k = static_cast<int>(p.factors[f].levels.size());
+    if (levels[f] < 0 || levels[f] >= k) return -1;
+    index = index * k + levels[f];
+  }
+  return index;
+}
+
+}  // namespace dtlab::protocol

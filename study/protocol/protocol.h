@@ -1,0 +1,204 @@
+// A study protocol as plain data, read from a TOML file (format: docs/protocol.md).
+// Guarantees: a Protocol returned by load_protocol() has passed every check of
+// validate_protocol_*(): factors cross, every level has its scenario and
+// rendering, the ordering scheme can order what it is asked to order.
+// Loading never aborts and never throws on bad input: every problem becomes a
+// Diagnostic with file, line, column and field path. Nothing here knows about
+// OpenGL, SQLite or the scene generator.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "study/common/error.h"
+
+namespace dtlab::protocol {
+
+template <class T>
+struct Range {  // closed interval [min, max], min <= max
+  T min{};
+  T max{};
+};
+
+// --- factors and conditions ---------------------------------------------------
+
+enum class FactorRole {
+  none,       // levels are recorded but change nothing the platform controls
+  scenario,   // each level names a [scenarios.<level>] table
+  rendering,  // each level names a [rendering.<level>] table
+};
+
+struct Factor {
+  std::string name;
+  FactorRole role = FactorRole::none;
+  std::vector<std::string> levels;  // unique, at least 2
+};
+
+// One cell of the full factorial. Conditions are numbered with the first
+// declared factor varying slowest: 2 x 2 (transparency, scenario) gives
+// 0 off/abstract, 1 off/walkthrough, 2 on/abstract, 3 on/walkthrough.
+struct Condition {
+  std::vector<int> levels;  // level index per factor, in factor order
+  int scenario = 0;         // index into Protocol::scenarios
+  int rendering = 0;        // index into Protocol::renderings
+  std::string name;         // levels joined by '/', e.g. "off/abstract"
+};
+
+// --- ordering (counterbalancing) ------------------------------------------------
+
+enum class Scheme { latin_square, williams, full_permutation, random, fixed };
+enum class OrderUnit {
+  conditions,  // the scheme orders the cells of the full factorial
+  blocks,      // the scheme orders the levels of block_factor; nested_scheme orders
+               // the cells of the other factors inside every block
+};
+
+struct Ordering {
+  OrderUnit unit = OrderUnit::conditions;
+  Scheme scheme = Scheme::latin_square;
+  int rows = 0;                 // scheme = random: number of random orders (default: participants)
+  std::vector<int> fixed;       // scheme = fixed: the order (condition or block-level indices)
+  int block_factor = -1;        // unit = blocks: index into Protocol::factors
+  Scheme nested_scheme = Scheme::fixed;  // unit = blocks: orders the nested cells
+  int nested_rows = 0;          // nested_scheme = random: number of random orders
+  std::vector<int> nested_fixed;  // nested_scheme = fixed: the order of nested cells
+};
+
+// --- scenes and tasks -------------------------------------------------------------
+
+enum class ScenarioKind { abstract, walkthrough };
+enum class TaskType {
+  count_targets,    // T1: count all targets (ABSTRACT)
+  identify_letter,  // T2: name the letter formed by the target cones (ABSTRACT)
+  find_unique,      // T3: find the unique object, mark it on the floor plan (WALKTHROUGH)
+  count_kind,       // T4: count the objects of one kind (WALKTHROUGH)
+};
+
+// Everything the scene generator needs for one task, after the cascade
+// task -> scenario -> built-in default (docs/protocol.md lists each default).
+struct SceneParams {
+  ScenarioKind kind = ScenarioKind::abstract;
+  int objects = 0;                        // number of objects placed (not walls)
+  double extent = 0.0;                    // ABSTRACT: edge of the cube holding the objects, world units
+  int grid_width = 0, grid_height = 0;    // WALKTHROUGH: floor-plan cells
+  double cell_size = 0.0;                 // WALKTHROUGH: world units per cell
+  std::vector<std::string> object_kinds;  // ABSTRACT: sphere cone box torus; WALKTHROUGH: model families
+                                          // pet vehicle furniture (every model of a listed family is used)
+  Range<double> object_radius;            // ABSTRACT: bounding-sphere radius of one object, world units
+  Range<double> target_ratio;             // fraction of objects that are targets (T1, T2)
+  std::vector<std::string> letters;       // T2: letters drawn (each one of C K R X Y, 5 x 7 grid)
+  Range<int> count_range;                 // T4: number of objects of the counted kind
+};
+
+struct Task {
+  std::string id;  // unique in the protocol, e.g. "T1"
+  TaskType type = TaskType::count_targets;
+  int trials = 0;  // recorded trials per condition
+  SceneParams scene;
+};
+
+struct Scenario {
+  std::string name;         // the level of the scenario factor it belongs to
+  SceneParams scene;        // scenario-level parameters (the tasks' defaults)
+  std::vector<Task> tasks;  // run in this order inside every block
+};
+
+// --- rendering ----------------------------------------------------------------------
+
+struct Rendering {
+  std::string name;                 // the level of the rendering factor it belongs to
+  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference"
+  double a0 = 0.1;                  // alpha where the mask gradient starts (next to the target)
+  double aT = 0.3;                  // alpha of surfaces directly in front of a target
+  int gradient_width = 8;           // n: gradient width in mask pixels
+  int mask_resolution = 128;        // mask buffer is mask_resolution x mask_resolution
+  std::string mask_shape = "outline";  // "outline" | "circle" | "ellipse"
+  std::string mode = "passive";     // "passive" (whole view) | "active" (searchlight)
+  int layer_limit = 0;              // most surfaces made transparent in front of a target; 0 = no limit
+};
+
+// --- session, training, questionnaire --------------------------------------------------
+
+struct Training {
+  double time_limit_s = 300.0;  // free exploration before every task set (block x task)
+  int practice_trials = 0;      // unscored trials before every task set
+};
+
+enum class ItemType {
+  rating,      // integer on [scale_min, scale_max], once per combination of `per` levels
+  choice,      // one of `options` (or of the levels of `factor`)
+  depth_test,  // `pairs` object pairs in one view; which of each pair is closer?
+};
+
+struct QuestionnaireItem {
+  std::string id;
+  ItemType type = ItemType::rating;
+  std::string prompt;
+  int scale_min = 0, scale_max = 4;  // rating
+  std::vector<std::string> per;      // rating: factor names
+  std::string factor;                // choice: options are this factor's levels
+  std::vector<std::string> options;  // choice: explicit options (when no factor)
+  std::string scenario;              // depth_test: scenario shown
+  std::string rendering;             // depth_test: rendering used
+  int pairs = 3;                     // depth_test
+};
+
+struct Protocol {
+  std::string source_path;  // as given to load_protocol
+  std::string source_text;  // the file's bytes, recorded by the store
+  std::string sha256;       // dtlab::sha256_hex(source_text)
+
+  int format = 1;
+  std::string id;  // [a-z0-9][a-z0-9_-]*
+  std::string title;
+  std::string description;
+  int participants = 0;         // target number of participants
+  std::uint64_t master_seed = 0;
+  double session_time_limit_s = 3600.0;
+
+  std::vector<Factor> factors;  // in file order
+  std::vector<Condition> conditions;  // the full factorial, first factor slowest
+  Ordering order;
+  Training training;
+  std::vector<Scenario> scenarios;    // in file order
+  std::vector<Rendering> renderings;  // in file order
+  std::vector<QuestionnaireItem> questionnaire;  // in file order
+};
+
+// --- loading and validation -------------------------------------------------------------
+
+// Reads, parses and checks the file. On failure, the first error (file:line:col, field).
+Result<Protocol> load_protocol(const std::string& path);
+// The same from text already in memory; `source_path` is used in messages only.
+Result<Protocol> load_protocol_text(std::string_view text, const std::string& source_path);
+
+// Every error and warning in the file, in file order; empty = valid with no warnings.
+std::vector<Diagnostic> validate_protocol_file(const std::string& path);
+std::vector<Diagnostic> validate_protocol_text(std::string_view text, const std::string& source_path);
+
+// True if any diagnostic is an error (warnings alone leave a protocol valid).
+bool has_errors(const std::vector<Diagnostic>& diagnostics);
+
+// --- names -------------------------------------------------------------------------------
+
+std::string_view to_string(FactorRole role);
+std::string_view to_string(Scheme scheme);       // "latin-square", "williams", ...
+std::string_view to_string(OrderUnit unit);
+std::string_view to_string(ScenarioKind kind);   // "abstract" | "walkthrough"
+std::string_view to_string(TaskType type);       // "count-targets", ...
+std::string_view to_string(ItemType type);
+
+// The number of rows the declared scheme yields for n items (n >= 1):
+// latin-square n, williams n (even n) or 2n (odd n), full-permutation n!,
+// random `random_rows`, fixed 1. Saturates at INT32_MAX.
+int scheme_rows(Scheme scheme, int n, int random_rows);
+
+// Rows of the protocol's ordering (for unit = blocks: outer rows x nested rows).
+int declared_order_rows(const Protocol& p);
+
+// Index of the condition with these level indices (one per factor); -1 if out of range.
+int condition_index(const Protocol& p, const std::vector<int>& levels);
+
+}  // namespace dtlab::protocol
