@@ -12,7 +12,8 @@ namespace dtlab::design {
 
 struct PlannedTrial {
   int position = 0;  // 1-based position in the participant's session
-  int block = 0;     // 1-based block number (a block = one ordered unit of the design)
+  int block = 0;     // 1-based block number (a block = one ordered unit of the design: one
+                     // condition's consecutive trials; a task set = a block's trials of one task)
   std::vector<std::pair<std::string, std::string>> levels;  // factor -> level, in protocol factor order
   std::string task;  // task id, e.g. "T1"
   int trial = 0;     // 1-based repetition of (condition, task)
