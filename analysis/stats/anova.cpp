@@ -1,0 +1,134 @@
+// One-way ANOVA; see anova.h.
+#include "analysis/stats/anova.h"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "analysis/stats/detail/sum.h"
+#include "analysis/stats/distributions.h"
+
+namespace dtlab::stats {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Mean of x: exact when all values are equal, else sum / n with a second-pass correction.
+double careful_mean(const std::vector<double>& x) {
+  bool constant = true;
+  for (double v : x) constant = constant && v == x.front();
+  if (constant) return x.front();
+  detail::Sum s;
+  for (double v : x) s.add(v);
+  double m = s.value() / static_cast<double>(x.size());
+  detail::Sum c;
+  for (double v : x) c.add(v - m);
+  return m + c.value() / static_cast<double>(x.size());
+}
+
+void clear_sphericity(Effect& e) {
+  e.mauchly_W = e.mauchly_p = e.gg_epsilon = e.hf_epsilon = kNaN;
+  e.p_gg = e.log10_p_gg = e.p_hf = e.log10_p_hf = kNaN;
+}
+
+OneWayResult compute(const std::string& factor, const std::vector<std::string>& labels,
+                     const std::vector<std::vector<double>>& deltas, double offset, size_t left_out) {
+  OneWayResult r;
+  r.factor = factor;
+  Effect& e = r.effect;
+  e.name = factor;
+  clear_sphericity(e);
+  if (left_out > 0)
+    r.warnings.push_back(std::to_string(left_out) + " row(s) with a missing value were left out (na.omit)");
+
+  std::vector<double> means;
+  std::vector<double> all;
+  for (size_t g = 0; g < labels.size(); ++g) {
+    if (deltas[g].empty()) continue;
+    r.groups.push_back({labels[g], describe(deltas[g], offset)});
+    means.push_back(careful_mean(deltas[g]));
+    all.insert(all.end(), deltas[g].begin(), deltas[g].end());
+    r.n += deltas[g].size();
+  }
+  const size_t k = means.size();
+  if (r.n == 0) {
+    e.df1 = e.df2 = e.ss = e.ss_error = e.F = e.p = e.log10_p = e.eta_p2 = e.eta_g2 = kNaN;
+    r.warnings.push_back("no observations");
+    return r;
+  }
+  const double grand = careful_mean(all);
+  detail::Sum ssb, ssw;
+  size_t gi = 0;
+  for (size_t g = 0; g < labels.size(); ++g) {
+    if (deltas[g].empty()) continue;
+    const double m = means[gi++];
+    ssb.add(static_cast<double>(deltas[g].size()) * (m - grand) * (m - grand));
+    for (double v : deltas[g]) ssw.add((v - m) * (v - m));
+  }
+  e.df1 = static_cast<double>(k) - 1.0;
+  e.df2 = static_cast<double>(r.n) - static_cast<double>(k);
+  e.ss = ssb.value();
+  e.ss_error = ssw.value();
+  const double total = e.ss + e.ss_error;
+  e.eta_p2 = e.eta_g2 = total > 0 ? e.ss / total : kNaN;
+  if (k < 2) {
+    e.F = e.p = e.log10_p = kNaN;
+    r.warnings.push_back("only one group: there is no between-group effect to test (F and p undefined)");
+  } else if (e.df2 == 0) {
+    e.F = e.p = e.log10_p = kNaN;
+    r.warnings.push_back("one observation per group: no within-group degrees of freedom (F and p undefined)");
+  } else if (e.ss_error == 0) {
+    if (e.ss > 0) {
+      e.F = std::numeric_limits<double>::infinity();
+      e.p = 0.0;
+      e.log10_p = -std::numeric_limits<double>::infinity();
+      r.warnings.push_back("zero within-group variance with different group means: F is infinite, p = 0");
+    } else {
+      e.F = e.p = e.log10_p = kNaN;
+      r.warnings.push_back("every value is equal: F = 0/0 is undefined");
+    }
+  } else {
+    e.F = (e.ss / e.df1) / (e.ss_error / e.df2);
+    const Tail t = f_upper(e.F, e.df1, e.df2);
+    e.p = t.p;
+    e.log10_p = t.log10_p;
+  }
+  return r;
+}
+
+}  // namespace
+
+Result<OneWayResult> one_way_anova(const LongData& data) {
+  if (data.between.size() != 1 || !data.within.empty())
+    return Error{data.source, 0, 0, "", "one-way ANOVA needs exactly one between-subject factor and no within factor"};
+  const Factor& f = data.between.front();
+  if (f.level.size() != data.rows()) throw std::invalid_argument("one_way_anova: one level per row is required");
+  std::vector<std::string> labels;
+  std::map<std::string, size_t> lookup;
+  std::vector<std::vector<double>> deltas;
+  size_t left_out = 0;
+  for (size_t i = 0; i < data.rows(); ++i) {
+    auto [it, inserted] = lookup.emplace(f.level[i], labels.size());
+    if (inserted) {
+      labels.push_back(f.level[i]);
+      deltas.emplace_back();
+    }
+    if (data.dv.missing(i)) {
+      ++left_out;
+      continue;
+    }
+    deltas[it->second].push_back(data.dv.delta[i]);
+  }
+  return compute(f.name, labels, deltas, data.dv.offset, left_out);
+}
+
+OneWayResult one_way_anova(const std::vector<std::string>& group, const std::vector<double>& y) {
+  if (group.size() != y.size()) throw std::invalid_argument("one_way_anova: group and y differ in length");
+  LongData d;
+  d.between.push_back({"group", group});
+  d.dv = Measurements::from_doubles(y);
+  return *one_way_anova(d);
+}
+
+}  // namespace dtlab::stats

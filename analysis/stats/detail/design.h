@@ -1,0 +1,40 @@
+// From a long-format table to the subject x cell matrix every repeated-
+// measures test starts from. Policy (documented in README "Statistics"):
+// levels and subjects keep their order of first appearance; several rows for
+// one subject and cell are averaged (afex's fun_aggregate = mean) with a
+// warning; a cell with no row, or with a missing value among its rows, is
+// missing, and a subject with any missing cell is removed (listwise deletion)
+// with a warning that names the subject and the cell. A between-subject
+// factor that changes within a subject is an Error naming both lines.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "analysis/stats/long_data.h"
+#include "study/common/error.h"
+
+namespace dtlab::stats::detail {
+
+struct CellDesign {
+  std::vector<std::string> subjects;                    // kept subjects, first-appearance order
+  std::vector<std::string> within_names;                // within factors
+  std::vector<std::vector<std::string>> within_levels;  // their levels
+  std::vector<std::string> between_names;
+  std::vector<std::vector<std::string>> between_levels;
+  std::vector<std::vector<size_t>> group;               // group[s][f]: level of between factor f for subject s
+  size_t cells = 1;                                     // product of the within levels; cell index has the last factor fastest
+  std::vector<std::vector<double>> delta;               // delta[s][c]: cell mean of dv deltas (exact offset removed)
+  std::vector<std::vector<double>> value;               // value[s][c]: cell mean of dv values (as R holds them)
+  double offset = 0.0;                                  // dv offset (value = offset + delta)
+  std::vector<std::string> dropped;                     // subjects removed by listwise deletion
+  std::vector<std::string> warnings;
+
+  std::vector<size_t> cell_levels(size_t cell) const;   // level index per within factor
+  std::string cell_label(size_t cell) const;            // "angle=0, noise=absent"
+  std::string cell_name(size_t cell) const;             // "0:absent" (the levels alone)
+};
+
+// Requires data.subject to be filled (one id per row).
+Result<CellDesign> build_cell_design(const LongData& data);
+
+}  // namespace dtlab::stats::detail

@@ -1,0 +1,42 @@
+// Small dense matrices for the repeated-measures ANOVA (contrast matrices,
+// sums of squares and products, the between-subjects normal equations). Row
+// major, sizes checked by assert. Only what the ANOVA needs: products,
+// symmetric positive-definite inverse and log-determinant by Cholesky.
+#pragma once
+#include <cassert>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace dtlab::stats::detail {
+
+struct Matrix {
+  size_t rows = 0, cols = 0;
+  std::vector<double> a;
+
+  Matrix() = default;
+  Matrix(size_t r, size_t c, double fill = 0.0) : rows(r), cols(c), a(r * c, fill) {}
+  double& operator()(size_t r, size_t c) { assert(r < rows && c < cols && "Matrix index out of range"); return a[r * cols + c]; }
+  double operator()(size_t r, size_t c) const { assert(r < rows && c < cols && "Matrix index out of range"); return a[r * cols + c]; }
+};
+
+Matrix transpose(const Matrix& m);
+Matrix multiply(const Matrix& x, const Matrix& y);  // x.cols == y.rows
+Matrix kronecker(const Matrix& x, const Matrix& y);
+Matrix crossprod(const Matrix& x);                  // x^T x, accumulated with compensated sums
+double trace(const Matrix& m);
+
+// Orthonormal contrasts for a factor with `levels` levels: (levels-1) x levels,
+// rows orthonormal and orthogonal to the constant vector (normalized Helmert).
+Matrix orthonormal_contrasts(size_t levels);
+// 1 x levels row of 1/sqrt(levels): the normalized mean over a factor.
+Matrix normalized_mean_row(size_t levels);
+
+// Inverse of a symmetric positive-definite matrix; nullopt if it is not
+// (numerically) positive definite.
+std::optional<Matrix> spd_inverse(const Matrix& m);
+// log(det m) for symmetric positive semi-definite m; -inf when singular
+// (a Cholesky pivot at or below 1e-12 times the largest diagonal entry).
+double spd_log_det(const Matrix& m);
+
+}  // namespace dtlab::stats::detail

@@ -1,0 +1,130 @@
+// Friedman test; see friedman.h.
+#include "analysis/stats/friedman.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "analysis/stats/detail/design.h"
+#include "analysis/stats/detail/friedman_exact.h"
+#include "analysis/stats/detail/ranks.h"
+#include "analysis/stats/distributions.h"
+
+namespace dtlab::stats {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kExactBudget = 2e7;  // states x permutations; about a second at most
+
+void set_undefined(FriedmanResult& r) {
+  r.Q = r.p = r.log10_p = r.p_exact = r.kendall_W = kNaN;
+  r.iman_davenport_F = r.p_iman_davenport = r.log10_p_iman_davenport = kNaN;
+}
+
+}  // namespace
+
+FriedmanResult friedman(const std::vector<std::vector<double>>& y, const ExactOptions& exact) {
+  FriedmanResult r;
+  r.n = y.size();
+  r.k = y.empty() ? 0 : y.front().size();
+  for (const auto& row : y)
+    if (row.size() != r.k) throw std::invalid_argument("friedman: every block needs the same number of treatments");
+  const double n = static_cast<double>(r.n), k = static_cast<double>(r.k);
+  r.df = k - 1.0;
+  r.id_df1 = k - 1.0;
+  r.id_df2 = (k - 1.0) * (n - 1.0);
+  if (r.n == 0 || r.k < 2) {
+    set_undefined(r);
+    r.warnings.push_back(r.n == 0 ? "no complete block: nothing to test" : "one treatment: nothing to compare");
+    return r;
+  }
+
+  std::vector<double> rank_sum(r.k, 0.0);
+  std::vector<std::vector<int>> doubled(r.n, std::vector<int>(r.k));
+  double ties = 0.0;
+  for (std::size_t i = 0; i < r.n; ++i) {
+    const auto rk = detail::average_ranks(y[i]);
+    for (std::size_t j = 0; j < r.k; ++j) {
+      rank_sum[j] += rk[j];
+      doubled[i][j] = static_cast<int>(std::lround(2.0 * rk[j]));
+    }
+    ties += detail::tie_sum(y[i]);
+  }
+  r.ties = ties > 0;
+  for (double s : rank_sum) r.mean_ranks.push_back(s / n);
+
+  double num = 0.0;
+  for (double s : rank_sum) num += (s - n * (k + 1.0) / 2.0) * (s - n * (k + 1.0) / 2.0);
+  const double denom = n * k * (k + 1.0) - ties / (k - 1.0);
+  if (denom <= 0) {  // every block fully tied: 0/0
+    set_undefined(r);
+    r.warnings.push_back("every block is fully tied: the Friedman statistic is 0/0 (undefined), as in R");
+    return r;
+  }
+  r.Q = 12.0 * num / denom;
+  const Tail chi = chi_squared_upper(r.Q, r.df);
+  r.p = chi.p;
+  r.log10_p = chi.log10_p;
+  r.kendall_W = r.Q / (n * (k - 1.0));
+
+  if (r.n < 2) {
+    r.iman_davenport_F = r.p_iman_davenport = r.log10_p_iman_davenport = kNaN;
+    r.warnings.push_back("one block: the Iman-Davenport F has no error degrees of freedom");
+  } else {
+    const double spare = n * (k - 1.0) - r.Q;
+    r.iman_davenport_F = spare > 1e-12 * n * (k - 1.0) ? (n - 1.0) * r.Q / spare : std::numeric_limits<double>::infinity();
+    const Tail f = f_upper(r.iman_davenport_F, r.id_df1, r.id_df2);
+    r.p_iman_davenport = f.p;
+    r.log10_p_iman_davenport = f.log10_p;
+  }
+
+  // Permutation p-value.
+  const std::int64_t s_obs = detail::friedman_s(doubled);
+  r.p_exact = kNaN;
+  auto run_monte_carlo = [&](std::size_t samples) {
+    r.p_exact = detail::friedman_monte_carlo_tail(doubled, s_obs, samples, exact.seed);
+    r.exact_method = "monte-carlo";
+    r.monte_carlo_samples = samples;
+    r.seed = exact.seed;
+  };
+  switch (exact.mode) {
+    case ExactMode::never:
+      break;
+    case ExactMode::monte_carlo:
+      run_monte_carlo(exact.monte_carlo_samples);
+      break;
+    case ExactMode::automatic:
+    case ExactMode::always: {
+      const double budget = exact.mode == ExactMode::always ? 50 * kExactBudget : kExactBudget;
+      if (auto p = detail::friedman_exact_tail(doubled, s_obs, budget)) {
+        r.p_exact = *p;
+        r.exact_method = "exact";
+      } else if (exact.mode == ExactMode::automatic) {
+        run_monte_carlo(exact.monte_carlo_samples);
+        r.warnings.push_back("exact enumeration too large for n = " + std::to_string(r.n) + ", k = " +
+                             std::to_string(r.k) + ": p_exact is a Monte Carlo estimate");
+      } else {
+        r.warnings.push_back("exact enumeration too large for n = " + std::to_string(r.n) + ", k = " +
+                             std::to_string(r.k) + ": p_exact not computed (use monte-carlo=N)");
+      }
+      break;
+    }
+  }
+  return r;
+}
+
+Result<FriedmanResult> friedman(const LongData& data, const ExactOptions& exact) {
+  if (!data.between.empty())
+    return Error{data.source, 0, 0, data.between.front().name, "the Friedman test takes no between-subject factor"};
+  if (data.within.empty()) return Error{data.source, 0, 0, "", "the Friedman test needs a within-subject factor"};
+  auto built = detail::build_cell_design(data);
+  if (!built) return built.error();
+  const detail::CellDesign& d = *built;
+  FriedmanResult r = friedman(d.value, exact);
+  for (std::size_t c = 0; c < d.cells; ++c) r.treatments.push_back(d.cell_name(c));
+  r.dropped_blocks = d.dropped;
+  r.warnings.insert(r.warnings.begin(), d.warnings.begin(), d.warnings.end());
+  return r;
+}
+
+}  // namespace dtlab::stats

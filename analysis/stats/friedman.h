@@ -1,0 +1,71 @@
+// Friedman rank test for a complete block design (blocks = subjects,
+// treatments = the cells of the within factor(s)), as R's friedman.test.
+//   Ranks r_ij within each block (average ranks for ties), R_j = sum_i r_ij,
+//   Q = 12 sum_j (R_j - n(k+1)/2)^2 / (n k (k+1) - sum_blocks sum_ties (t^3 - t) / (k - 1))
+//   df = k - 1, p = P(X^2(df) >= Q)                      (chi-square approximation)
+//   Kendall's W = Q / (n (k - 1))                        (tie-corrected, as pingouin)
+//   Iman-Davenport F = (n - 1) Q / (n (k - 1) - Q), df1 = k - 1, df2 = (k - 1)(n - 1)
+//   p_exact = P(Q' >= Q) under the permutation distribution that permutes the
+//     (mid-)ranks within each block independently: exact for untied data
+//     (the classical null distribution), the exact conditional distribution
+//     with ties. Computed by dynamic programming over the sorted vector of
+//     rank sums (Kendall & Babington Smith), or by Monte Carlo with a seed:
+//     p = (b + 1) / (N + 1) with b the resamples at or above Q (Phipson & Smyth 2010).
+// Exact modes: automatic = exact if the enumeration fits the work budget,
+// else Monte Carlo with 100000 resamples; always = exact (an Error-free NaN
+// with a warning if beyond 50 times the budget); never = no p_exact;
+// monte_carlo = N resamples.
+// Missing data: blocks with a missing cell are removed (R drops incomplete
+// blocks; we warn and name them); several rows per cell are averaged.
+// Ties are decided by exact double equality of the values read (as R).
+// Defined results: every block fully tied -> Q = 0/0: Q, W, F and every p are
+// NaN, with a warning (R gives NaN); Q = n(k-1) (perfect agreement) -> F = +inf,
+// p_iman_davenport = 0; one treatment (k = 1) or no block -> NaN with a warning;
+// one block (n = 1) -> Q, W and p defined, Iman-Davenport F NaN (df2 = 0).
+// References: Friedman (1937); Iman & Davenport (1980); Kendall & Babington
+// Smith (1939); Hollander & Wolfe (1973) 7.1.
+// Validated against: R 4.x friedman.test examples (stats-Ex.Rout.save), scipy
+// 1.x test values (Demsar, Bioestadistica, Zar 12.6), pingouin (wine),
+// exact null tables computed with exact rational arithmetic (cross-checked
+// with R package SuppDists).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "analysis/stats/long_data.h"
+#include "study/common/error.h"
+
+namespace dtlab::stats {
+
+enum class ExactMode { automatic, always, never, monte_carlo };
+
+struct ExactOptions {
+  ExactMode mode = ExactMode::automatic;
+  std::size_t monte_carlo_samples = 100000;  // used by monte_carlo (and by automatic when exact is too costly)
+  std::uint64_t seed = 1;                    // Monte Carlo seed (SplitMix64 stream)
+};
+
+struct FriedmanResult {
+  std::vector<std::string> treatments;  // cell labels, first-appearance order
+  std::vector<double> mean_ranks;       // R_j / n
+  std::size_t n = 0, k = 0;             // blocks used, treatments
+  bool ties = false;
+  double Q = 0, df = 0, p = 0, log10_p = 0;
+  double p_exact = 0;                   // NaN when not computed
+  std::string exact_method = "none";    // "exact", "monte-carlo" or "none"
+  std::size_t monte_carlo_samples = 0;
+  std::uint64_t seed = 0;
+  double kendall_W = 0;
+  double iman_davenport_F = 0, id_df1 = 0, id_df2 = 0, p_iman_davenport = 0, log10_p_iman_davenport = 0;
+  std::vector<std::string> dropped_blocks;
+  std::vector<std::string> warnings;
+};
+
+// y[i][j]: block i, treatment j; every row the same length, no NaN.
+FriedmanResult friedman(const std::vector<std::vector<double>>& y, const ExactOptions& exact = {});
+
+// From long data: blocks = data.subject, treatments = cells of data.within.
+Result<FriedmanResult> friedman(const LongData& data, const ExactOptions& exact = {});
+
+}  // namespace dtlab::stats

@@ -1,0 +1,191 @@
+// Exact decimal parsing and differences; see measurements.h.
+#include "analysis/stats/measurements.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace dtlab::stats {
+namespace {
+
+constexpr int kMaxDigits = 38;  // 10^38 < 2^128
+
+uint128 pow10_128(int n) {
+  uint128 r = 1;
+  for (int i = 0; i < n; ++i) r *= 10;
+  return r;
+}
+
+std::string to_decimal_string(uint128 v) {
+  if (v == 0) return "0";
+  std::string s;
+  while (v > 0) {
+    s.insert(s.begin(), static_cast<char>('0' + static_cast<int>(v % 10)));
+    v /= 10;
+  }
+  return s;
+}
+
+// (-1)^neg * mag * 10^exp rounded once to double.
+double round_to_double(uint128 mag, int exp, bool neg) {
+  static const double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                  1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                  1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  double r;
+  if (mag < (static_cast<uint128>(1) << 53) && exp >= -22 && exp <= 22) {
+    // Both operands are exact doubles, so one IEEE operation rounds once.
+    const double m = static_cast<double>(static_cast<unsigned long long>(mag));
+    r = exp >= 0 ? m * kPow10[exp] : m / kPow10[-exp];
+  } else {
+    const std::string s = to_decimal_string(mag) + "e" + std::to_string(exp);
+    r = 0.0;
+    const auto res = std::from_chars(s.data(), s.data() + s.size(), r);  // correctly rounded
+    if (res.ec == std::errc::result_out_of_range) r = exp > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+  }
+  return neg ? -r : r;
+}
+
+}  // namespace
+
+std::optional<Decimal> parse_decimal(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  if (s.empty()) return std::nullopt;
+
+  Decimal d;
+  size_t i = 0;
+  if (s[i] == '+' || s[i] == '-') {
+    d.negative = s[i] == '-';
+    ++i;
+  }
+  int digits_seen = 0, significant = 0, dropped_exp = 0, frac_digits = 0;
+  bool round_up = false, in_fraction = false;
+  for (; i < s.size(); ++i) {
+    const char c = s[i];
+    if (c == '.') {
+      if (in_fraction) return std::nullopt;
+      in_fraction = true;
+      continue;
+    }
+    if (c < '0' || c > '9') break;
+    ++digits_seen;
+    if (in_fraction) ++frac_digits;
+    if (significant == 0 && c == '0') continue;  // leading zeros
+    if (significant < kMaxDigits) {
+      d.magnitude = d.magnitude * 10 + static_cast<unsigned>(c - '0');
+      ++significant;
+    } else {
+      if (significant == kMaxDigits && dropped_exp == 0) round_up = c >= '5';
+      if (c != '0') d.exact = false;
+      ++dropped_exp;  // digit beyond 38 significant ones: scale instead of storing
+    }
+  }
+  if (digits_seen == 0) return std::nullopt;
+  long long exp10 = 0;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    bool eneg = false;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) {
+      eneg = s[i] == '-';
+      ++i;
+    }
+    const size_t start = i;
+    for (; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i)
+      if (exp10 < 100000) exp10 = exp10 * 10 + (s[i] - '0');
+    if (i == start) return std::nullopt;
+    if (eneg) exp10 = -exp10;
+  }
+  if (i != s.size()) return std::nullopt;
+  if (round_up) ++d.magnitude;  // magnitude < 10^38 + 1 still fits
+  d.exponent = static_cast<int>(exp10 - frac_digits + dropped_exp);
+
+  const char* first = s.data();
+  auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), d.value);
+  if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(d.value)) {
+    // from_chars rejects a leading '+'; retry without it.
+    if (s.front() == '+') {
+      auto r2 = std::from_chars(first + 1, s.data() + s.size(), d.value);
+      if (r2.ec != std::errc() || r2.ptr != s.data() + s.size() || !std::isfinite(d.value)) return std::nullopt;
+    } else {
+      return std::nullopt;
+    }
+  }
+  if (d.magnitude == 0) d.exponent = 0;
+  return d;
+}
+
+double decimal_difference(const Decimal& a, const Decimal& b) {
+  if (!a.exact || !b.exact) return a.value - b.value;
+  if (a.magnitude == 0) return -b.value;
+  if (b.magnitude == 0) return a.value;
+  const int e = std::min(a.exponent, b.exponent);
+  const int sa = a.exponent - e, sb = b.exponent - e;
+  const uint128 max = ~static_cast<uint128>(0) >> 2;  // keep one bit of headroom for the sum
+  if (sa > kMaxDigits || sb > kMaxDigits) return a.value - b.value;
+  const uint128 pa = pow10_128(sa), pb = pow10_128(sb);
+  if (a.magnitude > max / pa || b.magnitude > max / pb) return a.value - b.value;
+  const uint128 A = a.magnitude * pa, B = b.magnitude * pb;
+  // signed A - B with magnitudes: compute |A -+ B| and its sign.
+  if (a.negative == b.negative) {
+    if (A >= B) return round_to_double(A - B, e, a.negative);
+    return round_to_double(B - A, e, !a.negative);
+  }
+  return round_to_double(A + B, e, a.negative);
+}
+
+bool Measurements::missing(size_t i) const { return std::isnan(value[i]); }
+
+Measurements Measurements::from_doubles(std::vector<double> values) {
+  Measurements m;
+  double sum = 0.0;
+  size_t n = 0;
+  for (double v : values)
+    if (!std::isnan(v)) {
+      sum += v;
+      ++n;
+    }
+  if (n > 0) {
+    const double mean = sum / static_cast<double>(n);
+    double best = std::numeric_limits<double>::infinity();
+    for (double v : values)
+      if (!std::isnan(v) && std::fabs(v - mean) < best) {
+        best = std::fabs(v - mean);
+        m.offset = v;
+      }
+  }
+  m.delta.resize(values.size());
+  for (size_t i = 0; i < values.size(); ++i) m.delta[i] = values[i] - m.offset;  // NaN stays NaN
+  m.value = std::move(values);
+  return m;
+}
+
+Measurements Measurements::from_decimals(const std::vector<std::optional<Decimal>>& values) {
+  Measurements m;
+  const size_t n = values.size();
+  m.value.assign(n, std::numeric_limits<double>::quiet_NaN());
+  m.delta.assign(n, std::numeric_limits<double>::quiet_NaN());
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (values[i]) {
+      m.value[i] = values[i]->value;
+      sum += values[i]->value;
+      ++count;
+    }
+  if (count == 0) return m;
+  const double mean = sum / static_cast<double>(count);
+  size_t ref = n;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < n; ++i)
+    if (values[i] && std::fabs(values[i]->value - mean) < best) {
+      best = std::fabs(values[i]->value - mean);
+      ref = i;
+    }
+  m.offset = values[ref]->value;
+  for (size_t i = 0; i < n; ++i)
+    if (values[i]) m.delta[i] = decimal_difference(*values[i], *values[ref]);
+  return m;
+}
+
+}  // namespace dtlab::stats

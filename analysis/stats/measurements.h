@@ -1,0 +1,57 @@
+// Numbers for the statistics, kept accurate when they share many leading
+// digits (NIST StRD SmLs07-09: 1000000000000.4, ...). Each value is stored
+// twice: `value`, the correctly rounded double of its decimal text (what R or
+// any strtod-based reader holds), and `delta` = value - offset, where the
+// offset is one of the values and the difference is taken EXACTLY on the
+// decimal digits, then rounded once. Sums of squares are computed from the
+// deltas, so the constant leading digits never enter floating point.
+// Guarantees: delta is exact to 1/2 ulp of itself for decimal inputs with up to
+// 38 significant digits; value is bit-identical to std::from_chars. Missing
+// values are NaN in both. Never throws for bad text: parse_decimal says no.
+#pragma once
+#include <cstddef>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace dtlab::stats {
+
+__extension__ typedef unsigned __int128 uint128;
+
+// A decimal number as written: (-1)^negative * magnitude * 10^exponent.
+struct Decimal {
+  uint128 magnitude = 0;
+  int exponent = 0;
+  bool negative = false;
+  bool exact = true;   // false if the text had more than 38 significant digits (the rest were rounded)
+  double value = 0.0;  // the correctly rounded double of the text
+};
+
+// Parses "[blanks][+|-]digits[.digits][(e|E)[+|-]digits][blanks]" (also ".5", "5.").
+// Returns nullopt for anything else, including "NaN", "inf", "1,5", "" and
+// numbers outside the double range.
+std::optional<Decimal> parse_decimal(std::string_view text);
+
+// a - b computed exactly on the decimal digits, then rounded once to double.
+// Falls back to a.value - b.value only when the digits cannot be aligned in
+// 128 bits (e.g. 1e30 - 1e-30), where that double difference is as accurate.
+double decimal_difference(const Decimal& a, const Decimal& b);
+
+// One numeric variable (e.g. the dependent variable, one entry per CSV row).
+struct Measurements {
+  double offset = 0.0;        // the reference value (one of the inputs), as a double
+  std::vector<double> value;  // value[i]: correctly rounded input; NaN = missing
+  std::vector<double> delta;  // delta[i]: input - offset, exact difference rounded once; NaN = missing
+
+  size_t size() const { return value.size(); }
+  bool missing(size_t i) const;
+
+  // From doubles (NaN = missing): delta = value - offset in double, which is
+  // exact to 1/2 ulp of the difference of the doubles given.
+  static Measurements from_doubles(std::vector<double> values);
+  // From parsed decimals (nullopt = missing): offset is the value nearest the
+  // mean, deltas from decimal_difference().
+  static Measurements from_decimals(const std::vector<std::optional<Decimal>>& values);
+};
+
+}  // namespace dtlab::stats

@@ -1,0 +1,294 @@
+// Paired two-sample tests; see paired.h.
+#include "analysis/stats/paired.h"
+
+#include <boost/math/distributions/binomial.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "analysis/stats/detail/design.h"
+#include "analysis/stats/detail/friedman_exact.h"
+#include "analysis/stats/detail/ranks.h"
+#include "analysis/stats/detail/sum.h"
+#include "analysis/stats/distributions.h"
+
+namespace dtlab::stats {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kLn10 = 2.302585092994045684;
+constexpr double kExactBudget = 2e8;  // ranks x sums in the signed-rank DP
+
+std::vector<double> differences(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() != y.size()) throw std::invalid_argument("paired test: x and y differ in length");
+  std::vector<double> d;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isnan(x[i]) && !std::isnan(y[i])) d.push_back(x[i] - y[i]);
+  return d;
+}
+
+Tail from_p(double p) { return {p, p > 0 ? std::log10(p) : -kInf}; }
+
+// P(Binomial(n, 1/2) <= m), with an analytic log when it underflows.
+Tail binomial_half_lower(std::size_t n, std::size_t m) {
+  if (m >= n) return {1.0, 0.0};
+  const double p = boost::math::cdf(boost::math::binomial_distribution<double>(static_cast<double>(n), 0.5),
+                                    static_cast<double>(m));
+  if (p >= 1e-290) return from_p(p);
+  double best = -kInf;
+  std::vector<double> logs;
+  for (std::size_t i = 0; i <= m; ++i) {
+    const double l = boost::math::lgamma(static_cast<double>(n) + 1) - boost::math::lgamma(static_cast<double>(i) + 1) -
+                     boost::math::lgamma(static_cast<double>(n - i) + 1) - static_cast<double>(n) * std::log(2.0);
+    logs.push_back(l);
+    best = std::max(best, l);
+  }
+  double s = 0;
+  for (double l : logs) s += std::exp(l - best);
+  const double ln_p = best + std::log(s);
+  return {std::exp(ln_p), ln_p / kLn10};
+}
+
+Tail two_sided_from(Tail lower, Tail upper) {
+  const Tail& t = lower.p < upper.p ? lower : upper;
+  if (2.0 * t.p >= 1.0) return {1.0, 0.0};
+  return {2.0 * t.p, t.log10_p + std::log10(2.0)};
+}
+
+// Exact distribution of T = sum of the doubled ranks given a + sign: P(T >= t) and P(T <= t).
+bool signed_rank_exact(const std::vector<int>& w, long t, double budget, double& upper, double& lower) {
+  long total = 0;
+  for (int v : w) total += v;
+  if (static_cast<double>(total) * static_cast<double>(w.size()) > budget) return false;
+  std::vector<double> prob(static_cast<std::size_t>(total) + 1, 0.0);
+  prob[0] = 1.0;
+  long reach = 0;
+  for (int v : w) {
+    for (long s = reach; s >= 0; --s) {
+      const double q = prob[static_cast<std::size_t>(s)] * 0.5;
+      prob[static_cast<std::size_t>(s)] = q;
+      prob[static_cast<std::size_t>(s + v)] += q;
+    }
+    reach += v;
+  }
+  detail::Sum up, lo;
+  for (long s = 0; s <= total; ++s) {
+    if (s >= t) up.add(prob[static_cast<std::size_t>(s)]);
+    if (s <= t) lo.add(prob[static_cast<std::size_t>(s)]);
+  }
+  upper = std::min(1.0, up.value());
+  lower = std::min(1.0, lo.value());
+  return true;
+}
+
+double pick(Alternative alt, bool above_mean, double upper, double lower) {
+  switch (alt) {
+    case Alternative::greater: return upper;
+    case Alternative::less: return lower;
+    case Alternative::two_sided: break;
+  }
+  return std::min(1.0, 2.0 * (above_mean ? upper : lower));
+}
+
+}  // namespace
+
+WilcoxonResult wilcoxon_signed_rank(const std::vector<double>& x, const std::vector<double>& y,
+                                    const WilcoxonOptions& o) {
+  WilcoxonResult r;
+  const std::vector<double> all = differences(x, y);
+  r.pairs = all.size();
+  std::vector<double> d;
+  for (double v : all)
+    if (v != 0) d.push_back(v);
+  r.zeros = r.pairs - d.size();
+  r.n = d.size();
+  r.p_exact = kNaN;
+  const double n = static_cast<double>(r.n);
+  std::vector<double> absd(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) absd[i] = std::fabs(d[i]);
+  const std::vector<double> rk = detail::average_ranks(absd);
+  const double tie_term = detail::tie_sum(absd);
+  r.ties = tie_term > 0;
+  long v2 = 0;  // 2 V
+  std::vector<int> w(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    w[i] = static_cast<int>(std::lround(2.0 * rk[i]));
+    if (d[i] > 0) v2 += w[i];
+  }
+  r.V = static_cast<double>(v2) / 2.0;
+  const double mean = n * (n + 1.0) / 4.0;
+  const bool above_mean = r.V > mean;
+
+  // Normal approximation (always computed; it is p when R would use it).
+  const double sigma = std::sqrt(n * (n + 1.0) * (2.0 * n + 1.0) / 24.0 - tie_term / 48.0);
+  double z0 = r.V - mean;
+  double correction = 0.0;
+  if (o.correct) {
+    switch (o.alternative) {
+      case Alternative::two_sided: correction = z0 > 0 ? 0.5 : (z0 < 0 ? -0.5 : 0.0); break;
+      case Alternative::greater: correction = 0.5; break;
+      case Alternative::less: correction = -0.5; break;
+    }
+  }
+  r.z = sigma > 0 ? (z0 - correction) / sigma : kNaN;
+  Tail normal{kNaN, kNaN};
+  if (r.n > 0) {
+    switch (o.alternative) {
+      case Alternative::two_sided: normal = normal_two_sided(r.z); break;
+      case Alternative::greater: normal = normal_upper(r.z); break;
+      case Alternative::less: normal = normal_lower(r.z); break;
+    }
+  }
+  r.p_normal = normal.p;
+
+  // Exact or resampled permutation p.
+  if (r.n > 0 && o.exact.mode != ExactMode::never) {
+    if (o.exact.mode == ExactMode::monte_carlo) {
+      detail::SplitMixStream rng(o.exact.seed);
+      std::size_t hi = 0, lo = 0;
+      for (std::size_t b = 0; b < o.exact.monte_carlo_samples; ++b) {
+        long t = 0;
+        for (std::size_t i = 0; i < w.size(); ++i)
+          if (rng.next() >> 63) t += w[i];
+        if (t >= v2) ++hi;
+        if (t <= v2) ++lo;
+      }
+      const double N = static_cast<double>(o.exact.monte_carlo_samples);
+      r.p_exact = pick(o.alternative, above_mean, (static_cast<double>(hi) + 1) / (N + 1), (static_cast<double>(lo) + 1) / (N + 1));
+      r.exact_method = "monte-carlo";
+    } else {
+      double up = 0, lo = 0;
+      const double budget = o.exact.mode == ExactMode::always ? 50 * kExactBudget : kExactBudget;
+      if (signed_rank_exact(w, v2, budget, up, lo)) {
+        r.p_exact = pick(o.alternative, above_mean, up, lo);
+        r.exact_method = "exact";
+      } else {
+        r.warnings.push_back("exact signed-rank distribution too large for n = " + std::to_string(r.n));
+      }
+    }
+  }
+
+  // Which p is "the" p (R's rules in automatic mode).
+  bool use_exact = false;
+  switch (o.exact.mode) {
+    case ExactMode::automatic: use_exact = r.n < 50 && !r.ties && r.zeros == 0 && r.exact_method == "exact"; break;
+    case ExactMode::always:
+    case ExactMode::monte_carlo: use_exact = !std::isnan(r.p_exact); break;
+    case ExactMode::never: break;
+  }
+  if (use_exact) {
+    r.p = r.p_exact;
+    r.log10_p = r.p > 0 ? std::log10(r.p) : -kInf;
+    r.method = r.exact_method;
+  } else {
+    r.p = normal.p;
+    r.log10_p = normal.log10_p;
+    r.method = "normal";
+    if (o.exact.mode == ExactMode::automatic && r.n < 50 && r.n > 0 && (r.ties || r.zeros > 0))
+      r.warnings.push_back(std::string("cannot use the exact p-value with ") + (r.ties ? "ties" : "zeroes") +
+                           ": p is the normal approximation (as R); p_exact is the exact conditional p");
+  }
+  if (r.n == 0) r.warnings.push_back("every difference is zero: the signed-rank test is undefined (p = NaN)");
+  return r;
+}
+
+SignTestResult sign_test(const std::vector<double>& x, const std::vector<double>& y, Alternative alternative) {
+  SignTestResult r;
+  for (double v : differences(x, y)) {
+    if (v > 0) ++r.positive;
+    if (v < 0) ++r.negative;
+  }
+  r.n = r.positive + r.negative;
+  if (r.n == 0) {
+    r.p = r.log10_p = kNaN;
+    return r;
+  }
+  const Tail lower = binomial_half_lower(r.n, r.positive);  // P(X <= n+)
+  const Tail upper = binomial_half_lower(r.n, r.negative);  // P(X >= n+) = P(X <= n-) by symmetry
+  Tail t{};
+  switch (alternative) {
+    case Alternative::greater: t = upper; break;
+    case Alternative::less: t = lower; break;
+    case Alternative::two_sided: t = two_sided_from(lower, upper); break;
+  }
+  r.p = t.p;
+  r.log10_p = t.log10_p;
+  return r;
+}
+
+PairedTResult paired_t(const std::vector<double>& x, const std::vector<double>& y, Alternative alternative) {
+  PairedTResult r;
+  const std::vector<double> d = differences(x, y);
+  r.n = d.size();
+  if (r.n < 2) {
+    r.mean_difference = r.n == 1 ? d.front() : kNaN;
+    r.sd = r.t = r.df = r.p = r.log10_p = r.ci_low = r.ci_high = kNaN;
+    return r;
+  }
+  detail::Sum s;
+  for (double v : d) s.add(v);
+  double m = s.value() / static_cast<double>(r.n);
+  detail::Sum c;
+  for (double v : d) c.add(v - m);
+  m += c.value() / static_cast<double>(r.n);
+  detail::Sum ss;
+  for (double v : d) ss.add((v - m) * (v - m));
+  r.mean_difference = m;
+  r.df = static_cast<double>(r.n - 1);
+  r.sd = std::sqrt(ss.value() / r.df);
+  const double se = r.sd / std::sqrt(static_cast<double>(r.n));
+  const double q = t_quantile(0.975, r.df);
+  r.ci_low = m - q * se;
+  r.ci_high = m + q * se;
+  if (se == 0) {
+    r.t = m == 0 ? kNaN : (m > 0 ? kInf : -kInf);
+  } else {
+    r.t = m / se;
+  }
+  Tail t{};
+  switch (alternative) {
+    case Alternative::two_sided: t = t_two_sided(r.t, r.df); break;
+    case Alternative::greater: t = t_upper(r.t, r.df); break;
+    case Alternative::less: t = t_lower(r.t, r.df); break;
+  }
+  r.p = t.p;
+  r.log10_p = t.log10_p;
+  return r;
+}
+
+Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options) {
+  if (!data.between.empty())
+    return Error{data.source, 0, 0, data.between.front().name, "the paired tests take no between-subject factor"};
+  if (data.within.size() != 1)
+    return Error{data.source, 0, 0, "", "the paired tests need exactly one within-subject factor with two levels"};
+  auto built = detail::build_cell_design(data);
+  if (!built) return built.error();
+  const detail::CellDesign& d = *built;
+  if (d.cells != 2)
+    return Error{data.source, 0, 0, data.within.front().name,
+                 "the paired tests need exactly two levels; this factor has " + std::to_string(d.cells) +
+                     " (use friedman or rm-anova for more)"};
+  PairedResult r;
+  r.x_level = d.within_levels[0][0];
+  r.y_level = d.within_levels[0][1];
+  std::vector<double> x, y, dx, dy;
+  for (std::size_t s = 0; s < d.subjects.size(); ++s) {
+    x.push_back(d.value[s][0]);
+    y.push_back(d.value[s][1]);
+    dx.push_back(d.delta[s][0]);
+    dy.push_back(d.delta[s][1]);
+  }
+  r.wilcoxon = wilcoxon_signed_rank(x, y, options);
+  r.sign = sign_test(x, y, options.alternative);
+  r.t = paired_t(dx, dy, options.alternative);  // deltas: the offset cancels exactly
+  r.dropped_subjects = d.dropped;
+  r.warnings = d.warnings;
+  r.warnings.insert(r.warnings.end(), r.wilcoxon.warnings.begin(), r.wilcoxon.warnings.end());
+  return r;
+}
+
+}  // namespace dtlab::stats

@@ -1,0 +1,133 @@
+// Pairwise comparisons with Holm's correction; see posthoc.h.
+#include "analysis/stats/posthoc.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+
+#include "analysis/stats/descriptives.h"
+#include "analysis/stats/detail/design.h"
+#include "analysis/stats/distributions.h"
+
+namespace dtlab::stats {
+
+std::vector<double> holm(const std::vector<double>& p) {
+  std::vector<std::size_t> idx;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!std::isnan(p[i])) idx.push_back(i);
+  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return p[a] < p[b]; });
+  std::vector<double> out(p.size(), std::numeric_limits<double>::quiet_NaN());
+  const double m = static_cast<double>(idx.size());
+  double running = 0.0;
+  for (std::size_t j = 0; j < idx.size(); ++j) {
+    running = std::max(running, (m - static_cast<double>(j)) * p[idx[j]]);
+    out[idx[j]] = std::min(1.0, running);
+  }
+  return out;
+}
+
+Result<std::vector<Comparison>> pairwise_within(const LongData& data, const std::string& factor, PairwiseTest test,
+                                                const WilcoxonOptions& options) {
+  auto built = detail::build_cell_design(data);
+  if (!built) return built.error();
+  const detail::CellDesign& d = *built;
+  const auto it = std::find(d.within_names.begin(), d.within_names.end(), factor);
+  if (it == d.within_names.end()) return Error{data.source, 0, 0, factor, "not a within-subject factor of the design"};
+  const std::size_t f = static_cast<std::size_t>(it - d.within_names.begin());
+  const std::size_t L = d.within_levels[f].size(), N = d.subjects.size();
+  // Marginal means per subject and level (values for rank tests, deltas for t).
+  std::vector<std::vector<double>> val(L, std::vector<double>(N, 0.0)), del = val;
+  std::vector<double> count(L, 0.0);
+  for (std::size_t c = 0; c < d.cells; ++c) {
+    const std::size_t l = d.cell_levels(c)[f];
+    count[l] += 1.0;
+    for (std::size_t s = 0; s < N; ++s) {
+      val[l][s] += d.value[s][c];
+      del[l][s] += d.delta[s][c];
+    }
+  }
+  for (std::size_t l = 0; l < L; ++l)
+    for (std::size_t s = 0; s < N; ++s) {
+      if (count[l] > 1) {
+        val[l][s] /= count[l];
+        del[l][s] /= count[l];
+      }
+    }
+  std::vector<Comparison> out;
+  for (std::size_t i = 0; i < L; ++i)
+    for (std::size_t j = i + 1; j < L; ++j) {
+      Comparison c;
+      c.a = d.within_levels[f][i];
+      c.b = d.within_levels[f][j];
+      if (test == PairwiseTest::paired_t) {
+        const PairedTResult t = paired_t(del[i], del[j]);
+        c.test = "paired t";
+        c.estimate = t.mean_difference;
+        c.statistic = t.t;
+        c.df = t.df;
+        c.p = t.p;
+      } else {
+        const WilcoxonResult w = wilcoxon_signed_rank(val[i], val[j], options);
+        c.test = "wilcoxon";
+        c.estimate = paired_t(del[i], del[j]).mean_difference;
+        c.statistic = w.V;
+        c.df = std::numeric_limits<double>::quiet_NaN();
+        c.p = w.p;
+      }
+      out.push_back(c);
+    }
+  std::vector<double> ps;
+  for (const auto& c : out) ps.push_back(c.p);
+  const auto adj = holm(ps);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].p_holm = adj[i];
+  return out;
+}
+
+Result<std::vector<Comparison>> pairwise_between(const LongData& data) {
+  if (data.between.empty()) return Error{data.source, 0, 0, "", "no between-subject factor to compare"};
+  const Factor& g = data.between.front();
+  std::vector<std::string> levels;
+  std::map<std::string, std::size_t> lookup;
+  std::vector<std::vector<double>> groups;
+  for (std::size_t i = 0; i < data.rows(); ++i) {
+    auto [it, ins] = lookup.emplace(g.level[i], levels.size());
+    if (ins) {
+      levels.push_back(g.level[i]);
+      groups.emplace_back();
+    }
+    if (!data.dv.missing(i)) groups[it->second].push_back(data.dv.delta[i]);
+  }
+  std::vector<Descriptives> desc;
+  double pooled_num = 0.0, total_df = 0.0;
+  for (const auto& x : groups) {
+    desc.push_back(describe(x, 0.0));
+    if (x.size() > 1) {
+      pooled_num += desc.back().sd * desc.back().sd * static_cast<double>(x.size() - 1);
+      total_df += static_cast<double>(x.size() - 1);
+    }
+  }
+  const double pooled_sd = std::sqrt(pooled_num / total_df);
+  std::vector<Comparison> out;
+  for (std::size_t i = 0; i < levels.size(); ++i)
+    for (std::size_t j = i + 1; j < levels.size(); ++j) {
+      Comparison c;
+      c.a = levels[i];
+      c.b = levels[j];
+      c.test = "pooled t";
+      c.estimate = desc[i].mean - desc[j].mean;
+      const double se = pooled_sd * std::sqrt(1.0 / static_cast<double>(desc[i].n) + 1.0 / static_cast<double>(desc[j].n));
+      c.statistic = c.estimate / se;
+      c.df = total_df;
+      c.p = t_two_sided(c.statistic, total_df).p;
+      out.push_back(c);
+    }
+  std::vector<double> ps;
+  for (const auto& c : out) ps.push_back(c.p);
+  const auto adj = holm(ps);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].p_holm = adj[i];
+  return out;
+}
+
+}  // namespace dtlab::stats

@@ -1,0 +1,73 @@
+// Repeated-measures ANOVA: one, two or n within-subject factors, optionally
+// crossed with between-subject factors (mixed designs), as R's
+// afex::aov_car(dv ~ between + Error(id/within)) / car::Anova(mlm, type = 3)
+// compute it.
+// Method (multivariate formulation of the univariate tests): the subject x
+// cell matrix Y is transformed, for each within term S, by orthonormal
+// contrasts M_S (Kronecker products of normalized Helmert contrasts, and of
+// normalized means for factors outside S): Z = Y M_S'. Between factors enter
+// as a full-factorial design X with sum-to-zero contrasts; B = (X'X)^-1 X'Z,
+// E = residual sums of squares and products (p x p), H_T = B_T' V_TT^-1 B_T
+// for each between term T (type III). Then
+//   SS = tr H_T, SS_error = tr E, df1 = df_T p, df2 = (N - q) p, F = (SS/df1)/(SS_error/df2),
+// with p = rows of M_S, N subjects, q = columns of X. Type III equals type I
+// for balanced all-within designs.
+// Sphericity (within terms with p >= 2), as car::summary.Anova.mlm:
+//   GG = tr(E)^2 / (p tr(E^2));  HF = ((N - q + 1) p GG - 2) / (p (N - q - p GG)), may exceed 1;
+//   p_gg uses df * GG, p_hf uses df * min(1, HF);
+//   Mauchly: log W = log det E - p log(tr E / p); chi-square approximation with
+//   Anderson's second term, n = N - q, including car/stats' use of the total
+//   number of within cells (not p) in the "3 p" term of w2.
+// 1-df within terms: GG = HF = 1, Mauchly NaN. Between terms: sphericity NaN.
+// Effect sizes (afex es = "pes", "ges"): eta_p2 = SS / (SS + SS_error);
+//   eta_g2 = SS / (SS + sum of the distinct error SS of all strata, including
+//   the between-subjects stratum [+ SS of effects with observed factors])
+//   (Olejnik & Algina 2003; afex sums unique() error SS values, and so do we).
+// Missing data: listwise deletion of subjects with a missing cell, with a
+// warning naming them (detail/design.h); several rows per cell are averaged.
+// Defined results: zero error SS (below the rounding noise of the data,
+// 2e-28 * cells * sum of squared deltas) -> F = +inf, p = 0 if SS > 0, else
+// F = p = NaN; sphericity then NaN and p_gg = p_hf = p. One subject (or
+// N = q) -> df2 = 0, F = p = NaN. Error df < p -> Mauchly W = 0, p NaN.
+// A factor with one level: its effects are left out with a warning.
+// References: car 3.x summary.Anova.mlm; afex anova.afex_aov; Maxwell &
+// Delaney (2004) ch. 11-12, 14; Huynh & Feldt (1976); Mauchly (1940).
+// Validated against: Maxwell & Delaney Table 12.1 (published F and SS; car
+// conventions for GG/HF/Mauchly); R ez::ezANOVA via statsmodels tests;
+// JAMOVI/ezANOVA via pingouin tests; afex 1.x obk.long values (mixed).
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "analysis/stats/anova.h"
+#include "analysis/stats/descriptives.h"
+#include "analysis/stats/long_data.h"
+#include "study/common/error.h"
+
+namespace dtlab::stats {
+
+struct RmAnovaOptions {
+  std::vector<std::string> observed;  // measured (not manipulated) factors, for eta_g2 (afex `observed`)
+};
+
+struct CellSummary {
+  std::vector<std::pair<std::string, std::string>> levels;  // (factor, level), between factors first
+  Descriptives d;                                           // over subjects (cell means)
+};
+
+struct RmAnovaResult {
+  std::vector<std::string> within, between;  // factor names
+  std::vector<Effect> effects;               // car order: for each within term (none, A, B, A:B, ...), each between term
+  size_t n_subjects = 0;                     // subjects used
+  std::vector<std::string> dropped_subjects; // removed by listwise deletion
+  std::vector<CellSummary> cells;
+  std::vector<std::string> warnings;
+};
+
+// data.subject must name the subject of every row; data.within / data.between
+// give the factors. Input problems (between level changing within a subject,
+// empty between cell, no complete subject) are Errors.
+Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& options = {});
+
+}  // namespace dtlab::stats
