@@ -17,4 +17,5 @@ inline constexpr int kExitUsage = 2;    // the command line is wrong (CLI11's ow
 inline constexpr int kExitFailure = 3;  // the environment failed (I/O, GL context, SQLite)
 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
+void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman|wilcoxon`: statistics on a CSV, --json
 }  // namespace dtlab::app
