@@ -18,4 +18,6 @@ inline constexpr int kExitFailure = 3;  // the environment failed (I/O, GL conte
 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
 void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman|wilcoxon`: statistics on a CSV, --json
+void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every error with file:line:field, --json
+void add_plan_command(CLI::App& root);  // `dtlab plan PROTOCOL --index K`: one participant's trials, --json
 }  // namespace dtlab::app

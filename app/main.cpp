@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
 
   dtlab::app::add_version_command(root);
   dtlab::app::add_stats_command(root);
+  dtlab::app::add_validate_command(root);
+  dtlab::app::add_plan_command(root);
 
   try {
     root.parse(argc, argv);

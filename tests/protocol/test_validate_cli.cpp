@@ -1,0 +1,146 @@
+// `dtlab validate` as a user runs it (the dtlab binary, DTLAB_BINARY): exit 0
+// for the shipped protocols, exit 1 with FILE:LINE:COLUMN: error: FIELD on
+// stderr for broken ones, never a crash (exit codes above 3 or signals), and
+// --json listing the same diagnostics.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int rc = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `dtlab <args>`; rc is the exit status, or 128 + signal if it crashed.
+Outcome dtlab(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path();
+  const fs::path out = dir / "dtlab_validate_cli.out", err = dir / "dtlab_validate_cli.err";
+  const std::string cmd = std::string("'") + DTLAB_BINARY + "' " + args + " >'" + out.string() + "' 2>'" +
+                          err.string() + "'";
+  const int status = std::system(cmd.c_str());
+  Outcome r;
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+fs::path write_temp(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / ("dtlab_validate_cli_" + name);
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+TEST(ValidateCli, ShippedProtocolsExitZero) {
+  for (const char* name : {"elmqvist2008.toml", "pilot.toml"}) {
+    const Outcome r = dtlab(std::string("validate '") + DTLAB_SOURCE_DIR + "/protocols/" + name + "'");
+    EXPECT_EQ(r.rc, 0) << name << "\n" << r.err;
+    EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;
+    EXPECT_EQ(r.err, "") << name;
+  }
+  const Outcome r = dtlab(std::string("validate '") + DTLAB_SOURCE_DIR + "/protocols/elmqvist2008.toml'");
+  EXPECT_NE(r.out.find("24 trials per participant"), std::string::npos) << r.out;
+}
+
+TEST(ValidateCli, BrokenProtocolExitsOneNamingLineAndField) {
+  std::string text = slurp(fs::path(DTLAB_SOURCE_DIR) / "protocols/pilot.toml");
+  const std::string from = "trials = 1\ncount_range";
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), "trails = 1\ncount_range");
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  const fs::path p = write_temp("typo.toml", text);
+  const Outcome r = dtlab("validate '" + p.string() + "'");
+  EXPECT_EQ(r.rc, 1);
+  const std::string expected =
+      p.string() + ":" + std::to_string(line) + ":1: error: scenarios.walkthrough.tasks.T4.trails: unknown key";
+  EXPECT_NE(r.err.find(expected), std::string::npos) << "expected: " << expected << "\ngot:\n" << r.err;
+  fs::remove(p);
+}
+
+TEST(ValidateCli, JsonListsEveryDiagnostic) {
+  const fs::path p = write_temp("json.toml", "id = \"x\"\ntitle = 3\nparticipants = 0\n");
+  const Outcome r = dtlab("validate --json '" + p.string() + "'");
+  EXPECT_EQ(r.rc, 1);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["valid"], false);
+  EXPECT_EQ(j["file"], p.string());
+  ASSERT_TRUE(j["diagnostics"].is_array());
+  EXPECT_EQ(j["errors"].get<int>(), static_cast<int>(j["diagnostics"].size()));
+  bool title = false, participants = false;
+  for (const auto& d : j["diagnostics"]) {
+    for (const char* key : {"severity", "file", "line", "column", "field", "message"})
+      EXPECT_TRUE(d.contains(key)) << d.dump();
+    if (d["field"] == "title") title = d["line"] == 2 && d["severity"] == "error";
+    if (d["field"] == "participants") participants = d["line"] == 3;
+  }
+  EXPECT_TRUE(title) << r.out;
+  EXPECT_TRUE(participants) << r.out;
+  fs::remove(p);
+
+  const Outcome ok = dtlab(std::string("validate --json '") + DTLAB_SOURCE_DIR + "/protocols/elmqvist2008.toml'");
+  EXPECT_EQ(ok.rc, 0);
+  const auto jo = nlohmann::json::parse(ok.out);
+  EXPECT_EQ(jo["valid"], true);
+  EXPECT_EQ(jo["summary"]["trials_per_participant"], 24);
+  EXPECT_EQ(jo["summary"]["order_rows"], 4);
+}
+
+TEST(ValidateCli, BadFilesExitOneWithoutCrashing) {
+  const fs::path empty = write_temp("empty.toml", "");
+  std::string garbage;
+  std::uint64_t x = 0x243f6a8885a308d3ULL;
+  for (int i = 0; i < 4096; ++i) {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;  // xorshift64: fixed pseudo-random bytes
+    garbage += static_cast<char>(x & 0xff);
+  }
+  const fs::path binary = write_temp("garbage.toml", garbage);
+  const fs::path dir = fs::temp_directory_path();
+  for (const std::string& path : {empty.string(), binary.string(), std::string("/nonexistent/p.toml"), dir.string()}) {
+    const Outcome r = dtlab("validate '" + path + "'");
+    EXPECT_EQ(r.rc, 1) << path << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind(path + ":", 0), 0u) << "stderr should start with the file name:\n" << r.err;
+    EXPECT_NE(r.err.find("error:"), std::string::npos) << r.err;
+  }
+  fs::remove(empty);
+  fs::remove(binary);
+}
+
+TEST(ValidateCli, WarningsKeepExitZero) {
+  std::string text = slurp(fs::path(DTLAB_SOURCE_DIR) / "protocols/elmqvist2008.toml");
+  const std::string from = "participants = 16";
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), "participants = 10");
+  const fs::path p = write_temp("ten.toml", text);
+  const Outcome r = dtlab("validate '" + p.string() + "'");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: participants: participants = 10 is not a multiple of the 4 order rows"),
+            std::string::npos)
+      << r.err;
+  fs::remove(p);
+}
+
+TEST(ValidateCli, MissingArgumentIsAUsageError) {
+  const Outcome r = dtlab("validate");
+  EXPECT_EQ(r.rc, 2);
+}
+
+}  // namespace
