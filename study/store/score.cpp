@@ -1,0 +1,56 @@
+// Score columns and frame-time statistics; see score.h for the definitions.
+// The schema (detail/schema.cpp) checks the same formulas as CHECK
+// constraints, so a change here must change there too.
+#include "study/store/score.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace dtlab::store {
+
+Scores score(const std::optional<Answer>& answer, const Answer& truth) {
+  Scores s;
+  if (!answer) return s;
+  if (answer->index() != truth.index())
+    throw std::invalid_argument("store::score: the answer's kind differs from the truth's kind");
+  if (const auto* t = std::get_if<Count>(&truth)) {
+    const std::int64_t a = std::get<Count>(*answer).n;
+    s.signed_error = a - t->n;
+    if (t->n != 0) s.rel_error = static_cast<double>(a > t->n ? a - t->n : t->n - a) / static_cast<double>(t->n);
+  } else if (const auto* l = std::get_if<Letter>(&truth)) {
+    s.correct = std::get<Letter>(*answer).letter == l->letter;
+  } else {
+    const auto& p = std::get<Position>(truth);
+    const auto& a = std::get<Position>(*answer);
+    s.distance = std::hypot(a.x - p.x, a.z - p.z);
+  }
+  return s;
+}
+
+FrameStats frame_stats(std::span<const double> frame_ms) {
+  FrameStats st;
+  st.frames = static_cast<std::int64_t>(frame_ms.size());
+  if (frame_ms.empty()) return st;
+  for (double v : frame_ms)
+    if (!std::isfinite(v) || v < 0) throw std::invalid_argument("store::frame_stats: frame times must be finite and >= 0");
+  double sum = 0;
+  for (double v : frame_ms) sum += v;
+  const double n = static_cast<double>(frame_ms.size());
+  const double mean = sum / n;
+  st.mean_ms = mean;
+  if (frame_ms.size() >= 2) {
+    double ss = 0;  // two-pass: stable for large offsets
+    for (double v : frame_ms) ss += (v - mean) * (v - mean);
+    st.sd_ms = std::sqrt(ss / (n - 1));
+  }
+  std::vector<double> sorted(frame_ms.begin(), frame_ms.end());
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t rank = (95 * sorted.size() + 99) / 100;  // ceil(0.95 n) in exact integer arithmetic
+  st.p95_ms = sorted[rank - 1];
+  st.max_ms = sorted.back();
+  return st;
+}
+
+}  // namespace dtlab::store

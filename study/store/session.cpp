@@ -1,0 +1,447 @@
+// Sessions and trials (docs/store.md, invariants 5-9 and the session state
+// diagram): the plan is stored once with its session, each finished trial is
+// one transaction holding its result, scores, events and poses, and the next
+// trial is always derived from the database, never from memory, so resuming
+// after a crash runs exactly the trials the session would have run.
+#include <charconv>
+#include <cmath>
+
+#include "study/store/detail/store_impl.h"
+#include "study/store/detail/time.h"
+#include "study/store/store.h"
+
+namespace dtlab::store {
+namespace {
+
+using detail::Db;
+using detail::Stmt;
+
+std::string seed_text(std::uint64_t seed) { return std::to_string(seed); }
+
+std::uint64_t parse_seed(const std::string& s) {
+  std::uint64_t v = 0;
+  std::from_chars(s.data(), s.data() + s.size(), v);  // the schema guarantees 1-20 digits
+  return v;
+}
+
+SessionStatus parse_status(const std::string& s) {
+  if (s == "finished") return SessionStatus::finished;
+  if (s == "abandoned") return SessionStatus::abandoned;
+  return SessionStatus::running;
+}
+
+std::string describe(const Session& s) { return "session " + std::to_string(s.id) + " (" + s.participant_id + ")"; }
+
+// The participant's session with its counts, or nullopt if it has none.
+Result<std::optional<Session>> read_session(Db& db, const std::string& participant_id) {
+  const char* what = "reading the session";
+  auto st = Stmt::prepare(db,
+                          "SELECT s.id, s.status, "
+                          " (SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id), "
+                          " (SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+                          "  WHERE p.session_id = s.id) "
+                          "FROM sessions s JOIN participants pa ON pa.id = s.participant_id WHERE pa.participant = ?",
+                          what);
+  if (!st) return st.error();
+  st->bind(1, participant_id);
+  auto row = st->step(what);
+  if (!row) return row.error();
+  if (!*row) return std::optional<Session>{};
+  Session s;
+  s.id = st->int64(0);
+  s.participant_id = participant_id;
+  s.status = parse_status(st->text(1));
+  s.planned = static_cast<int>(st->int64(2));
+  s.recorded = static_cast<int>(st->int64(3));
+  return std::optional<Session>{s};
+}
+
+// Status of the session with this id; Error if there is none.
+Result<SessionStatus> read_status(Db& db, const Session& s) {
+  auto st = Stmt::prepare(db, "SELECT status FROM sessions WHERE id = ?", "reading the session");
+  if (!st) return st.error();
+  st->bind(1, s.id);
+  auto row = st->step("reading the session");
+  if (!row) return row.error();
+  if (!*row) return Error{db.path(), 0, 0, "session", describe(s) + " does not exist in this database"};
+  return parse_status(st->text(0));
+}
+
+// Planned trials of a session in position order; `only_next` limits the
+// answer to the first one without a result. Second member: its row id.
+Result<std::vector<std::pair<std::int64_t, design::PlannedTrial>>> read_planned(Db& db, std::int64_t session_id,
+                                                                                bool only_next) {
+  const char* what = "reading the planned trials";
+  std::string sql =
+      "SELECT id, position, block, task, trial, seed, method, practice FROM planned_trials p WHERE session_id = ?";
+  if (only_next) sql += " AND NOT EXISTS (SELECT 1 FROM trial_results r WHERE r.planned_trial_id = p.id)";
+  sql += " ORDER BY position";
+  if (only_next) sql += " LIMIT 1";
+  auto st = Stmt::prepare(db, sql, what);
+  if (!st) return st.error();
+  auto lv = Stmt::prepare(db, "SELECT factor, level FROM planned_levels WHERE planned_trial_id = ? ORDER BY factor_position",
+                          what);
+  if (!lv) return lv.error();
+  st->bind(1, session_id);
+  std::vector<std::pair<std::int64_t, design::PlannedTrial>> out;
+  for (;;) {
+    auto row = st->step(what);
+    if (!row) return row.error();
+    if (!*row) break;
+    design::PlannedTrial t;
+    t.position = static_cast<int>(st->int64(1));
+    t.block = static_cast<int>(st->int64(2));
+    t.task = st->text(3);
+    t.trial = static_cast<int>(st->int64(4));
+    t.seed = parse_seed(st->text(5));
+    t.method = st->text(6);
+    t.practice = st->int64(7) != 0;
+    lv->bind(1, st->int64(0));
+    for (;;) {
+      auto l = lv->step(what);
+      if (!l) return l.error();
+      if (!*l) break;
+      t.levels.emplace_back(lv->text(0), lv->text(1));
+    }
+    lv->reset();
+    out.emplace_back(st->int64(0), std::move(t));
+  }
+  return out;
+}
+
+// First field in which two planned trials differ, or "" if none.
+std::string first_difference(const design::PlannedTrial& a, const design::PlannedTrial& b) {
+  if (a.position != b.position) return "position";
+  if (a.block != b.block) return "block";
+  if (a.levels != b.levels) return "levels";
+  if (a.task != b.task) return "task";
+  if (a.trial != b.trial) return "trial";
+  if (a.seed != b.seed) return "seed";
+  if (a.method != b.method) return "method";
+  if (a.practice != b.practice) return "practice";
+  return "";
+}
+
+Status validate_plan(const Store::Impl& m, const Enrollment& e, const design::Plan& plan) {
+  if (plan.protocol_id != m.study.protocol_id)
+    return m.invalid("plan.protocol_id", "the plan is for protocol \"" + plan.protocol_id + "\", the database for \"" +
+                                             m.study.protocol_id + "\"");
+  if (plan.index != e.index || plan.order_row != e.order_row)
+    return m.invalid("plan.index", "the plan is for enrollment index " + std::to_string(plan.index) + ", order row " +
+                                       std::to_string(plan.order_row) + "; participant \"" + e.participant_id +
+                                       "\" has index " + std::to_string(e.index) + ", order row " +
+                                       std::to_string(e.order_row));
+  if (plan.trials.empty()) return m.invalid("plan.trials", "the plan has no trials");
+  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+    const auto& t = plan.trials[i];
+    const std::string where = "plan.trials[" + std::to_string(i) + "]";
+    if (t.position != static_cast<int>(i + 1))
+      return m.invalid(where + ".position", "is " + std::to_string(t.position) + "; expected " + std::to_string(i + 1) +
+                                                " (positions are 1, 2, 3, ...)");
+    if (t.block < 1) return m.invalid(where + ".block", "must be >= 1");
+    if (t.trial < 1) return m.invalid(where + ".trial", "must be >= 1");
+    if (t.task.empty()) return m.invalid(where + ".task", "is empty");
+    if (t.levels.size() != m.study.factors.size())
+      return m.invalid(where + ".levels", std::to_string(t.levels.size()) + " levels for " +
+                                              std::to_string(m.study.factors.size()) + " factors");
+    for (std::size_t f = 0; f < t.levels.size(); ++f)
+      if (t.levels[f].first != m.study.factors[f])
+        return m.invalid(where + ".levels", "factor " + std::to_string(f + 1) + " is \"" + t.levels[f].first +
+                                                "\"; expected \"" + m.study.factors[f] + "\" (protocol order)");
+  }
+  return {};
+}
+
+Status insert_plan(Db& db, std::int64_t session_id, const design::Plan& plan) {
+  const char* what = "storing the planned trials";
+  auto pt = Stmt::prepare(db,
+                          "INSERT INTO planned_trials (session_id, position, block, task, trial, seed, method, practice) "
+                          "VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+                          what);
+  if (!pt) return pt.error();
+  auto lv = Stmt::prepare(db,
+                          "INSERT INTO planned_levels (planned_trial_id, factor_position, factor, level) VALUES (?, ?, ?, ?)",
+                          what);
+  if (!lv) return lv.error();
+  for (const auto& t : plan.trials) {
+    pt->bind(1, session_id).bind(2, t.position).bind(3, t.block).bind(4, t.task).bind(5, t.trial);
+    pt->bind(6, seed_text(t.seed)).bind(7, t.method).bind(8, t.practice ? 1 : 0);
+    if (auto s = pt->run(what); !s) return s;
+    const std::int64_t id = sqlite3_last_insert_rowid(db.get());
+    for (std::size_t f = 0; f < t.levels.size(); ++f) {
+      lv->bind(1, id).bind(2, static_cast<int>(f + 1)).bind(3, t.levels[f].first).bind(4, t.levels[f].second);
+      if (auto s = lv->run(what); !s) return s;
+    }
+  }
+  return {};
+}
+
+bool finite(double v) { return std::isfinite(v); }
+
+Status validate_record(const Store::Impl& m, const TrialRecord& r) {
+  const std::string w = "trial " + std::to_string(r.position);
+  auto bad = [&](const std::string& field, const std::string& msg) { return m.invalid(w + "." + field, msg); };
+  if (r.scene_hash.size() != 64 || r.scene_hash.find_first_not_of("0123456789abcdef") != std::string::npos)
+    return bad("scene_hash", "\"" + r.scene_hash + "\" is not 64 lowercase hex digits");
+  if (r.answer && r.answer->index() != r.truth.index())
+    return bad("answer", "the answer's kind (count, letter, position) differs from the truth's");
+  for (const Answer* a : {r.answer ? &*r.answer : nullptr, &r.truth}) {
+    if (!a) continue;
+    if (const auto* c = std::get_if<Count>(a); c && c->n < 0) return bad("answer", "a count must be >= 0");
+    if (const auto* l = std::get_if<Letter>(a); l && l->letter.empty()) return bad("answer", "a letter is empty");
+    if (const auto* p = std::get_if<Position>(a); p && !(finite(p->x) && finite(p->z)))
+      return bad("answer", "a position must be finite");
+  }
+  if (!finite(r.completion_s) || r.completion_s < 0) return bad("completion_s", "must be finite and >= 0");
+  if (r.ended_at < r.started_at) return bad("ended_at", "is before started_at");
+  const FrameStats& f = r.frames;
+  if (f.frames != static_cast<std::int64_t>(r.poses.size()))
+    return bad("frames", std::to_string(f.frames) + " frames but " + std::to_string(r.poses.size()) +
+                             " camera poses; expected one pose per frame");
+  const bool some = f.frames > 0;
+  if (f.mean_ms.has_value() != some || f.p95_ms.has_value() != some || f.max_ms.has_value() != some ||
+      f.sd_ms.has_value() != (f.frames > 1))
+    return bad("frames", "frame statistics do not match the frame count; use frame_stats()");
+  for (const auto& v : {f.mean_ms, f.sd_ms, f.p95_ms, f.max_ms})
+    if (v && (!finite(*v) || *v < 0)) return bad("frames", "frame statistics must be finite and >= 0");
+  for (std::size_t i = 0; i < r.events.size(); ++i) {
+    const auto& e = r.events[i];
+    if (!finite(e.t_s) || e.t_s < 0 || !finite(e.x) || !finite(e.y))
+      return bad("events[" + std::to_string(i) + "]", "times must be finite and >= 0, positions finite");
+  }
+  for (std::size_t i = 0; i < r.poses.size(); ++i) {
+    const auto& p = r.poses[i];
+    if (!finite(p.t_s) || p.t_s < 0 || !finite(p.x) || !finite(p.y) || !finite(p.z) || !finite(p.yaw) ||
+        !finite(p.pitch))
+      return bad("poses[" + std::to_string(i) + "]", "must be finite, with t_s >= 0");
+  }
+  return {};
+}
+
+Status insert_result(Db& db, std::int64_t planned_id, const TrialRecord& r) {
+  const char* what = "storing the trial result";
+  auto st = Stmt::prepare(db,
+                          "INSERT INTO trial_results (planned_trial_id, scene_hash, answer_kind, answered, "
+                          "answer_count, answer_letter, answer_x, answer_z, truth_count, truth_letter, truth_x, truth_z, "
+                          "rel_error, signed_error, correct, distance, completion_s, started_at, ended_at, frame_count, "
+                          "frame_ms_mean, frame_ms_sd, frame_ms_p95, frame_ms_max, event_count, recorded_at) "
+                          "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, "
+                          "?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26)",
+                          what);
+  if (!st) return st.error();
+  static const char* kinds[] = {"count", "letter", "position"};
+  st->bind(1, planned_id).bind(2, r.scene_hash).bind(3, kinds[r.truth.index()]).bind(4, r.answer ? 1 : 0);
+  auto bind_answer = [&](int first, const Answer* a) {
+    if (!a) return;
+    if (const auto* c = std::get_if<Count>(a)) st->bind(first, c->n);
+    if (const auto* l = std::get_if<Letter>(a)) st->bind(first + 1, l->letter);
+    if (const auto* p = std::get_if<Position>(a)) st->bind(first + 2, p->x).bind(first + 3, p->z);
+  };
+  bind_answer(5, r.answer ? &*r.answer : nullptr);
+  bind_answer(9, &r.truth);
+  const Scores s = score(r.answer, r.truth);
+  st->bind(13, s.rel_error).bind(14, s.signed_error).bind(16, s.distance);
+  if (s.correct) st->bind(15, *s.correct ? 1 : 0);
+  st->bind(17, r.completion_s).bind(18, detail::iso8601_utc(r.started_at)).bind(19, detail::iso8601_utc(r.ended_at));
+  st->bind(20, r.frames.frames).bind(21, r.frames.mean_ms).bind(22, r.frames.sd_ms).bind(23, r.frames.p95_ms);
+  st->bind(24, r.frames.max_ms).bind(25, static_cast<std::int64_t>(r.events.size()));
+  st->bind(26, detail::now_iso8601_utc());
+  if (auto x = st->run(what); !x) return x;
+
+  auto ev = Stmt::prepare(db, "INSERT INTO input_events (trial_id, seq, t_s, kind, detail, x, y) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                          "storing the input events");
+  if (!ev) return ev.error();
+  for (std::size_t i = 0; i < r.events.size(); ++i) {
+    const auto& e = r.events[i];
+    ev->bind(1, planned_id).bind(2, static_cast<std::int64_t>(i + 1)).bind(3, e.t_s).bind(4, to_string(e.kind));
+    ev->bind(5, e.detail).bind(6, e.x).bind(7, e.y);
+    if (auto x = ev->run("storing the input events"); !x) return x;
+  }
+  auto po = Stmt::prepare(db,
+                          "INSERT INTO camera_poses (trial_id, frame, t_s, x, y, z, yaw, pitch) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+                          "storing the camera poses");
+  if (!po) return po.error();
+  for (std::size_t i = 0; i < r.poses.size(); ++i) {
+    const auto& p = r.poses[i];
+    po->bind(1, planned_id).bind(2, static_cast<std::int64_t>(i + 1)).bind(3, p.t_s).bind(4, p.x).bind(5, p.y);
+    po->bind(6, p.z).bind(7, p.yaw).bind(8, p.pitch);
+    if (auto x = po->run("storing the camera poses"); !x) return x;
+  }
+  return {};
+}
+
+}  // namespace
+
+const char* to_string(InputEvent::Kind k) {
+  switch (k) {
+    case InputEvent::Kind::key_down: return "key_down";
+    case InputEvent::Kind::key_up: return "key_up";
+    case InputEvent::Kind::button_down: return "button_down";
+    case InputEvent::Kind::button_up: return "button_up";
+    case InputEvent::Kind::cursor: return "cursor";
+    case InputEvent::Kind::scroll: return "scroll";
+    case InputEvent::Kind::answer: return "answer";
+  }
+  return "?";
+}
+
+Result<Session> Store::begin_session(const std::string& participant_id, const design::Plan& plan) {
+  Impl& m = *impl_;
+  Session out;
+  Status st = m.write("beginning the session of \"" + participant_id + "\"", [&]() -> Status {
+    auto e = lookup(participant_id);
+    if (!e) return e.error();
+    if (e->released)
+      return m.invalid("participant", "participant \"" + participant_id + "\" was released; their session is abandoned");
+    if (auto v = validate_plan(m, *e, plan); !v) return v;
+    auto existing = read_session(m.db, participant_id);
+    if (!existing) return existing.error();
+    if (!*existing) {
+      auto ins = Stmt::prepare(m.db,
+                               "INSERT INTO sessions (participant_id, study_id, software_version, status, started_at) "
+                               "SELECT id, ?, ?, 'running', ? FROM participants WHERE participant = ?",
+                               "creating the session");
+      if (!ins) return ins.error();
+      ins->bind(1, m.study_id).bind(2, m.study.software_version).bind(3, detail::now_iso8601_utc()).bind(4, participant_id);
+      if (auto s = ins->run("creating the session"); !s) return s;
+      const std::int64_t id = sqlite3_last_insert_rowid(m.db.get());
+      if (auto s = insert_plan(m.db, id, plan); !s) return s;
+      out = Session{id, participant_id, SessionStatus::running, static_cast<int>(plan.trials.size()), 0, false};
+      return {};
+    }
+    out = **existing;
+    if (out.status != SessionStatus::running)
+      return m.invalid("session", describe(out) + " is " + to_string(out.status) + "; only a running session resumes");
+    auto stored = read_planned(m.db, out.id, false);
+    if (!stored) return stored.error();
+    if (stored->size() != plan.trials.size())
+      return m.invalid("plan.trials", "the stored plan of " + describe(out) + " has " + std::to_string(stored->size()) +
+                                          " trials, this plan " + std::to_string(plan.trials.size()) +
+                                          "; the protocol or the design code changed since the session began");
+    for (std::size_t i = 0; i < stored->size(); ++i)
+      if (auto d = first_difference((*stored)[i].second, plan.trials[i]); !d.empty())
+        return m.invalid("plan.trials[" + std::to_string(i) + "]." + d,
+                         "differs from the stored plan of " + describe(out) +
+                             "; the protocol or the design code changed since the session began");
+    auto res = Stmt::prepare(m.db,
+                             "INSERT INTO session_resumes (session_id, resumed_at, software_version, next_position) "
+                             "VALUES (?, ?, ?, ?)",
+                             "recording the resume");
+    if (!res) return res.error();
+    res->bind(1, out.id).bind(2, detail::now_iso8601_utc()).bind(3, m.study.software_version);
+    if (out.recorded < out.planned) res->bind(4, out.recorded + 1);
+    if (auto s = res->run("recording the resume"); !s) return s;
+    out.resumed = true;
+    return {};
+  });
+  if (!st) return st.error();
+  return out;
+}
+
+Result<std::optional<design::PlannedTrial>> Store::next_trial(const Session& session) {
+  Impl& m = *impl_;
+  if (m.broken) return m.broken_error;
+  if (auto s = read_status(m.db, session); !s) return s.error();
+  auto next = read_planned(m.db, session.id, true);
+  if (!next) return next.error();
+  if (next->empty()) return std::optional<design::PlannedTrial>{};
+  return std::optional<design::PlannedTrial>{std::move(next->front().second)};
+}
+
+Status Store::record_trial(const Session& session, const TrialRecord& record) {
+  Impl& m = *impl_;
+  if (auto v = validate_record(m, record); !v) return v;
+  return m.write("recording trial " + std::to_string(record.position) + " of " + describe(session), [&]() -> Status {
+    auto status = read_status(m.db, session);
+    if (!status) return status.error();
+    if (*status != SessionStatus::running)
+      return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session records trials");
+    auto next = read_planned(m.db, session.id, true);
+    if (!next) return next.error();
+    if (next->empty())
+      return m.invalid("trial " + std::to_string(record.position) + ".position",
+                       "every planned trial of " + describe(session) + " already has a result");
+    if (next->front().second.position != record.position)
+      return m.invalid("trial " + std::to_string(record.position) + ".position",
+                       "trial " + std::to_string(next->front().second.position) + " is next in " + describe(session) +
+                           ", not trial " + std::to_string(record.position) + " (trials are recorded once, in plan order)");
+    return insert_result(m.db, next->front().first, record);
+  });
+}
+
+Status Store::finish_session(const Session& session) {
+  Impl& m = *impl_;
+  return m.write("finishing " + describe(session), [&]() -> Status {
+    auto status = read_status(m.db, session);
+    if (!status) return status.error();
+    if (*status != SessionStatus::running)
+      return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session finishes");
+    auto left = Stmt::prepare(m.db,
+                              "SELECT count(*) FROM planned_trials p WHERE session_id = ? AND NOT EXISTS "
+                              "(SELECT 1 FROM trial_results r WHERE r.planned_trial_id = p.id)",
+                              "counting the remaining trials");
+    if (!left) return left.error();
+    left->bind(1, session.id);
+    if (auto r = left->step("counting the remaining trials"); !r) return r.error();
+    if (const auto n = left->int64(0); n > 0)
+      return m.invalid("session", describe(session) + " still has " + std::to_string(n) +
+                                      " planned trials without a result; record them or release the participant");
+    left->reset();
+    auto up = Stmt::prepare(m.db, "UPDATE sessions SET status = 'finished', ended_at = ? WHERE id = ?", "finishing");
+    if (!up) return up.error();
+    up->bind(1, detail::now_iso8601_utc()).bind(2, session.id);
+    return up->run("finishing");
+  });
+}
+
+Status Store::record_questionnaire(const Session& session, const std::vector<QuestionnaireAnswer>& answers) {
+  Impl& m = *impl_;
+  for (const auto& a : answers) {
+    if (a.item.empty()) return m.invalid("questionnaire.item", "an item id is empty");
+    if (const auto* d = std::get_if<double>(&a.value); d && !finite(*d))
+      return m.invalid("questionnaire." + a.item, "the answer must be a finite number");
+  }
+  return m.write("recording the questionnaire of " + describe(session), [&]() -> Status {
+    auto status = read_status(m.db, session);
+    if (!status) return status.error();
+    if (*status == SessionStatus::abandoned)
+      return m.invalid("session", describe(session) + " is abandoned; it takes no questionnaire answers");
+    auto seen = Stmt::prepare(m.db, "SELECT count(*) FROM questionnaire_answers WHERE session_id = ? AND item = ? AND scope = ?",
+                              "checking the questionnaire");
+    auto ins = Stmt::prepare(m.db,
+                             "INSERT INTO questionnaire_answers (session_id, item, scope, value_number, value_text, "
+                             "answered_at) VALUES (?, ?, ?, ?, ?, ?)",
+                             "storing the questionnaire");
+    if (!seen) return seen.error();
+    if (!ins) return ins.error();
+    const std::string now = detail::now_iso8601_utc();
+    for (const auto& a : answers) {
+      seen->bind(1, session.id).bind(2, a.item).bind(3, a.scope);
+      if (auto r = seen->step("checking the questionnaire"); !r) return r.error();
+      const auto n = seen->int64(0);
+      seen->reset();
+      if (n > 0)
+        return m.invalid("questionnaire." + a.item, "item \"" + a.item + "\"" +
+                                                        (a.scope.empty() ? std::string() : " (" + a.scope + ")") +
+                                                        " was already answered in " + describe(session));
+      ins->bind(1, session.id).bind(2, a.item).bind(3, a.scope).bind(6, now);
+      if (const auto* d = std::get_if<double>(&a.value)) ins->bind(4, *d);
+      else ins->bind(5, std::get<std::string>(a.value));
+      if (auto r = ins->run("storing the questionnaire"); !r) return r;
+    }
+    return {};
+  });
+}
+
+Result<Session> Store::session(const std::string& participant_id) {
+  Impl& m = *impl_;
+  if (m.broken) return m.broken_error;
+  auto e = lookup(participant_id);
+  if (!e) return e.error();
+  auto s = read_session(m.db, participant_id);
+  if (!s) return s.error();
+  if (!*s) return m.invalid("participant", "participant \"" + participant_id + "\" has no session yet");
+  return **s;
+}
+
+}  // namespace dtlab::store

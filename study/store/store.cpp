@@ -1,0 +1,311 @@
+// Opening a study database and the participant ledger (docs/store.md,
+// invariants 1-5). open() inspects a file read-only before touching it, so a
+// foreign or newer file is never modified; every write is one BEGIN
+// IMMEDIATE transaction, which makes enrollment atomic across processes.
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+#include "study/store/detail/schema.h"
+#include "study/store/detail/store_impl.h"
+#include "study/store/detail/time.h"
+#include "study/store/store.h"
+
+namespace dtlab::store {
+namespace {
+
+using detail::Db;
+using detail::Stmt;
+
+std::string hex32(std::int64_t v) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "0x%08x", static_cast<unsigned>(static_cast<std::uint32_t>(v)));
+  return buf;
+}
+
+bool is_lower_hex(const std::string& s, std::size_t n) {
+  return s.size() == n && std::all_of(s.begin(), s.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// StudyInfo is the caller's data: check it before it can reach the file.
+Status validate_study(const std::string& path, const StudyInfo& s) {
+  auto bad = [&](const char* field, std::string msg) { return Error{path, 0, 0, field, std::move(msg)}; };
+  if (s.protocol_id.empty()) return bad("study.protocol_id", "is empty; expected the protocol's id");
+  if (!is_lower_hex(s.protocol_sha256, 64))
+    return bad("study.protocol_sha256", "\"" + s.protocol_sha256 + "\" is not 64 lowercase hex digits");
+  if (s.order_rows < 1) return bad("study.order_rows", std::to_string(s.order_rows) + " rows; expected >= 1");
+  std::vector<std::string> seen;
+  for (const std::string& f : s.factors) {
+    if (f.empty()) return bad("study.factors", "a factor name is empty");
+    const std::string lf = lower(f);
+    for (const auto* fixed : {&detail::fixed_trial_columns_before_factors(), &detail::fixed_trial_columns_after_factors()})
+      for (const std::string& c : *fixed)
+        if (lf == c) return bad("study.factors", "factor \"" + f + "\" has the name of a fixed export column; rename it");
+    if (std::find(seen.begin(), seen.end(), lf) != seen.end())
+      return bad("study.factors", "factor \"" + f + "\" appears twice (names are case-insensitive)");
+    seen.push_back(lf);
+  }
+  return {};
+}
+
+Status validate_participant_id(const std::string& path, const std::string& id) {
+  auto bad = [&](std::string msg) { return Error{path, 0, 0, "participant", std::move(msg)}; };
+  if (id.empty() || id.size() > 64) return bad("\"" + id + "\" must have 1 to 64 characters");
+  for (unsigned char c : id)
+    if (c < 0x20 || c == 0x7f) return bad("\"" + id + "\" contains a control character");
+  if (id.front() == ' ' || id.back() == ' ') return bad("\"" + id + "\" starts or ends with a space");
+  return {};
+}
+
+// Inserts the study row (and its factors) and makes it current.
+Result<std::int64_t> insert_study(Db& db, const StudyInfo& s) {
+  const char* what = "recording the protocol";
+  auto st = Stmt::prepare(db,
+                          "INSERT INTO studies (protocol_id, protocol_text, protocol_sha256, software_version, "
+                          "order_rows, created_at) VALUES (?, ?, ?, ?, ?, ?)",
+                          what);
+  if (!st) return st.error();
+  st->bind(1, s.protocol_id).bind(2, s.protocol_text).bind(3, s.protocol_sha256).bind(4, s.software_version);
+  st->bind(5, s.order_rows).bind(6, detail::now_iso8601_utc());
+  if (auto r = st->run(what); !r) return r.error();
+  const std::int64_t id = sqlite3_last_insert_rowid(db.get());
+  auto f = Stmt::prepare(db, "INSERT INTO study_factors (study_id, position, name) VALUES (?, ?, ?)", what);
+  if (!f) return f.error();
+  for (std::size_t i = 0; i < s.factors.size(); ++i) {
+    f->bind(1, id).bind(2, static_cast<int>(i + 1)).bind(3, s.factors[i]);
+    if (auto r = f->run(what); !r) return r.error();
+  }
+  if (auto r = detail::create_trial_table_view(db); !r) return r.error();
+  return id;
+}
+
+// Reads the current (latest) study and decides whether `s` may use the file.
+Result<std::int64_t> check_study(Db& db, const StudyInfo& s, const OpenOptions& options) {
+  const char* what = "reading the protocol record";
+  auto st = Stmt::prepare(db, "SELECT id, protocol_id, protocol_sha256, order_rows FROM studies ORDER BY id DESC LIMIT 1",
+                          what);
+  if (!st) return st.error();
+  auto row = st->step(what);
+  if (!row) return row.error();
+  if (!*row) return insert_study(db, s);
+  const std::int64_t id = st->int64(0);
+  const std::string old_id = st->text(1), old_hash = st->text(2);
+  const auto old_rows = st->int64(3);
+  if (old_hash == s.protocol_sha256) {
+    if (old_rows != s.order_rows)
+      return Error{db.path(), 0, 0, "study.order_rows",
+                   "the database records " + std::to_string(old_rows) + " order rows for this protocol, the caller " +
+                       std::to_string(s.order_rows) + "; the design code changed, the protocol did not"};
+    return id;
+  }
+  if (!options.allow_protocol_change)
+    return Error{db.path(), 0, 0, "studies.protocol_sha256",
+                 "the database belongs to protocol \"" + old_id + "\" with SHA-256 " + old_hash +
+                     ", not to protocol \"" + s.protocol_id + "\" with SHA-256 " + s.protocol_sha256 +
+                     "; use the protocol it was created with, a new database, or allow a protocol change "
+                     "(--allow-protocol-change) to record the new protocol beside the old one"};
+  return insert_study(db, s);
+}
+
+Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
+  const char* what = "reading the participant ledger";
+  auto st = Stmt::prepare(db,
+                          "SELECT enrollment_index, order_row, released_at IS NOT NULL FROM participants "
+                          "WHERE participant = ?",
+                          what);
+  if (!st) return st.error();
+  st->bind(1, participant_id);
+  auto row = st->step(what);
+  if (!row) return row.error();
+  if (!*row) return Error{db.path(), 0, 0, "participant", "unknown participant \"" + participant_id + "\""};
+  Enrollment e;
+  e.participant_id = participant_id;
+  e.index = static_cast<int>(st->int64(0));
+  e.order_row = static_cast<int>(st->int64(1));
+  e.released = st->int64(2) != 0;
+  return e;
+}
+
+}  // namespace
+
+const char* to_string(SessionStatus s) {
+  switch (s) {
+    case SessionStatus::running: return "running";
+    case SessionStatus::finished: return "finished";
+    case SessionStatus::abandoned: return "abandoned";
+  }
+  return "?";
+}
+
+bool is_environment_error(const Error& e) { return e.field == "sqlite"; }
+
+Store::Store(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Store::Store(Store&&) noexcept = default;
+Store& Store::operator=(Store&&) noexcept = default;
+Store::~Store() = default;
+const std::string& Store::path() const { return impl_->path; }
+
+Result<Store> Store::open(const std::string& path, const StudyInfo& study, OpenOptions options) {
+  if (auto s = validate_study(path, study); !s) return s.error();
+  auto opened = Db::open(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  if (!opened) return opened.error();
+  auto impl = std::make_unique<Impl>();
+  impl->db = std::move(*opened);
+  impl->path = path;
+  impl->study = study;
+  Db& db = impl->db;
+  sqlite3_busy_timeout(db.get(), options.busy_timeout_ms);
+
+  // 1. Look before touching: a foreign or newer file is refused unmodified.
+  auto app_id = db.query_int("PRAGMA application_id", "reading the file header");
+  if (!app_id) {
+    if (sqlite3_extended_errcode(db.get()) == SQLITE_NOTADB)
+      return Error{path, 0, 0, "", "not an SQLite database; expected a dtlab study database (or a new file)"};
+    return app_id.error();
+  }
+  auto objects = db.query_int("SELECT count(*) FROM sqlite_schema", "reading the schema");
+  if (!objects) return objects.error();
+  auto user_version = db.query_int("PRAGMA user_version", "reading the schema version");
+  if (!user_version) return user_version.error();
+  const std::int64_t aid = app_id->value_or(0);
+  if (aid != kApplicationId && (aid != 0 || objects->value_or(0) != 0))
+    return Error{path, 0, 0, "",
+                 "not a dtlab study database (application_id " + hex32(aid) + ", expected " + hex32(kApplicationId) +
+                     "); refusing to modify it"};
+  if (aid == kApplicationId && user_version->value_or(0) > kSchemaVersion)
+    return Error{path, 0, 0, "schema_migrations.version",
+                 "schema version " + std::to_string(user_version->value_or(0)) +
+                     " was written by a newer dtlab; this build reads schema versions up to " +
+                     std::to_string(kSchemaVersion)};
+
+  // 2. Connection settings. WAL: readers never block the writer. FULL: a
+  //    committed trial survives power loss too (NORMAL only an app crash).
+  auto mode = db.query_text("PRAGMA journal_mode = WAL", "switching to WAL mode");
+  if (!mode) return mode.error();
+  if (mode->value_or("") != "wal")
+    return Error{path, 0, 0, "sqlite", "cannot use WAL mode (journal_mode is \"" + mode->value_or("") + "\")"};
+  if (auto s = db.exec("PRAGMA foreign_keys = ON; PRAGMA synchronous = FULL", "configuring the connection"); !s)
+    return s.error();
+
+  // 3. Create or check the schema and the protocol in one write transaction,
+  //    so two processes creating the same file cannot both create it.
+  Status st = impl->write("opening the study database", [&]() -> Status {
+    auto version = detail::applied_schema_version(db);
+    if (!version) return version.error();
+    if (*version > kSchemaVersion)
+      return Error{path, 0, 0, "schema_migrations.version",
+                   "schema version " + std::to_string(*version) + " was written by a newer dtlab; this build reads "
+                   "schema versions up to " + std::to_string(kSchemaVersion)};
+    if (*version < kSchemaVersion)
+      if (auto s = detail::migrate(db, *version, study.software_version); !s) return s;
+    auto id = check_study(db, study, options);
+    if (!id) return id.error();
+    impl->study_id = *id;
+    return {};
+  });
+  if (!st) return st.error();
+  return Store(std::move(impl));
+}
+
+Result<Enrollment> Store::enroll(const std::string& participant_id, const Demographics& demographics) {
+  Impl& m = *impl_;
+  if (auto s = validate_participant_id(m.path, participant_id); !s) return s.error();
+  nlohmann::json demo = nlohmann::json::object();
+  for (const auto& [k, v] : demographics) {
+    if (k.empty()) return m.invalid("demographics", "a demographic field name is empty");
+    if (demo.contains(k)) return m.invalid("demographics." + k, "appears twice");
+    demo[k] = v;
+  }
+  Enrollment out;
+  Status st = m.write("enrolling participant \"" + participant_id + "\"", [&]() -> Status {
+    auto existing = read_enrollment(m.db, participant_id);
+    if (existing) {
+      if (existing->released)
+        return m.invalid("participant", "participant \"" + participant_id +
+                                            "\" was released (abandoned session); enroll them under a new id");
+      out = *existing;
+      return {};
+    }
+    if (existing.error().field != "participant") return existing.error();
+    const char* what = "assigning an order row";
+    auto next = m.db.query_int("SELECT coalesce(max(enrollment_index) + 1, 0) FROM participants", what);
+    if (!next) return next.error();
+    // Rule (docs/store.md, invariant 4): fewest active participants, ties to the lowest row.
+    std::vector<std::int64_t> fill(static_cast<std::size_t>(m.study.order_rows), 0);
+    auto f = Stmt::prepare(m.db,
+                           "SELECT order_row, count(*) FROM participants WHERE released_at IS NULL GROUP BY order_row",
+                           what);
+    if (!f) return f.error();
+    for (;;) {
+      auto row = f->step(what);
+      if (!row) return row.error();
+      if (!*row) break;
+      const auto r = f->int64(0);
+      if (r >= 0 && r < m.study.order_rows) fill[static_cast<std::size_t>(r)] = f->int64(1);
+    }
+    const auto row = std::min_element(fill.begin(), fill.end()) - fill.begin();
+    auto ins = Stmt::prepare(m.db,
+                             "INSERT INTO participants (participant, enrollment_index, order_row, study_id, "
+                             "demographics, enrolled_at) VALUES (?, ?, ?, ?, ?, ?)",
+                             "enrolling");
+    if (!ins) return ins.error();
+    ins->bind(1, participant_id).bind(2, next->value_or(0)).bind(3, static_cast<std::int64_t>(row));
+    ins->bind(4, m.study_id).bind(5, demo.dump()).bind(6, detail::now_iso8601_utc());
+    if (auto s = ins->run("enrolling"); !s) return s;
+    out = Enrollment{participant_id, static_cast<int>(next->value_or(0)), static_cast<int>(row), false, true};
+    return {};
+  });
+  if (!st) return st.error();
+  return out;
+}
+
+Result<Enrollment> Store::lookup(const std::string& participant_id) {
+  if (impl_->broken) return impl_->broken_error;
+  return read_enrollment(impl_->db, participant_id);
+}
+
+Status Store::release(const std::string& participant_id) {
+  Impl& m = *impl_;
+  return m.write("releasing participant \"" + participant_id + "\"", [&]() -> Status {
+    auto e = read_enrollment(m.db, participant_id);
+    if (!e) return e.error();
+    if (e->released) return {};  // releasing twice is harmless
+    auto q = Stmt::prepare(m.db,
+                           "SELECT s.status FROM sessions s JOIN participants p ON p.id = s.participant_id "
+                           "WHERE p.participant = ?",
+                           "reading the session");
+    if (!q) return q.error();
+    q->bind(1, participant_id);
+    auto has = q->step("reading the session");
+    if (!has) return has.error();
+    const std::string status = *has ? q->text(0) : std::string();
+    if (status == "finished")
+      return m.invalid("participant", "participant \"" + participant_id +
+                                          "\" finished their session; a finished session cannot be released");
+    const std::string now = detail::now_iso8601_utc();
+    auto up = Stmt::prepare(m.db,
+                            "UPDATE sessions SET status = 'abandoned', ended_at = ?1 WHERE status = 'running' AND "
+                            "participant_id = (SELECT id FROM participants WHERE participant = ?2)",
+                            "abandoning the session");
+    if (!up) return up.error();
+    up->bind(1, now).bind(2, participant_id);
+    if (auto s = up->run("abandoning the session"); !s) return s;
+    auto rel = Stmt::prepare(m.db, "UPDATE participants SET released_at = ?1 WHERE participant = ?2",
+                             "releasing the order row");
+    if (!rel) return rel.error();
+    rel->bind(1, now).bind(2, participant_id);
+    return rel->run("releasing the order row");
+  });
+}
+
+}  // namespace dtlab::store

@@ -1,0 +1,171 @@
+// The study database (SQLite, schema v1; docs/store.md is the reference):
+// participants and their order rows (the ledger), sessions, planned trials,
+// trial results with events and camera poses, questionnaire answers.
+// Guarantees: a finished trial is committed in one transaction with all its
+// data, so a crash loses at most the trial in progress; enrollment is atomic
+// across processes sharing the file; a session resumes with exactly the
+// trials it would have run. It never aborts on bad input or a failing disk
+// (every failure is a dtlab::Error naming the file) and never writes to a
+// file that is not a dtlab database of a schema version it knows.
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "study/common/error.h"
+#include "study/design/plan.h"
+#include "study/store/score.h"
+
+namespace dtlab::store {
+
+inline constexpr int kSchemaVersion = 1;                 // the newest schema this build reads and writes
+inline constexpr std::int32_t kApplicationId = 0x64746c62;  // PRAGMA application_id of every dtlab database ("dtlb")
+
+// The study a database belongs to, as plain values (no Protocol type, so the
+// store builds on its own). Callers pass what the protocol stage computed.
+struct StudyInfo {
+  std::string protocol_id;       // e.g. "elmqvist2008"
+  std::string protocol_text;     // the protocol file, byte for byte
+  std::string protocol_sha256;   // SHA-256 of protocol_text, 64 lowercase hex digits
+  std::string software_version;  // dtlab::version_string()
+  int order_rows = 1;            // rows of the condition-ordering scheme (Latin square), >= 1
+  std::vector<std::string> factors;  // factor names in protocol order; they become export columns
+};
+
+struct OpenOptions {
+  bool allow_protocol_change = false;  // accept a protocol hash other than the database's current one
+  int busy_timeout_ms = 10000;         // how long to wait for another process's write lock
+};
+
+// A participant's place in the ledger.
+struct Enrollment {
+  std::string participant_id;
+  int index = 0;        // 0-based enrollment index: 0, 1, 2, ... in enrollment order, never reused
+  int order_row = 0;    // 0-based row of the ordering scheme
+  bool released = false;       // the participant's session was abandoned; the row counts as free
+  bool newly_enrolled = false; // true only from the enroll() call that created it
+};
+
+using Demographics = std::vector<std::pair<std::string, std::string>>;  // e.g. {"age","27"}, {"gender","f"}
+
+enum class SessionStatus { running, finished, abandoned };
+const char* to_string(SessionStatus s);  // "running", "finished", "abandoned" (the stored values)
+
+// A snapshot of a session as stored when the call returned.
+struct Session {
+  std::int64_t id = 0;
+  std::string participant_id;
+  SessionStatus status = SessionStatus::running;
+  int planned = 0;           // planned trials
+  int recorded = 0;          // trials with a result (always positions 1..recorded)
+  bool resumed = false;      // begin_session found the session already running (after a crash or quit)
+};
+
+// One input event of a trial; t_s is seconds since the trial started.
+struct InputEvent {
+  enum class Kind { key_down, key_up, button_down, button_up, cursor, scroll, answer };
+  double t_s = 0;
+  Kind kind = Kind::key_down;
+  std::string detail;   // key name, button name or answer text; may be empty
+  double x = 0, y = 0;  // cursor position in pixels (cursor, button_*) or scroll offsets (scroll)
+};
+const char* to_string(InputEvent::Kind k);  // the stored value, e.g. "key_down"
+
+// The camera of one rendered frame: eye position and view direction.
+struct CameraPose {
+  double t_s = 0;          // seconds since the trial started, non-decreasing
+  double x = 0, y = 0, z = 0;
+  double yaw = 0, pitch = 0;  // radians; yaw 0 looks along -z (scene.h's convention)
+};
+
+// Everything the session measured for one finished trial.
+struct TrialRecord {
+  int position = 0;                   // the planned trial's position; must be the next one (next_trial)
+  std::string scene_hash;             // scene::Scene::hash, 64 hex digits
+  std::optional<Answer> answer;       // nullopt: no answer given (timed out, skipped)
+  Answer truth;                       // the answer key; same alternative as answer
+  double completion_s = 0;            // completion time in seconds (steady clock), >= 0
+  std::chrono::system_clock::time_point started_at, ended_at;  // wall clock, stored as ISO-8601 UTC
+  FrameStats frames;                  // see frame_stats()
+  std::vector<InputEvent> events;     // in time order
+  std::vector<CameraPose> poses;      // one per rendered frame, in frame order
+};
+
+// One questionnaire answer: item id, the condition it is about ("" if none,
+// else e.g. "scenario=ABSTRACT;transparency=on"), and a number or a text.
+struct QuestionnaireAnswer {
+  std::string item;
+  std::string scope;
+  std::variant<double, std::string> value;
+};
+
+// True if `e` came from SQLite itself (I/O, locking, disk full): the
+// environment's fault (exit code 3), not the input's (exit code 1).
+bool is_environment_error(const Error& e);
+
+// An open study database. Move-only; one per thread (it owns one SQLite
+// connection). Any number of processes may open the same file at once.
+class Store {
+ public:
+  // Creates the file (schema v1) or opens it. Refuses: a non-SQLite or
+  // non-dtlab file, a newer schema, and -- unless options allow it -- a
+  // protocol whose SHA-256 differs from the database's current one.
+  static Result<Store> open(const std::string& path, const StudyInfo& study, OpenOptions options = {});
+
+  Store(Store&&) noexcept;
+  Store& operator=(Store&&) noexcept;
+  ~Store();
+
+  const std::string& path() const;
+
+  // Gives the participant the next enrollment index and an order row (rule:
+  // the row with the fewest participants not released, ties to the lowest
+  // row; equal to index mod order_rows while nothing is released). Atomic
+  // across processes. An existing id returns its enrollment unchanged
+  // (newly_enrolled = false); a released id is refused.
+  Result<Enrollment> enroll(const std::string& participant_id, const Demographics& demographics = {});
+
+  // The enrollment of `participant_id`; Error if unknown.
+  Result<Enrollment> lookup(const std::string& participant_id);
+
+  // Abandons the participant's session (if running) and frees the order row
+  // for the next enrollment. Refused if the session finished.
+  Status release(const std::string& participant_id);
+
+  // Starts the participant's session with `plan` (stored once, in one
+  // transaction), or resumes it if it is running: then `plan` must equal the
+  // stored one. Refused for finished or abandoned sessions, and when the
+  // plan's index/order row/protocol differ from the enrollment's.
+  Result<Session> begin_session(const std::string& participant_id, const design::Plan& plan);
+
+  // The first planned trial without a result; nullopt when all have one.
+  Result<std::optional<design::PlannedTrial>> next_trial(const Session& session);
+
+  // Stores one finished trial -- result, scores (score()), frame stats,
+  // events and poses -- in ONE transaction. record.position must be the
+  // next_trial() position; the session must be running.
+  Status record_trial(const Session& session, const TrialRecord& record);
+
+  // Marks a running session finished; refused while planned trials remain.
+  Status finish_session(const Session& session);
+
+  // Stores questionnaire answers in one transaction (running or finished
+  // session). An (item, scope) pair answered before is refused.
+  Status record_questionnaire(const Session& session, const std::vector<QuestionnaireAnswer>& answers);
+
+  // The session as stored now (status and counts), e.g. after another process wrote.
+  Result<Session> session(const std::string& participant_id);
+
+  struct Impl;  // opaque: the connection and the current study (detail/store_impl.h)
+
+ private:
+  explicit Store(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dtlab::store

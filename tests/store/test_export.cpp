@@ -1,0 +1,184 @@
+// `dtlab export` and store::export_trials_csv: the header is exactly the one
+// documented in README.md and docs/store.md, there is one row per recorded
+// trial, fields follow RFC 4180 with NA for missing values, and the command
+// line reports bad input with a non-zero exit. The CSV is read back with an
+// independent RFC 4180 reader written here (and Python's csv module if
+// /usr/bin/python3 exists).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "study/store/export.h"
+#include "tests/store/store_fixtures.h"
+
+namespace dtlab::store {
+namespace {
+
+using namespace dtlab::store::testing;
+
+// The documented header for a study with factors transparency, scenario.
+const char* kHeader =
+    "participant,enrollment_index,session,session_status,order_row,position,block,transparency,scenario,task,trial,"
+    "practice,method,trial_seed,scene_hash,answer_count,answer_letter,answer_x,answer_z,truth_count,truth_letter,"
+    "truth_x,truth_z,rel_error,signed_error,correct,distance,completion_time_s,started_at,ended_at,frame_count,"
+    "frame_ms_mean,frame_ms_sd,frame_ms_p95,frame_ms_max,protocol_sha256";
+
+// Minimal RFC 4180 reader: records of fields, quoted fields may hold , " CR LF.
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> out(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') out.back().back() += '"', ++i;
+      else if (c == '"') quoted = false;
+      else out.back().back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.back().emplace_back();
+    } else if (c == '\n') {
+      out.emplace_back(1);
+    } else {
+      out.back().back() += c;
+    }
+  }
+  if (out.back().size() == 1 && out.back()[0].empty()) out.pop_back();
+  return out;
+}
+
+// A study: P1 finishes 4 trials (the T3 at position 3 unanswered), "P,2 \"x\"" records 2
+// and is released; P3 is enrolled without a session.
+std::string make_db(const TempDir& dir, int* recorded) {
+  const auto path = dir.file("study.sqlite");
+  auto s = Store::open(path, study_info());
+  EXPECT_TRUE(s);
+  *recorded = 0;
+  for (const std::string id : {"P1", "P,2 \"x\""}) {
+    auto e = s->enroll(id);
+    const design::Plan plan = make_plan(e->index, e->order_row, 1);
+    auto ses = s->begin_session(id, plan);
+    const int n = id == "P1" ? 4 : 2;
+    for (int i = 0; i < n; ++i) {
+      TrialRecord r = make_record(5, plan.trials[static_cast<std::size_t>(i)], 30);
+      if (id == "P1" && i == 2) r.answer.reset();  // position 3 is a T3
+      EXPECT_TRUE(s->record_trial(*ses, r));
+      ++*recorded;
+    }
+    if (id == "P1") {
+      EXPECT_TRUE(s->finish_session(*ses));
+    }
+  }
+  EXPECT_TRUE(s->release("P,2 \"x\""));
+  EXPECT_TRUE(s->enroll("P3"));
+  return path;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(Export, HeaderIsAsDocumentedAndOneRowPerRecordedTrial) {
+  TempDir dir;
+  int recorded = 0;
+  const std::string path = make_db(dir, &recorded);
+  std::ostringstream out;
+  auto sum = export_trials_csv(path, out);
+  ASSERT_TRUE(sum) << sum.error().to_string();
+  const std::string text = out.str();
+  EXPECT_EQ(text.substr(0, text.find('\n')), kHeader);
+  EXPECT_EQ(sum->rows, recorded);
+  const auto rows = parse_csv(text);
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(recorded + 1));
+  const auto& h = rows[0];
+  auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(h.begin(), h.end(), name) - h.begin());
+  };
+  for (const auto& r : rows) ASSERT_EQ(r.size(), h.size());
+  // Ordered by enrollment index, then position; values as stored.
+  const design::Plan plan = make_plan(0, 0, 1);
+  EXPECT_EQ(rows[1][col("participant")], "P1");
+  EXPECT_EQ(rows[1][col("position")], "1");
+  EXPECT_EQ(rows[1][col("trial_seed")], std::to_string(plan.trials[0].seed));  // all 64 bits
+  EXPECT_EQ(rows[1][col("transparency")], "off");
+  EXPECT_EQ(rows[1][col("scenario")], "ABSTRACT");
+  EXPECT_EQ(rows[1][col("session_status")], "finished");
+  EXPECT_EQ(rows[1][col("answer_letter")], "NA");  // T1 has a count, no letter
+  const TrialRecord r1 = make_record(5, plan.trials[0], 30);
+  EXPECT_EQ(std::stod(rows[1][col("completion_time_s")]), r1.completion_s);  // shortest round-trip form
+  EXPECT_EQ(rows[1][col("started_at")], "2023-11-14T22:15:00.000Z");          // 1700000000000 + 100000 ms
+  EXPECT_EQ(rows[3][col("task")], "T3");
+  EXPECT_EQ(rows[3][col("answer_x")], "NA");  // the unanswered T3 ...
+  EXPECT_NE(rows[3][col("truth_x")], "NA");   // ... keeps its truth
+  EXPECT_EQ(rows[3][col("distance")], "NA");
+  EXPECT_EQ(rows[5][col("participant")], "P,2 \"x\"");  // quoted and read back intact
+  EXPECT_EQ(rows[5][col("session_status")], "abandoned");
+  EXPECT_NE(text.find("\"P,2 \"\"x\"\"\""), std::string::npos);
+}
+
+TEST(Export, ErrorsNameTheFileAndNeverCreateOne) {
+  TempDir dir;
+  std::ostringstream out;
+  const std::string missing = dir.file("missing.sqlite");
+  auto a = export_trials_csv(missing, out);
+  ASSERT_FALSE(a);
+  EXPECT_EQ(a.error().file, missing);
+  EXPECT_FALSE(std::filesystem::exists(missing));
+  const std::string text = dir.file("text.sqlite");
+  std::ofstream(text) << "hello, world\n" << std::string(100, 'z');
+  auto b = export_trials_csv(text, out);
+  ASSERT_FALSE(b);
+  EXPECT_NE(b.error().message.find("not an SQLite database"), std::string::npos) << b.error().to_string();
+}
+
+TEST(ExportCommand, WritesTheFileAndReportsBadInput) {
+  TempDir dir;
+  int recorded = 0;
+  const std::string db = make_db(dir, &recorded);
+  const std::string csv = dir.file("trials.csv");
+  const std::string err = dir.file("err.txt");
+  const std::string bin = DTLAB_BINARY;
+  ASSERT_EQ(std::system((bin + " export '" + db + "' --csv '" + csv + "' 2>'" + err + "'").c_str()), 0) << slurp(err);
+  std::ostringstream lib;
+  ASSERT_TRUE(export_trials_csv(db, lib));
+  EXPECT_EQ(slurp(csv), lib.str());
+
+  const std::string junk = dir.file("junk.sqlite");
+  std::ofstream(junk) << std::string(4096, 'j');
+  const int rc = std::system((bin + " export '" + junk + "' --csv '" + dir.file("x.csv") + "' 2>'" + err + "'").c_str());
+  EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 1) << rc;
+  EXPECT_NE(slurp(err).find(junk), std::string::npos) << slurp(err);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.csv")));  // no half-written output
+  const int usage = std::system((bin + " export '" + db + "' 2>/dev/null").c_str());
+  EXPECT_TRUE(WIFEXITED(usage) && WEXITSTATUS(usage) == 2);  // --csv is required
+}
+
+// Optional: an independent CSV reader (Python's csv module) agrees on shape.
+TEST(ExportCommand, PythonCsvModuleReadsItAsIs) {
+  if (!std::filesystem::exists("/usr/bin/python3")) GTEST_SKIP() << "/usr/bin/python3 not installed";
+  TempDir dir;
+  int recorded = 0;
+  const std::string db = make_db(dir, &recorded);
+  const std::string csv = dir.file("trials.csv");
+  std::ofstream out(csv);
+  ASSERT_TRUE(export_trials_csv(db, out));
+  out.close();
+  const std::string script =
+      "import csv,sys; r=list(csv.DictReader(open(sys.argv[1], newline=''))); "
+      "assert len(r)==" + std::to_string(recorded) + ", len(r); "
+      "assert r[4]['participant']=='P,2 \"x\"', r[4]['participant']; "
+      "assert all(len(x)==36 for x in r); float(r[0]['completion_time_s'])";
+  const std::string cmd = "/usr/bin/python3 -c '" + [&] {
+    std::string q;
+    for (char c : script) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q;
+  }() + "' '" + csv + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+}
+
+}  // namespace
+}  // namespace dtlab::store
