@@ -55,8 +55,8 @@ void add_validate_command(CLI::App& root) {
                    {"trials_per_participant", trials},
                    {"sha256", p->sha256}};
         summary_text = "protocol '" + p->id + "': " + std::to_string(p->conditions.size()) + " conditions, " +
-                       std::to_string(rows) + " order rows (" + std::string(protocol::to_string(p->order.scheme)) +
-                       "), " + std::to_string(trials) + " trials per participant, " +
+                       std::to_string(rows) + (rows == 1 ? " order row (" : " order rows (") +
+                       std::string(protocol::to_string(p->order.scheme)) + "), " + std::to_string(trials) + " trials per participant, " +
                        std::to_string(p->participants) + " participants";
       }
     }

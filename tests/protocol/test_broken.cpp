@@ -175,6 +175,23 @@ const Case kCases[] = {
      14, "order.block_factor", "no factor named 'scene'"},
     {"blocks without a nested scheme", {{12, "scheme = \"latin-square\"\nunit = \"blocks\"\nblock_factor = \"scenario\""}},
      11, "order.nested_scheme", "needs nested_scheme"},
+    {"nested order with an unknown level",
+     {{12, "scheme = \"fixed\"\nunit = \"blocks\"\nblock_factor = \"scenario\"\norder = [\"walkthrough\", \"abstrct\"]\n"
+           "nested_scheme = \"fixed\"\nnested_order = [\"on\", \"of\"]"}},
+     17, "order.nested_order[1]", "no level \"of\" in factor 'transparency'"},
+    {"block order with an unknown level (reported beside the nested one)",
+     {{12, "scheme = \"fixed\"\nunit = \"blocks\"\nblock_factor = \"scenario\"\norder = [\"walkthrough\", \"abstrct\"]\n"
+           "nested_scheme = \"fixed\"\nnested_order = [\"on\", \"of\"]"}},
+     15, "order.order[1]", "no level \"abstrct\""},
+    {"nested order of the wrong shape",
+     {{12, "scheme = \"latin-square\"\nunit = \"blocks\"\nblock_factor = \"scenario\"\nnested_scheme = \"fixed\"\n"
+           "nested_order = [{transparency = \"on\"}, 3]"}},
+     16, "order.nested_order[1]", "expected a level of factor 'transparency'"},
+    {"williams of a single nested cell",
+     {{8, "# no scenario factor"}, {9, "#"}, {10, "#"}, {18, "# no walkthrough"}, {19, "#"}, {20, "#"}, {21, "#"},
+      {22, "#"}, {12, "scheme = \"latin-square\"\nunit = \"blocks\"\nblock_factor = \"transparency\"\n"
+                      "nested_scheme = \"williams\""}},
+     15, "order.nested_scheme", "\"williams\" needs at least 2 items"},
     {"nested key without blocks", {{12, "scheme = \"latin-square\"\nblock_factor = \"scenario\""}}, 13,
      "order.block_factor", "applies only to unit = \"blocks\""},
     // questionnaire references

@@ -428,31 +428,35 @@ void parse_order(TableReader& root, ParseState& s) {
       return;
     }
   }
-  if (!check_scheme(s, o.scheme, outer, r.pos("scheme"), "order.scheme", blocks)) return;
+  // Outer and nested orderings are checked independently, so both report their errors.
+  bool ok = check_scheme(s, o.scheme, outer, r.pos("scheme"), "order.scheme", blocks);
   o.rows = o.scheme == Scheme::random ? static_cast<int>(rows.value_or(p.participants)) : 0;
-  if (o.scheme == Scheme::random && o.rows <= 0) o.rows = 1;
-  if (o.scheme == Scheme::fixed) {
+  if (ok && o.scheme == Scheme::fixed) {
     auto order = parse_fixed(s, *fixed, "order.order", outer);
-    if (!order) return;
-    o.fixed = *order;
+    if (order)
+      o.fixed = *order;
+    else
+      ok = false;
   }
   if (blocks) {
     o.nested_scheme = nested_scheme.value_or(Scheme::fixed);
-    if (nested_scheme && !check_scheme(s, o.nested_scheme, nested, r.pos("nested_scheme"),
-                                       "order.nested_scheme", false))
-      return;
+    const bool nested_ok = !nested_scheme || check_scheme(s, o.nested_scheme, nested, r.pos("nested_scheme"),
+                                                          "order.nested_scheme", false);
+    ok = ok && nested_ok;
     o.nested_rows = o.nested_scheme == Scheme::random ? static_cast<int>(nested_rows.value_or(p.participants)) : 0;
-    if (o.nested_scheme == Scheme::random && o.nested_rows <= 0) o.nested_rows = 1;
-    if (o.nested_scheme == Scheme::fixed) {
+    if (nested_ok && o.nested_scheme == Scheme::fixed) {
       if (nested_fixed) {
         auto order = parse_fixed(s, *nested_fixed, "order.nested_order", nested);
-        if (!order) return;
-        o.nested_fixed = *order;
+        if (order)
+          o.nested_fixed = *order;
+        else
+          ok = false;
       } else {  // a single nested cell (checked above)
         o.nested_fixed = {0};
       }
     }
   }
+  if (!ok) return;
 
   // Balance warnings: they do not make the protocol invalid.
   if (!s.participants_ok) return;
