@@ -1,0 +1,49 @@
+// Shared part of the platform layer: the glad loader switch and the context
+// description. The loader pointers are process-global (glad's design); this
+// file is the only writer of them.
+#include <glad/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <GL/osmesa.h>
+
+#include <optional>
+#include <string>
+
+#include "app/platform/detail/loader.h"
+#include "app/platform/gl_context.h"
+
+namespace dtlab::platform {
+
+namespace detail {
+
+namespace {
+std::optional<ContextKind> g_loaded_kind;  // kind whose entry points glad holds
+int g_loaded_version = 0;
+
+GLADapiproc osmesa_proc(const char* name) {
+  return reinterpret_cast<GLADapiproc>(OSMesaGetProcAddress(name));
+}
+}  // namespace
+
+int load_gl_for(ContextKind kind) {
+  if (g_loaded_kind == kind && g_loaded_version != 0) return g_loaded_version;
+  const int v = kind == ContextKind::headless
+                    ? gladLoadGL(osmesa_proc)
+                    : gladLoadGL(reinterpret_cast<GLADloadfunc>(glfwGetProcAddress));
+  g_loaded_kind = v != 0 ? std::optional<ContextKind>(kind) : std::nullopt;
+  g_loaded_version = v == 0 ? 0 : GLAD_VERSION_MAJOR(v) * 10 + GLAD_VERSION_MINOR(v);
+  return g_loaded_version;
+}
+
+}  // namespace detail
+
+std::string GlContext::description() const {
+  const_cast<GlContext*>(this)->make_current();
+  auto str = [](GLenum e) {
+    const auto* s = reinterpret_cast<const char*>(glGetString(e));
+    return std::string(s != nullptr ? s : "?");
+  };
+  return str(GL_VERSION) + " / " + str(GL_RENDERER);
+}
+
+}  // namespace dtlab::platform

@@ -1,0 +1,71 @@
+// OpenGL contexts for dtlab: a headless OSMesa context (tests, `dtlab render`,
+// `dtlab bench`, simulated sessions) and a GLFW window (participant sessions).
+// Guarantees: a context returned here is OpenGL 3.3 core or newer, is current
+// on the calling thread, and has the GL functions loaded through glad for its
+// kind; make_current() reloads them when switching between kinds.
+// Never: draws anything, or hides a context failure (it is an Error value).
+#pragma once
+#include <memory>
+#include <string>
+
+#include "study/common/error.h"
+
+struct GLFWwindow;
+
+namespace dtlab::platform {
+
+enum class ContextKind { headless, window };
+
+// A GL 3.3 core context. Its default framebuffer (name 0) has width() x height() pixels.
+class GlContext {
+ public:
+  virtual ~GlContext() = default;
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
+
+  virtual void make_current() = 0;     // makes this context current on this thread; GL calls then go to it
+  virtual ContextKind kind() const = 0;
+  virtual int width() const = 0;       // default framebuffer width in pixels
+  virtual int height() const = 0;      // default framebuffer height in pixels
+  std::string description() const;    // "GL_VERSION / GL_RENDERER" of this context (makes it current)
+
+ protected:
+  GlContext() = default;
+};
+
+// Creates an OSMesa context (core profile 3.3) whose default framebuffer is
+// width x height RGBA8 with depth and stencil; current on return.
+Result<std::unique_ptr<GlContext>> create_headless(int width, int height);
+
+struct WindowOptions {
+  std::string title = "dtlab";
+  int width = 1024;
+  int height = 768;
+  bool visible = true;   // false: an off-screen window (tests under xvfb)
+  bool vsync = true;
+  bool resizable = true;
+};
+
+// A GLFW window with a GL 3.3 core context (forward compatible, so macOS works).
+class Window final : public GlContext {
+ public:
+  ~Window() override;
+  void make_current() override;
+  ContextKind kind() const override { return ContextKind::window; }
+  int width() const override;          // framebuffer pixels (not screen points)
+  int height() const override;
+  GLFWwindow* glfw() const { return window_; }  // for input and UI backends; valid until destruction
+  bool should_close() const;
+  void swap_buffers();
+  void poll_events();
+
+ private:
+  friend Result<std::unique_ptr<Window>> create_window(const WindowOptions&);
+  explicit Window(GLFWwindow* w) : window_(w) {}
+  GLFWwindow* window_ = nullptr;
+};
+
+// Opens a window; fails with an Error (no display, no GL 3.3) instead of aborting.
+Result<std::unique_ptr<Window>> create_window(const WindowOptions& options);
+
+}  // namespace dtlab::platform

@@ -1,0 +1,93 @@
+// Windowed GL: a GLFW window with an OpenGL 3.3 core, forward-compatible
+// context. GLFW is initialised on the first window and terminated after the
+// last one closes. Guarantees: failures (no display, no GL 3.3) come back as
+// Error values with GLFW's own description. Never: calls exit() or abort().
+#include <glad/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <memory>
+#include <string>
+
+#include "app/platform/detail/loader.h"
+#include "app/platform/gl_context.h"
+
+namespace dtlab::platform {
+
+namespace {
+
+int g_windows = 0;           // open windows; GLFW is initialised while > 0
+std::string g_last_error;    // GLFW's last error description
+
+void on_glfw_error(int code, const char* description) {
+  g_last_error = "GLFW error " + std::to_string(code) + ": " + (description ? description : "?");
+}
+
+Error window_error(std::string message) {
+  Error e;
+  e.field = "window";
+  e.message = std::move(message);
+  if (!g_last_error.empty()) e.message += " (" + g_last_error + ")";
+  return e;
+}
+
+}  // namespace
+
+Window::~Window() {
+  glfwDestroyWindow(window_);
+  if (--g_windows == 0) glfwTerminate();
+}
+
+void Window::make_current() {
+  glfwMakeContextCurrent(window_);
+  detail::load_gl_for(ContextKind::window);
+}
+
+int Window::width() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  return w;
+}
+
+int Window::height() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  return h;
+}
+
+bool Window::should_close() const { return glfwWindowShouldClose(window_) != 0; }
+void Window::swap_buffers() { glfwSwapBuffers(window_); }
+void Window::poll_events() { glfwPollEvents(); }
+
+Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
+  if (options.width <= 0 || options.height <= 0)
+    return window_error("window size must be positive, got " + std::to_string(options.width) + "x" +
+                        std::to_string(options.height));
+  glfwSetErrorCallback(on_glfw_error);
+  g_last_error.clear();
+  if (g_windows == 0 && glfwInit() == GLFW_FALSE) return window_error("cannot initialise GLFW (is there a display?)");
+  ++g_windows;  // from here on the Window destructor (or the failure path) balances it
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_RESIZABLE, options.resizable ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_ALPHA_BITS, 8);
+  glfwWindowHint(GLFW_DEPTH_BITS, 24);
+  glfwWindowHint(GLFW_STENCIL_BITS, 8);
+  GLFWwindow* w = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+  if (w == nullptr) {
+    if (--g_windows == 0) glfwTerminate();
+    return window_error("cannot open a window with an OpenGL 3.3 core context");
+  }
+  std::unique_ptr<Window> window(new Window(w));
+  glfwMakeContextCurrent(w);
+  const int version = detail::load_gl_for(ContextKind::window);
+  if (version < 33) return window_error("the window's GL context is older than 3.3 core");
+  glfwSwapInterval(options.vsync ? 1 : 0);
+  return window;
+}
+
+}  // namespace dtlab::platform
