@@ -1,0 +1,14 @@
+// Writes u_alpha to every channel: the target silhouette into a mask buffer
+// (Algorithm 2, line 2), the alpha multiply of a re-rendered target region
+// (line 11), and depth/stencil-only passes (colour writes off). In active
+// mode, fragments outside the searchlight circle are discarded.
+#version 330 core
+uniform float u_alpha;
+uniform vec3 u_searchlight;  // centre x, y in window pixels (origin bottom-left), radius; radius < 0: off
+
+out vec4 frag_color;
+
+void main() {
+  if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
+  frag_color = vec4(u_alpha);
+}

@@ -1,0 +1,25 @@
+// Object vertex shader: model -> world -> clip. Shared by every program that
+// draws scene geometry, with `invariant gl_Position`, so a depth pass and a
+// later depth-EQUAL colour pass of the same object produce identical depths.
+#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_color;
+
+uniform mat4 u_model;
+uniform mat4 u_view_proj;
+uniform mat3 u_normal_matrix;
+
+out vec3 v_world;
+out vec3 v_normal;
+out vec3 v_color;
+
+invariant gl_Position;
+
+void main() {
+  vec4 world = u_model * vec4(a_position, 1.0);
+  v_world = world.xyz;
+  v_normal = u_normal_matrix * a_normal;
+  v_color = a_color;
+  gl_Position = u_view_proj * world;
+}

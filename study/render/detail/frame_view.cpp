@@ -1,0 +1,120 @@
+// Per-frame CPU geometry (see frame_view.h).
+#include <cmath>
+#include <limits>
+
+#include "study/render/detail/frame_view.h"
+#include "study/render/render.h"
+
+namespace dtlab::render::detail {
+
+namespace {
+
+struct Projected {
+  bool outside = false;     // every point outside one frustum plane
+  bool unbounded = false;   // some point at or behind the eye plane: bounds unknown, use the viewport
+  glm::vec4 bounds{0.0f};   // window pixels, when neither
+};
+
+// Projects points to window pixels; classifies against the frustum.
+template <class PointFn>
+Projected project(std::size_t n, PointFn point, const glm::mat4& vp, int w, int h) {
+  Projected out;
+  int outside_mask = 0x3f;
+  float x0 = std::numeric_limits<float>::max(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec4 c = vp * glm::vec4(point(i), 1.0f);
+    int m = 0;
+    if (c.x < -c.w) m |= 1;
+    if (c.x > c.w) m |= 2;
+    if (c.y < -c.w) m |= 4;
+    if (c.y > c.w) m |= 8;
+    if (c.z < -c.w) m |= 16;
+    if (c.z > c.w) m |= 32;
+    outside_mask &= m;
+    if (c.w <= 1e-6f || c.z < -c.w) {
+      out.unbounded = true;
+      continue;
+    }
+    const float sx = (c.x / c.w * 0.5f + 0.5f) * static_cast<float>(w);
+    const float sy = (c.y / c.w * 0.5f + 0.5f) * static_cast<float>(h);
+    x0 = std::min(x0, sx);
+    y0 = std::min(y0, sy);
+    x1 = std::max(x1, sx);
+    y1 = std::max(y1, sy);
+  }
+  out.outside = n == 0 || outside_mask != 0;
+  out.bounds = glm::vec4(x0, y0, x1, y1);
+  return out;
+}
+
+PixelRect to_pixels(const glm::vec4& b, int w, int h) {
+  // One extra pixel on each side: rasterization samples pixel centres, bounds are exact floats.
+  PixelRect r{static_cast<int>(std::floor(std::max(b.x, -1e6f))) - 1, static_cast<int>(std::floor(std::max(b.y, -1e6f))) - 1,
+              static_cast<int>(std::ceil(std::min(b.z, 1e6f))) + 1, static_cast<int>(std::ceil(std::min(b.w, 1e6f))) + 1};
+  return r.intersect({0, 0, w, h});
+}
+
+}  // namespace
+
+FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene::Scene& scene,
+                          const Camera& camera, int width, int height, const DtSettings& dt, GroupSorter& sorter) {
+  FrameView v;
+  v.width = width;
+  v.height = height;
+  v.camera = camera;
+  v.view_proj = camera.view_proj();
+  const PixelRect viewport{0, 0, width, height};
+  v.rects.resize(objects.size());
+  v.target_slot.assign(objects.size(), -1);
+  const int margin = static_cast<int>(std::ceil(dt.gradient_px)) + 1;
+  for (std::uint32_t i = 0; i < objects.size(); ++i) {
+    const ObjectRecord& o = objects[i];
+    if (!o.drawable()) continue;
+    const Projected box = project(
+        8,
+        [&](std::size_t c) {
+          return glm::vec3((c & 1) ? o.world_max.x : o.world_min.x, (c & 2) ? o.world_max.y : o.world_min.y,
+                           (c & 4) ? o.world_max.z : o.world_min.z);
+        },
+        v.view_proj, width, height);
+    if (box.outside) continue;
+    v.rects[i] = box.unbounded ? viewport : to_pixels(box.bounds, width, height);
+    if (v.rects[i].empty()) continue;
+    if (o.impenetrable) v.impenetrable.push_back(i);
+    if (!o.target) continue;
+    // Targets: tight bounds from the transformed vertices.
+    const auto& verts = scene.meshes[o.mesh].vertices;
+    const glm::mat4 mvp = v.view_proj * o.model;
+    const Projected tight = project(verts.size(), [&](std::size_t k) { return verts[k].position; }, mvp, width, height);
+    if (tight.outside) continue;
+    TargetView t;
+    t.object = i;
+    t.code = static_cast<std::uint8_t>(v.targets.size() % 255 + 1);
+    t.bounds = tight.unbounded ? glm::vec4(0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height))
+                               : tight.bounds;
+    t.rect = tight.unbounded ? viewport : to_pixels(t.bounds, width, height);
+    if (t.rect.empty()) continue;
+    v.rects[i] = v.rects[i].intersect(t.rect.expand(1));
+    const glm::vec2 half(0.5f * (t.bounds.z - t.bounds.x), 0.5f * (t.bounds.w - t.bounds.y));
+    t.shape_center = glm::vec2(0.5f * (t.bounds.x + t.bounds.z), 0.5f * (t.bounds.y + t.bounds.w));
+    if (dt.shape == MaskShape::circle) {
+      t.shape_radii = glm::vec2(glm::length(half));
+    } else {
+      t.shape_radii = half * std::sqrt(2.0f);
+    }
+    PixelRect extent = t.rect;
+    if (dt.shape != MaskShape::outline)
+      extent = to_pixels(glm::vec4(t.shape_center - t.shape_radii, t.shape_center + t.shape_radii), width, height);
+    t.support = extent.expand(margin).intersect(viewport);
+    v.target_slot[i] = static_cast<int>(v.targets.size());
+    v.targets.push_back(t);
+  }
+  for (auto i : sorter.sort(camera.eye, camera.forward))
+    if (!v.rects[i].empty()) v.sorted.push_back(i);
+  if (dt.mode == DtMode::active)
+    v.searchlight = glm::vec3(dt.searchlight_center.x, static_cast<float>(height) - dt.searchlight_center.y,
+                              dt.searchlight_radius);
+  return v;
+}
+
+}  // namespace dtlab::render::detail

@@ -1,0 +1,65 @@
+// Internal: what the CPU knows about one frame before any GL call: each
+// object's conservative screen rectangle (empty when outside the view
+// frustum), the targets in view with their stencil codes, mask supports and
+// circle/ellipse parameters, and the draw order (impenetrable first, then
+// the sorted groups). Pure maths; no GL.
+// Guarantees: a rectangle never misses a pixel the object covers (geometry
+// crossing the near plane gets the whole viewport). Never: reads GL state.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "study/render/camera.h"
+#include "study/render/detail/scene_gpu.h"
+#include "study/render/detail/sort.h"
+
+namespace dtlab::render {
+struct DtSettings;
+}
+
+namespace dtlab::render::detail {
+
+// Window pixels [x0, x1) x [y0, y1), origin bottom-left (GL's convention).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  long area() const { return empty() ? 0 : static_cast<long>(x1 - x0) * (y1 - y0); }
+  PixelRect intersect(const PixelRect& o) const {
+    return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
+  }
+  PixelRect expand(int d) const { return {x0 - d, y0 - d, x1 + d, y1 + d}; }
+  bool overlaps(const PixelRect& o) const { return !intersect(o).empty(); }
+  bool operator==(const PixelRect&) const = default;
+};
+
+struct TargetView {
+  std::uint32_t object = 0;       // index into the scene's objects
+  std::uint8_t code = 1;          // stencil code in the opaque pass (1..255)
+  glm::vec4 bounds{0.0f};         // tight bounds of the projected vertices (x0, y0, x1, y1), window pixels, unclipped
+  PixelRect rect;                 // silhouette bounds, clipped to the viewport
+  PixelRect support;              // pixels whose alpha its mask can change, clipped to the viewport
+  glm::vec2 shape_center{0.0f};   // circle / ellipse centre, window pixels
+  glm::vec2 shape_radii{0.0f};    // semi-axes, window pixels (equal for a circle)
+};
+
+struct FrameView {
+  int width = 0, height = 0;
+  Camera camera;
+  glm::mat4 view_proj{1.0f};
+  std::vector<PixelRect> rects;             // per object
+  std::vector<TargetView> targets;          // targets in view, scene order
+  std::vector<int> target_slot;             // per object: index into targets, or -1
+  std::vector<std::uint32_t> impenetrable;  // impenetrable objects in view, scene order
+  std::vector<std::uint32_t> sorted;        // other objects in view, back to front
+  glm::vec3 searchlight{0.0f, 0.0f, -1.0f}; // (x, y, radius) window pixels; radius < 0: passive mode
+  PixelRect viewport() const { return {0, 0, width, height}; }
+};
+
+// `scene` supplies target vertices for tight bounds; `sorter` keeps the order between frames.
+FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene::Scene& scene,
+                          const Camera& camera, int width, int height, const DtSettings& dt, GroupSorter& sorter);
+
+}  // namespace dtlab::render::detail

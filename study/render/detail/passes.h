@@ -1,0 +1,80 @@
+// Internal: the render passes each method adds to the frame graph, and the
+// per-frame context they draw with. Each add_*() declares one or more passes
+// (XxxPassData struct + setup that only declares + execute that only uses
+// what was declared) and returns the handles later passes need.
+// Guarantees: every execute sets all the GL state it relies on (no pass
+// inherits state from another). Never: a pass draws to a resource it did not
+// declare.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "study/render/detail/frame_view.h"
+#include "study/render/detail/programs.h"
+#include "study/render/detail/scene_gpu.h"
+#include "study/render/frame_graph.h"
+#include "study/render/render.h"
+
+namespace dtlab::render::detail {
+
+struct FrameContext {
+  const SceneGpu& gpu;
+  const Programs& programs;
+  const FrameView& view;
+  const FrameSettings& settings;
+  const scene::Scene& scene;
+  TextureFormat color_format = TextureFormat::rgba8;
+
+  int width() const { return view.width; }
+  int height() const { return view.height; }
+  glm::vec4 flat_color(std::uint32_t object) const;  // a > 0.5: flat colour in use
+  glm::vec3 background() const;                     // black in weight mode
+
+  // Scene geometry, lit (or flat in weight mode).
+  void use_lit(const glm::mat4& view_proj) const;
+  void draw_lit(std::uint32_t object) const;
+  // Scene geometry writing `alpha` to every channel (depth-only passes, silhouettes, queries).
+  void use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight) const;
+  void draw_alpha(std::uint32_t object) const;
+  // A screen-aligned rectangle in window pixels of a w x h target, with `p` already in use.
+  void quad(const Program& p, float x0, float y0, float x1, float y1, int w, int h) const;
+  glm::vec3 searchlight_uniform(bool on) const;  // (x, y, r) or r = -1
+};
+
+struct MainTargets {
+  Handle color;
+  Handle depth;  // depth 24 + stencil 8
+};
+
+// `opaque`: clears and draws every object in view with a z-buffer (the standard frame).
+// With `stencil_codes`, each target writes its code into the stencil (for the target query).
+MainTargets add_opaque_pass(FrameGraph& fg, const FrameContext& fc, bool stencil_codes);
+// `target-query`: one occlusion query counting target fragments hidden behind another object.
+Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle depth);
+// `present`: blits the final colour into the imported output.
+void add_present_pass(FrameGraph& fg, const FrameContext& fc, Handle color, Handle output);
+
+// dt-seed, dt-fast: the effect's passes, all conditional on `query`.
+MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
+MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
+// reference: per-object layers rendered on the GPU, composited exactly on the CPU.
+Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
+
+// Shared GL sequences of the two GPU methods.
+// Draws object `i` of a back-to-front sequence: depth pass, then colour pass with depth EQUAL,
+// blended with the destination alpha (and the layer-limit stencil logic when enabled).
+void draw_transparent_object(const FrameContext& fc, std::uint32_t i);
+// Draws object `i` with a plain z-buffer (alpha stays 1): used where no mask can apply.
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i);
+// Target `slot`'s silhouette (outline: its mesh through `view_proj`) or shape (circle /
+// ellipse: window pixel p maps to p * px_map.xy + px_map.zw of the bound framebuffer), with
+// whatever colour/stencil state the caller set (the program is chosen here).
+void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::mat4& view_proj,
+                      glm::vec4 px_map, bool searchlight);
+// Marks target `slot`'s silhouette in the stencil (bit 7, counter 1), for the apply step.
+void mark_target(const FrameContext& fc, int slot);
+// Multiplies aT into the alpha of the marked silhouette and clears the mark.
+void finish_target(const FrameContext& fc, int slot);
+// The alpha-multiply blend state with the stencil test for "not marked" (apply step).
+void begin_apply(const FrameContext& fc);
+
+}  // namespace dtlab::render::detail

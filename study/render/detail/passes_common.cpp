@@ -1,0 +1,276 @@
+// Passes every method shares: opaque (the standard frame), target-query, present;
+// and the GL sequences of dynamic transparency both GPU methods use (see passes.h).
+#include <glad/gl.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "study/render/detail/passes.h"
+
+namespace dtlab::render::detail {
+
+// --- FrameContext --------------------------------------------------------------------------
+
+glm::vec4 FrameContext::flat_color(std::uint32_t object) const {
+  if (settings.flat_colors.empty()) return glm::vec4(0.0f);
+  const glm::vec3 c = object < settings.flat_colors.size() ? settings.flat_colors[object] : glm::vec3(0.0f);
+  return glm::vec4(c, 1.0f);
+}
+
+glm::vec3 FrameContext::background() const {
+  return settings.flat_colors.empty() ? settings.background : glm::vec3(0.0f);
+}
+
+glm::vec3 FrameContext::searchlight_uniform(bool on) const {
+  return on ? view.searchlight : glm::vec3(0.0f, 0.0f, -1.0f);
+}
+
+void FrameContext::use_lit(const glm::mat4& view_proj) const {
+  const Program& p = programs.object;
+  glUseProgram(p.id);
+  glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glUniform3fv(p.loc("u_eye"), 1, glm::value_ptr(view.camera.eye));
+}
+
+void FrameContext::draw_lit(std::uint32_t object) const {
+  const Program& p = programs.object;
+  const ObjectRecord& o = gpu.objects()[object];
+  glUniformMatrix4fv(p.loc("u_model"), 1, GL_FALSE, glm::value_ptr(o.model));
+  glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(o.normal_matrix));
+  glUniform3fv(p.loc("u_tint"), 1, glm::value_ptr(o.tint));
+  glUniform4fv(p.loc("u_flat"), 1, glm::value_ptr(flat_color(object)));
+  gpu.draw(o);
+}
+
+void FrameContext::use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight) const {
+  const Program& p = programs.object_alpha;
+  glUseProgram(p.id);
+  glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glUniform1f(p.loc("u_alpha"), alpha);
+  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(searchlight_uniform(searchlight)));
+}
+
+void FrameContext::draw_alpha(std::uint32_t object) const {
+  const ObjectRecord& o = gpu.objects()[object];
+  glUniformMatrix4fv(programs.object_alpha.loc("u_model"), 1, GL_FALSE, glm::value_ptr(o.model));
+  gpu.draw(o);
+}
+
+void FrameContext::quad(const Program& p, float x0, float y0, float x1, float y1, int w, int h) const {
+  const float fw = static_cast<float>(w), fh = static_cast<float>(h);
+  glUniform4f(p.loc("u_rect"), x0 / fw * 2.0f - 1.0f, y0 / fh * 2.0f - 1.0f, x1 / fw * 2.0f - 1.0f,
+              y1 / fh * 2.0f - 1.0f);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+}
+
+// --- shared GL sequences -------------------------------------------------------------------
+
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i) {
+  fc.use_lit(fc.view.view_proj);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  fc.draw_lit(i);
+}
+
+void draw_transparent_object(const FrameContext& fc, std::uint32_t i) {
+  // Step 1 (article V.3): the object's own z-buffer pass selects its frontmost surfaces.
+  fc.use_alpha(fc.view.view_proj, 1.0f, false);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  fc.draw_alpha(i);
+  // Step 2: blend those surfaces with the destination alpha; alpha itself is left alone.
+  fc.use_lit(fc.view.view_proj);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
+  glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA, GL_ZERO, GL_ONE);
+  const int limit = fc.settings.dt.layer_limit;
+  if (limit <= 0) {
+    glEnable(GL_BLEND);
+    fc.draw_lit(i);
+    return;
+  }
+  // Layer limit: the stencil's low 7 bits count surfaces drawn since the last mask made the
+  // pixel transparent. Past the limit a surface is drawn opaque and resets alpha to 1.
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_LEQUAL, limit + 1, 0x7F);  // (limit + 1) <= count
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glStencilMask(0x00);
+  glDisable(GL_BLEND);
+  fc.draw_lit(i);
+  glStencilFunc(GL_GEQUAL, limit, 0x7F);  // limit >= count
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+  glStencilMask(0x7F);
+  glEnable(GL_BLEND);
+  fc.draw_lit(i);
+  glDisable(GL_STENCIL_TEST);
+}
+
+void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::mat4& view_proj, glm::vec4 px_map,
+                      bool searchlight) {
+  const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
+  if (fc.settings.dt.shape == MaskShape::outline) {
+    fc.use_alpha(view_proj, alpha, searchlight);
+    fc.draw_alpha(t.object);
+    return;
+  }
+  // Shapes are analytic, drawn over the whole viewport and cut by the shader.
+  const Program& p = fc.programs.shape;
+  glUseProgram(p.id);
+  glUniform2f(p.loc("u_center"), t.shape_center.x * px_map.x + px_map.z, t.shape_center.y * px_map.y + px_map.w);
+  glUniform2f(p.loc("u_radii"), t.shape_radii.x * px_map.x, t.shape_radii.y * px_map.y);
+  glUniform1f(p.loc("u_alpha"), alpha);
+  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(searchlight)));
+  glUniform4f(p.loc("u_rect"), -1.0f, -1.0f, 1.0f, 1.0f);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+}
+
+void mark_target(const FrameContext& fc, int slot) {
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glDisable(GL_BLEND);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 0x81, 0xFF);  // bit 7: silhouette; low bits: layer counter = 1
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glStencilMask(0xFF);
+  draw_target_seed(fc, slot, 1.0f, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true);
+}
+
+void begin_apply(const FrameContext&) {
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);  // dst.a *= src.a
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0x01, 0x80);  // outside the marked silhouette
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glStencilMask(0x7F);                  // the counter restarts at 1 where the mask is below 1
+}
+
+void finish_target(const FrameContext& fc, int slot) {
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the marked silhouette
+  glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
+  glStencilMask(0x80);                  // clears the mark, keeps the counter
+  draw_target_seed(fc, slot, fc.settings.dt.alpha_target, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true);
+  glDisable(GL_STENCIL_TEST);
+}
+
+// --- opaque, target-query, present -----------------------------------------------------------
+
+MainTargets add_opaque_pass(FrameGraph& fg, const FrameContext& fc, bool stencil_codes) {
+  struct OpaquePassData {
+    Handle color, depth;
+  };
+  const auto& data = fg.add_pass<OpaquePassData>(
+      "opaque",
+      [&](FrameGraph::Builder& b, OpaquePassData& d) {
+        d.color = b.write(b.create("color", {fc.width(), fc.height(), fc.color_format, false}));
+        d.depth = b.write(b.create("depth", {fc.width(), fc.height(), TextureFormat::depth24_stencil8, false}));
+      },
+      [&fc, stencil_codes](const OpaquePassData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
+        glViewport(0, 0, fc.width(), fc.height());
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_BLEND);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glStencilMask(0xFF);
+        const glm::vec3 bg = fc.background();
+        glClearColor(bg.r, bg.g, bg.b, 1.0f);
+        glClearDepth(1.0);
+        glClearStencil(0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        if (stencil_codes) {
+          glEnable(GL_STENCIL_TEST);
+          glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        } else {
+          glDisable(GL_STENCIL_TEST);
+        }
+        fc.use_lit(fc.view.view_proj);
+        const auto& rects = fc.view.rects;
+        for (std::uint32_t i = 0; i < rects.size(); ++i) {
+          if (rects[i].empty()) continue;
+          if (stencil_codes) {
+            const int slot = fc.view.target_slot[i];
+            glStencilFunc(GL_ALWAYS, slot < 0 ? 0 : fc.view.targets[static_cast<std::size_t>(slot)].code, 0xFF);
+          }
+          fc.draw_lit(i);
+        }
+        glDisable(GL_STENCIL_TEST);
+      });
+  return {data.color, data.depth};
+}
+
+Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle depth) {
+  struct TargetQueryPassData {
+    Handle depth, query;
+  };
+  const auto& data = fg.add_pass<TargetQueryPassData>(
+      "target-query",
+      [&](FrameGraph::Builder& b, TargetQueryPassData& d) {
+        d.depth = b.read(depth);
+        d.query = b.write(b.create_query("any-target-occluded"));
+      },
+      [&fc](const TargetQueryPassData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.depth));
+        glViewport(0, 0, fc.width(), fc.height());
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_BLEND);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);  // behind the frontmost surface ...
+        glDepthMask(GL_FALSE);
+        glEnable(GL_STENCIL_TEST);  // ... and that surface is not the target itself
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        glStencilMask(0x00);
+        glBeginQuery(GL_ANY_SAMPLES_PASSED, r.query(d.query));
+        fc.use_alpha(fc.view.view_proj, 0.0f, true);
+        for (const TargetView& t : fc.view.targets) {
+          glStencilFunc(GL_NOTEQUAL, t.code, 0xFF);
+          fc.draw_alpha(t.object);
+        }
+        glEndQuery(GL_ANY_SAMPLES_PASSED);
+        glDisable(GL_STENCIL_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      });
+  return data.query;
+}
+
+void add_present_pass(FrameGraph& fg, const FrameContext& fc, Handle color, Handle output) {
+  struct PresentPassData {
+    Handle color, output;
+  };
+  fg.add_pass<PresentPassData>(
+      "present",
+      [&](FrameGraph::Builder& b, PresentPassData& d) {
+        d.color = b.read(color);
+        d.output = b.write(output);  // imported: this pass is a root
+      },
+      [&fc](const PresentPassData& d, PassResources& r) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, r.framebuffer({d.color}));
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.framebuffer({d.output}));
+        glDisable(GL_SCISSOR_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glBlitFramebuffer(0, 0, fc.width(), fc.height(), 0, 0, fc.width(), fc.height(), GL_COLOR_BUFFER_BIT,
+                          GL_NEAREST);
+      });
+}
+
+}  // namespace dtlab::render::detail

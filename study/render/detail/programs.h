@@ -1,0 +1,39 @@
+// Internal: the renderer's GLSL programs, compiled from the embedded files in
+// shaders/ (GLSL 330 core). Guarantees: a compile or link failure is an Error
+// naming the shader file and carrying the driver's log; uniform locations are
+// looked up once per name. Never: reads shader files at run time.
+#pragma once
+#include <map>
+#include <string>
+
+#include "study/common/error.h"
+
+namespace dtlab::render::detail {
+
+class Program {
+ public:
+  unsigned id = 0;
+  int loc(const char* name) const;  // uniform location, -1 if the program has no such active uniform
+ private:
+  mutable std::map<std::string, int, std::less<>> locations_;
+};
+
+// Compiles and links the embedded `vertex_file` and `fragment_file`.
+Result<Program> link_program(const char* vertex_file, const char* fragment_file);
+
+struct Programs {
+  Program object;       // object.vert + object.frag: lit or flat colour
+  Program object_alpha; // object.vert + flat_alpha.frag: depth-only, queries, silhouettes
+  Program quad_alpha;   // fullscreen.vert + flat_alpha.frag
+  Program border;       // fullscreen.vert + border.frag (Algorithm 3)
+  Program mask_apply;   // fullscreen.vert + mask_apply.frag (Algorithm 2, line 10)
+  Program shape;        // fullscreen.vert + shape.frag (circle / ellipse masks)
+  Program cheb_rows;    // fullscreen.vert + cheb_rows.frag (dt-fast distances)
+  Program cheb_cols;    // fullscreen.vert + cheb_cols.frag
+  Program fast_apply;   // fullscreen.vert + fast_apply.frag
+  void destroy();       // deletes every program (needs the context current)
+};
+
+Result<Programs> compile_programs();
+
+}  // namespace dtlab::render::detail

@@ -1,0 +1,180 @@
+// The Renderer (see render.h): owns the scene's GPU data, the programs, the
+// frame graph backend and the group order; builds one frame graph per frame
+// from the method and what the frame calls for.
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "study/render/detail/gl_state.h"
+#include "study/render/detail/passes.h"
+#include "study/render/detail/renderer_impl.h"
+#include "study/render/render.h"
+
+namespace dtlab::render {
+
+std::string_view to_string(Method m) {
+  switch (m) {
+    case Method::standard: return "standard";
+    case Method::dt_seed: return "dt-seed";
+    case Method::dt_fast: return "dt-fast";
+    case Method::reference: return "reference";
+  }
+  return "?";
+}
+
+std::optional<Method> parse_method(std::string_view s) {
+  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference})
+    if (to_string(m) == s) return m;
+  return std::nullopt;
+}
+
+bool uses_transparency(Method m) { return m != Method::standard; }
+
+std::string_view to_string(MaskShape s) {
+  switch (s) {
+    case MaskShape::outline: return "outline";
+    case MaskShape::circle: return "circle";
+    case MaskShape::ellipse: return "ellipse";
+  }
+  return "?";
+}
+
+std::optional<MaskShape> parse_mask_shape(std::string_view s) {
+  for (MaskShape m : {MaskShape::outline, MaskShape::circle, MaskShape::ellipse})
+    if (to_string(m) == s) return m;
+  return std::nullopt;
+}
+
+void validate(const DtSettings& s) {
+  auto bad = [](const std::string& field, const std::string& what) {
+    throw std::invalid_argument("DtSettings." + field + ": " + what);
+  };
+  if (!(s.alpha_target >= 0.0f && s.alpha_target < 1.0f)) bad("alpha_target", "must be in [0, 1)");
+  if (!(s.alpha_start >= 0.0f && s.alpha_start < 1.0f)) bad("alpha_start", "must be in [0, 1)");
+  if (!(s.gradient_px >= 0.0f && s.gradient_px <= 4096.0f)) bad("gradient_px", "must be in [0, 4096]");
+  if (s.mask_resolution < 0 || s.mask_resolution > 8192) bad("mask_resolution", "must be 0 (full) or 1..8192");
+  if (s.layer_limit < 0 || s.layer_limit > 100) bad("layer_limit", "must be 0 (no limit) or 1..100");
+  if (!(s.searchlight_radius >= 0.0f) || !std::isfinite(s.searchlight_center.x) || !std::isfinite(s.searchlight_center.y))
+    bad("searchlight", "radius must be >= 0 and the centre finite");
+}
+
+float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int width, int height) {
+  if (mask_resolution <= 0) return mask_pixels;
+  return mask_pixels * std::sqrt(static_cast<float>(width) * static_cast<float>(height)) / static_cast<float>(mask_resolution);
+}
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::~Renderer() = default;
+
+Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& scene) {
+  auto impl = std::make_unique<Impl>();
+  impl->scene = scene;
+  auto gpu = detail::SceneGpu::create(impl->scene);
+  if (!gpu) return gpu.error();
+  impl->gpu = std::move(gpu.value());
+  auto programs = detail::compile_programs();
+  if (!programs) return programs.error();
+  impl->programs = std::move(programs.value());
+  impl->sorter = std::make_unique<detail::GroupSorter>(impl->gpu->objects());
+  return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+}
+
+const scene::Scene& Renderer::scene() const { return impl_->scene; }
+const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
+
+FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {
+  validate(settings.dt);
+  if (target.width <= 0 || target.height <= 0)
+    throw std::invalid_argument("Renderer::render: target size must be positive, got " + std::to_string(target.width) +
+                                "x" + std::to_string(target.height));
+  if (settings.flat_colors.size() > impl_->gpu->objects().size())
+    throw std::invalid_argument("Renderer::render: more flat colours than objects");
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  detail::GlStateGuard guard;
+  const detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, target.width,
+                                                         target.height, settings.dt, *impl_->sorter);
+  const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, settings, impl_->scene,
+                                settings.float_color ? TextureFormat::rgba16f : TextureFormat::rgba8};
+  FrameGraph fg;
+  const Handle output = fg.import_target("output", target);
+  const bool transparency = uses_transparency(settings.method);
+  const bool targets = !view.targets.empty();
+  Handle color;
+  if (settings.method == Method::reference) {
+    color = detail::add_reference_pass(fg, fc);
+  } else {
+    detail::MainTargets main = detail::add_opaque_pass(fg, fc, transparency && targets);
+    // Declared whenever a target is in view; only the effect's passes read it, so for
+    // `standard` compile() culls it.
+    Handle query;
+    if (targets) query = detail::add_target_query_pass(fg, fc, main.depth);
+    if (transparency && targets) {
+      main = settings.method == Method::dt_seed ? detail::add_seed_passes(fg, fc, main, query)
+                                                : detail::add_fast_passes(fg, fc, main, query);
+    }
+    color = main.color;
+  }
+  detail::add_present_pass(fg, fc, color, output);
+  fg.compile();
+  glBindVertexArray(impl_->gpu->vao());
+  fg.execute(impl_->backend);
+  if (settings.timed) glFinish();
+  const auto t1 = Clock::now();
+  FrameReport report = fg.report(impl_->backend, settings.timed);
+  if (settings.timed) report.frame_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  impl_->backend.end_frame();
+  impl_->graphviz = fg.graphviz();
+  impl_->last_target = target;
+  impl_->last_float = settings.float_color;
+  return report;
+}
+
+FrameReport Renderer::render_offscreen(const Camera& camera, const FrameSettings& settings, int width, int height) {
+  if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
+    throw std::invalid_argument("Renderer::render_offscreen: size must be 1..16384, got " + std::to_string(width) + "x" +
+                                std::to_string(height));
+  impl_->ensure_offscreen(width, height, settings.float_color);
+  return render(camera, settings, ImportedTarget{impl_->out_fbo, width, height});
+}
+
+Image Renderer::read_color() const {
+  const ImportedTarget& t = impl_->last_target;
+  Image img;
+  if (t.width <= 0) return img;
+  img.width = t.width;
+  img.height = t.height;
+  std::vector<std::uint8_t> rows(static_cast<std::size_t>(t.width) * t.height * 4);
+  GLint prev = 0, pack = 4;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
+  glGetIntegerv(GL_PACK_ALIGNMENT, &pack);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
+  if (t.framebuffer == 0) glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, pack);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(prev));
+  img.rgba.resize(rows.size());
+  const std::size_t stride = static_cast<std::size_t>(t.width) * 4;
+  for (int y = 0; y < t.height; ++y)  // GL rows are bottom-up
+    std::copy_n(&rows[static_cast<std::size_t>(t.height - 1 - y) * stride], stride, &img.rgba[static_cast<std::size_t>(y) * stride]);
+  return img;
+}
+
+std::vector<float> Renderer::read_color_float() const {
+  const ImportedTarget& t = impl_->last_target;
+  std::vector<float> out;
+  if (t.width <= 0) return out;
+  out.resize(static_cast<std::size_t>(t.width) * t.height * 4);
+  GLint prev = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
+  glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_FLOAT, out.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(prev));
+  return out;
+}
+
+}  // namespace dtlab::render

@@ -1,0 +1,64 @@
+// Internal: the state a Renderer owns (see render.h): the scene, its GPU
+// buffers, the programs, the frame graph backend (texture pool), the group
+// order kept between frames, the offscreen output of render_offscreen().
+// Needs the renderer's GL context current when destroyed.
+#pragma once
+#include <glad/gl.h>
+
+#include <memory>
+#include <string>
+
+#include "study/render/detail/gl_backend.h"
+#include "study/render/detail/programs.h"
+#include "study/render/detail/scene_gpu.h"
+#include "study/render/detail/sort.h"
+#include "study/render/render.h"
+
+namespace dtlab::render {
+
+struct Renderer::Impl {
+  scene::Scene scene;
+  std::unique_ptr<detail::SceneGpu> gpu;
+  detail::Programs programs;
+  detail::GlBackend backend;
+  std::unique_ptr<detail::GroupSorter> sorter;
+  std::string graphviz;
+  // Offscreen output for render_offscreen(): colour texture + framebuffer.
+  unsigned out_fbo = 0, out_tex = 0;
+  int out_w = 0, out_h = 0;
+  bool out_float = false;
+  // Where the last frame was presented (for read_color).
+  ImportedTarget last_target;
+  bool last_float = false;
+
+  ~Impl() {
+    if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
+    if (out_tex != 0) glDeleteTextures(1, &out_tex);
+    programs.destroy();
+  }
+
+  void ensure_offscreen(int w, int h, bool fp) {
+    if (out_fbo != 0 && out_w == w && out_h == h && out_float == fp) return;
+    if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
+    if (out_tex != 0) glDeleteTextures(1, &out_tex);
+    GLint prev_tex = 0, prev_fbo = 0;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_fbo);
+    glGenTextures(1, &out_tex);
+    glBindTexture(GL_TEXTURE_2D, out_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, fp ? GL_RGBA16F : GL_RGBA8, w, h, 0, GL_RGBA, fp ? GL_FLOAT : GL_UNSIGNED_BYTE,
+                 nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glGenFramebuffers(1, &out_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, out_fbo);
+    glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, out_tex, 0);
+    glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(prev_tex));
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
+    out_w = w;
+    out_h = h;
+    out_float = fp;
+  }
+};
+
+}  // namespace dtlab::render

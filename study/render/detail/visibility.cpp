@@ -1,0 +1,100 @@
+// Renderer::visibility (see render.h and docs/render.md, "Visible pixels").
+// Silhouettes: one GL_SAMPLES_PASSED query per target drawn alone without a
+// depth test. Visible pixels: the method's own frame re-rendered in weight
+// mode, where targets k, k+1, k+2 are flat red, green and blue and every
+// other object and the background flat black: a channel's value at a pixel is
+// then exactly the share of that target in the composited colour.
+#include <glad/gl.h>
+
+#include <cmath>
+
+#include "study/render/detail/gl_state.h"
+#include "study/render/detail/passes.h"
+#include "study/render/detail/renderer_impl.h"
+#include "study/render/render.h"
+
+namespace dtlab::render {
+
+std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSettings settings, int width, int height) {
+  const auto& objects = impl_->scene.objects;
+  std::vector<TargetVisibility> out;
+  std::vector<std::uint32_t> target_index;  // scene object index per entry of `out`
+  for (std::uint32_t i = 0; i < objects.size(); ++i) {
+    if (!objects[i].target) continue;
+    out.push_back(TargetVisibility{objects[i].id, 0, 0});
+    target_index.push_back(i);
+  }
+  if (out.empty()) return out;
+  settings.timed = false;
+
+  // Silhouette pixel counts.
+  {
+    // The current view, for the frustum test (and the same sorter the frames use).
+    FrameSettings plain = settings;
+    plain.flat_colors.clear();
+    detail::GlStateGuard guard;
+    const detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, width, height,
+                                                           settings.dt, *impl_->sorter);
+    const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, plain, impl_->scene, TextureFormat::r8};
+    std::vector<GLuint> queries(out.size(), 0);
+    glGenQueries(static_cast<GLsizei>(queries.size()), queries.data());
+    FrameGraph fg;
+    struct SilhouettePassData {
+      Handle scratch;
+    };
+    fg.add_pass<SilhouettePassData>(
+        "silhouette-count",
+        [&](FrameGraph::Builder& b, SilhouettePassData& d) {
+          d.scratch = b.write(b.create("scratch", {width, height, TextureFormat::r8, false}));
+          b.side_effect();  // its output is the query results, read on the CPU
+        },
+        [&](const SilhouettePassData& d, PassResources& r) {
+          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.scratch}));
+          glViewport(0, 0, width, height);
+          glDisable(GL_SCISSOR_TEST);
+          glDisable(GL_DEPTH_TEST);
+          glDisable(GL_STENCIL_TEST);
+          glDisable(GL_BLEND);
+          glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+          fc.use_alpha(view.view_proj, 1.0f, false);
+          for (std::size_t k = 0; k < out.size(); ++k) {
+            glBeginQuery(GL_SAMPLES_PASSED, queries[k]);
+            if (!view.rects[target_index[k]].empty()) fc.draw_alpha(target_index[k]);
+            glEndQuery(GL_SAMPLES_PASSED);
+          }
+          glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        });
+    fg.compile();
+    glBindVertexArray(impl_->gpu->vao());
+    fg.execute(impl_->backend);
+    fg.report(impl_->backend, true);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      GLuint samples = 0;
+      glGetQueryObjectuiv(queries[k], GL_QUERY_RESULT, &samples);
+      out[k].silhouette_pixels = static_cast<long>(samples);
+    }
+    glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
+  }
+
+  // Visible pixels: weight frames, three targets each.
+  const int threshold = static_cast<int>(std::ceil(kVisibleShare * 255.0f - 1e-4f));  // 26 of 255
+  for (std::size_t first = 0; first < out.size(); first += 3) {
+    settings.flat_colors.assign(objects.size(), glm::vec3(0.0f));
+    for (std::size_t c = 0; c < 3 && first + c < out.size(); ++c) {
+      glm::vec3 e(0.0f);
+      e[static_cast<int>(c)] = 1.0f;
+      settings.flat_colors[target_index[first + c]] = e;
+    }
+    render_offscreen(camera, settings, width, height);
+    const Image img = read_color();
+    for (std::size_t c = 0; c < 3 && first + c < out.size(); ++c) {
+      long n = 0;
+      for (std::size_t p = 0; p < img.rgba.size(); p += 4)
+        if (img.rgba[p + c] >= threshold) ++n;
+      out[first + c].visible_pixels = n;
+    }
+  }
+  return out;
+}
+
+}  // namespace dtlab::render

@@ -1,0 +1,116 @@
+// The dtlab renderer: draws a scene::Scene with one of four methods through
+// a frame graph (frame_graph.h), into a caller-owned target (a window's
+// default framebuffer or an offscreen framebuffer), in any GL 3.3 core
+// context (the platform layer makes one). Methods (docs/render.md):
+//   standard   opaque z-buffered rendering with a headlight;
+//   dt-seed    the article's image-space dynamic transparency, faithfully
+//              (object-level back-to-front order, per-target 128x128 masks
+//              grown by ping-pong border passes);
+//   dt-fast    the same visual model at close to standard's cost (all masks
+//              at once in a reduced-resolution atlas, scissored regions);
+//   reference  exact per-pixel compositing on the CPU (the error yardstick).
+// Guarantees: the GL state of the caller is restored after every call that
+// draws; an effect the frame does not call for (transparency off, no target
+// in view, no target occluded) runs no pass. Never: creates a GL context,
+// reads files, or includes GL headers in this public header.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "study/common/error.h"
+#include "study/render/camera.h"
+#include "study/render/frame_graph.h"
+#include "study/render/image.h"
+#include "study/scene/scene.h"
+
+namespace dtlab::render {
+
+enum class Method { standard, dt_seed, dt_fast, reference };
+std::string_view to_string(Method m);                   // "standard", "dt-seed", "dt-fast", "reference"
+std::optional<Method> parse_method(std::string_view s);  // inverse of to_string; nullopt if unknown
+bool uses_transparency(Method m);                        // every method but standard
+
+enum class MaskShape { outline, circle, ellipse };
+std::string_view to_string(MaskShape s);
+std::optional<MaskShape> parse_mask_shape(std::string_view s);
+
+enum class DtMode { passive, active };  // passive: whole view; active: searchlight circle only
+
+// Parameters of dynamic transparency (docs/render.md, "The visual model").
+struct DtSettings {
+  float alpha_target = 0.3f;    // aT in [0,1): weight of a surface in front of a target
+  float alpha_start = 0.1f;     // a0 in [0,1): weight of a surface next to the target's outline
+  float gradient_px = 24.0f;    // n >= 0: the weight rises from a0 to 1 over n output pixels (Chebyshev)
+  int mask_resolution = 128;    // mask buffer side (dt-seed: R x R as in the article); 0 = full resolution
+  MaskShape shape = MaskShape::outline;
+  DtMode mode = DtMode::passive;
+  glm::vec2 searchlight_center{0.0f};  // active mode: output pixels, origin top-left (a cursor position)
+  float searchlight_radius = 120.0f;   // active mode: output pixels
+  int layer_limit = 0;          // at most this many transparent surfaces in front of a target; 0 = no limit (max 100)
+};
+// Throws std::invalid_argument naming the field if a value is out of range.
+void validate(const DtSettings& s);
+// The article's unit: `mask_pixels` of a `mask_resolution`-square mask over a width x height
+// view, in output pixels (the protocol's gradient_width is in mask pixels).
+float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int width, int height);
+
+struct FrameSettings {
+  Method method = Method::standard;
+  DtSettings dt;
+  glm::vec3 background{0.80f, 0.82f, 0.86f};  // linear RGB of pixels no object covers
+  bool float_color = false;   // RGBA16F colour buffer instead of RGBA8 (tests scan it for NaN)
+  bool timed = false;         // glFinish at the end and report frame_ms (benchmarks, --frames)
+  // Flat colours per object index (unlit, exact): the weight mode used to count visible pixels.
+  // Empty: normal shading. Objects beyond the vector's size are black.
+  std::vector<glm::vec3> flat_colors;
+};
+
+struct TargetVisibility {
+  std::uint32_t id = 0;            // Object::id
+  long silhouette_pixels = 0;      // pixels the target covers in the viewport, ignoring every other object
+  long visible_pixels = 0;         // pixels where the target contributes >= kVisibleShare of the final colour
+};
+inline constexpr float kVisibleShare = 0.10f;  // docs/render.md, "Visible pixels"
+
+// A renderer bound to one scene and to the GL context current at create().
+class Renderer {
+ public:
+  // Compiles the shaders and uploads the meshes. Needs a current GL 3.3 core context.
+  // Fails (Error with the shader's name and the compiler's log) if a shader does not compile.
+  static Result<std::unique_ptr<Renderer>> create(const scene::Scene& scene);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Renders one frame of target.width x target.height pixels and presents it into `target`
+  // (blit). Keeps the context's GL state as it was. The report names the passes that ran.
+  FrameReport render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target);
+  // Renders into an internal offscreen target of width x height (no caller framebuffer needed).
+  FrameReport render_offscreen(const Camera& camera, const FrameSettings& settings, int width, int height);
+
+  // The last frame's final colour, RGBA8, top row first (alpha: the cumulative alpha buffer).
+  Image read_color() const;
+  // The last frame's final colour as RGBA floats, bottom row first (exact when rendered with float_color).
+  std::vector<float> read_color_float() const;
+
+  // Per-target silhouette and visible pixel counts under `settings.method`, computed with the
+  // method's own passes (flat weight colours, 3 targets per frame). Targets in scene order.
+  std::vector<TargetVisibility> visibility(const Camera& camera, FrameSettings settings, int width, int height);
+
+  // The last frame's graph in Graphviz dot syntax (culled passes grey).
+  const std::string& last_graphviz() const;
+  const scene::Scene& scene() const;
+
+ private:
+  struct Impl;
+  explicit Renderer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dtlab::render
