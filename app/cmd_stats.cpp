@@ -280,8 +280,9 @@ void run_rm_anova(const StatsOptions& o) {
 
 void run_friedman(const StatsOptions& o) {
   require_subject_design(o, "friedman");
+  const st::ExactOptions exact = parse_exact(o);
   const st::LongData data = load(o, false);
-  auto r = st::friedman(data, parse_exact(o));
+  auto r = st::friedman(data, exact);
   if (!r) fail(kExitInvalid, r.error().to_string());
   std::vector<st::Comparison> post;
   if (o.posthoc) {
@@ -331,7 +332,6 @@ void run_friedman(const StatsOptions& o) {
 
 void run_wilcoxon(const StatsOptions& o) {
   require_subject_design(o, "wilcoxon");
-  const st::LongData data = load(o, false);
   st::WilcoxonOptions wo;
   wo.exact = parse_exact(o);
   wo.correct = !o.no_correct;
@@ -339,6 +339,7 @@ void run_wilcoxon(const StatsOptions& o) {
   else if (o.alternative == "less") wo.alternative = st::Alternative::less;
   else if (o.alternative == "greater") wo.alternative = st::Alternative::greater;
   else fail(kExitUsage, "--alternative must be two-sided, less or greater");
+  const st::LongData data = load(o, false);
   auto r = st::paired_tests(data, wo);
   if (!r) fail(kExitInvalid, r.error().to_string());
   warn(r->warnings);

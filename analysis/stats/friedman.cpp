@@ -23,7 +23,7 @@ void set_undefined(FriedmanResult& r) {
 
 }  // namespace
 
-FriedmanResult friedman(const std::vector<std::vector<double>>& y, const ExactOptions& exact) {
+FriedmanResult friedman_blocks(const std::vector<std::vector<double>>& y, const ExactOptions& exact) {
   FriedmanResult r;
   r.n = y.size();
   r.k = y.empty() ? 0 : y.front().size();
@@ -120,7 +120,7 @@ Result<FriedmanResult> friedman(const LongData& data, const ExactOptions& exact)
   auto built = detail::build_cell_design(data);
   if (!built) return built.error();
   const detail::CellDesign& d = *built;
-  FriedmanResult r = friedman(d.value, exact);
+  FriedmanResult r = friedman_blocks(d.value, exact);
   for (std::size_t c = 0; c < d.cells; ++c) r.treatments.push_back(d.cell_name(c));
   r.dropped_blocks = d.dropped;
   r.warnings.insert(r.warnings.begin(), d.warnings.begin(), d.warnings.end());

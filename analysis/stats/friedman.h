@@ -63,7 +63,7 @@ struct FriedmanResult {
 };
 
 // y[i][j]: block i, treatment j; every row the same length, no NaN.
-FriedmanResult friedman(const std::vector<std::vector<double>>& y, const ExactOptions& exact = {});
+FriedmanResult friedman_blocks(const std::vector<std::vector<double>>& y, const ExactOptions& exact = {});
 
 // From long data: blocks = data.subject, treatments = cells of data.within.
 Result<FriedmanResult> friedman(const LongData& data, const ExactOptions& exact = {});

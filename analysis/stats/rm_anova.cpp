@@ -248,8 +248,13 @@ Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& optio
       } else {
         const Matrix E2 = detail::multiply(E, E);
         const double pd = static_cast<double>(p);
-        gg = ss_error * ss_error / (pd * detail::trace(E2));
-        hf = ((dfe + 1.0) * pd * gg - 2.0) / (pd * (dfe - pd * gg));
+        if (dfe == 1) {  // E has rank 1: GG = 1/p exactly and the HF formula is 0/0
+          gg = 1.0 / pd;
+          hf = kNaN;
+        } else {
+          gg = ss_error * ss_error / (pd * detail::trace(E2));
+          hf = ((dfe + 1.0) * pd * gg - 2.0) / (pd * (dfe - pd * gg));
+        }
         std::tie(mw, mp) = mauchly(E, dfe, C);
       }
     }
@@ -293,7 +298,7 @@ Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& optio
           const Tail tg = f_upper(e.F, e.df1 * gg, e.df2 * gg);
           e.p_gg = tg.p;
           e.log10_p_gg = tg.log10_p;
-          const double h = std::min(1.0, hf);
+          const double h = std::isnan(hf) ? kNaN : std::min(1.0, hf);
           const Tail th = h > 0 ? f_upper(e.F, e.df1 * h, e.df2 * h) : Tail{kNaN, kNaN};
           e.p_hf = th.p;
           e.log10_p_hf = th.log10_p;

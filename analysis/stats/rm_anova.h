@@ -29,6 +29,7 @@
 // 2e-28 * cells * sum of squared deltas) -> F = +inf, p = 0 if SS > 0, else
 // F = p = NaN; sphericity then NaN and p_gg = p_hf = p. One subject (or
 // N = q) -> df2 = 0, F = p = NaN. Error df < p -> Mauchly W = 0, p NaN.
+// Error df = 1 (e.g. two subjects) -> GG = 1/p exactly, HF = 0/0 = NaN.
 // A factor with one level: its effects are left out with a warning.
 // References: car 3.x summary.Anova.mlm; afex anova.afex_aov; Maxwell &
 // Delaney (2004) ch. 11-12, 14; Huynh & Feldt (1976); Mauchly (1940).

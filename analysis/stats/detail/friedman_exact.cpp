@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <unordered_map>
 
 #include "study/common/hash.h"
@@ -58,8 +59,10 @@ std::int64_t friedman_s(const std::vector<std::vector<int>>& r) {
   return s;
 }
 
-std::optional<double> friedman_exact_tail(const std::vector<std::vector<int>>& r, std::int64_t s_obs, double budget) {
-  if (r.empty()) return 1.0;
+std::optional<std::vector<std::pair<std::int64_t, double>>> friedman_exact_distribution(
+    const std::vector<std::vector<int>>& r, double budget) {
+  using Out = std::vector<std::pair<std::int64_t, double>>;
+  if (r.empty()) return Out{{0, 1.0}};
   const std::size_t k = r.front().size();
   if (k > 8) return std::nullopt;
   int max_total = 0;
@@ -91,13 +94,21 @@ std::optional<double> friedman_exact_tail(const std::vector<std::vector<int>>& r
     }
     states.swap(next);
   }
-  double tail = 0.0;
+  std::map<std::int64_t, double> by_s;
   for (const auto& [key, prob] : states) {
     unpack(key, k, sums);
     std::int64_t s = 0;
     for (int v : sums) s += static_cast<std::int64_t>(v) * v;
-    if (s >= s_obs) tail += prob;
+    by_s[s] += prob;
   }
+  return Out(by_s.begin(), by_s.end());
+}
+
+std::optional<double> friedman_exact_tail(const std::vector<std::vector<int>>& r, std::int64_t s_obs, double budget) {
+  const auto dist = friedman_exact_distribution(r, budget);
+  if (!dist) return std::nullopt;
+  double tail = 0.0;
+  for (auto it = dist->rbegin(); it != dist->rend() && it->first >= s_obs; ++it) tail += it->second;  // small terms first
   return std::min(1.0, tail);
 }
 

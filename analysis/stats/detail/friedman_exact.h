@@ -8,9 +8,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace dtlab::stats::detail {
+
+// The whole distribution: (S, probability) pairs in increasing S; nullopt as below.
+std::optional<std::vector<std::pair<std::int64_t, double>>> friedman_exact_distribution(
+    const std::vector<std::vector<int>>& doubled_ranks, double budget);
 
 // P(S >= s_obs) by dynamic programming over the sorted vector of column sums;
 // nullopt when the work (states x permutations, summed over blocks) would

@@ -1,0 +1,183 @@
+// `dtlab stats` run as a user runs it: NIST StRD LRE through the CSV path and
+// the JSON output, the JSON fields each test promises, warnings naming the
+// removed subjects, and exit codes with file:line:column messages.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include "test_util.h"
+
+namespace dtlab::stats {
+namespace {
+
+using nlohmann::json;
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+CliRun dtlab(const std::string& args) {
+  const std::string dir = ::testing::TempDir();
+  const std::string out = dir + "/stats_cli_out.txt", err = dir + "/stats_cli_err.txt";
+  const std::string cmd = std::string(DTLAB_BINARY) + " " + args + " > " + out + " 2> " + err;
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::string data(const std::string& name) { return test::data_path(name); }
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+double number(const json& j) { return j.get<double>(); }
+
+TEST(StatsCli, NistLreThroughTheCommandLine) {
+  auto cert = read_csv_file(data("nist/certified.csv"));
+  ASSERT_TRUE(cert.ok());
+  for (const auto& row : cert->rows) {
+    SCOPED_TRACE(row[0]);
+    const CliRun r = dtlab("stats anova --data " + data("nist/" + row[0] + ".csv") + " --dv response --between treatment --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    const json& e = j["effects"][0];
+    EXPECT_GE(test::lre(number(e["ss"]), std::strtod(row[2].c_str(), nullptr)), 12.0);
+    EXPECT_GE(test::lre(number(e["ss_error"]), std::strtod(row[6].c_str(), nullptr)), 12.0);
+    EXPECT_GE(test::lre(number(e["F"]), std::strtod(row[4].c_str(), nullptr)), 12.0);
+  }
+}
+
+TEST(StatsCli, RmAnovaJsonHasTheSixteenFieldsPerEffect) {
+  const CliRun r = dtlab("stats rm-anova --data " + data("md_12.1.csv") + " --dv rt --subject id --within angle,noise --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const std::set<std::string> expected{"effect", "df1", "df2", "ss", "ss_error", "F", "p", "log10_p", "eta_p2", "eta_g2",
+                                       "mauchly_W", "mauchly_p", "gg_epsilon", "hf_epsilon", "p_gg", "p_hf"};
+  ASSERT_EQ(j["effects"].size(), 3u);
+  for (const auto& e : j["effects"]) {
+    std::set<std::string> keys;
+    for (auto it = e.begin(); it != e.end(); ++it) keys.insert(it.key());
+    EXPECT_EQ(keys, expected);
+  }
+  const json& angle = j["effects"][0];
+  EXPECT_EQ(angle["effect"], "angle");
+  // Maxwell & Delaney (2004) Table 12.1: SS 289920, error 64080; car: GG 0.961637, HF 1.217564
+  EXPECT_NEAR(number(angle["ss"]), 289920, 1e-8);
+  EXPECT_NEAR(number(angle["ss_error"]), 64080, 1e-8);
+  EXPECT_TRUE(test::printed(number(angle["gg_epsilon"]), "0.961637"));
+  EXPECT_TRUE(test::printed(number(angle["hf_epsilon"]), "1.217564"));
+  EXPECT_TRUE(j["effects"][1]["mauchly_W"].is_null()) << "1-df effect: no Mauchly test";
+  EXPECT_EQ(j["descriptives"].size(), 6u);
+}
+
+TEST(StatsCli, FriedmanAndWilcoxonJsonFields) {
+  const std::string wide = write_temp("friedman_wide.csv",
+                                      "Round Out,Narrow Angle,Wide Angle\n5.40,5.50,5.55\n5.85,5.70,5.75\n5.20,5.60,5.50\n"
+                                      "5.55,5.50,5.40\n5.90,5.85,5.70\n5.45,5.55,5.60\n5.40,5.40,5.35\n5.45,5.50,5.35\n"
+                                      "5.25,5.15,5.00\n5.85,5.80,5.70\n5.25,5.20,5.10\n5.65,5.55,5.45\n5.60,5.35,5.45\n"
+                                      "5.05,5.00,4.95\n5.50,5.50,5.40\n5.45,5.55,5.50\n5.55,5.55,5.35\n5.45,5.50,5.55\n"
+                                      "5.50,5.45,5.25\n5.65,5.60,5.40\n5.70,5.65,5.55\n6.30,6.30,6.25\n");
+  const CliRun f = dtlab("stats friedman --data " + wide + " --wide --json");
+  ASSERT_EQ(f.code, 0) << f.err;
+  const json fj = json::parse(f.out);
+  for (const char* key : {"Q", "df", "p", "p_exact", "kendall_W", "iman_davenport_F", "p_iman_davenport"})
+    EXPECT_TRUE(fj.contains(key)) << key;
+  // R: friedman.test(RoundingTimes): Friedman chi-squared = 11.143, df = 2, p-value = 0.003805
+  EXPECT_TRUE(test::printed(number(fj["Q"]), "11.143"));
+  EXPECT_TRUE(test::printed(number(fj["p"]), "0.003805"));
+  EXPECT_TRUE(test::printed(number(fj["p_exact"]), "0.00314983"));
+
+  const CliRun mc1 = dtlab("stats friedman --data " + wide + " --wide --exact monte-carlo=2000 --seed 3 --json");
+  const CliRun mc2 = dtlab("stats friedman --data " + wide + " --wide --exact monte-carlo=2000 --seed 3 --json");
+  ASSERT_EQ(mc1.code, 0) << mc1.err;
+  EXPECT_EQ(json::parse(mc1.out)["p_exact"], json::parse(mc2.out)["p_exact"]);
+  EXPECT_EQ(json::parse(mc1.out)["exact_method"], "monte-carlo");
+
+  const std::string pairs = write_temp("wilcoxon_long.csv",
+                                       "id,visit,hamilton\n1,first,1.83\n1,second,0.878\n2,first,0.50\n2,second,0.647\n"
+                                       "3,first,1.62\n3,second,0.598\n4,first,2.48\n4,second,2.05\n5,first,1.68\n5,second,1.06\n"
+                                       "6,first,1.88\n6,second,1.29\n7,first,1.55\n7,second,1.06\n8,first,3.06\n8,second,3.14\n"
+                                       "9,first,1.30\n9,second,1.29\n");
+  const CliRun w = dtlab("stats wilcoxon --data " + pairs + " --dv hamilton --subject id --within visit --json");
+  ASSERT_EQ(w.code, 0) << w.err;
+  const json wj = json::parse(w.out);
+  for (const char* key : {"V", "p", "p_exact", "z"}) EXPECT_TRUE(wj.contains(key)) << key;
+  // R: wilcox.test(Pair(first, second) ~ 1, data = depression) -> V = 40, p-value = 0.03906
+  EXPECT_EQ(number(wj["V"]), 40);
+  EXPECT_TRUE(test::printed(number(wj["p"]), "0.03906"));
+}
+
+TEST(StatsCli, MissingCellWarnsNamingTheSubject) {
+  const std::string csv = write_temp("missing.csv", "id,cond,y\nann,a,1\nann,b,3\nbob,a,2\nbob,b,\ncid,a,2\ncid,b,5\ndan,a,1\ndan,b,4\n");
+  const CliRun r = dtlab("stats rm-anova --data " + csv + " --dv y --subject id --within cond --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: listwise deletion"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bob (cond=b)"), std::string::npos) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["n_subjects"], 3);
+  EXPECT_EQ(j["dropped_subjects"], json::array({"bob"}));
+}
+
+TEST(StatsCli, InfiniteAndUndefinedValuesInJson) {
+  const std::string csv = write_temp("zero_var.csv", "g,y\na,1.5\na,1.5\nb,2.5\nb,2.5\n");
+  const CliRun r = dtlab("stats anova --data " + csv + " --dv y --between g --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json e = json::parse(r.out)["effects"][0];
+  EXPECT_EQ(e["F"], "Infinity");
+  EXPECT_EQ(number(e["p"]), 0.0);
+  EXPECT_EQ(e["log10_p"], "-Infinity");
+  EXPECT_TRUE(e["mauchly_W"].is_null());
+}
+
+struct BadInput {
+  const char* what;
+  std::string args;
+  int code;
+  const char* needle;
+};
+
+TEST(StatsCli, BadInputExitsWithCodeAndPlace) {
+  const std::string text = write_temp("text.csv", "id,cond,rt\n1,a,400\n1,b,fast\n");
+  const std::string nan = write_temp("nan.csv", "id,cond,rt\n1,a,NaN\n1,b,3\n");
+  const std::string ragged = write_temp("ragged.csv", "id,cond,rt\n1,a,400\n1,b\n");
+  const std::vector<BadInput> cases{
+      {"text in dv", "stats rm-anova --data " + text + " --dv rt --subject id --within cond", 1, "text.csv:3:3: rt: expected a number"},
+      {"NaN in dv", "stats rm-anova --data " + nan + " --dv rt --subject id --within cond", 1, "nan.csv:2:3: rt: NaN and Inf are not accepted"},
+      {"ragged row", "stats rm-anova --data " + ragged + " --dv rt --subject id --within cond", 1, "ragged.csv:3: expected 3 fields"},
+      {"unknown column", "stats rm-anova --data " + text + " --dv time --subject id --within cond", 1, "time: no such column"},
+      {"missing file", "stats anova --data /nonexistent/x.csv --dv y --between g", 3, "cannot open"},
+      {"bad --exact", "stats friedman --data " + text + " --dv rt --subject id --within cond --exact sometimes", 2, "--exact must be"},
+      {"rm-anova without --within", "stats rm-anova --data " + text + " --dv rt --subject id", 2, "needs --subject COL and --within"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    const CliRun r = dtlab(c.args);
+    EXPECT_EQ(r.code, c.code) << r.err;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace dtlab::stats
