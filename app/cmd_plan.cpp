@@ -1,19 +1,24 @@
-// `dtlab plan PROTOCOL --index K [--json]`: prints participant K's ordered
-// trials (position, block, factor levels, task, trial, seed, method). The plan
-// is a pure function of (protocol, K, order row): the same on every machine.
-// Exit 1 with file:line:field when the protocol is invalid.
+// `dtlab plan PROTOCOL (--index K | --db FILE --participant ID) [--json]`:
+// prints a participant's ordered trials (position, block, factor levels,
+// task, trial, seed, method). The plan is a pure function of (protocol, K,
+// order row): the same on every machine. With --db, K and the order row come
+// from the study database's ledger, read-only. Exit 1 with file:line:field
+// when the protocol is invalid, the participant unknown or the database
+// belongs to another protocol.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/commands.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
+#include "study/store/store.h"
 
 namespace dtlab::app {
 
@@ -78,25 +83,56 @@ void add_plan_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("plan", "Print one participant's ordered trial list");
   auto path = std::make_shared<std::string>();
   auto index = std::make_shared<int>(0);
+  auto db = std::make_shared<std::string>();
+  auto participant = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   cmd->add_option("protocol", *path, "Protocol file (TOML; format in docs/protocol.md)")->required();
-  cmd->add_option("--index", *index, "0-based enrollment index K; gets order row K mod rows")
-      ->required()
-      ->check(CLI::NonNegativeNumber);
+  auto* index_opt = cmd->add_option("--index", *index, "0-based enrollment index K; gets order row K mod rows")
+                        ->check(CLI::NonNegativeNumber);
+  auto* db_opt = cmd->add_option("--db", *db, "Study database: take K and the order row from its participant ledger")
+                     ->check(CLI::ExistingFile);
+  auto* participant_opt = cmd->add_option("--participant", *participant, "Participant id enrolled in --db");
+  index_opt->excludes(db_opt)->excludes(participant_opt);
+  db_opt->needs(participant_opt);
+  participant_opt->needs(db_opt);
   cmd->add_flag("--json", *json,
                 "Print {\"protocol\", \"index\", \"order_row\", \"trials\": [{\"position\", \"block\", "
                 "\"levels\": {factor: level}, \"task\", \"trial\", \"seed\", \"method\", \"practice\"}]}");
   cmd->footer(
+      "Give either --index K or --db FILE --participant ID.\n"
       "Trial seeds: seed = mix64(mix64(mix64(master_seed), K), position), see study/design/seeds.h.\n"
-      "Exit status: 0 ok, 1 invalid protocol (FILE:LINE:COLUMN: error: FIELD: MESSAGE on stderr).");
-  cmd->callback([path, index, json] {
+      "Exit status: 0 ok, 1 invalid protocol, unknown participant or a database of another protocol\n"
+      "(FILE:LINE:COLUMN: error: FIELD: MESSAGE on stderr), 2 bad command line, 3 SQLite failure.");
+  cmd->callback([path, index, db, participant, json, index_opt] {
+    if (index_opt->count() == 0 && db->empty())
+      throw CLI::RequiredError("plan: give --index K or --db FILE --participant ID");
     const auto p = protocol::load_protocol(*path);
     if (!p.ok()) {
       std::cerr << Diagnostic{Severity::error, p.error()}.to_string() << "\n"
                 << "(run `dtlab validate " << *path << "` for every problem)\n";
       throw CLI::RuntimeError(kExitInvalid);
     }
-    const design::Plan plan = design::make_plan(*p, *index);
+    std::optional<int> row;
+    if (!db->empty()) {
+      const auto e = store::find_enrollment(*db, p->sha256, *participant);
+      if (!e.ok()) {
+        std::cerr << Diagnostic{Severity::error, e.error()}.to_string() << "\n";
+        throw CLI::RuntimeError(store::is_environment_error(e.error()) ? kExitFailure : kExitInvalid);
+      }
+      if (e->order_row >= design::order_rows(*p)) {
+        std::cerr << Diagnostic{Severity::error,
+                                Error{*db, 0, 0, "participants.order_row",
+                                      "participant \"" + *participant + "\" has order row " +
+                                          std::to_string(e->order_row) + " but the protocol has " +
+                                          std::to_string(design::order_rows(*p)) + " rows"}}
+                         .to_string()
+                  << "\n";
+        throw CLI::RuntimeError(kExitInvalid);
+      }
+      *index = e->index;
+      row = e->order_row;
+    }
+    const design::Plan plan = design::make_plan(*p, *index, row);
     if (*json)
       std::cout << plan_json(plan).dump(2) << "\n";
     else

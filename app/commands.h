@@ -20,4 +20,5 @@ void add_version_command(CLI::App& root);  // `dtlab version`: version and commi
 void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman|wilcoxon`: statistics on a CSV, --json
 void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every error with file:line:field, --json
 void add_plan_command(CLI::App& root);  // `dtlab plan PROTOCOL --index K`: one participant's trials, --json
+void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one tidy CSV row per recorded trial, --json
 }  // namespace dtlab::app

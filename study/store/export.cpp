@@ -6,7 +6,7 @@
 #include <charconv>
 #include <cstdio>
 
-#include "study/store/detail/sqlite.h"
+#include "study/store/detail/readonly.h"
 #include "study/store/store.h"
 
 namespace dtlab::store {
@@ -29,25 +29,9 @@ std::string number(double v) {
 }  // namespace
 
 Result<ExportSummary> export_trials_csv(const std::string& db_path, std::ostream& out) {
-  auto opened = detail::Db::open(db_path, SQLITE_OPEN_READONLY);
+  auto opened = detail::open_readonly_dtlab(db_path);
   if (!opened) return opened.error();
   detail::Db& db = *opened;
-  sqlite3_busy_timeout(db.get(), 10000);
-  auto app_id = db.query_int("PRAGMA application_id", "reading the file header");
-  if (!app_id) {
-    if (sqlite3_extended_errcode(db.get()) == SQLITE_NOTADB)
-      return Error{db_path, 0, 0, "", "not an SQLite database; expected a dtlab study database"};
-    return app_id.error();
-  }
-  if (app_id->value_or(0) != kApplicationId)
-    return Error{db_path, 0, 0, "", "not a dtlab study database (no dtlab application_id); nothing to export"};
-  auto version = db.query_int("PRAGMA user_version", "reading the schema version");
-  if (!version) return version.error();
-  if (version->value_or(0) > kSchemaVersion)
-    return Error{db_path, 0, 0, "schema_migrations.version",
-                 "schema version " + std::to_string(version->value_or(0)) +
-                     " was written by a newer dtlab; this build reads schema versions up to " +
-                     std::to_string(kSchemaVersion)};
 
   // One read transaction: the export is a consistent snapshot even while a
   // session keeps writing to the file.

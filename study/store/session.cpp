@@ -1,4 +1,4 @@
-// Sessions and trials (docs/store.md, invariants 5-9 and the session state
+// Sessions and trials (docs/store.md, invariants 5-10 and the session state
 // diagram): the plan is stored once with its session, each finished trial is
 // one transaction holding its result, scores, events and poses, and the next
 // trial is always derived from the database, never from memory, so resuming

@@ -1,5 +1,5 @@
 // Opening a study database and the participant ledger (docs/store.md,
-// invariants 1-5). open() inspects a file read-only before touching it, so a
+// invariants 1-4). open() inspects a file read-only before touching it, so a
 // foreign or newer file is never modified; every write is one BEGIN
 // IMMEDIATE transaction, which makes enrollment atomic across processes.
 #include <nlohmann/json.hpp>
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "study/store/detail/readonly.h"
 #include "study/store/detail/schema.h"
 #include "study/store/detail/store_impl.h"
 #include "study/store/detail/time.h"
@@ -148,6 +149,22 @@ const char* to_string(SessionStatus s) {
 }
 
 bool is_environment_error(const Error& e) { return e.field == "sqlite"; }
+
+Result<Enrollment> find_enrollment(const std::string& path, const std::string& protocol_sha256,
+                                   const std::string& participant_id) {
+  auto db = detail::open_readonly_dtlab(path);
+  if (!db) return db.error();
+  auto cur = db->query_text("SELECT protocol_id || ' ' || protocol_sha256 FROM studies ORDER BY id DESC LIMIT 1",
+                            "reading the protocol record");
+  if (!cur) return cur.error();
+  const std::string id_hash = cur->value_or(" (none)");
+  const std::string hash = id_hash.substr(id_hash.rfind(' ') + 1);
+  if (hash != protocol_sha256)
+    return Error{path, 0, 0, "studies.protocol_sha256",
+                 "the database belongs to protocol \"" + id_hash.substr(0, id_hash.rfind(' ')) + "\" with SHA-256 " +
+                     hash + ", not to this protocol with SHA-256 " + protocol_sha256};
+  return read_enrollment(*db, participant_id);
+}
 
 Store::Store(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Store::Store(Store&&) noexcept = default;

@@ -108,6 +108,12 @@ struct QuestionnaireAnswer {
 // environment's fault (exit code 3), not the input's (exit code 1).
 bool is_environment_error(const Error& e);
 
+// Read-only: the enrollment of `participant_id` in the existing database at
+// `path`, whose current protocol must have `protocol_sha256` (else an Error
+// naming both hashes). Never creates or modifies the file (`dtlab plan --db`).
+Result<Enrollment> find_enrollment(const std::string& path, const std::string& protocol_sha256,
+                                   const std::string& participant_id);
+
 // An open study database. Move-only; one per thread (it owns one SQLite
 // connection). Any number of processes may open the same file at once.
 class Store {

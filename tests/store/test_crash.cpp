@@ -181,7 +181,7 @@ const std::vector<Check>& checks() {
                                  "WHERE p.session_id = s.id) <> " + std::to_string(kTrials)),
                           "0");
        }},
-      {"I6 results are a prefix of the plan; every reported trial saved, at most the one in progress lost",
+      {"I6/I7 results are a prefix of the plan; every reported trial saved, at most the one in progress lost",
        [](RawDb& db, const Known& k, std::uint64_t) -> std::string {
          for (int p = 0; p < kParticipants; ++p) {
            const auto r = db.rows("SELECT count(*), coalesce(max(p.position), 0) FROM trial_results r JOIN planned_trials p "

@@ -209,7 +209,7 @@ BEGIN
          WHERE q.id = NEW.planned_trial_id) IS NOT 'running';
 END;
 
--- Invariant 7: what is saved is never rewritten or deleted.
+-- Invariants 2, 3, 5, 7: what is saved is never rewritten or deleted.
 CREATE TRIGGER trial_results_no_update BEFORE UPDATE ON trial_results
 BEGIN SELECT RAISE(ABORT, 'dtlab: trial results are never changed'); END;
 CREATE TRIGGER trial_results_no_delete BEFORE DELETE ON trial_results
