@@ -210,7 +210,7 @@ void run_anova(const StatsOptions& o) {
   }
   std::cout << "One-way ANOVA of " << data.dv_name << " by " << r->factor << " (" << r->n << " observations)\n\n";
   print_effects({r->effect});
-  std::cout << "\ngroup            n        mean          sd      95% CI\n";
+  std::cout << "\ngroups\n";
   for (const auto& g : r->groups)
     std::cout << "  " << g.level << ": n " << g.d.n << ", mean " << fmt(g.d.mean) << ", sd " << fmt(g.d.sd) << ", CI ["
               << fmt(g.d.ci_low) << ", " << fmt(g.d.ci_high) << "], median " << fmt(g.d.median) << ", IQR " << fmt(g.d.iqr) << "\n";
