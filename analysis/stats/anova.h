@@ -15,6 +15,9 @@
 //   zero within variance and equal means (0/0) -> F, p = NaN;
 //   one group (df1 = 0) or one observation per group (df2 = 0) -> F, p = NaN;
 //   each with a warning. A group whose values are all equal has SS exactly 0.
+// Where we knowingly differ from R: R's aov takes residuals from a QR fit, so
+// zero within-group variance usually prints a huge finite F from rounding
+// residue; here a constant group contributes exactly 0 and F is +inf.
 // References: NIST StRD ANOVA (Simon & Lesage 1989); Olejnik & Algina (2003).
 // Validated against: NIST certified values (15 digits); R 4.x aov().
 #pragma once

@@ -31,6 +31,9 @@
 // N = q) -> df2 = 0, F = p = NaN. Error df < p -> Mauchly W = 0, p NaN.
 // Error df = 1 (e.g. two subjects) -> GG = 1/p exactly, HF = 0/0 = NaN.
 // A factor with one level: its effects are left out with a warning.
+// Where we knowingly differ from R: car/afex give a huge finite F (or stop)
+// where the error SS is rounding noise; we report it as exactly 0 (above).
+// Post-hoc comparisons (posthoc.h) cover within factors only.
 // References: car 3.x summary.Anova.mlm; afex anova.afex_aov; Maxwell &
 // Delaney (2004) ch. 11-12, 14; Huynh & Feldt (1976); Mauchly (1940).
 // Validated against: Maxwell & Delaney Table 12.1 (published F and SS; car
