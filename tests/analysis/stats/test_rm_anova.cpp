@@ -306,7 +306,6 @@ TEST(RmAnovaHardCases, TwoSubjectsThreeLevels) {
 }
 
 TEST(RmAnovaHardCases, MissingCellRemovesTheSubjectAndNamesIt) {
-  const LongData full = grid({{1, 3, 4}, {2, 2, 5}, {3, 5, 6}, {2, 4, 4}});
   LongData holed = test::long_from_text(
       "id,cond,y\ns1,c1,1\ns1,c2,3\ns1,c3,4\ns2,c1,2\ns2,c2,2\ns3,c1,3\ns3,c2,5\ns3,c3,6\ns4,c1,2\ns4,c2,4\ns4,c3,4\ns5,c1,7\ns5,c2,NA\ns5,c3,1\n",
       {"y", "id", {"cond"}, {}});
@@ -321,7 +320,6 @@ TEST(RmAnovaHardCases, MissingCellRemovesTheSubjectAndNamesIt) {
   // Same as analysing the complete subjects only.
   const RmAnovaResult complete = run(grid({{1, 3, 4}, {3, 5, 6}, {2, 4, 4}}));
   EXPECT_DOUBLE_EQ(find(r, "cond").F, find(complete, "cond").F);
-  (void)full;
 }
 
 TEST(RmAnovaHardCases, RepeatedRowsAreAveragedWithAWarning) {
