@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -31,7 +32,8 @@ std::string slurp(const fs::path& p) {
 
 Outcome dtlab(const std::string& args) {
   const fs::path dir = fs::temp_directory_path();
-  const fs::path out = dir / "dtlab_plan_cli.out", err = dir / "dtlab_plan_cli.err";
+  const std::string tag = "dtlab_plan_cli_" + std::to_string(getpid());  // ctest runs tests in parallel
+  const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
   const std::string cmd = std::string("'") + DTLAB_BINARY + "' " + args + " >'" + out.string() + "' 2>'" +
                           err.string() + "'";
   const int status = std::system(cmd.c_str());
@@ -39,6 +41,8 @@ Outcome dtlab(const std::string& args) {
   r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   r.out = slurp(out);
   r.err = slurp(err);
+  fs::remove(out);
+  fs::remove(err);
   return r;
 }
 
@@ -99,7 +103,7 @@ TEST(PlanCli, TextTableListsEveryTrial) {
 }
 
 TEST(PlanCli, BadInputExitsNonZeroWithoutCrashing) {
-  const fs::path bad = fs::temp_directory_path() / "dtlab_plan_cli_bad.toml";
+  const fs::path bad = fs::temp_directory_path() / ("dtlab_plan_cli_bad_" + std::to_string(getpid()) + ".toml");
   std::ofstream(bad) << "id = \"x\"\nparticipants = -3\n";
   Outcome r = dtlab("plan '" + bad.string() + "' --index 0");
   EXPECT_EQ(r.rc, 1);

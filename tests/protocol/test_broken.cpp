@@ -4,6 +4,7 @@
 // read off kBase below. Also: whole-file failures (missing, empty, binary,
 // too large) and warnings that leave a protocol valid.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -249,7 +250,8 @@ INSTANTIATE_TEST_SUITE_P(Table, Broken, testing::ValuesIn(kCases), [](const auto
 struct TempFile {
   std::filesystem::path path;
   explicit TempFile(const std::string& name, const std::string& bytes)
-      : path(std::filesystem::temp_directory_path() / ("dtlab_test_protocol_" + name)) {
+      : path(std::filesystem::temp_directory_path() /
+             ("dtlab_test_protocol_" + std::to_string(getpid()) + "_" + name)) {  // unique per process
     std::ofstream(path, std::ios::binary) << bytes;
   }
   ~TempFile() { std::filesystem::remove(path); }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -31,7 +32,8 @@ std::string slurp(const fs::path& p) {
 // Runs `dtlab <args>`; rc is the exit status, or 128 + signal if it crashed.
 Outcome dtlab(const std::string& args) {
   const fs::path dir = fs::temp_directory_path();
-  const fs::path out = dir / "dtlab_validate_cli.out", err = dir / "dtlab_validate_cli.err";
+  const std::string tag = "dtlab_validate_cli_" + std::to_string(getpid());  // ctest runs tests in parallel
+  const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
   const std::string cmd = std::string("'") + DTLAB_BINARY + "' " + args + " >'" + out.string() + "' 2>'" +
                           err.string() + "'";
   const int status = std::system(cmd.c_str());
@@ -39,11 +41,13 @@ Outcome dtlab(const std::string& args) {
   r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   r.out = slurp(out);
   r.err = slurp(err);
+  fs::remove(out);
+  fs::remove(err);
   return r;
 }
 
 fs::path write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("dtlab_validate_cli_" + name);
+  const fs::path p = fs::temp_directory_path() / ("dtlab_validate_cli_" + std::to_string(getpid()) + "_" + name);
   std::ofstream(p, std::ios::binary) << text;
   return p;
 }
