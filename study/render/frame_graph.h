@@ -72,6 +72,7 @@ class FrameGraphBackend {
   virtual void end_condition() = 0;
   virtual std::optional<bool> query_any(unsigned query, bool wait) = 0;  // samples passed? nullopt: not ready
   virtual std::vector<std::string> drain_errors() = 0;  // GL errors since the last call
+  virtual void finish() = 0;                           // glFinish (per-pass profiling only)
 };
 
 class FrameGraph;
@@ -102,6 +103,7 @@ struct PassRecord {
   bool culled = false;       // removed by compile(): nothing read its outputs
   bool conditional = false;  // ran under conditional rendering
   std::optional<bool> ran;   // executed (for conditional passes: the query said yes); nullopt: unknown yet
+  double ms = 0.0;           // CPU time (all threads) of the pass when profiled (glFinish around it)
 };
 
 struct FrameReport {
@@ -151,7 +153,9 @@ class FrameGraph {
   const std::string& name_of(Handle h) const;  // the resource's name, for messages
 
   void compile();                              // culls; call once, after the last add_pass
-  void execute(FrameGraphBackend& backend);    // runs the surviving passes, then frees transients
+  // Runs the surviving passes, then frees transients. With `profile`, a glFinish after each
+  // pass gives per-pass process CPU times (llvmpipe renders on CPU threads; debugging only).
+  void execute(FrameGraphBackend& backend, bool profile = false);
   // After execute() (and, to get every answer, after glFinish): who ran, GL errors.
   FrameReport report(FrameGraphBackend& backend, bool wait_for_queries);
   std::string graphviz() const;                // the graph in dot syntax; culled passes grey
@@ -199,6 +203,7 @@ class FrameGraph {
   std::vector<Node> nodes_;
   std::vector<unsigned> queries_used_;  // query names held until report()
   std::vector<std::string> errors_;     // GL errors, prefixed with the pass
+  std::vector<double> pass_ms_;         // per pass, when profiled
   std::vector<std::pair<std::uint32_t, unsigned>> pass_query_;  // conditional pass -> query name
   bool compiled_ = false;
   bool executed_ = false;

@@ -17,6 +17,15 @@ struct Image {
   const std::uint8_t* pixel(int x, int y) const { return &rgba[(static_cast<std::size_t>(y) * width + x) * 4]; }
 };
 
+// How far image `a` is from image `b` (same size): over the RGB channels, in 8-bit levels.
+struct ImageDiff {
+  double mae = 0.0;             // mean absolute difference per channel, 0..255
+  double pixels_off_pct = 0.0;  // share of pixels (percent) where some channel differs by more than 4
+  int max_abs = 0;              // largest channel difference
+};
+// Throws std::invalid_argument if the sizes differ.
+ImageDiff compare(const Image& a, const Image& b);
+
 // Writes `image` as PNG. With `keep_alpha` false the alpha channel is written as 255
 // (the renderer's alpha is its cumulative alpha buffer, not coverage).
 Status write_png(const Image& image, const std::string& path, bool keep_alpha = false);

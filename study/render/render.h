@@ -66,6 +66,7 @@ struct FrameSettings {
   glm::vec3 background{0.80f, 0.82f, 0.86f};  // linear RGB of pixels no object covers
   bool float_color = false;   // RGBA16F colour buffer instead of RGBA8 (tests scan it for NaN)
   bool timed = false;         // glFinish at the end and report frame_ms (benchmarks, --frames)
+  bool profile_passes = false;  // glFinish after every pass; PassRecord::ms (slows the frame; debugging)
   // Flat colours per object index (unlit, exact): the weight mode used to count visible pixels.
   // Empty: normal shading. Objects beyond the vector's size are black.
   std::vector<glm::vec3> flat_colors;

@@ -45,6 +45,7 @@ class RecordingBackend final : public FrameGraphBackend {
   void end_condition() override { log.push_back("end-condition"); }
   std::optional<bool> query_any(unsigned, bool) override { return query_answer; }
   std::vector<std::string> drain_errors() override { return {}; }
+  void finish() override {}
 };
 
 const TextureDesc kDesc{16, 16, TextureFormat::rgba8, false};

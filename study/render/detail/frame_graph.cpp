@@ -2,6 +2,7 @@
 // reference-count culling, lifetimes, execution and the Graphviz export.
 // Every misuse throws std::logic_error naming the pass and the resource.
 #include <algorithm>
+#include <ctime>
 #include <sstream>
 #include <stdexcept>
 
@@ -168,11 +169,13 @@ void FrameGraph::compile() {
 
 // --- execute ----------------------------------------------------------------------------
 
-void FrameGraph::execute(FrameGraphBackend& backend) {
+void FrameGraph::execute(FrameGraphBackend& backend, bool profile) {
   if (!compiled_) fail("execute() before compile()");
   if (executed_) fail("execute() called twice");
   executed_ = true;
   backend.drain_errors();  // errors from before this frame are not ours
+  pass_ms_.assign(passes_.size(), 0.0);
+  if (profile) backend.finish();
   for (std::uint32_t pi = 0; pi < passes_.size(); ++pi) {
     PassNode& p = *passes_[pi];
     if (p.culled) continue;
@@ -185,6 +188,8 @@ void FrameGraph::execute(FrameGraphBackend& backend) {
       }
     }
     PassResources res(*this, pi, backend);
+    timespec cpu0{};
+    if (profile) clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu0);
     if (p.condition) {
       const unsigned q = resources_[nodes_[*p.condition].resource].gl_name;
       pass_query_.emplace_back(pi, q);
@@ -193,6 +198,12 @@ void FrameGraph::execute(FrameGraphBackend& backend) {
       backend.end_condition();
     } else {
       p.run(res);
+    }
+    if (profile) {
+      backend.finish();
+      timespec cpu1{};
+      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu1);
+      pass_ms_[pi] = static_cast<double>(cpu1.tv_sec - cpu0.tv_sec) * 1e3 + static_cast<double>(cpu1.tv_nsec - cpu0.tv_nsec) * 1e-6;
     }
     for (auto& e : backend.drain_errors()) errors_.push_back("pass '" + p.name + "': " + e);
     for (auto& r : resources_) {
@@ -207,7 +218,7 @@ FrameReport FrameGraph::report(FrameGraphBackend& backend, bool wait_for_queries
   FrameReport out;
   for (std::uint32_t pi = 0; pi < passes_.size(); ++pi) {
     const PassNode& p = *passes_[pi];
-    PassRecord rec{p.name, p.culled, p.condition.has_value(), std::nullopt};
+    PassRecord rec{p.name, p.culled, p.condition.has_value(), std::nullopt, pi < pass_ms_.size() ? pass_ms_[pi] : 0.0};
     if (p.culled || !executed_) {
       rec.ran = false;
     } else if (!p.condition) {

@@ -66,6 +66,7 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
   const PixelRect viewport{0, 0, width, height};
   v.rects.resize(objects.size());
   v.target_slot.assign(objects.size(), -1);
+  v.single_pass.assign(objects.size(), false);
   const int margin = static_cast<int>(std::ceil(dt.gradient_px)) + 1;
   for (std::uint32_t i = 0; i < objects.size(); ++i) {
     const ObjectRecord& o = objects[i];
@@ -79,6 +80,11 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
         v.view_proj, width, height);
     if (box.outside) continue;
     v.rects[i] = box.unbounded ? viewport : to_pixels(box.bounds, width, height);
+    // One culled pass is exact only for a convex object seen from outside, not cut by the near plane.
+    const glm::vec3 pad(2.0f * camera.near_plane);
+    const bool outside = glm::any(glm::lessThan(camera.eye, o.world_min - pad)) ||
+                         glm::any(glm::greaterThan(camera.eye, o.world_max + pad));
+    v.single_pass[i] = o.convex && !box.unbounded && outside;
     if (v.rects[i].empty()) continue;
     if (o.impenetrable) v.impenetrable.push_back(i);
     if (!o.target) continue;
@@ -89,7 +95,7 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
     if (tight.outside) continue;
     TargetView t;
     t.object = i;
-    t.code = static_cast<std::uint8_t>(v.targets.size() % 255 + 1);
+    t.code = static_cast<std::uint8_t>(v.targets.size() % 127 + 1);
     t.bounds = tight.unbounded ? glm::vec4(0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height))
                                : tight.bounds;
     t.rect = tight.unbounded ? viewport : to_pixels(t.bounds, width, height);

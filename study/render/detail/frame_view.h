@@ -37,7 +37,7 @@ struct PixelRect {
 
 struct TargetView {
   std::uint32_t object = 0;       // index into the scene's objects
-  std::uint8_t code = 1;          // stencil code in the opaque pass (1..255)
+  std::uint8_t code = 1;          // stencil code (low 7 bits) of the frontmost-object test, 1..127
   glm::vec4 bounds{0.0f};         // tight bounds of the projected vertices (x0, y0, x1, y1), window pixels, unclipped
   PixelRect rect;                 // silhouette bounds, clipped to the viewport
   PixelRect support;              // pixels whose alpha its mask can change, clipped to the viewport
@@ -52,6 +52,7 @@ struct FrameView {
   std::vector<PixelRect> rects;             // per object
   std::vector<TargetView> targets;          // targets in view, scene order
   std::vector<int> target_slot;             // per object: index into targets, or -1
+  std::vector<bool> single_pass;            // per object: one back-face-culled pass selects its frontmost surface
   std::vector<std::uint32_t> impenetrable;  // impenetrable objects in view, scene order
   std::vector<std::uint32_t> sorted;        // other objects in view, back to front
   glm::vec3 searchlight{0.0f, 0.0f, -1.0f}; // (x, y, radius) window pixels; radius < 0: passive mode

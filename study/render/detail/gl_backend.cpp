@@ -143,6 +143,8 @@ std::vector<std::string> GlBackend::drain_errors() {
   return out;
 }
 
+void GlBackend::finish() { glFinish(); }
+
 void GlBackend::delete_texture(unsigned name) {
   for (auto it = fbos_.begin(); it != fbos_.end();) {
     if (std::find(it->first.begin(), it->first.end(), name) != it->first.end()) {

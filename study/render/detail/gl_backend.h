@@ -29,6 +29,7 @@ class GlBackend final : public FrameGraphBackend {
   void end_condition() override;
   std::optional<bool> query_any(unsigned query, bool wait) override;
   std::vector<std::string> drain_errors() override;
+  void finish() override;
 
   void end_frame();  // ages the pool; deletes textures (and their framebuffers) unused for 8 frames
 

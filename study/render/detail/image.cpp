@@ -1,9 +1,37 @@
 // PNG writing with Debian's libstb (stb_image_write), see image.h.
 #include <stb/stb_image_write.h>
 
+#include <algorithm>
+
+#include <cstdlib>
+#include <stdexcept>
+
 #include "study/render/image.h"
 
 namespace dtlab::render {
+
+ImageDiff compare(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+    throw std::invalid_argument("compare: images differ in size");
+  ImageDiff d;
+  const std::size_t pixels = a.rgba.size() / 4;
+  if (pixels == 0) return d;
+  double sum = 0.0;
+  std::size_t off = 0;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int diff = std::abs(static_cast<int>(a.rgba[p * 4 + c]) - static_cast<int>(b.rgba[p * 4 + c]));
+      sum += diff;
+      worst = std::max(worst, diff);
+    }
+    d.max_abs = std::max(d.max_abs, worst);
+    if (worst > 4) ++off;
+  }
+  d.mae = sum / static_cast<double>(pixels * 3);
+  d.pixels_off_pct = 100.0 * static_cast<double>(off) / static_cast<double>(pixels);
+  return d;
+}
 
 Status write_png(const Image& image, const std::string& path, bool keep_alpha) {
   if (image.width <= 0 || image.height <= 0 ||

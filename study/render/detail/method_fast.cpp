@@ -1,17 +1,24 @@
 // dt-fast: the visual model of dt-seed at a cost close to standard's.
 // Differences in method, not in model (docs/render.md, "dt-fast"):
-//  * the standard frame (opaque pass) stays; only pixels a mask can change
-//    (each target's support: silhouette or shape bounds + n + 1 pixels) are
-//    re-rendered, in scissored regions of 32-pixel cells;
 //  * every target's mask is computed at once, in one atlas of per-target
 //    tiles at reduced resolution (texel = max(W, H) / R output pixels): the
 //    silhouette is rasterized into its tile, then two separable passes give
 //    the exact Chebyshev distance per tile (no ping-pong, no per-target
-//    full-screen pass); the apply step reads the tile bilinearly;
-//  * inside a region, objects that no earlier-drawn target's support touches
-//    are drawn once with a plain z-buffer (alpha is 1 there, so blending is
-//    a copy), the others with the depth + EQUAL colour passes.
-// Passes: dt-masks, dt-composite, both conditional on the target-query.
+//    full-screen pass); the apply step reads the tile bilinearly and is
+//    scissored to the target's support (silhouette bounds + n + 1 pixels);
+//  * objects that no earlier-drawn target's support touches are drawn once
+//    with a plain z-buffer (alpha is 1 there, blending would be a copy);
+//    convex objects seen from outside are drawn in one back-face-culled
+//    pass instead of depth pass + depth-EQUAL colour pass (same surfaces);
+//  * two frame plans, chosen by what the previous frame needed (frame
+//    coherence, as the article's bubble sort):
+//    standard-first  opaque, target-query, then (conditional) dt-masks and
+//                    dt-composite re-render only the regions the masks touch;
+//    effect-first    dt-masks, dt-direct draw the effect directly, then the
+//                    target-query on its depth; if nothing is occluded,
+//                    query-invert + standard-fallback restore the standard
+//                    image in those regions (conditional on the inverted query).
+//    Both give the same image; each is cheapest when its guess is right.
 #include <glad/gl.h>
 
 #include <algorithm>
@@ -46,6 +53,8 @@ int pow2_at_least(int v) {
   return p;
 }
 
+// Tiles are packed on shelves, tallest first; the distance passes run one quad per tile
+// (cheaper on llvmpipe than one quad over the whole atlas with gutters between tiles).
 Atlas plan_atlas(const FrameContext& fc) {
   const DtSettings& dt = fc.settings.dt;
   Atlas a;
@@ -75,7 +84,7 @@ Atlas plan_atlas(const FrameContext& fc) {
     for (auto& t : a.tiles) order.push_back(&t);
     std::stable_sort(order.begin(), order.end(), [](const Tile* p, const Tile* q) { return p->h > q->h; });
     int x = 0, y = 0, shelf = 0;
-    bool fits = widest <= a.width;
+    const bool fits = widest <= a.width;
     for (Tile* t : order) {
       if (t->w == 0) continue;
       if (x + t->w > a.width) {
@@ -95,84 +104,76 @@ Atlas plan_atlas(const FrameContext& fc) {
   return a;
 }
 
-// Disjoint rectangles covering every 32-pixel cell that some target's support touches.
+// Disjoint rectangles covering every pixel some target's mask can change. Supports are merged
+// when they overlap, or when their bounding box is not much larger than the two (one region
+// re-draws each object once; many small regions would re-draw objects once per region).
 std::vector<PixelRect> plan_regions(const FrameContext& fc) {
-  constexpr int kCell = 32;
-  const int cw = (fc.width() + kCell - 1) / kCell, ch = (fc.height() + kCell - 1) / kCell;
-  std::vector<char> marked(static_cast<std::size_t>(cw) * ch, 0);
   PixelRect limit = fc.view.viewport();
   const glm::vec3 sl = fc.view.searchlight;
   if (sl.z >= 0.0f)
     limit = limit.intersect({static_cast<int>(std::floor(sl.x - sl.z)) - 1, static_cast<int>(std::floor(sl.y - sl.z)) - 1,
                              static_cast<int>(std::ceil(sl.x + sl.z)) + 1, static_cast<int>(std::ceil(sl.y + sl.z)) + 1});
+  std::vector<PixelRect> rs;
   for (const TargetView& t : fc.view.targets) {
     const PixelRect s = t.support.intersect(limit);
-    if (s.empty()) continue;
-    for (int cy = s.y0 / kCell; cy <= (s.y1 - 1) / kCell; ++cy)
-      for (int cx = s.x0 / kCell; cx <= (s.x1 - 1) / kCell; ++cx) marked[static_cast<std::size_t>(cy) * cw + cx] = 1;
+    if (!s.empty()) rs.push_back(s);
   }
-  std::vector<PixelRect> runs;
-  for (int cy = 0; cy < ch; ++cy) {
-    for (int cx = 0; cx < cw;) {
-      if (!marked[static_cast<std::size_t>(cy) * cw + cx]) {
-        ++cx;
-        continue;
-      }
-      int end = cx;
-      while (end < cw && marked[static_cast<std::size_t>(cy) * cw + end]) ++end;
-      PixelRect r{cx * kCell, cy * kCell, end * kCell, (cy + 1) * kCell};
-      // Merge with a run of the row below that spans the same columns.
-      bool merged = false;
-      for (auto& prev : runs) {
-        if (prev.x0 == r.x0 && prev.x1 == r.x1 && prev.y1 == r.y0) {
-          prev.y1 = r.y1;
+  auto bbox = [](const PixelRect& a, const PixelRect& b) {
+    return PixelRect{std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+  };
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (std::size_t i = 0; i < rs.size() && !merged; ++i) {
+      for (std::size_t j = i + 1; j < rs.size() && !merged; ++j) {
+        const PixelRect u = bbox(rs[i], rs[j]);
+        if (rs[i].overlaps(rs[j]) || u.area() <= (rs[i].area() + rs[j].area()) * 3 / 2 + 4096) {
+          rs[i] = u;
+          rs.erase(rs.begin() + static_cast<long>(j));
           merged = true;
-          break;
         }
       }
-      if (!merged) runs.push_back(r);
-      cx = end;
     }
   }
-  for (auto& r : runs) r = r.intersect(limit);
-  runs.erase(std::remove_if(runs.begin(), runs.end(), [](const PixelRect& r) { return r.empty(); }), runs.end());
-  return runs;
+  return rs;
 }
 
 void scissor(const PixelRect& r) { glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0); }
 
-}  // namespace
+struct MaskHandles {
+  Handle alpha;
+};
 
-MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
-  auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
-  auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
-
+MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::shared_ptr<const Atlas>& atlas,
+                           Handle query) {
   struct DtMasksPassData {
-    Handle coverage, rows, distance;
+    Handle coverage, rows, alpha;
   };
   const auto& masks = fg.add_pass<DtMasksPassData>(
       "dt-masks",
       [&](FrameGraph::Builder& b, DtMasksPassData& d) {
-        b.condition(query);
+        if (query.valid()) b.condition(query);
         d.coverage = b.write(b.create("mask-coverage", {atlas->width, atlas->height, TextureFormat::r8, false}));
         d.rows = b.write(b.create("mask-rows", {atlas->width, atlas->height, TextureFormat::r16f, false}));
-        d.distance = b.write(b.create("mask-distance", {atlas->width, atlas->height, TextureFormat::r16f, true}));
+        d.alpha = b.write(b.create("mask-alpha", {atlas->width, atlas->height, TextureFormat::r8, true}));
       },
       [&fc, atlas](const DtMasksPassData& d, PassResources& r) {
         const float W = static_cast<float>(fc.width()), H = static_cast<float>(fc.height());
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_STENCIL_TEST);
         glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glEnable(GL_SCISSOR_TEST);
-        // Coverage: each target's silhouette (or shape) rasterized into its tile.
+        // Coverage: each target's silhouette (or shape) rasterized into its tile. One unscissored
+        // clear (a scissored clear per tile is a draw in Mesa, and costs more).
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.coverage}));
+        glDisable(GL_SCISSOR_TEST);
         glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glEnable(GL_SCISSOR_TEST);
         for (const Tile& t : atlas->tiles) {
           if (t.w == 0) continue;
           glViewport(t.x, t.y, t.w, t.h);
           glScissor(t.x, t.y, t.w, t.h);
-          glClear(GL_COLOR_BUFFER_BIT);
           const float span_x = static_cast<float>(t.w) * atlas->texel_px, span_y = static_cast<float>(t.h) * atlas->texel_px;
           glm::mat4 crop(1.0f);  // window pixels [screen.x0, screen.x0 + span) -> NDC [-1, 1]
           crop[0][0] = W / span_x;
@@ -186,7 +187,7 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
         }
         glDisable(GL_SCISSOR_TEST);
         glViewport(0, 0, atlas->width, atlas->height);
-        // Two separable passes: nearest covered texel per row, then Chebyshev per column.
+        // Two separable passes: nearest covered texel per row, then Chebyshev per column (as alpha).
         auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler) {
           glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
           glUseProgram(p.id);
@@ -194,6 +195,9 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           glBindTexture(GL_TEXTURE_2D, r.texture(src));
           glUniform1i(p.loc(sampler), 0);
           glUniform1i(p.loc("u_reach"), atlas->reach);
+          glUniform1f(p.loc("u_texel_px"), atlas->texel_px);
+          glUniform1f(p.loc("u_alpha_start"), fc.settings.dt.alpha_start);
+          glUniform1f(p.loc("u_gradient_px"), fc.settings.dt.gradient_px);
           for (const Tile& t : atlas->tiles) {
             if (t.w == 0) continue;
             glUniform4i(p.loc("u_tile"), t.x, t.y, t.x + t.w, t.y + t.h);
@@ -202,79 +206,202 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           }
         };
         distance_pass(fc.programs.cheb_rows, d.coverage, d.rows, "u_coverage");
-        distance_pass(fc.programs.cheb_cols, d.rows, d.distance, "u_rows");
+        distance_pass(fc.programs.cheb_cols, d.rows, d.alpha, "u_rows");
         glBindTexture(GL_TEXTURE_2D, 0);
       });
+  return {masks.alpha};
+}
+
+// Target `slot`'s mask, restricted to `area`: mark, multiply the atlas tile's gradient, aT inside.
+void apply_target_mask(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, int slot,
+                       const PixelRect& area, bool keep_codes) {
+  const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
+  const Tile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
+  if (area.empty() || tile.w == 0) return;
+  scissor(area);
+  mark_target(fc, slot, keep_codes);
+  begin_apply(fc, keep_codes);
+  const Program& p = fc.programs.fast_apply;
+  glUseProgram(p.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, alpha_texture);
+  glUniform1i(p.loc("u_mask"), 0);
+  glUniform2f(p.loc("u_atlas_size"), static_cast<float>(atlas.width), static_cast<float>(atlas.height));
+  glUniform2f(p.loc("u_tile_origin"), static_cast<float>(tile.x), static_cast<float>(tile.y));
+  glUniform2f(p.loc("u_tile_size"), static_cast<float>(tile.w), static_cast<float>(tile.h));
+  glUniform2f(p.loc("u_screen_origin"), static_cast<float>(t.support.x0), static_cast<float>(t.support.y0));
+  glUniform1f(p.loc("u_texel_px"), atlas.texel_px);
+  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
+  fc.quad(p, static_cast<float>(area.x0), static_cast<float>(area.y0), static_cast<float>(area.x1),
+          static_cast<float>(area.y1), fc.width(), fc.height());
+  finish_target(fc, slot);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+// The effect over `region` (already cleared): impenetrable objects, then back to front.
+void draw_effect(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, const PixelRect& region,
+                 bool codes) {
+  auto code = [&](std::uint32_t i) {
+    if (!codes) return -1;
+    const int slot = fc.view.target_slot[i];
+    return slot < 0 ? 0 : static_cast<int>(fc.view.targets[static_cast<std::size_t>(slot)].code);
+  };
+  scissor(region);
+  for (auto i : fc.view.impenetrable)
+    if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i, code(i));
+  std::vector<PixelRect> applied;  // supports of the targets already drawn
+  for (auto i : fc.view.sorted) {
+    const PixelRect part = fc.view.rects[i].intersect(region);
+    if (!part.empty()) {
+      const bool masked =
+          std::any_of(applied.begin(), applied.end(), [&](const PixelRect& s) { return s.overlaps(part); });
+      masked ? draw_transparent_object(fc, i, true, code(i)) : draw_opaque_object(fc, i, code(i));
+    }
+    const int slot = fc.view.target_slot[i];
+    if (slot < 0) continue;
+    const PixelRect area = fc.view.targets[static_cast<std::size_t>(slot)].support.intersect(region);
+    if (area.empty()) continue;
+    applied.push_back(area);
+    apply_target_mask(fc, atlas, alpha_texture, slot, area, codes);
+    scissor(region);
+  }
+}
+
+void clear_region(const FrameContext& fc, const PixelRect& region) {
+  scissor(region);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xFF);
+  const glm::vec3 bg = fc.background();
+  glClearColor(bg.r, bg.g, bg.b, 1.0f);
+  glClearDepth(1.0);
+  glClearStencil(0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+}
+
+}  // namespace
+
+bool fast_direct_possible(const FrameContext& fc) {
+  return fc.settings.dt.layer_limit == 0 && fc.view.targets.size() <= 127;
+}
+
+MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
+  auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
+  auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
+  const MaskHandles masks = add_masks_pass(fg, fc, atlas, query);
 
   struct DtCompositePassData {
-    Handle color, depth, distance;
+    Handle color, depth, alpha;
   };
   const auto& comp = fg.add_pass<DtCompositePassData>(
       "dt-composite",
       [&](FrameGraph::Builder& b, DtCompositePassData& d) {
         b.condition(query);
-        d.distance = b.read(masks.distance);
+        d.alpha = b.read(masks.alpha);
         d.color = b.write(b.read(main.color));
         d.depth = b.write(b.read(main.depth));
       },
       [&fc, atlas, regions](const DtCompositePassData& d, PassResources& r) {
-        const DtSettings& dt = fc.settings.dt;
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
         glViewport(0, 0, fc.width(), fc.height());
         glEnable(GL_SCISSOR_TEST);
-        const glm::vec3 bg = fc.background();
-        std::vector<PixelRect> applied;  // supports of targets already drawn in this region
         for (const PixelRect& region : *regions) {
-          scissor(region);
-          glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-          glDepthMask(GL_TRUE);
-          glStencilMask(0xFF);
-          glClearColor(bg.r, bg.g, bg.b, 1.0f);
-          glClearDepth(1.0);
-          glClearStencil(0);
-          glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-          for (auto i : fc.view.impenetrable)
-            if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i);
-          applied.clear();
-          for (auto i : fc.view.sorted) {
-            const PixelRect part = fc.view.rects[i].intersect(region);
-            if (!part.empty()) {
-              const bool masked = std::any_of(applied.begin(), applied.end(), [&](const PixelRect& s) { return s.overlaps(part); });
-              masked ? draw_transparent_object(fc, i) : draw_opaque_object(fc, i);
-            }
-            const int slot = fc.view.target_slot[i];
-            if (slot < 0) continue;
-            const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
-            const PixelRect area = t.support.intersect(region);
-            const Tile& tile = atlas->tiles[static_cast<std::size_t>(slot)];
-            if (area.empty() || tile.w == 0) continue;
-            applied.push_back(area);
-            scissor(area);
-            mark_target(fc, slot);
-            begin_apply(fc);
-            const Program& p = fc.programs.fast_apply;
-            glUseProgram(p.id);
-            glActiveTexture(GL_TEXTURE0);
-            glBindTexture(GL_TEXTURE_2D, r.texture(d.distance));
-            glUniform1i(p.loc("u_distance"), 0);
-            glUniform2f(p.loc("u_atlas_size"), static_cast<float>(atlas->width), static_cast<float>(atlas->height));
-            glUniform2f(p.loc("u_tile_origin"), static_cast<float>(tile.x), static_cast<float>(tile.y));
-            glUniform2f(p.loc("u_tile_size"), static_cast<float>(tile.w), static_cast<float>(tile.h));
-            glUniform2f(p.loc("u_screen_origin"), static_cast<float>(t.support.x0), static_cast<float>(t.support.y0));
-            glUniform1f(p.loc("u_texel_px"), atlas->texel_px);
-            glUniform1f(p.loc("u_alpha_start"), dt.alpha_start);
-            glUniform1f(p.loc("u_gradient_px"), dt.gradient_px);
-            glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
-            fc.quad(p, static_cast<float>(area.x0), static_cast<float>(area.y0), static_cast<float>(area.x1),
-                    static_cast<float>(area.y1), fc.width(), fc.height());
-            finish_target(fc, slot);
-            glBindTexture(GL_TEXTURE_2D, 0);
-            scissor(region);
-          }
+          clear_region(fc, region);
+          draw_effect(fc, *atlas, r.texture(d.alpha), region, false);
         }
         glDisable(GL_SCISSOR_TEST);
       });
   return {comp.color, comp.depth};
+}
+
+Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
+  auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
+  auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
+  const MaskHandles masks = add_masks_pass(fg, fc, atlas, Handle{});
+
+  struct DtDirectPassData {
+    Handle color, depth, alpha;
+  };
+  const auto& direct = fg.add_pass<DtDirectPassData>(
+      "dt-direct",
+      [&](FrameGraph::Builder& b, DtDirectPassData& d) {
+        d.alpha = b.read(masks.alpha);
+        d.color = b.write(b.create("color", {fc.width(), fc.height(), fc.color_format, false}));
+        d.depth = b.write(b.create("depth", {fc.width(), fc.height(), TextureFormat::depth24_stencil8, false}));
+      },
+      [&fc, atlas](const DtDirectPassData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
+        glViewport(0, 0, fc.width(), fc.height());
+        glEnable(GL_SCISSOR_TEST);
+        clear_region(fc, fc.view.viewport());
+        draw_effect(fc, *atlas, r.texture(d.alpha), fc.view.viewport(), true);
+        glDisable(GL_SCISSOR_TEST);
+      });
+  const Handle query = add_target_query_pass(fg, fc, direct.depth);
+
+  // Q_not = "no target occluded", computed on the GPU: a conditional write to a 1x1 depth
+  // buffer, then a query that passes only where that write did not happen.
+  struct QueryInvertPassData {
+    Handle query, scratch, inverted;
+  };
+  const auto& inv = fg.add_pass<QueryInvertPassData>(
+      "query-invert",
+      [&](FrameGraph::Builder& b, QueryInvertPassData& d) {
+        d.query = b.read(query);
+        d.scratch = b.write(b.create("invert-scratch", {1, 1, TextureFormat::depth32f, false}));
+        d.inverted = b.write(b.create_query("no-target-occluded"));
+      },
+      [&fc](const QueryInvertPassData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.scratch));
+        glViewport(0, 0, 1, 1);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_STENCIL_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        const Program& p = fc.programs.quad_alpha;
+        glUseProgram(p.id);
+        glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
+        glBeginConditionalRender(r.query(d.query), GL_QUERY_WAIT);
+        glDepthFunc(GL_ALWAYS);
+        glUniform1f(p.loc("u_z"), -1.0f);  // depth 0 where some target is occluded
+        fc.quad(p, 0.0f, 0.0f, 1.0f, 1.0f, 1, 1);
+        glEndConditionalRender();
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_FALSE);
+        glUniform1f(p.loc("u_z"), 0.0f);  // depth 0.5: passes only if the write above did not happen
+        glBeginQuery(GL_ANY_SAMPLES_PASSED, r.query(d.inverted));
+        fc.quad(p, 0.0f, 0.0f, 1.0f, 1.0f, 1, 1);
+        glEndQuery(GL_ANY_SAMPLES_PASSED);
+        glDepthMask(GL_TRUE);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      });
+
+  struct FallbackPassData {
+    Handle color, depth;
+  };
+  const auto& fb = fg.add_pass<FallbackPassData>(
+      "standard-fallback",
+      [&](FrameGraph::Builder& b, FallbackPassData& d) {
+        b.condition(inv.inverted);
+        d.color = b.write(b.read(direct.color));
+        d.depth = b.write(b.read(direct.depth));
+      },
+      [&fc, regions](const FallbackPassData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
+        glViewport(0, 0, fc.width(), fc.height());
+        glEnable(GL_SCISSOR_TEST);
+        for (const PixelRect& region : *regions) {
+          clear_region(fc, region);
+          for (std::uint32_t i = 0; i < fc.view.rects.size(); ++i)
+            if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i);
+        }
+        glDisable(GL_SCISSOR_TEST);
+      });
+  return fb.color;
 }
 
 }  // namespace dtlab::render::detail

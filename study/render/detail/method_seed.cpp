@@ -113,7 +113,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           },
           [&fc, run = std::move(run)](const DrawPassData& d, PassResources& r) {
             bind_main(fc, r, d.color, d.depth);
-            for (auto i : run) draw_transparent_object(fc, i);
+            for (auto i : run) draw_transparent_object(fc, i, false);  // faithful: always two passes
           });
       cur = {d.color, d.depth};
     }
@@ -169,8 +169,8 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           // Lines 9-11 on the framebuffer: mark the full-resolution silhouette, multiply the
           // upsampled mask elsewhere, then aT over the silhouette itself.
           bind_main(fc, r, d.color, d.depth);
-          mark_target(fc, slot);
-          begin_apply(fc);
+          mark_target(fc, slot, false);
+          begin_apply(fc, false);
           const Program& apply = fc.programs.mask_apply;
           glUseProgram(apply.id);
           glBindTexture(GL_TEXTURE_2D, r.texture(src));

@@ -56,25 +56,37 @@ void add_present_pass(FrameGraph& fg, const FrameContext& fc, Handle color, Hand
 // dt-seed, dt-fast: the effect's passes, all conditional on `query`.
 MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
 MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
+// dt-fast when the previous frame needed the effect: the effect drawn directly (no standard frame
+// first), then the target query on its depth; if no target turns out occluded, the regions the
+// masks touched are re-rendered the standard way (conditional on the inverted query).
+Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
+// Whether add_fast_direct_passes can serve this frame (no layer limit, at most 127 targets).
+bool fast_direct_possible(const FrameContext& fc);
 // reference: per-object layers rendered on the GPU, composited exactly on the CPU.
 Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
 
-// Shared GL sequences of the two GPU methods.
-// Draws object `i` of a back-to-front sequence: depth pass, then colour pass with depth EQUAL,
-// blended with the destination alpha (and the layer-limit stencil logic when enabled).
-void draw_transparent_object(const FrameContext& fc, std::uint32_t i);
-// Draws object `i` with a plain z-buffer (alpha stays 1): used where no mask can apply.
-void draw_opaque_object(const FrameContext& fc, std::uint32_t i);
+// Shared GL sequences of the two GPU methods. `stencil_code` >= 0: the draw also writes that
+// code into the stencil's low 7 bits where it passes the depth test (frontmost-object codes).
+//
+// Draws object `i` of a back-to-front sequence so that only its frontmost surfaces blend with
+// the destination alpha (article V.3): a depth pass, then a colour pass with depth EQUAL; or,
+// with `single_pass` and a convex object seen from outside, one back-face-culled pass (the same
+// surfaces). The layer limit's stencil logic applies when the settings ask for it.
+void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, int stencil_code = -1);
+// Draws object `i` with a plain z-buffer and no blending: where no mask can apply (alpha is 1).
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i, int stencil_code = -1);
 // Target `slot`'s silhouette (outline: its mesh through `view_proj`) or shape (circle /
 // ellipse: window pixel p maps to p * px_map.xy + px_map.zw of the bound framebuffer), with
 // whatever colour/stencil state the caller set (the program is chosen here).
 void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::mat4& view_proj,
                       glm::vec4 px_map, bool searchlight);
-// Marks target `slot`'s silhouette in the stencil (bit 7, counter 1), for the apply step.
-void mark_target(const FrameContext& fc, int slot);
-// Multiplies aT into the alpha of the marked silhouette and clears the mark.
+// The three framebuffer steps of a target's mask (Algorithm 2, lines 10-11): mark_target sets
+// stencil bit 7 on its full-resolution silhouette; between begin_apply and the caller's quad, the
+// mask multiplies into alpha outside the mark; finish_target multiplies aT into the marked
+// silhouette and clears the mark. With `keep_codes` the low 7 bits (frontmost-object codes) are
+// left alone; otherwise they are the layer-limit counter, restarted at 1 where alpha drops.
+void mark_target(const FrameContext& fc, int slot, bool keep_codes);
+void begin_apply(const FrameContext& fc, bool keep_codes);
 void finish_target(const FrameContext& fc, int slot);
-// The alpha-multiply blend state with the stencil test for "not marked" (apply step).
-void begin_apply(const FrameContext& fc);
 
 }  // namespace dtlab::render::detail

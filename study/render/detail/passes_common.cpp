@@ -64,53 +64,80 @@ void FrameContext::quad(const Program& p, float x0, float y0, float x1, float y1
 
 // --- shared GL sequences -------------------------------------------------------------------
 
-void draw_opaque_object(const FrameContext& fc, std::uint32_t i) {
+namespace {
+void stencil_code_writes(int code) {
+  if (code < 0) {
+    glDisable(GL_STENCIL_TEST);
+    return;
+  }
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, code, 0x7F);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glStencilMask(0x7F);
+}
+}  // namespace
+
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i, int stencil_code) {
   fc.use_lit(fc.view.view_proj);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_CULL_FACE);
+  stencil_code_writes(stencil_code);
   fc.draw_lit(i);
+  glDisable(GL_STENCIL_TEST);
 }
 
-void draw_transparent_object(const FrameContext& fc, std::uint32_t i) {
-  // Step 1 (article V.3): the object's own z-buffer pass selects its frontmost surfaces.
-  fc.use_alpha(fc.view.view_proj, 1.0f, false);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, int stencil_code) {
+  const ObjectRecord& o = fc.gpu.objects()[i];
+  const bool one = single_pass && fc.view.single_pass[i];
+  fc.use_lit(fc.view.view_proj);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  fc.draw_alpha(i);
-  // Step 2: blend those surfaces with the destination alpha; alpha itself is left alone.
-  fc.use_lit(fc.view.view_proj);
+  glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA, GL_ZERO, GL_ONE);  // alpha stays
+  if (one) {
+    // Convex and seen from outside: the front faces are exactly the frontmost surface.
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(o.mirrored ? GL_CW : GL_CCW);
+  } else {
+    // Step 1 (article V.3): the object's own z-buffer pass selects its frontmost surfaces.
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDisable(GL_BLEND);
+    stencil_code_writes(stencil_code);
+    fc.draw_lit(i);
+    // Step 2: blend exactly those surfaces (depth EQUAL) with the destination alpha.
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    stencil_code = -1;
+  }
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthFunc(GL_EQUAL);
-  glDepthMask(GL_FALSE);
-  glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA, GL_ZERO, GL_ONE);
   const int limit = fc.settings.dt.layer_limit;
   if (limit <= 0) {
     glEnable(GL_BLEND);
-    fc.draw_lit(i);
-    return;
+    stencil_code_writes(stencil_code);
+    one ? fc.draw_lit(i) : fc.gpu.draw(o);
+  } else {
+    // Layer limit: the stencil's low 7 bits count surfaces drawn since the last mask made the
+    // pixel transparent. Past the limit a surface is drawn opaque and resets alpha to 1.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_LEQUAL, limit + 1, 0x7F);  // (limit + 1) <= count
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glStencilMask(0x00);
+    glDisable(GL_BLEND);
+    one ? fc.draw_lit(i) : fc.gpu.draw(o);
+    glStencilFunc(GL_GEQUAL, limit, 0x7F);  // limit >= count
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    glStencilMask(0x7F);
+    glEnable(GL_BLEND);
+    fc.gpu.draw(o);
   }
-  // Layer limit: the stencil's low 7 bits count surfaces drawn since the last mask made the
-  // pixel transparent. Past the limit a surface is drawn opaque and resets alpha to 1.
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_LEQUAL, limit + 1, 0x7F);  // (limit + 1) <= count
-  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  glStencilMask(0x00);
-  glDisable(GL_BLEND);
-  fc.draw_lit(i);
-  glStencilFunc(GL_GEQUAL, limit, 0x7F);  // limit >= count
-  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  glStencilMask(0x7F);
-  glEnable(GL_BLEND);
-  fc.draw_lit(i);
   glDisable(GL_STENCIL_TEST);
+  glDisable(GL_CULL_FACE);
 }
 
 void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::mat4& view_proj, glm::vec4 px_map,
@@ -132,7 +159,7 @@ void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
-void mark_target(const FrameContext& fc, int slot) {
+void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -140,11 +167,11 @@ void mark_target(const FrameContext& fc, int slot) {
   glEnable(GL_STENCIL_TEST);
   glStencilFunc(GL_ALWAYS, 0x81, 0xFF);  // bit 7: silhouette; low bits: layer counter = 1
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glStencilMask(0xFF);
+  glStencilMask(keep_codes ? 0x80 : 0xFF);
   draw_target_seed(fc, slot, 1.0f, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true);
 }
 
-void begin_apply(const FrameContext&) {
+void begin_apply(const FrameContext&, bool keep_codes) {
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -153,7 +180,7 @@ void begin_apply(const FrameContext&) {
   glEnable(GL_STENCIL_TEST);
   glStencilFunc(GL_EQUAL, 0x01, 0x80);  // outside the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glStencilMask(0x7F);                  // the counter restarts at 1 where the mask is below 1
+  glStencilMask(keep_codes ? 0x00 : 0x7F);  // the counter restarts at 1 where the mask is below 1
 }
 
 void finish_target(const FrameContext& fc, int slot) {
@@ -243,7 +270,7 @@ Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle dept
         glBeginQuery(GL_ANY_SAMPLES_PASSED, r.query(d.query));
         fc.use_alpha(fc.view.view_proj, 0.0f, true);
         for (const TargetView& t : fc.view.targets) {
-          glStencilFunc(GL_NOTEQUAL, t.code, 0xFF);
+          glStencilFunc(GL_NOTEQUAL, t.code, 0x7F);
           fc.draw_alpha(t.object);
         }
         glEndQuery(GL_ANY_SAMPLES_PASSED);

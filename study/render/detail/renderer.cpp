@@ -104,8 +104,12 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   const bool transparency = uses_transparency(settings.method);
   const bool targets = !view.targets.empty();
   Handle color;
+  const bool direct = settings.method == Method::dt_fast && targets && impl_->fast_effect_hint &&
+                      detail::fast_direct_possible(fc);
   if (settings.method == Method::reference) {
     color = detail::add_reference_pass(fg, fc);
+  } else if (direct) {
+    color = detail::add_fast_direct_passes(fg, fc);
   } else {
     detail::MainTargets main = detail::add_opaque_pass(fg, fc, transparency && targets);
     // Declared whenever a target is in view; only the effect's passes read it, so for
@@ -121,12 +125,21 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   detail::add_present_pass(fg, fc, color, output);
   fg.compile();
   glBindVertexArray(impl_->gpu->vao());
-  fg.execute(impl_->backend);
+  fg.execute(impl_->backend, settings.profile_passes);
   if (settings.timed) glFinish();
   const auto t1 = Clock::now();
   FrameReport report = fg.report(impl_->backend, settings.timed);
   if (settings.timed) report.frame_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   impl_->backend.end_frame();
+  if (settings.method == Method::dt_fast) {
+    // Remember whether the effect was needed, for the next frame's plan.
+    for (const PassRecord& p : report.passes) {
+      if (!p.ran.has_value() || p.culled) continue;
+      if (p.name == "dt-composite") impl_->fast_effect_hint = *p.ran;
+      if (p.name == "standard-fallback") impl_->fast_effect_hint = !*p.ran;
+    }
+    if (!targets) impl_->fast_effect_hint = false;
+  }
   impl_->graphviz = fg.graphviz();
   impl_->last_target = target;
   impl_->last_float = settings.float_color;

@@ -17,6 +17,26 @@ Error scene_error(const std::string& field, std::string message) {
   e.message = std::move(message);
   return e;
 }
+// True if no vertex lies in front of any triangle's plane (tolerance relative to the mesh
+// size) and the front faces are wound counter-clockwise seen from outside. Meshes past
+// 20000 triangles are not checked (treated as not convex: always drawn with two passes).
+bool is_convex(const scene::Mesh& mesh, float size) {
+  if (mesh.indices.empty() || mesh.indices.size() > 60000) return false;
+  const float eps = 1e-4f * std::max(size, 1e-6f);
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a = mesh.vertices[mesh.indices[t]].position;
+    const glm::vec3 b = mesh.vertices[mesh.indices[t + 1]].position;
+    const glm::vec3 c = mesh.vertices[mesh.indices[t + 2]].position;
+    const glm::vec3 n = glm::cross(b - a, c - a);
+    const float len = glm::length(n);
+    if (len <= 1e-12f) continue;  // degenerate: no plane
+    const glm::vec3 u = n / len;
+    for (const auto& v : mesh.vertices)
+      if (glm::dot(v.position - a, u) > eps) return false;
+  }
+  return true;
+}
+
 bool finite(const glm::mat4& m) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
@@ -33,6 +53,7 @@ Result<std::unique_ptr<SceneGpu>> SceneGpu::create(const scene::Scene& scene) {
   std::vector<std::uint32_t> indices;
   std::vector<std::size_t> first_index(scene.meshes.size()), first_vertex(scene.meshes.size());
   std::vector<glm::vec3> mesh_min(scene.meshes.size()), mesh_max(scene.meshes.size());
+  std::vector<char> mesh_convex(scene.meshes.size(), 0);
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const auto& mesh = scene.meshes[m];
     const std::string field = "meshes[" + std::to_string(m) + "] (" + mesh.name + ")";
@@ -56,6 +77,7 @@ Result<std::unique_ptr<SceneGpu>> SceneGpu::create(const scene::Scene& scene) {
     if (mesh.vertices.empty()) lo = hi = glm::vec3(0.0f);
     mesh_min[m] = lo;
     mesh_max[m] = hi;
+    mesh_convex[m] = is_convex(mesh, glm::length(hi - lo)) ? 1 : 0;
     indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
   }
 
@@ -77,6 +99,8 @@ Result<std::unique_ptr<SceneGpu>> SceneGpu::create(const scene::Scene& scene) {
     const glm::mat3 m3(o.transform);
     const float det = glm::determinant(m3);
     r.normal_matrix = std::abs(det) > 1e-20f ? glm::transpose(glm::inverse(m3)) : m3;
+    r.mirrored = det < 0.0f;
+    r.convex = mesh_convex[o.mesh] != 0 && std::abs(det) > 1e-20f;
     r.tint = o.color;
     r.mesh = o.mesh;
     r.index_count = static_cast<std::int32_t>(scene.meshes[o.mesh].indices.size());

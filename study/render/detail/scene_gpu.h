@@ -29,6 +29,9 @@ struct ObjectRecord {
   std::int32_t base_vertex = 0;
   std::uint32_t mesh = 0;
   glm::vec3 world_min{0.0f}, world_max{0.0f};  // world-space AABB of the transformed mesh
+  bool convex = false;    // every vertex lies behind every triangle's plane: seen from outside, at most one
+                          // front-facing fragment per pixel (so one culled pass selects the frontmost surface)
+  bool mirrored = false;  // det(model) < 0: the winding of front faces flips
   bool drawable() const { return index_count > 0; }
 };
 

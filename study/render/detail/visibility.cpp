@@ -1,6 +1,6 @@
 // Renderer::visibility (see render.h and docs/render.md, "Visible pixels").
-// Silhouettes: one GL_SAMPLES_PASSED query per target drawn alone without a
-// depth test. Visible pixels: the method's own frame re-rendered in weight
+// Silhouettes: one GL_SAMPLES_PASSED query per target drawn alone, each
+// pixel counted once (the stencil lets only a pixel's first fragment pass). Visible pixels: the method's own frame re-rendered in weight
 // mode, where targets k, k+1, k+2 are flat red, green and blue and every
 // other object and the background flat black: a channel's value at a pixel is
 // then exactly the share of that target in the composited colour.
@@ -40,28 +40,35 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
     glGenQueries(static_cast<GLsizei>(queries.size()), queries.data());
     FrameGraph fg;
     struct SilhouettePassData {
-      Handle scratch;
+      Handle scratch, stencil;
     };
     fg.add_pass<SilhouettePassData>(
         "silhouette-count",
         [&](FrameGraph::Builder& b, SilhouettePassData& d) {
           d.scratch = b.write(b.create("scratch", {width, height, TextureFormat::r8, false}));
+          d.stencil = b.write(b.create("scratch-stencil", {width, height, TextureFormat::depth24_stencil8, false}));
           b.side_effect();  // its output is the query results, read on the CPU
         },
         [&](const SilhouettePassData& d, PassResources& r) {
-          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.scratch}));
+          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.scratch}, d.stencil));
           glViewport(0, 0, width, height);
           glDisable(GL_SCISSOR_TEST);
           glDisable(GL_DEPTH_TEST);
-          glDisable(GL_STENCIL_TEST);
           glDisable(GL_BLEND);
           glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+          glEnable(GL_STENCIL_TEST);
+          glStencilFunc(GL_EQUAL, 0, 0xFF);  // a pixel's first fragment only
+          glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+          glStencilMask(0xFF);
+          glClearStencil(0);
           fc.use_alpha(view.view_proj, 1.0f, false);
           for (std::size_t k = 0; k < out.size(); ++k) {
+            glClear(GL_STENCIL_BUFFER_BIT);
             glBeginQuery(GL_SAMPLES_PASSED, queries[k]);
             if (!view.rects[target_index[k]].empty()) fc.draw_alpha(target_index[k]);
             glEndQuery(GL_SAMPLES_PASSED);
           }
+          glDisable(GL_STENCIL_TEST);
           glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         });
     fg.compile();
