@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   root.fallthrough(false);
 
   dtlab::app::add_version_command(root);
+  dtlab::app::add_scene_command(root);
   dtlab::app::add_stats_command(root);
   dtlab::app::add_validate_command(root);
   dtlab::app::add_plan_command(root);

@@ -1,0 +1,94 @@
+// `dtlab scene`: the JSON contract, the text summary, OBJ output, and exit
+// codes for a task of the wrong scene kind (1), a bad command line (2) and an
+// unwritable OBJ path (3).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct Outcome {
+  int status;
+  std::string out;  // stdout and stderr together
+};
+
+Outcome dtlab(const std::string& args) {
+  const std::string cmd = std::string(DTLAB_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (pipe && std::fgets(buf, sizeof buf, pipe)) out += buf;
+  const int rc = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, out};
+}
+
+TEST(SceneCommand, JsonHasTheDocumentedNames) {
+  const Outcome r = dtlab("scene --scene abstract --task T1 --seed 42 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"scene", "task", "seed", "hash", "objects", "targets", "triangles", "answer"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["scene"], "abstract");
+  EXPECT_EQ(j["task"], "T1");
+  EXPECT_EQ(j["seed"], 42);
+  int total = 0;
+  for (const auto& [kind, n] : j["objects"].items()) total += n.get<int>();
+  EXPECT_EQ(total, 200);
+  EXPECT_EQ(j["answer"]["count"], j["targets"]);
+  EXPECT_GE(j["triangles"].get<int>(), 10000);
+}
+
+TEST(SceneCommand, AnswersPerTask) {
+  const auto t2 = nlohmann::json::parse(dtlab("scene --scene abstract --task T2 --seed 1 --json").out);
+  EXPECT_NE(std::string("CKRXY").find(t2["answer"]["letter"].get<std::string>()), std::string::npos);
+  const auto t3 = nlohmann::json::parse(dtlab("scene --scene walkthrough --task T3 --seed 1 --json").out);
+  EXPECT_EQ(t3["objects"][t3["answer"]["kind"].get<std::string>()], 1);
+  EXPECT_TRUE(t3["answer"].contains("x") && t3["answer"].contains("z"));
+  EXPECT_EQ(t3["targets"], 50);
+  const auto t4 = nlohmann::json::parse(dtlab("scene --scene walkthrough --task T4 --seed 1 --json").out);
+  EXPECT_EQ(t4["objects"][t4["answer"]["kind"].get<std::string>()], t4["answer"]["count"]);
+}
+
+TEST(SceneCommand, TextSummaryAndObjFiles) {
+  const auto dir = std::filesystem::temp_directory_path() / ("dtlab_cli_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const Outcome r = dtlab("scene --scene walkthrough --task T4 --seed 7 --obj " + (dir / "w.obj").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* line : {"hash ", "objects ", "targets ", "triangles ", "answer ", "count "})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing in:\n" << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "w.obj"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "w.mtl"));
+  std::filesystem::remove_all(dir);
+}
+
+struct Failure {
+  const char* args;
+  int status;
+  const char* says;
+};
+
+class SceneCommandFails : public ::testing::TestWithParam<Failure> {};
+
+TEST_P(SceneCommandFails, WithTheDocumentedStatus) {
+  const Outcome r = dtlab(GetParam().args);
+  EXPECT_EQ(r.status, GetParam().status) << r.out;
+  EXPECT_NE(r.out.find(GetParam().says), std::string::npos) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SceneCommandFails,
+    ::testing::Values(Failure{"scene --scene abstract --task T3 --seed 1", 1, "T3 belongs to walkthrough scenes, not abstract"},
+                      Failure{"scene --scene walkthrough --task T1 --seed 1 --json", 1, "task"},
+                      Failure{"scene --scene city --task T1 --seed 1", 2, "--scene"},
+                      Failure{"scene --scene abstract --task T9 --seed 1", 2, "--task"},
+                      Failure{"scene --scene abstract --task T1 --seed -4", 2, "--seed"},
+                      Failure{"scene --scene abstract --task T1 --seed 18446744073709551616", 2, "--seed"},
+                      Failure{"scene --scene abstract --task T1 --seed 1e3", 2, "--seed"},
+                      Failure{"scene --scene abstract --task T1", 2, "--seed"},
+                      Failure{"scene --scene abstract --task T1 --seed 1 --obj /nonexistent/dir/x.obj", 3,
+                              "/nonexistent/dir/x.obj"}));
+
+}  // namespace
