@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <thread>
 #include <cstdio>
 #include <filesystem>
 
@@ -118,6 +120,21 @@ Result<std::int64_t> check_study(Db& db, const StudyInfo& s, const OpenOptions& 
   return insert_study(db, s);
 }
 
+// PRAGMA journal_mode = WAL. Switching needs an exclusive lock, and SQLite
+// answers SQLITE_BUSY at once instead of calling the busy handler, so when
+// several processes create the same file together the losers retry here
+// (until the busy timeout) and then find the file already in WAL mode.
+Result<std::optional<std::string>> set_wal(Db& db, int timeout_ms) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (;;) {
+    auto mode = db.query_text("PRAGMA journal_mode = WAL", "switching to WAL mode");
+    const int code = sqlite3_errcode(db.get());
+    if (mode || (code != SQLITE_BUSY && code != SQLITE_LOCKED) || std::chrono::steady_clock::now() >= deadline)
+      return mode;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
 Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
   const char* what = "reading the participant ledger";
   auto st = Stmt::prepare(db,
@@ -207,7 +224,7 @@ Result<Store> Store::open(const std::string& path, const StudyInfo& study, OpenO
 
   // 2. Connection settings. WAL: readers never block the writer. FULL: a
   //    committed trial survives power loss too (NORMAL only an app crash).
-  auto mode = db.query_text("PRAGMA journal_mode = WAL", "switching to WAL mode");
+  auto mode = set_wal(db, options.busy_timeout_ms);
   if (!mode) return mode.error();
   if (mode->value_or("") != "wal")
     return Error{path, 0, 0, "sqlite", "cannot use WAL mode (journal_mode is \"" + mode->value_or("") + "\")"};

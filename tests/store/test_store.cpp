@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
+#include "study/store/export.h"
 #include "tests/store/store_fixtures.h"
 
 namespace dtlab::store {
@@ -229,6 +231,37 @@ TEST(StoreOpen, RefusesAnotherProtocolUnlessAllowed) {
   EXPECT_EQ(db.one("SELECT protocol_text FROM studies ORDER BY id DESC LIMIT 1"), "protocol B");
   // Now B is current: A is refused in turn.
   EXPECT_FALSE(Store::open(path, a));
+}
+
+// Regression guard for "never an abort": a database whose pages after the
+// header were overwritten gives Errors naming the file, from open() or from
+// the first call that reads a damaged page, and from the export.
+TEST(StoreOpen, CorruptedPagesGiveErrorsNotCrashes) {
+  TempDir dir;
+  const auto path = dir.file("s.sqlite");
+  {
+    Store s = open_ok(path);
+    for (int i = 0; i < 30; ++i) ASSERT_TRUE(s.enroll("P" + std::to_string(i)));
+  }  // the last connection closes: the log is checkpointed into the file
+  ASSERT_FALSE(std::filesystem::exists(path + "-wal"));
+  std::string bytes = read_bytes(path);
+  ASSERT_GT(bytes.size(), 8192u);
+  for (std::size_t i = 4096; i < bytes.size(); ++i) bytes[i] = static_cast<char>(0xA5 ^ (i * 31));
+  { std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes; }
+
+  auto s = Store::open(path, study_info());
+  if (s) {
+    auto e = s->lookup("P3");
+    ASSERT_FALSE(e) << "a damaged ledger page was read as data";
+    EXPECT_EQ(e.error().file, path);
+  } else {
+    EXPECT_EQ(s.error().file, path);
+    EXPECT_FALSE(s.error().message.empty());
+  }
+  std::ostringstream out;
+  auto x = export_trials_csv(path, out);
+  ASSERT_FALSE(x);
+  EXPECT_EQ(x.error().file, path);
 }
 
 TEST(StoreOpen, RefusesBadStudyInfoBeforeCreatingAnything) {
