@@ -294,7 +294,9 @@ Result<Enrollment> Store::enroll(const std::string& participant_id, const Demogr
                              "enrolling");
     if (!ins) return ins.error();
     ins->bind(1, participant_id).bind(2, next->value_or(0)).bind(3, static_cast<std::int64_t>(row));
-    ins->bind(4, m.study_id).bind(5, demo.dump()).bind(6, detail::now_iso8601_utc());
+    // Invalid UTF-8 in a demographic value becomes U+FFFD instead of throwing.
+    const std::string demo_text = demo.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    ins->bind(4, m.study_id).bind(5, demo_text).bind(6, detail::now_iso8601_utc());
     if (auto s = ins->run("enrolling"); !s) return s;
     out = Enrollment{participant_id, static_cast<int>(next->value_or(0)), static_cast<int>(row), false, true};
     return {};

@@ -297,6 +297,20 @@ TEST(Ledger, RowIsIndexModRowsWhileNothingIsReleased) {
   EXPECT_EQ(unknown.error().field, "participant");
 }
 
+TEST(Ledger, DemographicsAreAJsonObjectEvenFromBadInput) {
+  TempDir dir;
+  const auto path = dir.file("s.sqlite");
+  Store s = open_ok(path);
+  // Regression: invalid UTF-8 made the JSON writer throw out of enroll().
+  ASSERT_TRUE(s.enroll("P1", {{"note", "caf\xe9"}, {"age", "31"}}));
+  auto dup = s.enroll("P2", {{"age", "1"}, {"age", "2"}});
+  ASSERT_FALSE(dup);
+  EXPECT_EQ(dup.error().field, "demographics.age");
+  RawDb db(path);
+  EXPECT_EQ(db.one("SELECT json_extract(demographics, '$.note') FROM participants"), "caf\xef\xbf\xbd");
+  EXPECT_EQ(db.count("SELECT count(*) FROM participants"), 1);
+}
+
 TEST(Ledger, ReleasedRowGoesToTheNextParticipant) {
   // Table: after enrolling P0..P5 (rows 0 1 2 3 0 1) and releasing some, the
   // next rows follow "fewest active participants, ties to the lowest row".

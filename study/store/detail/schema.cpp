@@ -254,8 +254,6 @@ BEGIN
       AND NOT EXISTS (SELECT 1 FROM trial_results r WHERE r.planned_trial_id = p.id));
 END;
 
-CREATE INDEX input_events_by_trial ON input_events(trial_id);
-
 CREATE VIEW session_table AS
 SELECT pa.participant AS participant, pa.enrollment_index AS enrollment_index, pa.order_row AS order_row,
        s.id AS session, s.status AS status, s.started_at AS started_at, s.ended_at AS ended_at,
