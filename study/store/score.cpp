@@ -35,15 +35,30 @@ FrameStats frame_stats(std::span<const double> frame_ms) {
   if (frame_ms.empty()) return st;
   for (double v : frame_ms)
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument("store::frame_stats: frame times must be finite and >= 0");
-  double sum = 0;
-  for (double v : frame_ms) sum += v;
+  // Mean: Neumaier-compensated sum, then one correction pass, so constant
+  // frame times give exactly that value (a plain sum of 3600 x 16.6 does not).
+  double sum = 0, carry = 0;
+  for (double v : frame_ms) {
+    const double t = sum + v;
+    carry += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
+    sum = t;
+  }
   const double n = static_cast<double>(frame_ms.size());
-  const double mean = sum / n;
+  double mean = (sum + carry) / n;
+  double drift = 0;
+  for (double v : frame_ms) drift += v - mean;
+  mean += drift / n;
   st.mean_ms = mean;
   if (frame_ms.size() >= 2) {
-    double ss = 0;  // two-pass: stable for large offsets
-    for (double v : frame_ms) ss += (v - mean) * (v - mean);
-    st.sd_ms = std::sqrt(ss / (n - 1));
+    // Corrected two-pass variance (Chan, Golub & LeVeque 1983): stable for
+    // large offsets, exactly 0 for constant data.
+    double ss = 0, d_sum = 0;
+    for (double v : frame_ms) {
+      const double d = v - mean;
+      ss += d * d;
+      d_sum += d;
+    }
+    st.sd_ms = std::sqrt(std::max(0.0, (ss - d_sum * d_sum / n) / (n - 1)));
   }
   std::vector<double> sorted(frame_ms.begin(), frame_ms.end());
   std::sort(sorted.begin(), sorted.end());

@@ -37,8 +37,8 @@ Scores score(const std::optional<Answer>& answer, const Answer& truth);
 // Per-trial frame-time statistics from per-frame times in milliseconds.
 struct FrameStats {
   std::int64_t frames = 0;               // number of frames rendered
-  std::optional<double> mean_ms;         // nullopt when frames == 0
-  std::optional<double> sd_ms;           // sample sd (n - 1); nullopt when frames < 2
+  std::optional<double> mean_ms;         // compensated mean; nullopt when frames == 0
+  std::optional<double> sd_ms;           // sample sd (n - 1, corrected two-pass); nullopt when frames < 2
   std::optional<double> p95_ms;          // 95th percentile, nearest rank: sorted[ceil(0.95 n) - 1]
   std::optional<double> max_ms;
 };

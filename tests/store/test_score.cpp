@@ -84,6 +84,13 @@ TEST(FrameStats, EdgeCases) {
   // Large offset, tiny spread: the two-pass sd is exact here (1e9 + {0,1,2}: sd 1).
   const std::vector<double> off{1e9, 1e9 + 1, 1e9 + 2};
   EXPECT_DOUBLE_EQ(*frame_stats(off).sd_ms, 1.0);
+  // Zero variance: 3600 frames of 16.6 ms give mean 16.6 and sd 0 exactly
+  // (regression: a plain sum gave mean 16.599999999999014 and sd 9.9e-13).
+  const std::vector<double> flat(3600, 16.6);
+  const FrameStats f = frame_stats(flat);
+  EXPECT_EQ(*f.mean_ms, 16.6);
+  EXPECT_EQ(*f.sd_ms, 0.0);
+  EXPECT_EQ(*f.p95_ms, 16.6);
   const std::vector<double> bad{1.0, std::nan("")};
   EXPECT_THROW(frame_stats(bad), std::invalid_argument);
 }
