@@ -54,7 +54,12 @@ bool place(Rng& rng, const AbstractParams& p, Primitive shape, double radius, co
            std::vector<Placed>& placed) {
   const double lo = -0.5 * p.cube_size + radius, hi = 0.5 * p.cube_size - radius;
   for (int t = 0; t < kMaxPlacementTries; ++t) {
-    const glm::dvec3 c(rng.uniform(lo, hi), rng.uniform(lo, hi), rng.uniform(lo, hi));
+    // One draw per statement: the order in which function arguments are
+    // evaluated is unspecified (g++ goes right to left, clang left to right).
+    const double x = rng.uniform(lo, hi);
+    const double y = rng.uniform(lo, hi);
+    const double z = rng.uniform(lo, hi);
+    const glm::dvec3 c(x, y, z);
     const Footprint3 fp = footprint(shape, radius, rotation, c);
     if (!conflicts(fp, placed)) {
       placed.push_back({shape, radius, rotation, fp});

@@ -3,7 +3,8 @@
 // Guarantee: the same seed gives the same sequence on every machine; every
 // conversion uses only integer arithmetic and IEEE-754 basic operations.
 // Never use std::*_distribution, std::random_device or std::rand here: their
-// results differ between standard libraries.
+// results differ between standard libraries. Never draw twice in one
+// expression (f(rng.unit(), rng.unit())): argument order differs by compiler.
 #pragma once
 #include <cstdint>
 #include <stdexcept>
