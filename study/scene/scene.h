@@ -36,9 +36,12 @@ struct Object {
   glm::vec3 color{1.0f};           // tint multiplied into the mesh's vertex colours
   glm::mat4 transform{1.0f};       // model -> world
   std::uint32_t mesh = 0;          // index into Scene::meshes
-  bool target = false;             // uncovered by dynamic transparency
+  bool target = false;             // uncovered by dynamic transparency: ABSTRACT every red object (T1 the
+                                   // counted targets; T2 the letter cones and the red distractors);
+                                   // WALKTHROUGH every model, never walls, floor or ceiling (docs/scene.md)
   bool impenetrable = false;       // never turns transparent (rule R3)
-  std::uint32_t group = 0;         // sort group (objects of a group are drawn together)
+  std::uint32_t group = 0;         // sort group (objects of a group are drawn together); the generators
+                                   // give every object its own group (group == id)
   std::uint32_t order_in_group = 0;  // fixed draw order inside the group, innermost first
 };
 
