@@ -2,6 +2,7 @@
 // the eye), two-sided, colour = vertex colour x tint x (ambient + diffuse).
 // Flat mode (u_flat.a > 0.5) outputs u_flat.rgb unlit: the weight renders
 // that count visible pixels. Alpha is always 1; blending decides what it does.
+// u_searchlight (off for every draw but the R1 guard's repair) limits it to a circle.
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -11,10 +12,12 @@ in vec3 v_color;
 uniform vec3 u_tint;
 uniform vec3 u_eye;
 uniform vec4 u_flat;
+uniform vec3 u_searchlight;  // (x, y, radius) window pixels; radius < 0: off (fragments outside are discarded)
 
 out vec4 frag_color;
 
 void main() {
+  if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
   if (u_flat.a > 0.5) {
     frag_color = vec4(u_flat.rgb, 1.0);
     return;

@@ -7,12 +7,14 @@ uniform vec2 u_center;
 uniform vec2 u_radii;
 uniform float u_alpha;
 uniform vec3 u_searchlight;
+uniform int u_outside_one;  // 1: outside the searchlight write alpha 1 (a no-op multiply) instead of discarding
 
 out vec4 frag_color;
 
 void main() {
-  if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
+  bool outside = u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z;
+  if (outside && u_outside_one == 0) discard;
   vec2 d = (gl_FragCoord.xy - u_center) / max(u_radii, vec2(1e-6));
   if (dot(d, d) > 1.0) discard;
-  frag_color = vec4(u_alpha);
+  frag_color = vec4(outside ? 1.0 : u_alpha);
 }

@@ -3,11 +3,18 @@
 // (weight mode: unlit, exact) make every expected value a closed formula:
 //   one wall w in front of target t:  c = w aT + t (1 - aT)
 //   two walls w1 (far), w2 (near):    c = w2 aT + (w1 aT + t (1 - aT)) (1 - aT)
-// Each case runs under dt-seed, dt-fast and reference; tolerance 2/255.
+//   a target standing in a farther target's gradient (R1 guard):  weight >= aT
+//   a target drawn after an object in front of it (sort error, R1 guard):
+//                                     c = o aT + t (1 - aT)
+// Each case runs under dt-seed (128 and full-resolution masks), dt-fast (both)
+// and reference; tolerance 2/255 unless a mask edge is involved.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "tests/render/scenes.h"
 
@@ -63,22 +70,36 @@ std::string name_of(const ::testing::TestParamInfo<Case>& info) {
 class BlendTest : public ::testing::TestWithParam<Case> {
  protected:
   void SetUp() override { headless_context(); }
-  Image render(const Built& b, DtSettings dt, FrameReport* report = nullptr) {
+  // Renders `b` with the test's method (or `method` if given); flat colours, front camera.
+  Image render(const Built& b, DtSettings dt, FrameReport* report = nullptr, std::optional<Method> method = {},
+               int frames = 1) {
     auto r = Renderer::create(b.scene);
     EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
     FrameSettings s;
-    s.method = GetParam().method;
+    s.method = method.value_or(GetParam().method);
     s.dt = dt;
     s.dt.mask_resolution = GetParam().mask_resolution;
     s.flat_colors = b.flat;
-    const FrameReport rep = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
-    EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
+    s.timed = true;  // query answers known at once (dt-fast picks its next frame plan from them)
+    FrameReport rep;
+    for (int f = 0; f < frames; ++f) {
+      rep = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+      EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
+    }
     if (report) *report = rep;
     Image img = (*r)->read_color();
-    testing::maybe_dump(img);
+    testing::maybe_dump(img, method ? "-" + std::string(to_string(*method)) : "");
     return img;
   }
+  glm::vec2 target_centre() const { return project(front_camera(kW, kH), {0, 0, -11}, kW, kH); }
 };
+
+std::vector<std::string> effect_passes(const FrameReport& r) {
+  std::vector<std::string> out;
+  for (const auto& p : r.passes_run())
+    if (p != "opaque" && p != "target-query" && p != "present") out.push_back(p);
+  return out;
+}
 
 glm::ivec3 expect255(glm::vec3 c) { return glm::ivec3(glm::round(c * 255.0f)); }
 
@@ -107,10 +128,190 @@ TEST_P(BlendTest, TwoWallsCompoundAsTheArticleSays) {
   expect_near(rgb_at(img, static_cast<int>(c.x), static_cast<int>(c.y)), want, "target centre");
 }
 
+TEST_P(BlendTest, WallFartherThanTheGradientFromAnyTargetIsUnchanged) {
+  DtSettings dt;
+  const Image img = render(wall_scene(false), dt);
+  // x = 30 is on the wall, about 75 pixels left of the target (gradient 24 pixels).
+  EXPECT_EQ(rgb_at(img, 30, kH / 2), glm::ivec3(0, 0, 255));
+  EXPECT_EQ(testing::alpha_at(img, 30, kH / 2), 255);
+}
+
+TEST_P(BlendTest, GradientRisesMonotonicallyFromA0ToOne) {
+  DtSettings dt;
+  const Image img = render(wall_scene(false), dt);
+  // Right of the target's silhouette, behind the wall is the green back plane:
+  // c = blue a(d) + green (1 - a(d)), so the blue channel is 255 a(d).
+  const glm::vec2 edge = project(front_camera(kW, kH), {1.5f, 0, -11}, kW, kH);
+  const int y = static_cast<int>(edge.y);
+  const int x0 = static_cast<int>(std::ceil(edge.x)) + 3, x1 = x0 + static_cast<int>(dt.gradient_px) + 6;
+  int prev = -1;
+  for (int x = x0; x <= x1; ++x) {
+    const glm::ivec3 c = rgb_at(img, x, y);
+    EXPECT_NEAR(c.b + c.g, 255, 2) << "x " << x << ": a blend of blue and green only";
+    EXPECT_GE(c.b, prev - 1) << "x " << x << ": the gradient must not fall";
+    prev = std::max(prev, c.b);
+  }
+  EXPECT_LT(rgb_at(img, x0, y).b, 255 * 0.5) << "starts low (a0 = " << dt.alpha_start << ")";
+  EXPECT_GE(rgb_at(img, x1, y).b, 253) << "reaches 1 within n pixels";
+}
+
+TEST_P(BlendTest, ImpenetrableWallNeverTurnsTransparent) {
+  DtSettings dt;
+  const Built b = wall_scene(false, true);
+  const Image dt_img = render(b, dt);
+  const Image std_img = render(b, dt, nullptr, Method::standard);
+  const glm::vec2 c = target_centre();
+  EXPECT_EQ(rgb_at(dt_img, static_cast<int>(c.x), static_cast<int>(c.y)), glm::ivec3(0, 0, 255));
+  EXPECT_LE(compare(dt_img, std_img).max_abs, 1) << "nothing may differ from the standard frame";
+}
+
+TEST_P(BlendTest, LayerLimitOneLeavesTheSecondWallOpaque) {
+  DtSettings dt;
+  dt.layer_limit = 1;
+  const Image img = render(wall_scene(true), dt);
+  const glm::vec2 c = target_centre();
+  expect_near(rgb_at(img, static_cast<int>(c.x), static_cast<int>(c.y)), kWall2, "limit 1: the front wall is opaque");
+  dt.layer_limit = 2;
+  const Image two = render(wall_scene(true), dt);
+  const float aT = dt.alpha_target;
+  expect_near(rgb_at(two, static_cast<int>(c.x), static_cast<int>(c.y)),
+              kWall2 * aT + (kWall * aT + kTarget * (1.0f - aT)) * (1.0f - aT), "limit 2: both walls transparent");
+}
+
+TEST_P(BlendTest, ActiveModeActsOnlyInsideTheSearchlight) {
+  DtSettings dt;
+  dt.mode = DtMode::active;
+  const glm::vec2 c = target_centre();
+  // Searchlight far from the target: nothing to uncover; the effect runs no pass.
+  dt.searchlight_center = {20.0f, 20.0f};
+  dt.searchlight_radius = 10.0f;
+  FrameReport rep;
+  const Image off = render(wall_scene(false), dt, &rep);
+  const Image std_img = render(wall_scene(false), dt, nullptr, Method::standard);
+  EXPECT_LE(compare(off, std_img).max_abs, 1);
+  if (GetParam().method != Method::reference) {
+    EXPECT_TRUE(effect_passes(rep).empty()) << effect_passes(rep).front();
+  }
+  // Searchlight on the target (radius 40): blended inside, untouched outside.
+  dt.searchlight_center = {c.x, static_cast<float>(kH) - c.y};
+  dt.searchlight_radius = 40.0f;
+  const Image on = render(wall_scene(false), dt);
+  const float aT = dt.alpha_target;
+  expect_near(rgb_at(on, static_cast<int>(c.x), static_cast<int>(c.y)), kWall * aT + kTarget * (1.0f - aT),
+              "inside the searchlight");
+  EXPECT_EQ(rgb_at(on, static_cast<int>(c.x) + 45, static_cast<int>(c.y)), glm::ivec3(0, 0, 255))
+      << "outside the searchlight (45 px from its centre) the wall stays opaque";
+}
+
+TEST_P(BlendTest, CircleMaskTurnsTheWholeCircleToAT) {
+  DtSettings dt;
+  dt.shape = MaskShape::circle;
+  const Image img = render(wall_scene(false), dt);
+  // The target's silhouette is a 46-pixel square; the circle around it has radius ~32.5 px.
+  // 28 px right of the centre: outside the square, inside the circle, the back plane behind.
+  const glm::vec2 c = target_centre();
+  const float aT = dt.alpha_target;
+  expect_near(rgb_at(img, static_cast<int>(c.x) + 28, static_cast<int>(c.y)), kWall * aT + kBack * (1.0f - aT),
+              "inside the circle, off the target");
+}
+
+TEST_P(BlendTest, NothingOccludedRunsNoEffectPassAndGivesTheStandardFrame) {
+  Built b;
+  add_object(b.scene, quad_mesh(-40, -40, 40, 40, -20), kBack);
+  add_object(b.scene, testing::box_mesh({-1.5f, -1.5f, -7.0f}, {1.5f, 1.5f, -6.0f}), kTarget, true);  // in front
+  add_object(b.scene, quad_mesh(-5, -4, 5, 4, -8), kWall);
+  b.flat = {kBack, kTarget, kWall};
+  DtSettings dt;
+  FrameReport rep;
+  const Image img = render(b, dt, &rep, std::nullopt, 2);
+  const Image std_img = render(b, dt, nullptr, Method::standard);
+  EXPECT_LE(compare(img, std_img).max_abs, 1);
+  if (GetParam().method != Method::reference) {
+    EXPECT_TRUE(effect_passes(rep).empty()) << effect_passes(rep).front();
+    EXPECT_EQ(rep.passes_run(), (std::vector<std::string>{"opaque", "target-query", "present"}));
+  }
+}
+
+TEST_P(BlendTest, NoTargetsRunsNoEffectPass) {
+  Built b = wall_scene(false);
+  for (auto& o : b.scene.objects) o.target = false;
+  FrameReport rep;
+  render(b, DtSettings{}, &rep);
+  if (GetParam().method != Method::reference) {
+    EXPECT_EQ(rep.passes_run(), (std::vector<std::string>{"opaque", "present"}));
+  }
+}
+
+TEST_P(BlendTest, TargetInAFartherTargetsGradientKeepsAtLeastATWeight) {
+  // Target A far behind on the left, target B in front of A's gradient, no walls.
+  Built b;
+  add_object(b.scene, quad_mesh(-40, -40, 40, 40, -20), glm::vec3(0.0f));
+  add_object(b.scene, testing::box_mesh({-4.0f, -1.0f, -16.0f}, {-2.0f, 1.0f, -15.0f}), glm::vec3(0.0f), true);
+  add_object(b.scene, testing::box_mesh({-1.6f, -0.5f, -9.0f}, {-0.6f, 0.5f, -8.5f}), kTarget, true);
+  b.flat = {glm::vec3(0.0f), glm::vec3(0.0f), kTarget};
+  DtSettings dt;
+  const Image img = render(b, dt);
+  const glm::vec2 p = project(front_camera(kW, kH), {-1.1f, 0.0f, -8.5f}, kW, kH);
+  // Weight mode: B's red channel is its weight. A's gradient (a0 = 0.1) would leave it 0.1 or less.
+  EXPECT_GE(rgb_at(img, static_cast<int>(p.x), static_cast<int>(p.y)).r, static_cast<int>(dt.alpha_target * 255.0f) - 2);
+}
+
+TEST_P(BlendTest, SortErrorDoesNotHideATarget) {
+  // O: a deep box whose front face (z = -7) hides the target but whose centre (z = -23.5)
+  // is farther than the target's (z = -12): back to front by centres draws O first.
+  Built b;
+  add_object(b.scene, testing::box_mesh({-3.0f, -3.0f, -40.0f}, {3.0f, 3.0f, -7.0f}), kWall);
+  add_object(b.scene, testing::box_mesh({-1.0f, -1.0f, -13.0f}, {1.0f, 1.0f, -11.0f}), kTarget, true);
+  b.flat = {kWall, kTarget};
+  DtSettings dt;
+  const Image img = render(b, dt);
+  const glm::vec2 c = target_centre();
+  const float aT = dt.alpha_target;
+  expect_near(rgb_at(img, static_cast<int>(c.x), static_cast<int>(c.y)), kWall * aT + kTarget * (1.0f - aT),
+              "the object in front shows the target through with weight aT");
+  if (GetParam().method == Method::reference) return;  // exact order: no sort error to guard against
+  dt.r1_guard = false;  // the article as printed: the target stays hidden
+  const Image article = render(b, dt);
+  expect_near(rgb_at(article, static_cast<int>(c.x), static_cast<int>(c.y)), kWall, "without the R1 guard");
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, BlendTest,
                          ::testing::Values(Case{Method::dt_seed, 128}, Case{Method::dt_seed, 0}, Case{Method::dt_fast, 128},
                                            Case{Method::dt_fast, 0}, Case{Method::reference, 0}),
                          name_of);
+
+}  // namespace
+}  // namespace dtlab::render
+
+namespace dtlab::render {
+namespace {
+
+// dt-fast has two frame plans (standard-first, effect-first) chosen by the previous frame;
+// they must give the same image.
+TEST(DtFastFramePlans, BothPlansGiveTheSameImage) {
+  testing::headless_context();
+  for (bool two : {false, true}) {
+    const Built b = wall_scene(two);
+    auto r = Renderer::create(b.scene);
+    ASSERT_TRUE(r.ok());
+    FrameSettings s;
+    s.method = Method::dt_fast;
+    s.flat_colors = b.flat;
+    s.timed = true;
+    const FrameReport first = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+    const Image a = (*r)->read_color();
+    const FrameReport second = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+    const Image c = (*r)->read_color();
+    const auto ran = [](const FrameReport& f, const std::string& n) {
+      const auto v = f.passes_run();
+      return std::find(v.begin(), v.end(), n) != v.end();
+    };
+    EXPECT_TRUE(ran(first, "dt-composite"));
+    EXPECT_TRUE(ran(second, "dt-direct"));
+    EXPECT_FALSE(ran(second, "standard-fallback"));
+    EXPECT_LE(compare(a, c).max_abs, 1);
+  }
+}
 
 }  // namespace
 }  // namespace dtlab::render

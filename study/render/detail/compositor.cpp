@@ -106,6 +106,7 @@ struct Event {
   int kind;        // 0: surface, 1: mask (surfaces sort before masks at equal depth)
   glm::vec4 color;  // surface colour
   float alpha;     // mask value
+  bool target;     // surface of a target (R1 guard)
 };
 
 }  // namespace
@@ -178,6 +179,7 @@ CompositeOutput composite(const CompositeInput& in) {
       glm::vec3 c = in.background;
       events.clear();
       for (const ObjectLayer& l : in.layers) {
+        const bool is_target = l.object < in.is_target.size() && in.is_target[l.object];
         if (x < l.rect.x0 || x >= l.rect.x1 || y < l.rect.y0 || y >= l.rect.y1) continue;
         const std::size_t k = static_cast<std::size_t>(y - l.rect.y0) * (l.rect.x1 - l.rect.x0) + (x - l.rect.x0);
         const float z = l.depth[k];
@@ -188,13 +190,13 @@ CompositeOutput composite(const CompositeInput& in) {
             c = glm::vec3(l.color[k]);
           }
         } else {
-          events.push_back({z, 0, l.color[k], 1.0f});
+          events.push_back({z, 0, l.color[k], 1.0f, is_target});
         }
       }
       for (const MaskField& m : masks) {
         if (x < m.rect.x0 || x >= m.rect.x1 || y < m.rect.y0 || y >= m.rect.y1) continue;
         const std::size_t k = static_cast<std::size_t>(y - m.rect.y0) * (m.rect.x1 - m.rect.x0) + (x - m.rect.x0);
-        if (m.alpha[k] < 1.0f) events.push_back({m.depth[k], 1, glm::vec4(0.0f), m.alpha[k]});
+        if (m.alpha[k] < 1.0f) events.push_back({m.depth[k], 1, glm::vec4(0.0f), m.alpha[k], false});
       }
       // Surfaces behind the impenetrable base fail the depth test; masks always apply.
       events.erase(std::remove_if(events.begin(), events.end(),
@@ -213,6 +215,7 @@ CompositeOutput composite(const CompositeInput& in) {
           continue;
         }
         const glm::vec3 s(e.color);
+        if (e.target && in.dt.r1_guard) alpha = std::max(alpha, in.dt.alpha_target);  // R1 guard
         if (limit > 0 && count >= limit + 1) {
           c = s;
           alpha = 1.0f;

@@ -6,7 +6,8 @@
 // target's mask event multiplies A by M_T(p) at the target's depth (its own
 // depth where it covers p, its nearest depth elsewhere);
 // impenetrable surfaces are the base, never transparent; the layer limit
-// restarts its count where a mask drops A below 1. Masks are exact at full
+// restarts its count where a mask drops A below 1; with the R1 guard a
+// target's surface blends with max(A, aT) and leaves that as A. Masks are exact at full
 // resolution (chessboard distance transform, two raster passes).
 // Pure C++ (no GL); rows are bottom-up like GL's.
 #pragma once
@@ -39,6 +40,7 @@ struct CompositeInput {
   glm::vec3 searchlight{0.0f, 0.0f, -1.0f};  // (x, y, radius) window pixels; radius < 0: off
   std::vector<ObjectLayer> layers;           // scene order
   std::vector<bool> impenetrable;            // per scene object index
+  std::vector<bool> is_target;               // per scene object index
   std::vector<TargetView> targets;           // targets in view
 };
 

@@ -95,7 +95,7 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
     if (tight.outside) continue;
     TargetView t;
     t.object = i;
-    t.code = static_cast<std::uint8_t>(v.targets.size() % 127 + 1);
+    t.code = static_cast<std::uint8_t>(v.targets.size() % 63 + 1);
     t.bounds = tight.unbounded ? glm::vec4(0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height))
                                : tight.bounds;
     t.rect = tight.unbounded ? viewport : to_pixels(t.bounds, width, height);

@@ -37,7 +37,7 @@ struct PixelRect {
 
 struct TargetView {
   std::uint32_t object = 0;       // index into the scene's objects
-  std::uint8_t code = 1;          // stencil code (low 7 bits) of the frontmost-object test, 1..127
+  std::uint8_t code = 1;          // stencil code (bits 0-5) of the frontmost-object test, 1..63
   glm::vec4 bounds{0.0f};         // tight bounds of the projected vertices (x0, y0, x1, y1), window pixels, unclipped
   PixelRect rect;                 // silhouette bounds, clipped to the viewport
   PixelRect support;              // pixels whose alpha its mask can change, clipped to the viewport

@@ -33,6 +33,10 @@ GlStateGuard::GlStateGuard() {
   depth_test_ = glIsEnabled(GL_DEPTH_TEST);
   stencil_test_ = glIsEnabled(GL_STENCIL_TEST);
   cull_face_ = glIsEnabled(GL_CULL_FACE);
+  polygon_offset_fill_ = glIsEnabled(GL_POLYGON_OFFSET_FILL);
+  multisample_ = glIsEnabled(GL_MULTISAMPLE);
+  front_face_ = get_int(GL_FRONT_FACE);
+  cull_face_mode_ = get_int(GL_CULL_FACE_MODE);
   GLboolean b = GL_TRUE;
   glGetBooleanv(GL_DEPTH_WRITEMASK, &b);
   depth_mask_ = b;
@@ -83,6 +87,10 @@ GlStateGuard::~GlStateGuard() {
   set(GL_DEPTH_TEST, depth_test_);
   set(GL_STENCIL_TEST, stencil_test_);
   set(GL_CULL_FACE, cull_face_);
+  set(GL_POLYGON_OFFSET_FILL, polygon_offset_fill_);
+  set(GL_MULTISAMPLE, multisample_);
+  glFrontFace(static_cast<GLenum>(front_face_));
+  glCullFace(static_cast<GLenum>(cull_face_mode_));
   glDepthMask(depth_mask_ ? GL_TRUE : GL_FALSE);
   glColorMask(color_mask_[0], color_mask_[1], color_mask_[2], color_mask_[3]);
   glBlendFuncSeparate(static_cast<GLenum>(blend_src_rgb_), static_cast<GLenum>(blend_dst_rgb_),

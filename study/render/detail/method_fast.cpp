@@ -241,21 +241,18 @@ void apply_target_mask(const FrameContext& fc, const Atlas& atlas, unsigned alph
 // The effect over `region` (already cleared): impenetrable objects, then back to front.
 void draw_effect(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, const PixelRect& region,
                  bool codes) {
-  auto code = [&](std::uint32_t i) {
-    if (!codes) return -1;
-    const int slot = fc.view.target_slot[i];
-    return slot < 0 ? 0 : static_cast<int>(fc.view.targets[static_cast<std::size_t>(slot)].code);
-  };
   scissor(region);
   for (auto i : fc.view.impenetrable)
-    if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i, code(i));
+    if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i, object_stencil(fc, i, codes));
   std::vector<PixelRect> applied;  // supports of the targets already drawn
   for (auto i : fc.view.sorted) {
     const PixelRect part = fc.view.rects[i].intersect(region);
     if (!part.empty()) {
       const bool masked =
           std::any_of(applied.begin(), applied.end(), [&](const PixelRect& s) { return s.overlaps(part); });
-      masked ? draw_transparent_object(fc, i, true, code(i)) : draw_opaque_object(fc, i, code(i));
+      const StencilWrite sw = object_stencil(fc, i, codes);
+      masked ? draw_transparent_object(fc, i, true, sw) : draw_opaque_object(fc, i, sw);
+      if (fc.gpu.objects()[i].target && fc.guard()) repair_target(fc, i);
     }
     const int slot = fc.view.target_slot[i];
     if (slot < 0) continue;
@@ -282,7 +279,7 @@ void clear_region(const FrameContext& fc, const PixelRect& region) {
 }  // namespace
 
 bool fast_direct_possible(const FrameContext& fc) {
-  return fc.settings.dt.layer_limit == 0 && fc.view.targets.size() <= 127;
+  return fc.settings.dt.layer_limit == 0 && fc.view.targets.size() <= 63;
 }
 
 MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {

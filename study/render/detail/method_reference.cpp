@@ -32,7 +32,11 @@ Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc) {
         in.searchlight = fc.view.searchlight;
         in.targets = fc.view.targets;
         in.impenetrable.resize(fc.gpu.objects().size());
-        for (std::size_t i = 0; i < fc.gpu.objects().size(); ++i) in.impenetrable[i] = fc.gpu.objects()[i].impenetrable;
+        in.is_target.resize(fc.gpu.objects().size());
+        for (std::size_t i = 0; i < fc.gpu.objects().size(); ++i) {
+          in.impenetrable[i] = fc.gpu.objects()[i].impenetrable;
+          in.is_target[i] = fc.gpu.objects()[i].target;
+        }
 
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.layer_color}, d.layer_depth));
         glViewport(0, 0, fc.width(), fc.height());

@@ -87,7 +87,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
         },
         [&fc](const DrawPassData& d, PassResources& r) {
           bind_main(fc, r, d.color, d.depth);
-          for (auto i : fc.view.impenetrable) draw_opaque_object(fc, i);
+          for (auto i : fc.view.impenetrable) draw_opaque_object(fc, i, object_stencil(fc, i, false));
         });
     cur = {d.color, d.depth};
   }
@@ -113,7 +113,10 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           },
           [&fc, run = std::move(run)](const DrawPassData& d, PassResources& r) {
             bind_main(fc, r, d.color, d.depth);
-            for (auto i : run) draw_transparent_object(fc, i, false);  // faithful: always two passes
+            for (auto i : run) {
+              draw_transparent_object(fc, i, false, object_stencil(fc, i, false));  // always two passes
+              if (fc.gpu.objects()[i].target && fc.guard()) repair_target(fc, i);
+            }
           });
       cur = {d.color, d.depth};
     }

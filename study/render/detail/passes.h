@@ -38,6 +38,8 @@ struct FrameContext {
   // A screen-aligned rectangle in window pixels of a w x h target, with `p` already in use.
   void quad(const Program& p, float x0, float y0, float x1, float y1, int w, int h) const;
   glm::vec3 searchlight_uniform(bool on) const;  // (x, y, r) or r = -1
+  bool guard() const { return settings.dt.r1_guard; }
+  bool track_impenetrable() const { return settings.dt.r1_guard && !view.impenetrable.empty(); }
 };
 
 struct MainTargets {
@@ -60,31 +62,48 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
 // first), then the target query on its depth; if no target turns out occluded, the regions the
 // masks touched are re-rendered the standard way (conditional on the inverted query).
 Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
-// Whether add_fast_direct_passes can serve this frame (no layer limit, at most 127 targets).
+// Whether add_fast_direct_passes can serve this frame (no layer limit, at most 63 targets in view).
 bool fast_direct_possible(const FrameContext& fc);
 // reference: per-object layers rendered on the GPU, composited exactly on the CPU.
 Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
 
-// Shared GL sequences of the two GPU methods. `stencil_code` >= 0: the draw also writes that
-// code into the stencil's low 7 bits where it passes the depth test (frontmost-object codes).
+// Shared GL sequences of the two GPU methods.
 //
+// Stencil layout while the effect is drawn (docs/render.md, "Stencil"):
+//   bit 7     a target's mark: its silhouette during its mask steps; before that, "this target
+//             is frontmost here" (for the R1 guard's repair, which also sets it once per pixel);
+//   bit 6     "the frontmost surface is impenetrable" (kept only when the R1 guard is on and an
+//             impenetrable object is in view);
+//   bits 0-5  the frontmost object's code (target query), or the layer-limit counter.
+struct StencilWrite {  // written where an object's draw passes the depth test
+  int ref = 0;
+  int mask = 0;  // 0: no stencil writes
+};
+// What object `i`'s draw writes: with `codes`, its code (0 for non-targets); bit 6 when tracked;
+// bit 7 for a target under the R1 guard.
+StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes);
+
 // Draws object `i` of a back-to-front sequence so that only its frontmost surfaces blend with
 // the destination alpha (article V.3): a depth pass, then a colour pass with depth EQUAL; or,
 // with `single_pass` and a convex object seen from outside, one back-face-culled pass (the same
-// surfaces). The layer limit's stencil logic applies when the settings ask for it.
-void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, int stencil_code = -1);
+// surfaces). Applies the layer limit's stencil logic and, for a target, the R1 guard's floor.
+void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, StencilWrite sw);
 // Draws object `i` with a plain z-buffer and no blending: where no mask can apply (alpha is 1).
-void draw_opaque_object(const FrameContext& fc, std::uint32_t i, int stencil_code = -1);
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw = {});
+// R1 guard, step 2: target `i`'s fragments hidden by something drawn before it (a sort error),
+// except behind impenetrable surfaces, blended once per pixel as c (1 - aT) + C aT.
+void repair_target(const FrameContext& fc, std::uint32_t i);
 // Target `slot`'s silhouette (outline: its mesh through `view_proj`) or shape (circle /
 // ellipse: window pixel p maps to p * px_map.xy + px_map.zw of the bound framebuffer), with
-// whatever colour/stencil state the caller set (the program is chosen here).
+// whatever colour/stencil state the caller set (the program is chosen here). With
+// `searchlight`, active mode cuts it to the circle (`outside_one`: alpha 1 outside instead).
 void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::mat4& view_proj,
-                      glm::vec4 px_map, bool searchlight);
+                      glm::vec4 px_map, bool searchlight, bool outside_one = false);
 // The three framebuffer steps of a target's mask (Algorithm 2, lines 10-11): mark_target sets
-// stencil bit 7 on its full-resolution silhouette; between begin_apply and the caller's quad, the
+// bit 7 on its whole full-resolution silhouette; between begin_apply and the caller's quad, the
 // mask multiplies into alpha outside the mark; finish_target multiplies aT into the marked
-// silhouette and clears the mark. With `keep_codes` the low 7 bits (frontmost-object codes) are
-// left alone; otherwise they are the layer-limit counter, restarted at 1 where alpha drops.
+// silhouette (inside the searchlight) and clears the mark. With `keep_codes` bits 0-5 are left
+// alone; otherwise they are the layer-limit counter, restarted at 1 where alpha drops.
 void mark_target(const FrameContext& fc, int slot, bool keep_codes);
 void begin_apply(const FrameContext& fc, bool keep_codes);
 void finish_target(const FrameContext& fc, int slot);

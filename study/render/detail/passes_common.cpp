@@ -29,6 +29,7 @@ void FrameContext::use_lit(const glm::mat4& view_proj) const {
   glUseProgram(p.id);
   glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
   glUniform3fv(p.loc("u_eye"), 1, glm::value_ptr(view.camera.eye));
+  glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
 }
 
 void FrameContext::draw_lit(std::uint32_t object) const {
@@ -47,6 +48,7 @@ void FrameContext::use_alpha(const glm::mat4& view_proj, float alpha, bool searc
   glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
   glUniform1f(p.loc("u_alpha"), alpha);
   glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(searchlight_uniform(searchlight)));
+  glUniform1i(p.loc("u_outside_one"), 0);
 }
 
 void FrameContext::draw_alpha(std::uint32_t object) const {
@@ -64,20 +66,39 @@ void FrameContext::quad(const Program& p, float x0, float y0, float x1, float y1
 
 // --- shared GL sequences -------------------------------------------------------------------
 
+StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes) {
+  const ObjectRecord& o = fc.gpu.objects()[i];
+  StencilWrite w;
+  if (codes) {
+    const int slot = fc.view.target_slot[i];
+    w.ref = slot < 0 ? 0 : fc.view.targets[static_cast<std::size_t>(slot)].code;
+    w.mask = 0x3F;
+  }
+  if (fc.track_impenetrable() || (codes && o.impenetrable)) {
+    w.ref |= o.impenetrable ? 0x40 : 0x00;
+    w.mask |= 0x40;
+  }
+  if (o.target && fc.guard()) {
+    w.ref |= 0x80;
+    w.mask |= 0x80;
+  }
+  return w;
+}
+
 namespace {
-void stencil_code_writes(int code) {
-  if (code < 0) {
+void stencil_writes(const StencilWrite& w) {
+  if (w.mask == 0) {
     glDisable(GL_STENCIL_TEST);
     return;
   }
   glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_ALWAYS, code, 0x7F);
+  glStencilFunc(GL_ALWAYS, w.ref, 0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glStencilMask(0x7F);
+  glStencilMask(static_cast<GLuint>(w.mask));
 }
 }  // namespace
 
-void draw_opaque_object(const FrameContext& fc, std::uint32_t i, int stencil_code) {
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw) {
   fc.use_lit(fc.view.view_proj);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glEnable(GL_DEPTH_TEST);
@@ -85,19 +106,21 @@ void draw_opaque_object(const FrameContext& fc, std::uint32_t i, int stencil_cod
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
-  stencil_code_writes(stencil_code);
+  stencil_writes(sw);
   fc.draw_lit(i);
   glDisable(GL_STENCIL_TEST);
 }
 
-void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, int stencil_code) {
+void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, StencilWrite sw) {
   const ObjectRecord& o = fc.gpu.objects()[i];
-  const bool one = single_pass && fc.view.single_pass[i];
+  const int limit = fc.settings.dt.layer_limit;
+  // The layer limit needs the depth pass (its colour draws count in the stencil).
+  const bool one = single_pass && fc.view.single_pass[i] && limit <= 0;
+  const bool floor = o.target && fc.guard();
   fc.use_lit(fc.view.view_proj);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
-  glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA, GL_ZERO, GL_ONE);  // alpha stays
   if (one) {
     // Convex and seen from outside: the front faces are exactly the frontmost surface.
     glEnable(GL_CULL_FACE);
@@ -108,31 +131,46 @@ void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool singl
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDisable(GL_BLEND);
-    stencil_code_writes(stencil_code);
+    stencil_writes(sw);
     fc.draw_lit(i);
-    // Step 2: blend exactly those surfaces (depth EQUAL) with the destination alpha.
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);
-    stencil_code = -1;
+    sw = StencilWrite{};
   }
+  if (floor) {
+    // R1 guard, step 1: alpha = max(alpha, aT) on the surfaces about to be blended (no depth
+    // writes, so the colour draw below passes on exactly the same fragments).
+    fc.use_alpha(fc.view.view_proj, fc.settings.dt.alpha_target, false);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
+    glDisable(GL_STENCIL_TEST);
+    fc.draw_alpha(i);
+    glBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+    glDepthMask(one ? GL_TRUE : GL_FALSE);
+    fc.use_lit(fc.view.view_proj);
+  }
+  // Step 2: blend exactly those surfaces with the destination alpha; alpha itself stays.
+  glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA, GL_ZERO, GL_ONE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  const int limit = fc.settings.dt.layer_limit;
+  const bool uniforms_set = !one && !floor;  // the depth pass set this object's uniforms
   if (limit <= 0) {
     glEnable(GL_BLEND);
-    stencil_code_writes(stencil_code);
-    one ? fc.draw_lit(i) : fc.gpu.draw(o);
+    stencil_writes(sw);
+    uniforms_set ? fc.gpu.draw(o) : fc.draw_lit(i);
   } else {
-    // Layer limit: the stencil's low 7 bits count surfaces drawn since the last mask made the
-    // pixel transparent. Past the limit a surface is drawn opaque and resets alpha to 1.
+    // Layer limit: bits 0-5 count surfaces drawn since the last mask made the pixel
+    // transparent. Past the limit a surface is drawn opaque and resets alpha to 1.
     glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_LEQUAL, limit + 1, 0x7F);  // (limit + 1) <= count
+    glStencilFunc(GL_LEQUAL, limit + 1, 0x3F);  // (limit + 1) <= count
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glStencilMask(0x00);
     glDisable(GL_BLEND);
-    one ? fc.draw_lit(i) : fc.gpu.draw(o);
-    glStencilFunc(GL_GEQUAL, limit, 0x7F);  // limit >= count
+    uniforms_set ? fc.gpu.draw(o) : fc.draw_lit(i);
+    glStencilFunc(GL_GEQUAL, limit, 0x3F);  // limit >= count
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-    glStencilMask(0x7F);
+    glStencilMask(0x3F);
     glEnable(GL_BLEND);
     fc.gpu.draw(o);
   }
@@ -140,11 +178,39 @@ void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool singl
   glDisable(GL_CULL_FACE);
 }
 
+void repair_target(const FrameContext& fc, std::uint32_t i) {
+  const ObjectRecord& o = fc.gpu.objects()[i];
+  const Program& p = fc.programs.object;
+  fc.use_lit(fc.view.view_proj);
+  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);  // hidden by something already drawn
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendColor(0.0f, 0.0f, 0.0f, fc.settings.dt.alpha_target);
+  glBlendFuncSeparate(GL_ONE_MINUS_CONSTANT_ALPHA, GL_CONSTANT_ALPHA, GL_ZERO, GL_ONE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0x00, 0xC0);  // not frontmost already, not behind an impenetrable surface
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INVERT);
+  glStencilMask(0x80);                  // once per pixel
+  if (fc.view.single_pass[i]) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(o.mirrored ? GL_CW : GL_CCW);
+  }
+  fc.draw_lit(i);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_STENCIL_TEST);
+  glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
+}
+
 void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::mat4& view_proj, glm::vec4 px_map,
-                      bool searchlight) {
+                      bool searchlight, bool outside_one) {
   const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
   if (fc.settings.dt.shape == MaskShape::outline) {
     fc.use_alpha(view_proj, alpha, searchlight);
+    glUniform1i(fc.programs.object_alpha.loc("u_outside_one"), outside_one ? 1 : 0);
     fc.draw_alpha(t.object);
     return;
   }
@@ -155,6 +221,7 @@ void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::
   glUniform2f(p.loc("u_radii"), t.shape_radii.x * px_map.x, t.shape_radii.y * px_map.y);
   glUniform1f(p.loc("u_alpha"), alpha);
   glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(searchlight)));
+  glUniform1i(p.loc("u_outside_one"), outside_one ? 1 : 0);
   glUniform4f(p.loc("u_rect"), -1.0f, -1.0f, 1.0f, 1.0f);
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
@@ -165,10 +232,11 @@ void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
   glDepthMask(GL_FALSE);
   glDisable(GL_BLEND);
   glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_ALWAYS, 0x81, 0xFF);  // bit 7: silhouette; low bits: layer counter = 1
+  glStencilFunc(GL_ALWAYS, 0x81, 0xFF);  // bit 7: silhouette; bits 0-5: layer counter = 1
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glStencilMask(keep_codes ? 0x80 : 0xFF);
-  draw_target_seed(fc, slot, 1.0f, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true);
+  glStencilMask(keep_codes ? 0x80 : 0xBF);  // never bit 6
+  // The whole silhouette, also outside the searchlight, so finish_target clears every mark.
+  draw_target_seed(fc, slot, 1.0f, fc.view.view_proj, glm::vec4(1, 1, 0, 0), false);
 }
 
 void begin_apply(const FrameContext&, bool keep_codes) {
@@ -180,7 +248,7 @@ void begin_apply(const FrameContext&, bool keep_codes) {
   glEnable(GL_STENCIL_TEST);
   glStencilFunc(GL_EQUAL, 0x01, 0x80);  // outside the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glStencilMask(keep_codes ? 0x00 : 0x7F);  // the counter restarts at 1 where the mask is below 1
+  glStencilMask(keep_codes ? 0x00 : 0x3F);  // the counter restarts at 1 where the mask is below 1
 }
 
 void finish_target(const FrameContext& fc, int slot) {
@@ -192,8 +260,9 @@ void finish_target(const FrameContext& fc, int slot) {
   glEnable(GL_STENCIL_TEST);
   glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
-  glStencilMask(0x80);                  // clears the mark, keeps the counter
-  draw_target_seed(fc, slot, fc.settings.dt.alpha_target, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true);
+  glStencilMask(0x80);                  // clears the mark, keeps the rest
+  // aT inside the searchlight, 1 (no change) outside it: every marked pixel is visited.
+  draw_target_seed(fc, slot, fc.settings.dt.alpha_target, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true, true);
   glDisable(GL_STENCIL_TEST);
 }
 
@@ -234,7 +303,7 @@ MainTargets add_opaque_pass(FrameGraph& fg, const FrameContext& fc, bool stencil
         const auto& rects = fc.view.rects;
         for (std::uint32_t i = 0; i < rects.size(); ++i) {
           if (rects[i].empty()) continue;
-          if (stencil_codes) {
+          if (stencil_codes) {  // the frontmost object's code, for the target query
             const int slot = fc.view.target_slot[i];
             glStencilFunc(GL_ALWAYS, slot < 0 ? 0 : fc.view.targets[static_cast<std::size_t>(slot)].code, 0xFF);
           }
@@ -270,7 +339,7 @@ Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle dept
         glBeginQuery(GL_ANY_SAMPLES_PASSED, r.query(d.query));
         fc.use_alpha(fc.view.view_proj, 0.0f, true);
         for (const TargetView& t : fc.view.targets) {
-          glStencilFunc(GL_NOTEQUAL, t.code, 0x7F);
+          glStencilFunc(GL_NOTEQUAL, t.code, 0x3F);
           fc.draw_alpha(t.object);
         }
         glEndQuery(GL_ANY_SAMPLES_PASSED);

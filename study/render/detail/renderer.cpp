@@ -56,7 +56,7 @@ void validate(const DtSettings& s) {
   if (!(s.alpha_start >= 0.0f && s.alpha_start < 1.0f)) bad("alpha_start", "must be in [0, 1)");
   if (!(s.gradient_px >= 0.0f && s.gradient_px <= 4096.0f)) bad("gradient_px", "must be in [0, 4096]");
   if (s.mask_resolution < 0 || s.mask_resolution > 8192) bad("mask_resolution", "must be 0 (full) or 1..8192");
-  if (s.layer_limit < 0 || s.layer_limit > 100) bad("layer_limit", "must be 0 (no limit) or 1..100");
+  if (s.layer_limit < 0 || s.layer_limit > 60) bad("layer_limit", "must be 0 (no limit) or 1..60");
   if (!(s.searchlight_radius >= 0.0f) || !std::isfinite(s.searchlight_center.x) || !std::isfinite(s.searchlight_center.y))
     bad("searchlight", "radius must be >= 0 and the centre finite");
 }
@@ -124,7 +124,14 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   }
   detail::add_present_pass(fg, fc, color, output);
   fg.compile();
+  // A known baseline for state no pass sets explicitly (the caller's is restored by the guard).
   glBindVertexArray(impl_->gpu->vao());
+  glBlendEquation(GL_FUNC_ADD);
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+  glDisable(GL_MULTISAMPLE);
   fg.execute(impl_->backend, settings.profile_passes);
   if (settings.timed) glFinish();
   const auto t1 = Clock::now();

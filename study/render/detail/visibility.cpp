@@ -6,7 +6,10 @@
 // then exactly the share of that target in the composited colour.
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "study/render/detail/gl_state.h"
 #include "study/render/detail/passes.h"
@@ -27,14 +30,14 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
   if (out.empty()) return out;
   settings.timed = false;
 
+  // The view: frustum test and screen rectangles.
+  const detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, width, height,
+                                                         settings.dt, *impl_->sorter);
   // Silhouette pixel counts.
   {
-    // The current view, for the frustum test (and the same sorter the frames use).
     FrameSettings plain = settings;
     plain.flat_colors.clear();
     detail::GlStateGuard guard;
-    const detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, width, height,
-                                                           settings.dt, *impl_->sorter);
     const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, plain, impl_->scene, TextureFormat::r8};
     std::vector<GLuint> queries(out.size(), 0);
     glGenQueries(static_cast<GLsizei>(queries.size()), queries.data());
@@ -83,22 +86,42 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
     glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
   }
 
-  // Visible pixels: weight frames, three targets each.
+  // Visible pixels: weight frames; targets with disjoint rectangles share a channel.
+  std::vector<std::vector<std::size_t>> slots;  // slot s: frame s / 3, channel s % 3
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const detail::PixelRect& rk = view.rects[target_index[k]];
+    if (rk.empty() || out[k].silhouette_pixels == 0) continue;
+    std::size_t s = 0;
+    for (; s < slots.size(); ++s)
+      if (std::none_of(slots[s].begin(), slots[s].end(),
+                       [&](std::size_t j) { return view.rects[target_index[j]].overlaps(rk); }))
+        break;
+    if (s == slots.size()) slots.emplace_back();
+    slots[s].push_back(k);
+  }
   const int threshold = static_cast<int>(std::ceil(kVisibleShare * 255.0f - 1e-4f));  // 26 of 255
-  for (std::size_t first = 0; first < out.size(); first += 3) {
+  for (std::size_t first = 0; first < slots.size(); first += 3) {
     settings.flat_colors.assign(objects.size(), glm::vec3(0.0f));
-    for (std::size_t c = 0; c < 3 && first + c < out.size(); ++c) {
-      glm::vec3 e(0.0f);
-      e[static_cast<int>(c)] = 1.0f;
-      settings.flat_colors[target_index[first + c]] = e;
-    }
+    for (std::size_t c = 0; c < 3 && first + c < slots.size(); ++c)
+      for (std::size_t k : slots[first + c]) {
+        glm::vec3 e(0.0f);
+        e[static_cast<int>(c)] = 1.0f;
+        settings.flat_colors[target_index[k]] = e;
+      }
     render_offscreen(camera, settings, width, height);
     const Image img = read_color();
-    for (std::size_t c = 0; c < 3 && first + c < out.size(); ++c) {
-      long n = 0;
-      for (std::size_t p = 0; p < img.rgba.size(); p += 4)
-        if (img.rgba[p + c] >= threshold) ++n;
-      out[first + c].visible_pixels = n;
+    if (const char* dir = std::getenv("DTLAB_VIS_DUMP"))
+      (void)write_png(img, std::string(dir) + "/vis-" + std::string(to_string(settings.method)) + "-" +
+                               std::to_string(first / 3) + ".png");
+    for (std::size_t c = 0; c < 3 && first + c < slots.size(); ++c) {
+      for (std::size_t k : slots[first + c]) {
+        const detail::PixelRect& r = view.rects[target_index[k]];
+        long n = 0;
+        for (int y = r.y0; y < r.y1; ++y)
+          for (int x = r.x0; x < r.x1; ++x)
+            if (img.pixel(x, img.height - 1 - y)[c] >= threshold) ++n;
+        out[k].visible_pixels = n;
+      }
     }
   }
   return out;
