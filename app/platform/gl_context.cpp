@@ -23,7 +23,23 @@ int g_loaded_version = 0;
 GLADapiproc osmesa_proc(const char* name) {
   return reinterpret_cast<GLADapiproc>(OSMesaGetProcAddress(name));
 }
+std::optional<ContextKind> g_current_kind;  // kind of the context made current last
 }  // namespace
+
+void switching_to(ContextKind kind) {
+  if (g_current_kind && *g_current_kind != kind) {
+    if (*g_current_kind == ContextKind::window) {
+      glfwMakeContextCurrent(nullptr);
+    } else {
+      OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
+    }
+  }
+  g_current_kind = kind;
+}
+
+void window_released() {
+  if (g_current_kind == ContextKind::window) g_current_kind.reset();
+}
 
 int load_gl_for(ContextKind kind) {
   if (g_loaded_kind == kind && g_loaded_version != 0) return g_loaded_version;

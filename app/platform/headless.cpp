@@ -22,7 +22,10 @@ class HeadlessContext final : public GlContext {
       : ctx_(ctx), width_(w), height_(h), buffer_(static_cast<std::size_t>(w) * h * 4) {}
   ~HeadlessContext() override { OSMesaDestroyContext(ctx_); }
 
-  bool bind() { return OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, width_, height_) != 0; }
+  bool bind() {
+    detail::switching_to(ContextKind::headless);
+    return OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, width_, height_) != 0;
+  }
   void make_current() override {
     bind();
     detail::load_gl_for(ContextKind::headless);

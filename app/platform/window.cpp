@@ -34,11 +34,13 @@ Error window_error(std::string message) {
 }  // namespace
 
 Window::~Window() {
+  if (glfwGetCurrentContext() == window_) detail::window_released();
   glfwDestroyWindow(window_);
   if (--g_windows == 0) glfwTerminate();
 }
 
 void Window::make_current() {
+  detail::switching_to(ContextKind::window);
   glfwMakeContextCurrent(window_);
   detail::load_gl_for(ContextKind::window);
 }
@@ -83,6 +85,7 @@ Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
     return window_error("cannot open a window with an OpenGL 3.3 core context");
   }
   std::unique_ptr<Window> window(new Window(w));
+  detail::switching_to(ContextKind::window);
   glfwMakeContextCurrent(w);
   const int version = detail::load_gl_for(ContextKind::window);
   if (version < 33) return window_error("the window's GL context is older than 3.3 core");

@@ -11,4 +11,12 @@ namespace dtlab::platform::detail {
 // Returns the GL version as major * 10 + minor, or 0 when loading failed.
 int load_gl_for(ContextKind kind);
 
+// Call before making a context of `kind` current: if a context of the other kind is
+// current, it is released first. OSMesa and the GLX driver share Mesa's dispatch state, and
+// GLX skips a make-current it believes is a no-op, so without the release the window would
+// keep drawing through the OSMesa context (a crash in swap_buffers).
+void switching_to(ContextKind kind);
+// A window is going away: forget that a window context is current.
+void window_released();
+
 }  // namespace dtlab::platform::detail
