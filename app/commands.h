@@ -17,6 +17,8 @@ inline constexpr int kExitUsage = 2;    // the command line is wrong (CLI11's ow
 inline constexpr int kExitFailure = 3;  // the environment failed (I/O, GL context, SQLite)
 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
+void add_render_command(CLI::App& root);   // `dtlab render ... --method M --out FILE.png`: one frame headless, --json
+void add_bench_command(CLI::App& root);    // `dtlab bench`: frame-time ratios and image error per method, --json
 void add_scene_command(CLI::App& root);  // `dtlab scene --scene K --task T --seed S`: one generated scene, --json, --obj
 void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman|wilcoxon`: statistics on a CSV, --json
 void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every error with file:line:field, --json

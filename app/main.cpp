@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   root.fallthrough(false);
 
   dtlab::app::add_version_command(root);
+  dtlab::app::add_render_command(root);
+  dtlab::app::add_bench_command(root);
   dtlab::app::add_scene_command(root);
   dtlab::app::add_stats_command(root);
   dtlab::app::add_validate_command(root);
