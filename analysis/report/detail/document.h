@@ -1,0 +1,72 @@
+// The report as a document: sections of paragraphs, tables, figures and
+// call-outs, built by the analysis sections and rendered twice, to Markdown
+// (report.md) and to a self-contained HTML page (index.html). Keeping one
+// document for both guarantees that the two show the same tables. Text is
+// plain; `backticks` mark code (file names, columns) in both renderings.
+// Renderers number tables and figures in order of appearance.
+#pragma once
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace dtlab::report::detail {
+
+struct Paragraph {
+  std::string text;
+};
+
+struct Table {
+  std::string id;                                         // anchor, e.g. "table-time"
+  std::string caption;                                    // without "Table N."
+  std::vector<std::pair<std::string, int>> groups;        // optional spanning header: (label, columns)
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> notes;                         // printed under the table
+};
+
+struct Figure {
+  std::string id;       // also the SVG's file stem: figures/<id>.svg
+  std::string caption;  // without "Figure N."
+};
+
+struct Callout {
+  std::string kind;  // "warning" or "note"
+  std::string title;
+  std::vector<std::string> items;
+};
+
+using Block = std::variant<Paragraph, Table, Figure, Callout>;
+
+struct Section {
+  std::string id;  // anchor
+  std::string title;
+  int level = 2;   // 2 = section, 3 = subsection
+  std::vector<Block> blocks;
+
+  Section& text(std::string t) { blocks.emplace_back(Paragraph{std::move(t)}); return *this; }
+  Section& add(Table t) { blocks.emplace_back(std::move(t)); return *this; }
+  Section& add(Figure f) { blocks.emplace_back(std::move(f)); return *this; }
+  Section& add(Callout c) { blocks.emplace_back(std::move(c)); return *this; }
+};
+
+struct Document {
+  std::string title;
+  std::string subtitle;
+  std::vector<Section> sections;
+};
+
+// report.md: GitHub-flavoured Markdown; figures as links to figures/<id>.svg.
+std::string render_markdown(const Document& doc);
+// index.html: one file, inline CSS, the SVG of each figure inline (svg[id] =
+// its markup without XML prolog, ids made unique), no script, no external URL.
+std::string render_html(const Document& doc, const std::map<std::string, std::string>& svg);
+
+// Escapes for the renderers.
+std::string html_escape(const std::string& s);
+// The SVG text prepared for inlining: no XML prolog or DOCTYPE, no xmlns
+// declarations (HTML5 inline SVG needs none), every id and #reference
+// prefixed with `prefix` so several figures never share an id.
+std::string inline_svg(const std::string& svg, const std::string& prefix);
+
+}  // namespace dtlab::report::detail

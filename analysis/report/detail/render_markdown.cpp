@@ -1,0 +1,82 @@
+// report.md from the Document: GitHub-flavoured Markdown tables, figures as
+// image links to figures/<id>.svg, call-outs as block quotes. Text is escaped
+// so that level names with '_' or '*' never turn into emphasis; `code` spans
+// are kept as they are.
+#include <sstream>
+
+#include "analysis/report/detail/document.h"
+
+namespace dtlab::report::detail {
+namespace {
+
+// Escapes Markdown emphasis and table characters outside `code` spans.
+std::string md(const std::string& s, bool in_table = false) {
+  std::string out;
+  bool code = false;
+  for (char c : s) {
+    if (c == '`') code = !code;
+    if (!code && (c == '*' || c == '_' || c == '\\' || c == '[' || c == ']')) out += '\\';
+    if (c == '|' && in_table) out += '\\';
+    if (c == '\n' && in_table) {
+      out += ' ';
+      continue;
+    }
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string render_markdown(const Document& doc) {
+  std::ostringstream o;
+  o << "# " << md(doc.title) << "\n\n";
+  if (!doc.subtitle.empty()) o << md(doc.subtitle) << "\n\n";
+  o << "Contents:";
+  for (const auto& s : doc.sections)
+    if (s.level == 2) o << " [" << md(s.title) << "](#" << s.id << ")" << (&s == &doc.sections.back() ? "" : " ·");
+  o << "\n\n";
+  int tables = 0, figures = 0;
+  for (const auto& s : doc.sections) {
+    o << "<a id=\"" << s.id << "\"></a>\n\n" << std::string(static_cast<size_t>(s.level), '#') << " " << md(s.title)
+      << "\n\n";
+    for (const auto& b : s.blocks) {
+      if (const auto* p = std::get_if<Paragraph>(&b)) {
+        o << md(p->text) << "\n\n";
+      } else if (const auto* t = std::get_if<Table>(&b)) {
+        o << "<a id=\"" << t->id << "\"></a>\n\n**Table " << ++tables << ".** " << md(t->caption) << "\n\n";
+        std::vector<std::string> header = t->header;
+        if (!t->groups.empty()) {  // Markdown has no spanning headers: prefix the group label
+          size_t col = 0;
+          for (const auto& [label, span] : t->groups) {
+            for (int k = 0; k < span && col < header.size(); ++k, ++col)
+              if (!label.empty()) header[col] = label + ": " + header[col];
+          }
+        }
+        o << "|";
+        for (const auto& h : header) o << " " << md(h, true) << " |";
+        o << "\n|";
+        for (size_t c = 0; c < header.size(); ++c) o << (c == 0 ? ":---|" : "---:|");
+        o << "\n";
+        for (const auto& row : t->rows) {
+          o << "|";
+          for (const auto& cell : row) o << " " << md(cell, true) << " |";
+          o << "\n";
+        }
+        o << "\n";
+        for (const auto& n : t->notes) o << "*" << md(n) << "*\n\n";
+      } else if (const auto* f = std::get_if<Figure>(&b)) {
+        ++figures;
+        o << "![Figure " << figures << "](figures/" << f->id << ".svg)\n\n**Figure " << figures << ".** "
+          << md(f->caption) << "\n\n";
+      } else if (const auto* c = std::get_if<Callout>(&b)) {
+        o << "> **" << md(c->title) << "**\n";
+        for (const auto& item : c->items) o << ">\n> - " << md(item) << "\n";
+        o << "\n";
+      }
+    }
+  }
+  return o.str();
+}
+
+}  // namespace dtlab::report::detail

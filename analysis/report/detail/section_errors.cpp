@@ -1,0 +1,221 @@
+// Accuracy, by task type (STUDY.md "Measures"): counting tasks get the
+// relative error |answer - truth| / truth per trial (averaged per participant
+// x condition) and the article's aggregated form |sum truths - sum answers| /
+// sum truths per participant x condition, each by RM ANOVA, per task and for
+// all counting tasks together; letter tasks the proportion correct by
+// Friedman; find-unique tasks the Euclidean distance by RM ANOVA. Trials
+// without an answer are left out of the error measures and counted in a note.
+#include <cmath>
+
+#include "analysis/report/detail/article.h"
+#include "analysis/report/detail/format.h"
+#include "analysis/report/detail/sections.h"
+
+namespace dtlab::report::detail {
+namespace {
+
+using protocol::TaskType;
+
+bool is_count(TaskType t) { return t == TaskType::count_targets || t == TaskType::count_kind; }
+
+struct Row {
+  std::string label, measure, unit;
+  const TestReport* r = nullptr;
+  const article::Row* article = nullptr;
+  int decimals = 3;
+};
+
+std::string statistic_text(const TestReport& r, const std::string& factor) {
+  if (const stats::Effect* e = r.effect(factor)) return "F(" + df_text(e->df1) + ", " + df_text(e->df2) + ") = " + f_text(e->F);
+  if (r.friedman) return "χ²(" + df_text(r.friedman->df) + ") = " + fixed(r.friedman->Q, 2);
+  return kDash;
+}
+
+std::string p_of(const TestReport& r, const std::string& factor, bool gg) {
+  if (const stats::Effect* e = r.effect(factor)) return gg ? p_text(e->p_gg, e->log10_p_gg) : p_text(e->p, e->log10_p);
+  if (r.friedman) {
+    std::string s = p_text(r.friedman->p, r.friedman->log10_p);
+    if (std::isfinite(r.friedman->p_exact)) s += " (exact " + p_text(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")";
+    return s;
+  }
+  return kDash;
+}
+
+std::string effect_size_text(const TestReport& r, const std::string& factor) {
+  if (const stats::Effect* e = r.effect(factor)) return "η²p = " + fixed(e->eta_p2, 3);
+  if (r.friedman) return "W = " + fixed(r.friedman->kendall_W, 3);
+  return kDash;
+}
+
+}  // namespace
+
+void section_errors(Context& ctx) {
+  const Design& d = ctx.design;
+  const auto& primary = d.factor(d.primary);
+  const bool two = primary.levels.size() == 2;
+  Section s{"accuracy", "Accuracy", 2, {}};
+  s.text("Accuracy is measured per task type. Counting tasks: the relative error |answer − truth| / truth of each "
+         "trial, averaged per participant and condition; and the article's aggregated form, |sum of the true "
+         "counts − sum of the answers| / sum of the true counts over a participant's trials in a condition (an "
+         "over-count and an under-count cancel in it). Letter tasks: the proportion of correct answers per "
+         "participant and condition, tested with Friedman's test as in the article. Find-unique tasks: the "
+         "Euclidean distance between the marked and the true position, in world units. Continuous measures are "
+         "tested with repeated-measures ANOVA over the participant x condition means.");
+
+  std::vector<Row> rows;
+  nlohmann::json jtests = nlohmann::json::array();
+  std::string csv = matrix_csv_header(d);
+  std::vector<std::string> notes;
+  auto add = [&](Row row, const CellMatrix& m, const std::string& csv_measure) {
+    jtests.push_back(to_json(*row.r, d));
+    csv += matrix_csv_rows(m, d, csv_measure, row.r->scope);
+    rows.push_back(std::move(row));
+  };
+  const article::Row* acc = d.reference ? article::kAccuracy : nullptr;
+  auto find_article = [&](const std::string& scope) {
+    return acc ? article::find(article::kAccuracy, std::size(article::kAccuracy), scope) : nullptr;
+  };
+
+  std::vector<const TaskInfo*> count_tasks;
+  std::vector<int> count_factors;
+  for (const auto& task : d.tasks) {
+    auto in_task = [id = task.id](const TrialRow& t) { return t.task == id; };
+    int unanswered = 0, zero_truth = 0, n = 0;
+    for (const auto& t : ctx.data.trials)
+      if (t.task == task.id && ctx.analysed(t)) {
+        ++n;
+        const bool answered = t.answer_count || t.answer_letter || t.answer_x;
+        unanswered += answered ? 0 : 1;
+        zero_truth += (t.truth_count && *t.truth_count == 0) ? 1 : 0;
+      }
+    if (unanswered)
+      notes.push_back(task.id + ": " + std::to_string(unanswered) + " of " + std::to_string(n) +
+                      " trials without an answer, left out of its error measures.");
+    if (zero_truth)
+      notes.push_back(task.id + ": " + std::to_string(zero_truth) + " trials with a true count of 0 have no per-trial "
+                      "relative error (division by 0); the aggregated form keeps them.");
+    if (is_count(task.type)) {
+      count_tasks.push_back(&task);
+      for (int f : task.factors)
+        if (std::find(count_factors.begin(), count_factors.end(), f) == count_factors.end()) count_factors.push_back(f);
+      const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.rel_error; }));
+      const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
+      ctx.accuracy[task.id] = &r1;
+      add({d.task_label(task), "relative error, per-trial mean", "", &r1, nullptr, 3}, m1, "rel_error_mean");
+      const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
+      const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
+      add({d.task_label(task), "relative error, aggregated", "", &r2, find_article(task.id), 3}, m2,
+          "rel_error_aggregated");
+      const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
+                                   return t.signed_error ? std::optional<double>(static_cast<double>(*t.signed_error))
+                                                         : std::nullopt;
+                                 }));
+      csv += matrix_csv_rows(m3, d, "signed_error_mean", task.id);
+    } else if (task.type == TaskType::identify_letter) {
+      const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
+      const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
+      ctx.accuracy[task.id] = &r;
+      add({d.task_label(task), "proportion correct", "", &r, find_article(task.id), 3}, m, "proportion_correct");
+    } else if (task.type == TaskType::find_unique) {
+      const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.distance; }));
+      const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
+      ctx.accuracy[task.id] = &r;
+      add({d.task_label(task), "distance (world units)", "world units", &r, find_article(task.id), 2}, m, "distance_mean");
+    }
+  }
+  if (count_tasks.size() > 1) {
+    std::string ids;
+    for (const auto* t : count_tasks) ids += (ids.empty() ? "" : "+") + t->id;
+    auto in_count = [&count_tasks](const TrialRow& t) {
+      for (const auto* c : count_tasks)
+        if (c->id == t.task) return true;
+      return false;
+    };
+    std::sort(count_factors.begin(), count_factors.end());
+    const auto& m1 = ctx.cells(count_factors, in_count, mean_of([](const TrialRow& t) { return t.rel_error; }));
+    add({ids + " (counting tasks)", "relative error, per-trial mean", "",
+         &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), nullptr, 3},
+        m1, "rel_error_mean");
+    const auto& m2 = ctx.cells(count_factors, in_count, aggregated_relative_error());
+    add({ids + " (counting tasks)", "relative error, aggregated", "",
+         &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), find_article("count"), 3},
+        m2, "rel_error_aggregated");
+  }
+  if (rows.empty()) {
+    s.text("The protocol has no task with an answer key the report scores.");
+    ctx.doc.sections.push_back(std::move(s));
+    return;
+  }
+
+  Table t;
+  t.id = "table-accuracy";
+  t.caption = "Accuracy per task: mean (SD) over participants of the participant x condition values, and the test "
+              "of " + primary.name + ".";
+  t.header = {"Task", "Measure"};
+  for (size_t l = 0; l < primary.levels.size(); ++l) t.header.push_back(d.level_label(d.primary, static_cast<int>(l)));
+  t.header.insert(t.header.end(), {"n", "Test", "p", "Effect size"});
+  if (two) t.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
+  const size_t ours = t.header.size();
+  if (d.reference) t.header.insert(t.header.end(), {"Standard", "DynTrans", "F(1,15)", "p"});
+  nlohmann::json jrows = nlohmann::json::array();
+  for (const auto& row : rows) {
+    const TestReport& r = *row.r;
+    std::vector<std::string> cells = {row.label, row.measure};
+    for (const auto& c : primary_cells(r, d, row.decimals)) cells.push_back(c);
+    cells.push_back(std::to_string(r.kept.size()));
+    cells.push_back(statistic_text(r, primary.name));
+    cells.push_back(p_of(r, primary.name, !two));
+    cells.push_back(effect_size_text(r, primary.name));
+    if (two) {
+      cells.push_back(r.paired ? fixed(r.paired->t.mean_difference, row.decimals) + " [" +
+                                     fixed(r.paired->t.ci_low, row.decimals) + ", " +
+                                     fixed(r.paired->t.ci_high, row.decimals) + "]"
+                               : kDash);
+    }
+    nlohmann::json jr{{"scope", r.scope}, {"label", row.label}, {"measure", row.measure}, {"n", r.kept.size()}};
+    if (d.reference) {
+      if (row.article) {
+        cells.insert(cells.end(), {mean_sd(row.article->off_mean, row.article->off_sd, row.decimals),
+                                   mean_sd(row.article->on_mean, row.article->on_sd, row.decimals), row.article->F,
+                                   row.article->p});
+        jr["article"] = {{"off_mean", row.article->off_mean}, {"off_sd", row.article->off_sd},
+                         {"on_mean", row.article->on_mean},   {"on_sd", row.article->on_sd},
+                         {"F", row.article->F},               {"p", row.article->p}};
+      } else {
+        cells.insert(cells.end(), {"", "", "", ""});
+      }
+    }
+    jrows.push_back(jr);
+    t.rows.push_back(std::move(cells));
+  }
+  if (d.reference) t.groups = {{"this study", static_cast<int>(ours)}, {"article (VII.2)", 4}};
+  t.notes.push_back("Relative error is a proportion (0 = exact count); proportion correct is 0..1; distance is in "
+                    "world units. Test: repeated-measures ANOVA (F) or Friedman's test (χ², with the exact "
+                    "permutation p in parentheses when computed). Effect size: partial η² or Kendall's W.");
+  if (!two)
+    t.notes.push_back("p of F tests is Greenhouse-Geisser corrected (" + std::to_string(primary.levels.size()) +
+                      " levels).");
+  else
+    t.notes.push_back("Δ: mean paired difference " + primary.levels[1] + " − " + primary.levels[0] +
+                      " with its 95% CI (paired t); negative = smaller error / fewer correct with " + primary.levels[1] +
+                      ".");
+  if (d.reference)
+    t.notes.push_back("Article: the values printed in VII.2 (aggregated relative error for T1, T4 and both; T2 "
+                      "correctness by Friedman; T3 distance). Not computed here.");
+  for (const auto& n : notes) t.notes.push_back(n);
+  s.add(t);
+  for (const auto& row : rows) {
+    const TestReport& r = *row.r;
+    for (const auto& note : test_notes(r))
+      if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) s.text(row.label + ", " + row.measure + ": " + note);
+  }
+  for (const auto& row : rows)
+    if (row.r->m->factors.size() > 1 && row.r->anova)
+      s.add(anova_table(*row.r, d, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
+                        "Repeated-measures ANOVA of " + row.measure + ", " + row.label + "."));
+  ctx.json["accuracy"] = {{"table", jrows}, {"tests", jtests}};
+  ctx.csv["accuracy_means.csv"] = csv;
+  ctx.doc.sections.push_back(std::move(s));
+}
+
+}  // namespace dtlab::report::detail

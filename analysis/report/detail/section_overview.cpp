@@ -1,0 +1,152 @@
+// The report's opening and closing: the data as recorded (participants,
+// sessions, trials, who is simulated, what is incomplete and left out), the
+// method paragraph that says how every number is computed, and the closing
+// notes (the files written, what the report does not do).
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "analysis/report/detail/format.h"
+#include "analysis/report/detail/sections.h"
+
+namespace dtlab::report::detail {
+namespace {
+
+std::string join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string out;
+  for (size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+  return out;
+}
+
+}  // namespace
+
+void section_overview(Context& ctx) {
+  const StudyData& data = ctx.data;
+  const Design& d = ctx.design;
+  const auto& p = *d.protocol;
+  ctx.doc.title = "Results: " + p.title;
+  ctx.doc.subtitle = "Protocol `" + p.id + "` (SHA-256 " + p.sha256.substr(0, 12) + "…), database `" + data.path +
+                     "`, recorded with dtlab " + data.software_version + ".";
+
+  Section s{"data", "Data", 2, {}};
+  // Who and what is in the file.
+  int finished = 0, running = 0, abandoned = 0, none = 0;
+  long long planned = 0, recorded = 0;
+  for (const auto& pr : data.participants) {
+    finished += pr.session_status == "finished";
+    running += pr.session_status == "running";
+    abandoned += pr.session_status == "abandoned";
+    none += pr.session_status.empty();
+    planned += pr.planned;
+    recorded += pr.recorded;
+  }
+  long long practice = 0, unknown = 0;
+  for (const auto& t : data.trials) {
+    practice += t.practice ? 1 : 0;
+    if (!t.practice && !ctx.analysed(t)) ++unknown;
+  }
+  if (!ctx.simulated.empty()) {
+    const bool all = ctx.simulated.size() == ctx.subjects.size();
+    s.add(Callout{"warning",
+                  all ? "Simulated participants: every participant in this database is simulated."
+                      : "Simulated participants: " + std::to_string(ctx.simulated.size()) + " of " +
+                            std::to_string(ctx.subjects.size()) + " participants are simulated.",
+                  {"The database marks them as simulated in their enrollment record (demographics): " +
+                       join(ctx.simulated, ", ") + ".",
+                   "Their times, answers and ratings come from a model of a participant, not from people: the "
+                   "statistics below describe that model. They test the pipeline; they are not evidence about "
+                   "human performance and not a replication of the article."}});
+  }
+  s.text(std::to_string(data.participants.size()) + " participants enrolled under protocol `" + p.id + "`; sessions: " +
+         std::to_string(finished) + " finished, " + std::to_string(running) + " still running (incomplete), " +
+         std::to_string(abandoned) + " abandoned" + (none ? ", " + std::to_string(none) + " never started" : "") +
+         ". " + std::to_string(recorded) + " of " + std::to_string(planned) + " planned trials are recorded; " +
+         std::to_string(ctx.analysed_trials) + " trials from " + std::to_string(ctx.subjects.size()) +
+         " participants are analysed" + (practice ? " (" + std::to_string(practice) + " practice trials excluded)" : "") +
+         ".");
+  std::string design = "Design: ";
+  for (size_t f = 0; f < p.factors.size(); ++f)
+    design += (f ? " x " : "") + p.factors[f].name + " {" + join(p.factors[f].levels, ", ") + "}";
+  design += " within subjects; " + std::to_string(p.conditions.size()) + " conditions ordered by " +
+            std::string(protocol::to_string(p.order.scheme)) + " (" + std::to_string(declared_order_rows(p)) +
+            " order rows). Tasks: ";
+  std::vector<std::string> tasks;
+  for (const auto& t : d.tasks)
+    tasks.push_back(d.task_label(t) + " in " + t.scenario + ", " + std::to_string(t.trials) + " trials per condition");
+  s.text(design + join(tasks, "; ") + ". Primary factor of the tables: " + d.factor(d.primary).name + ".");
+
+  std::vector<std::string> warnings;
+  for (const auto& pr : data.participants) {
+    if (pr.session_status == "running" || pr.session_status == "abandoned")
+      warnings.push_back(pr.id + ": session " + pr.session_status + " with " + std::to_string(pr.recorded) + " of " +
+                         std::to_string(pr.planned) + " trials recorded; their recorded trials are analysed, and tests "
+                         "needing a missing condition leave them out (named under each table).");
+    if (pr.session_status.empty()) warnings.push_back(pr.id + ": enrolled, no session started; not analysed.");
+    else if (pr.recorded == 0) warnings.push_back(pr.id + ": no trial recorded; not analysed.");
+  }
+  if (unknown)
+    warnings.push_back(std::to_string(unknown) + " trials carry a factor level the protocol does not declare; left out.");
+  if (data.other_protocol_trials)
+    warnings.push_back(std::to_string(data.other_protocol_trials) + " trials were recorded under an earlier protocol of "
+                       "this database (" + std::to_string(data.studies) + " protocol records); only the current "
+                       "protocol's trials are analysed.");
+  if (ctx.subjects.size() < 2)
+    warnings.push_back("Only " + std::to_string(ctx.subjects.size()) + " participant: no test across participants "
+                       "is possible (F and p are undefined); the tables show descriptives only.");
+  ctx.warnings = warnings;
+  if (!warnings.empty()) s.add(Callout{"warning", "Incomplete or excluded data", warnings});
+
+  Table pt;
+  pt.id = "table-participants";
+  pt.caption = "Participants: enrollment, order row of the counterbalancing, session and trials.";
+  pt.header = {"Participant", "Index", "Order row", "Session", "Trials", "Resumes", "Simulated"};
+  for (const auto& pr : data.participants) {
+    const bool sim = std::find(ctx.simulated.begin(), ctx.simulated.end(), pr.id) != ctx.simulated.end();
+    pt.rows.push_back({pr.id, std::to_string(pr.index), std::to_string(pr.order_row),
+                       pr.session_status.empty() ? "none" : pr.session_status,
+                       std::to_string(pr.recorded) + " / " + std::to_string(pr.planned), std::to_string(pr.resumes),
+                       sim ? "yes" : "no"});
+  }
+  pt.notes.push_back("Index: 0-based enrollment index. Trials: recorded / planned. Resumes: times the session was "
+                     "resumed after an interruption.");
+  s.add(pt);
+  ctx.doc.sections.push_back(std::move(s));
+
+  Section m{"methods", "Method of analysis", 2, {}};
+  m.text("Aggregation. Every test compares conditions within participants. For each participant and condition the "
+         "trials are first reduced to one number (the mean of the trials' completion times, of their relative "
+         "errors, or the proportion of correct answers, ...); the tests then treat participants as the units, as "
+         "the article did (its F(1, 15) come from 16 participants). Practice trials are excluded.");
+  m.text("Repeated-measures ANOVA (analysis/stats, following R's afex::aov_car and car::Anova with type III sums of "
+         "squares): F, its df, the exact p, partial and generalized η². For effects with more than 1 df, Mauchly's "
+         "test and the Greenhouse-Geisser and Huynh-Feldt corrections are given; effects with 1 df (two levels) "
+         "satisfy sphericity trivially. For a factor of two levels the F test equals the paired t test (F = t²), "
+         "and the tables add the mean paired difference with its 95% CI and Cohen's d_z. Factors with more than "
+         "two levels get Holm-corrected pairwise paired t tests.");
+  m.text("Friedman's test (R's friedman.test: mid-ranks for ties with the tie correction) for correctness "
+         "proportions and ratings, with Kendall's W and, where it can be enumerated, the exact permutation p; "
+         "pairwise Wilcoxon signed-rank tests with Holm correction for more than two levels.");
+  m.text("Missing data: a participant without a value in some cell of a test (no trial recorded, or no answer "
+         "given) is left out of that test only (listwise deletion, as afex and friedman.test do); every table names "
+         "the participants it left out and the cells they lacked. Descriptives in a test's table are over the "
+         "participants the test kept.");
+  m.text("p-values are exact two-sided tail probabilities from Boost.Math (never rounded to 0; below 1e-6 "
+         "they are printed with their log10). The statistics library is validated against NIST StRD certified "
+         "values and R (README, \"Statistics\"); the repeated-measures correlation against R's rmcorr.");
+  ctx.doc.sections.push_back(std::move(m));
+}
+
+void section_notes(Context& ctx) {
+  Section s{"notes", "Notes and files", 2, {}};
+  s.text("No correction for multiple testing is applied across tasks and measures: every task is its own family, "
+         "as in the article. The article's values, where shown, are printed values quoted for comparison; they "
+         "are labelled \"article\" and never enter a computation.");
+  s.text("Files beside this page: `report.md` (the same tables in Markdown), `report.json` (every number of the "
+         "tables, machine-readable), `trials.csv` (the tidy one-row-per-trial table, as `dtlab export` writes "
+         "it), `completion_time_means.csv` and `accuracy_means.csv` (the participant x condition values every "
+         "test used), `tests.csv` (one row per test), `questionnaire.csv`, `frames.csv`, and `figures/` (each "
+         "figure's SVG, its data and the gnuplot script `report.gp` that draws them).");
+  ctx.doc.sections.push_back(std::move(s));
+}
+
+}  // namespace dtlab::report::detail

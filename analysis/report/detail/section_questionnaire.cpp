@@ -1,0 +1,302 @@
+// The post-test questionnaire, item by item as the protocol declares them.
+// Ratings asked per level of the primary factor: Friedman's test across its
+// levels, per combination of the item's other factors (e.g. per scenario)
+// and overall (a participant's mean over those combinations), with a bar
+// chart like the article's Fig. 10. Other ratings: descriptives. Choices:
+// counts and proportions, and for a two-level factor a sign test among the
+// participants who chose a side. Depth tests: pairs judged correctly.
+// Answer scopes read "factor=level;factor=level" (levels matched without
+// regard to case); a depth test's answers are summed per participant (one
+// answer holding the number correct, or one 0/1 answer per pair).
+#include <cctype>
+#include <cmath>
+#include <map>
+
+#include "analysis/report/detail/article.h"
+#include "analysis/report/detail/format.h"
+#include "analysis/report/detail/sections.h"
+
+namespace dtlab::report::detail {
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// factor index -> level index from "scenario=abstract;transparency=on"; -1 entries when absent/unknown.
+std::vector<int> parse_scope(const Design& d, const std::string& scope) {
+  std::vector<int> out(d.all_factors.size(), -1);
+  size_t start = 0;
+  while (start <= scope.size()) {
+    size_t end = scope.find(';', start);
+    if (end == std::string::npos) end = scope.size();
+    const std::string part = scope.substr(start, end - start);
+    const size_t eq = part.find('=');
+    if (eq != std::string::npos)
+      for (int f : d.all_factors)
+        if (lower(d.factor(f).name) == lower(part.substr(0, eq)))
+          for (size_t l = 0; l < d.factor(f).levels.size(); ++l)
+            if (lower(d.factor(f).levels[l]) == lower(part.substr(eq + 1))) out[static_cast<size_t>(f)] = static_cast<int>(l);
+    start = end + 1;
+  }
+  return out;
+}
+
+CellMatrix empty_matrix(const Design& d, const std::vector<std::string>& subjects, int factor) {
+  CellMatrix m;
+  m.factors = {factor};
+  for (size_t l = 0; l < d.factor(factor).levels.size(); ++l) {
+    m.cell_levels.push_back({static_cast<int>(l)});
+    m.cell_names.push_back(d.factor(factor).levels[l]);
+  }
+  m.subjects = subjects;
+  m.value.assign(subjects.size(), std::vector<double>(m.cells(), std::nan("")));
+  m.trials.assign(subjects.size(), std::vector<int>(m.cells(), 0));
+  return m;
+}
+
+std::vector<std::string> answered_by(const StudyData& data, const std::string& item) {
+  std::vector<std::string> out;
+  for (const auto& a : data.answers)
+    if (a.item == item && (out.empty() || out.back() != a.participant)) out.push_back(a.participant);
+  return out;
+}
+
+size_t index_of(const std::vector<std::string>& v, const std::string& x) {
+  return static_cast<size_t>(std::find(v.begin(), v.end(), x) - v.begin());
+}
+
+}  // namespace
+
+void section_questionnaire(Context& ctx) {
+  const Design& d = ctx.design;
+  const auto& items = d.protocol->questionnaire;
+  Section s{"questionnaire", "Questionnaire", 2, {}};
+  if (items.empty()) {
+    s.text("The protocol has no questionnaire.");
+    ctx.doc.sections.push_back(std::move(s));
+    return;
+  }
+  if (ctx.data.answers.empty()) {
+    s.text("No questionnaire answer is recorded in the database.");
+    ctx.doc.sections.push_back(std::move(s));
+    ctx.json["questionnaire"] = nlohmann::json::object();
+    return;
+  }
+  s.text("Each item as the protocol declares it. Ratings of the levels of " + d.factor(d.primary).name +
+         " are compared with Friedman's test (participants as blocks), as in the article; the overall rating of a "
+         "level is a participant's mean over the item's other factors. n counts the participants who rated every "
+         "level compared.");
+  const int pf = d.primary;
+  nlohmann::json jq = nlohmann::json::object();
+  std::string csv = csv_line({"item", "participant", "scope", "value_number", "value_text"});
+  for (const auto& a : ctx.data.answers)
+    csv += csv_line({a.item, a.participant, a.scope, a.number ? csv_number(*a.number) : "NA", a.text ? *a.text : "NA"});
+
+  Table summary;
+  summary.id = "table-questionnaire";
+  summary.caption = "Questionnaire: ratings per level of " + d.factor(pf).name + " (mean (SD) over participants) "
+                    "and Friedman's test.";
+  summary.header = {"Item", "Scope"};
+  for (size_t l = 0; l < d.factor(pf).levels.size(); ++l) summary.header.push_back(d.level_label(pf, static_cast<int>(l)));
+  summary.header.insert(summary.header.end(), {"n", "χ² (df)", "p", "Kendall's W"});
+  const size_t ours = summary.header.size();
+  if (d.reference) summary.header.insert(summary.header.end(), {"Standard", "DynTrans", "p"});
+  const size_t width = summary.header.size();
+  auto pad = [&](std::vector<std::string> row) {
+    row.resize(width, "");
+    return row;
+  };
+  std::vector<std::pair<std::string, const TestReport*>> fig_rows;
+  Table others;
+  others.id = "table-questionnaire-items";
+  others.caption = "Questionnaire: the other items (self-reports, choices, depth test).";
+  others.header = {"Item", "Question", "Summary", "n", "Test", "p"};
+  if (d.reference) others.header.push_back("Article (VII.3)");
+
+  for (const auto& item : items) {
+    const auto subjects = answered_by(ctx.data, item.id);
+    nlohmann::json ji{{"type", std::string(protocol::to_string(item.type))}, {"prompt", item.prompt}, {"n", subjects.size()}};
+    const bool per_primary = std::find(item.per.begin(), item.per.end(), d.factor(pf).name) != item.per.end();
+    if (item.type == protocol::ItemType::rating && per_primary) {
+      // Split by the other `per` factors' level combinations; keyed by their levels.
+      std::vector<int> others;
+      for (const auto& name : item.per)
+        for (int f : d.all_factors)
+          if (d.factor(f).name == name && f != pf) others.push_back(f);
+      std::map<std::vector<int>, CellMatrix> split;
+      CellMatrix all = empty_matrix(d, subjects, pf);
+      std::vector<std::vector<double>> sum(subjects.size(), std::vector<double>(all.cells(), 0));
+      std::vector<std::vector<int>> cnt(subjects.size(), std::vector<int>(all.cells(), 0));
+      for (const auto& a : ctx.data.answers) {
+        if (a.item != item.id || !a.number) continue;
+        const auto lv = parse_scope(d, a.scope);
+        if (lv[static_cast<size_t>(pf)] < 0) continue;
+        std::vector<int> key;
+        for (int f : others) key.push_back(lv[static_cast<size_t>(f)]);
+        auto it = split.find(key);
+        if (it == split.end()) it = split.emplace(key, empty_matrix(d, subjects, pf)).first;
+        const size_t si = index_of(subjects, a.participant), c = static_cast<size_t>(lv[static_cast<size_t>(pf)]);
+        it->second.value[si][c] = *a.number;
+        it->second.trials[si][c] = 1;
+        sum[si][c] += *a.number;
+        ++cnt[si][c];
+      }
+      size_t combos = 1;
+      for (int f : others) combos *= d.factor(f).levels.size();
+      for (size_t si = 0; si < subjects.size(); ++si)
+        for (size_t c = 0; c < all.cells(); ++c) {
+          all.trials[si][c] = cnt[si][c];
+          if (static_cast<size_t>(cnt[si][c]) == combos) all.value[si][c] = sum[si][c] / cnt[si][c];
+        }
+      nlohmann::json jt = nlohmann::json::array();
+      auto report_one = [&](const CellMatrix& m, const std::string& scope) {
+        const auto& r = ctx.add_test("questionnaire", run_friedman(ctx.keep(m), d, item.id, "rating", scope, ctx.options.seed));
+        std::vector<std::string> row = {item.id, scope};
+        for (const auto& c : primary_cells(r, d, 2)) row.push_back(c);
+        row.push_back(std::to_string(r.kept.size()));
+        row.push_back(r.friedman ? fixed(r.friedman->Q, 2) + " (" + df_text(r.friedman->df) + ")" : kDash);
+        row.push_back(r.friedman ? p_text(r.friedman->p, r.friedman->log10_p) +
+                                       (std::isfinite(r.friedman->p_exact)
+                                            ? " (exact " + p_text(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")"
+                                            : "")
+                                 : kDash);
+        row.push_back(r.friedman ? fixed(r.friedman->kendall_W, 3) : kDash);
+        if (d.reference && scope == "overall")
+          row.insert(row.end(), {mean_sd(article::kRatingOverall.off_mean, article::kRatingOverall.off_sd, 2),
+                                 mean_sd(article::kRatingOverall.on_mean, article::kRatingOverall.on_sd, 2),
+                                 article::kRatingOverall.p});
+        else if (d.reference)
+          row.insert(row.end(), {"", "", "< .05 (Friedman)"});
+        summary.rows.push_back(pad(row));
+        for (const auto& note : test_notes(r))
+          if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) summary.notes.push_back(item.id + " " + scope + ": " + note);
+        fig_rows.push_back({scope, &r});
+        jt.push_back(to_json(r, d));
+      };
+      for (const auto& [key, m] : split) {
+        std::string scope;
+        bool known = true;
+        for (size_t k = 0; k < others.size(); ++k) {
+          if (key[k] < 0) known = false;
+          else scope += (scope.empty() ? "" : ", ") + d.factor(others[k]).levels[static_cast<size_t>(key[k])];
+        }
+        if (known) report_one(m, scope.empty() ? "all" : scope);
+      }
+      if (!others.empty()) report_one(all, "overall");
+      ji["tests"] = jt;
+    } else if (item.type == protocol::ItemType::rating || item.type == protocol::ItemType::depth_test) {
+      // Per participant: a rating (mean if asked several times) or the depth-test pairs correct (summed).
+      std::vector<double> v;
+      for (const auto& who : subjects) {
+        double sum = 0;
+        int n = 0;
+        for (const auto& a : ctx.data.answers)
+          if (a.item == item.id && a.participant == who && a.number) {
+            sum += *a.number;
+            ++n;
+          }
+        if (n) v.push_back(item.type == protocol::ItemType::depth_test ? sum : sum / n);
+      }
+      const auto ds = stats::describe(v);
+      const bool depth = item.type == protocol::ItemType::depth_test;
+      std::string scope = depth ? "pairs correct of " + std::to_string(item.pairs)
+                                : "scale " + std::to_string(item.scale_min) + "–" + std::to_string(item.scale_max);
+      std::vector<std::string> row = {item.id, item.prompt + " (" + scope + ")",
+                                      "mean (SD) " + mean_sd(ds.mean, ds.sd, 2) + ", median " + fixed(ds.median, 1) +
+                                          (depth ? ", " + percent(ds.mean / item.pairs) + " of pairs" : ""),
+                                      std::to_string(ds.n), kDash, kDash};
+      ji["descriptives"] = to_json(ds);
+      if (depth) ji["proportion_correct"] = num(ds.mean / item.pairs);
+      if (d.reference) {
+        const double am = depth ? article::kDepthTest : article::kDepthSelf;
+        const double asd = depth ? article::kDepthTestSd : article::kDepthSelfSd;
+        row.push_back(mean_sd(am, asd, 2));
+        ji["article"] = {{"mean", am}, {"sd", asd}};
+      }
+      others.rows.push_back(row);
+    } else if (item.type == protocol::ItemType::choice) {
+      std::vector<std::string> options = item.options;
+      int factor = -1;
+      for (int f : d.all_factors)
+        if (!item.factor.empty() && d.factor(f).name == item.factor) {
+          factor = f;
+          options = d.factor(f).levels;
+        }
+      std::map<std::string, int> count;
+      int answered = 0;
+      std::vector<double> first, second;  // indicators for a sign test between two options
+      for (const auto& who : subjects)
+        for (const auto& a : ctx.data.answers)
+          if (a.item == item.id && a.participant == who && a.text) {
+            std::string chosen = "other: " + *a.text;
+            for (const auto& o : options)
+              if (lower(o) == lower(*a.text)) chosen = o;
+            ++count[chosen];
+            ++answered;
+            if (options.size() == 2) {
+              first.push_back(chosen == options[0] ? 1 : 0);
+              second.push_back(chosen == options[1] ? 1 : 0);
+            }
+          }
+      nlohmann::json jc = nlohmann::json::object();
+      std::string text;
+      for (const auto& [option, n] : count) {
+        const double p = answered ? static_cast<double>(n) / answered : std::nan("");
+        const double sd = answered > 1 ? std::sqrt(p * (1 - p) * answered / (answered - 1)) : std::nan("");
+        jc[option] = {{"count", n}, {"proportion", num(p)}, {"sd", num(sd)}};
+        const std::string label = factor >= 0 && option.rfind("other: ", 0) != 0
+                                      ? d.level_label(factor, static_cast<int>(index_of(options, option)))
+                                      : option;
+        text += (text.empty() ? "" : "; ") + label + " " + std::to_string(n) + "/" + std::to_string(answered) + " = " +
+                fixed(p, 2) + " (SD " + fixed(sd, 2) + ")";
+      }
+      ji["choices"] = jc;
+      std::vector<std::string> row = {item.id, item.prompt, text, std::to_string(answered), kDash, kDash};
+      if (options.size() == 2 && answered > 0) {
+        const auto st = stats::sign_test(second, first);
+        row[4] = "sign test: " + std::to_string(st.positive) + " for " + options[1] + ", " +
+                 std::to_string(st.negative) + " for " + options[0];
+        row[5] = p_text(st.p, st.log10_p);
+        ji["sign_test"] = {{"n", st.n}, {"for_" + options[1], st.positive}, {"for_" + options[0], st.negative},
+                           {"p", num(st.p)}, {"log10_p", num(st.log10_p)}};
+        ++ctx.tests;
+      }
+      if (d.reference) {
+        row.push_back(factor == pf ? "preference " + mean_sd(article::kPreference, article::kPreferenceSd, 2) : "");
+        if (factor == pf) ji["article"] = {{"proportion", article::kPreference}, {"sd", article::kPreferenceSd}};
+      }
+      others.rows.push_back(row);
+    }
+    jq[item.id] = ji;
+  }
+  if (d.reference) summary.groups = {{"this study", static_cast<int>(ours)}, {"article (VII.3)", 3}};
+  summary.notes.insert(summary.notes.begin(),
+                       "χ², p: Friedman's test across the levels of " + d.factor(pf).name +
+                           " (chi-square approximation; exact permutation p in parentheses). Kendall's W: agreement "
+                           "of the participants' rankings (0..1).");
+  if (d.reference)
+    summary.notes.push_back("Article: VII.3 (per scenario only \"p < .05\"; its Fig. 10 gives no numbers). Not "
+                            "computed here.");
+  if (!summary.rows.empty()) s.add(summary);
+  if (!others.rows.empty()) {
+    others.notes.push_back("Choice items: proportion of the participants choosing each option, with the SD of the "
+                           "0/1 indicator; the sign test is exact (binomial, p = 1/2) among the participants who "
+                           "chose one of two options. Depth test: pairs judged correctly per participant.");
+    if (d.reference)
+      others.notes.push_back("Article: VII.3, mean (SD) as printed; the preference counts a neutral answer as not "
+                             "preferring dynamic transparency (.94 = 15/16). Not computed here.");
+    s.add(others);
+  }
+  if (!fig_rows.empty()) {
+    ctx.add_figure(s, bar_plot(ctx, fig_rows, "fig-ratings", "Rating"),
+                   "Average subjective rating per " + d.factor(pf).name +
+                       " level (error bars: standard deviation over participants; cf. the article's Fig. 10).");
+  }
+  ctx.json["questionnaire"] = jq;
+  ctx.csv["questionnaire.csv"] = csv;
+  ctx.doc.sections.push_back(std::move(s));
+}
+
+}  // namespace dtlab::report::detail

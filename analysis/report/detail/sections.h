@@ -1,0 +1,92 @@
+// The sections of the report, each a function that reads the study through
+// the Context, runs its tests and adds to the Context: document sections,
+// report.json entries, plots and CSV files. The order in report.cpp is the
+// order of a paper's results: data and method, completion time, accuracy,
+// speed-accuracy, questionnaire, position effects, frame-time audit.
+// Sections never write files and never touch the database.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <deque>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "analysis/report/detail/cells.h"
+#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/document.h"
+#include "analysis/report/detail/plots.h"
+#include "analysis/report/detail/study_data.h"
+#include "analysis/report/detail/tests.h"
+#include "analysis/report/report.h"
+
+namespace dtlab::report::detail {
+
+struct Context {
+  Context(const StudyData& d, const Design& g, const ReportOptions& o) : data(d), design(g), options(o) {}
+  const StudyData& data;
+  const Design& design;
+  const ReportOptions& options;
+
+  std::vector<std::string> subjects;     // participants with analysed trials, enrollment order
+  std::vector<std::string> simulated;    // of those, the ones marked simulated
+  long long analysed_trials = 0;
+
+  Document doc;
+  nlohmann::json json = nlohmann::json::object();
+  std::vector<PlotSpec> plots;
+  std::map<std::string, std::string> csv;  // file name -> content
+  std::vector<std::string> warnings;       // data problems, shown at the top
+  int tests = 0;                           // statistical tests reported
+
+  std::deque<CellMatrix> matrices;         // stable storage: TestReport points into it
+  std::deque<TestReport> reports;          // every test reported, in order (tests.csv)
+  std::vector<std::string> report_section; // section id of reports[i]
+  std::map<std::string, const TestReport*> time;  // completion-time tests by scope: task id, "overall"
+  std::map<std::string, const TestReport*> accuracy;  // per task, its per-trial error measure's test
+
+  // True for a trial the report analyses: recorded, not practice, levels known.
+  bool analysed(const TrialRow& t) const;
+  const CellMatrix& keep(CellMatrix m) { matrices.push_back(std::move(m)); return matrices.back(); }
+  // Aggregates per subject x cell of `factors` over the analysed trials passing `include`.
+  const CellMatrix& cells(const std::vector<int>& factors, const TrialFilter& include, const Reducer& reduce);
+  // Adds the figure to `s` and the plot to be drawn, or a note when the plot has nothing to draw.
+  void add_figure(Section& s, PlotSpec p, const std::string& caption);
+  // Stores a test for tests.csv and counts its tests; returns the stored copy.
+  const TestReport& add_test(const std::string& section, TestReport r);
+  std::string level_label(int f, int level) const { return design.level_label(f, level); }
+};
+
+void section_overview(Context& ctx);        // title, data summary, warnings, methods
+void section_time(Context& ctx);            // completion time: Table III layout, full ANOVAs, Fig. 9, participants
+void section_errors(Context& ctx);          // accuracy: relative error, correctness, distance
+void section_speed_accuracy(Context& ctx);  // time vs error per condition and participant
+void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test
+void section_position(Context& ctx);        // position in the session, order rows of the counterbalancing
+void section_frames(Context& ctx);          // frame-time audit per condition
+void section_notes(Context& ctx);           // what the report does not say; files written
+
+// --- plots shared by the sections (section_time.cpp) -------------------------------------------
+// Bars per row (x groups) and primary level (series), SD error bars (the article's Figs. 9 and 10).
+PlotSpec bar_plot(const Context& ctx, const std::vector<std::pair<std::string, const TestReport*>>& rows,
+                  const std::string& id, const std::string& ylabel);
+// One panel per row: each participant's marginal means per primary level (grey lines), the mean (black).
+PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::string, const TestReport*>>& rows,
+                           const std::string& id, const std::string& ylabel);
+
+// --- helpers shared by the sections (section_common.cpp) ---------------------------------------
+// The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.
+std::string tests_csv(const Context& ctx);
+// Notes for a test's table: n, excluded participants, warnings of the statistics library.
+std::vector<std::string> test_notes(const TestReport& r);
+// The rows of a full ANOVA table for a TestReport (effect, df, F, p, GG/HF, η²).
+Table anova_table(const TestReport& r, const Design& d, const std::string& id, const std::string& caption);
+// "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
+std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
+// A CSV line from fields (quoted as the export quotes them).
+std::string csv_line(const std::vector<std::string>& fields);
+// Participant x cell values of a matrix as long CSV rows (measure, scope, participant, levels..., value, trials).
+std::string matrix_csv_rows(const CellMatrix& m, const Design& d, const std::string& measure, const std::string& scope);
+std::string matrix_csv_header(const Design& d);
+
+}  // namespace dtlab::report::detail

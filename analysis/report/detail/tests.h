@@ -1,0 +1,64 @@
+// The tests the report runs on a CellMatrix, with everything a results table
+// needs: per cell and per level descriptives over the participants the test
+// keeps, the test itself (analysis/stats), Holm post-hoc comparisons for
+// factors with more than two levels, and for a two-level primary factor the
+// paired difference with its 95% CI and Cohen's d_z. Missing data: listwise
+// deletion, done here so the report can name each excluded participant and
+// cell. A test that cannot run (no complete participant) is reported with
+// its reason, never as an error of the whole report.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/report/detail/cells.h"
+#include "analysis/report/detail/design.h"
+#include "analysis/stats/stats.h"
+
+namespace dtlab::report::detail {
+
+struct PairedEffect {
+  int factor = -1;                  // design factor index
+  int a = 0, b = 1;                 // levels: difference is b - a (e.g. on - off)
+  stats::PairedTResult t;           // mean_difference, 95% CI, t, df, p
+  double dz = 0;                    // Cohen's d_z = mean difference / SD of the differences
+};
+
+struct TestReport {
+  std::string measure, unit, scope;          // e.g. "completion time", "s", "T1"
+  std::string test;                          // "rm-anova" or "friedman"
+  const CellMatrix* m = nullptr;
+  std::vector<size_t> kept;                  // complete subjects (indices into m->subjects)
+  std::vector<std::string> excluded;         // missing_notes() of the others
+  std::vector<stats::Descriptives> cells;    // per cell, over kept subjects
+  std::vector<std::vector<stats::Descriptives>> marginals;  // [factor entry][level], over kept subjects
+  std::optional<stats::RmAnovaResult> anova;
+  std::optional<stats::FriedmanResult> friedman;
+  std::map<std::string, std::vector<stats::Comparison>> posthoc;  // factor name -> Holm-corrected pairs
+  std::optional<PairedEffect> paired;       // two-level primary factor among m->factors
+  std::string not_tested;                   // why no test ran ("" when one did)
+  std::vector<std::string> warnings;        // from the statistics library
+
+  // The effect row of `name` ("transparency", "transparency:scenario"), or nullptr.
+  const stats::Effect* effect(const std::string& name) const;
+  // The marginal descriptives of design factor f (nullptr if f is not among m->factors).
+  const std::vector<stats::Descriptives>* marginal_of(int f) const;
+};
+
+TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
+                        std::string scope);
+TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
+                        std::string scope, std::uint64_t seed);
+
+nlohmann::json to_json(const stats::Descriptives& d);
+nlohmann::json to_json(const stats::Effect& e);
+nlohmann::json to_json(const TestReport& r, const Design& d);
+
+// "F(1, 15) = 7.54, p = 0.0142, η²p = 0.33" for an effect; "Q(1) = ..., p = ..., W = ..." for Friedman.
+std::string effect_sentence(const stats::Effect& e);
+std::string friedman_sentence(const stats::FriedmanResult& f);
+
+}  // namespace dtlab::report::detail
