@@ -1,0 +1,210 @@
+// What a reader gets: index.html self-contained (tables, inline SVG from
+// gnuplot, no script, no external reference, unique ids), report.md with the
+// same tables and links to the SVGs, trials.csv equal to `dtlab export`, the
+// simulated-participant notice, a single participant; and every failure a
+// clear Error with the right exit code, through the library and the CLI.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "analysis/report/report.h"
+#include "study/store/export.h"
+#include "tests/analysis/report/studies.h"
+
+namespace dtlab::report::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+size_t count(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t i = text.find(needle); i != std::string::npos; i = text.find(needle, i + 1)) ++n;
+  return n;
+}
+
+class ReportOutput : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir = new TempDir;
+    build_statsmodels_2x2(dir->file("s.sqlite"), /*simulated=*/true);
+    auto r = write_report(dir->file("s.sqlite"), dir->file("out"));
+    ASSERT_TRUE(r) << r.error().to_string();
+    summary = new ReportSummary(*r);
+    html = new std::string(read_text(dir->file("out/index.html")));
+  }
+  static void TearDownTestSuite() {
+    delete html;
+    delete summary;
+    delete dir;
+  }
+  static TempDir* dir;
+  static ReportSummary* summary;
+  static std::string* html;
+};
+TempDir* ReportOutput::dir = nullptr;
+ReportSummary* ReportOutput::summary = nullptr;
+std::string* ReportOutput::html = nullptr;
+
+TEST_F(ReportOutput, HtmlIsSelfContainedWithTablesAndInlineSvg) {
+  EXPECT_EQ(html->rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_GE(count(*html, "<table>"), 8u);
+  EXPECT_GE(count(*html, "<svg"), 5u);  // time bars, participants, speed-accuracy, ratings, position
+  EXPECT_EQ(count(*html, "<?xml"), 0u);
+  for (const char* banned : {"<script", "<link", "<img", "<iframe", "src=", "http://", "https://", "url(http", "@import"})
+    EXPECT_EQ(count(*html, banned), 0u) << banned;
+  // Every id once, every #reference to an id of the page.
+  std::set<std::string> ids;
+  const std::regex id_re("\\sid=[\"']([^\"']+)[\"']");
+  for (auto it = std::sregex_iterator(html->begin(), html->end(), id_re); it != std::sregex_iterator(); ++it)
+    EXPECT_TRUE(ids.insert((*it)[1]).second) << "duplicate id " << (*it)[1];
+  const std::regex ref_re("(?:href=[\"']#|url\\(#)([^\"')]+)");
+  for (auto it = std::sregex_iterator(html->begin(), html->end(), ref_re); it != std::sregex_iterator(); ++it)
+    EXPECT_TRUE(ids.count((*it)[1])) << "dangling reference #" << (*it)[1];
+}
+
+TEST_F(ReportOutput, HtmlReadsLikeAResultsSection) {
+  for (const char* text : {"Completion time", "Table III layout", "Standard (off)", "DynTrans (on)",
+                           "T1 (count targets)", "F(1, 7)", "Sphericity holds trivially", "Method of analysis",
+                           "listwise deletion", "Speed and accuracy", "Frame-time audit", "Questionnaire",
+                           "Position effects", "Simulated participants", "article (Table III, VII.1)"})
+    EXPECT_NE(html->find(text), std::string::npos) << text;
+  EXPECT_TRUE(summary->simulated);
+}
+
+TEST_F(ReportOutput, MarkdownHasTheTablesAndLinksTheFigures) {
+  const std::string md = read_text(dir->file("out/report.md"));
+  EXPECT_NE(md.find("| T1 (count targets) |"), std::string::npos);
+  for (const auto& f : summary->files)
+    if (f.rfind("figures/", 0) == 0) {
+      EXPECT_NE(md.find("](" + f + ")"), std::string::npos) << f;
+      EXPECT_TRUE(fs::exists(dir->file("out/" + f))) << f;
+    }
+  EXPECT_TRUE(fs::exists(dir->file("out/figures/report.gp")));
+}
+
+TEST_F(ReportOutput, TidyCsvIsTheExport) {
+  std::ostringstream expected;
+  ASSERT_TRUE(store::export_trials_csv(dir->file("s.sqlite"), expected));
+  EXPECT_EQ(read_text(dir->file("out/trials.csv")), expected.str());
+  for (const char* f : {"tests.csv", "completion_time_means.csv", "accuracy_means.csv", "questionnaire.csv",
+                        "frames.csv", "report.json"})
+    EXPECT_TRUE(fs::exists(dir->file(std::string("out/") + f))) << f;
+  // tests.csv: one row per effect / Friedman test; the overall transparency row is there.
+  const std::string tests = read_text(dir->file("out/tests.csv"));
+  EXPECT_NE(tests.find("time,completion time,s,overall,rm-anova,transparency,8,1,7,"), std::string::npos);
+}
+
+TEST_F(ReportOutput, FrameAuditCountsSlowTrials) {
+  const auto j = nlohmann::json::parse(read_text(dir->file("out/report.json")));
+  // Fixture frames: off {10, 12, 11} ms (p95 12), on {25, 30, 40} ms (p95 40 > 33.3): every "on" trial is slow.
+  for (const auto& c : j.at("frames").at("conditions")) {
+    const bool on = c.at("condition").get<std::string>().rfind("on/", 0) == 0;
+    EXPECT_EQ(c.at("trials"), 48);
+    EXPECT_EQ(c.at("slow_trials"), on ? 48 : 0);
+    EXPECT_DOUBLE_EQ(c.at("median_p95_ms").get<double>(), on ? 40.0 : 12.0);
+  }
+}
+
+TEST(ReportEdge, SingleParticipantGetsDescriptivesAndNoTest) {
+  TempDir dir;
+  build_small_reference(dir.file("s.sqlite"), 1);
+  const auto j = run_report(dir.file("s.sqlite"), dir.file("out"));
+  const auto& t = find_test(j, "completion_time", "overall");
+  EXPECT_EQ(t.at("n"), 1);
+  EXPECT_TRUE(find_effect(t, "transparency").at("F").is_null());
+  // Order row 0 starts with off/abstract: T1 at positions 1-3 (21, 22, 23 s), T2 at 4-6 (24, 25, 26 s);
+  // the overall value is the mean of the task means: (22 + 25) / 2.
+  EXPECT_EQ(t.at("cells")[0].at("cell"), "off/abstract");
+  EXPECT_DOUBLE_EQ(t.at("cells")[0].at("mean").get<double>(), 23.5);
+  bool warned = false;
+  for (const auto& w : j.at("warnings")) warned = warned || w.get<std::string>().find("Only 1 participant") == 0;
+  EXPECT_TRUE(warned);
+}
+
+TEST(ReportEdge, PositionTestsAndBalanceOfTheLatinSquare) {
+  TempDir dir;
+  build_small_reference(dir.file("s.sqlite"), 8);
+  const auto j = run_report(dir.file("s.sqlite"), dir.file("out"));
+  // 8 participants over the 4 x 4 Latin square: every condition twice at every block position.
+  EXPECT_TRUE(j.at("position").at("balanced").get<bool>());
+  for (const auto& [cond, counts] : j.at("position").at("balance").items())
+    EXPECT_EQ(counts, nlohmann::json({2, 2, 2, 2})) << cond;
+  // Times rise by 1 s per position: relative time rises with block position, a strong effect.
+  const auto& e = find_effect(j.at("position").at("block").at("test"), "block position");
+  EXPECT_EQ(e.at("df1").get<double>(), 3);
+  EXPECT_LT(e.at("p").get<double>(), 1e-6);
+  // Order row as between factor: 4 rows of 2.
+  EXPECT_EQ(find_effect(j.at("position").at("order_row"), "order_row").at("df1").get<double>(), 3);
+}
+
+TEST(ReportErrors, NotADatabaseIsAnInputError) {
+  TempDir dir;
+  std::ofstream(dir.file("x.sqlite")) << "hello, not a database\n";
+  auto r = write_report(dir.file("x.sqlite"), dir.file("out"));
+  ASSERT_FALSE(r);
+  EXPECT_FALSE(is_environment_error(r.error()));
+  EXPECT_NE(r.error().message.find("not an SQLite database"), std::string::npos) << r.error().to_string();
+  EXPECT_FALSE(fs::exists(dir.file("out/index.html")));
+}
+
+TEST(ReportErrors, DatabaseWithoutTrialsIsAnInputError) {
+  TempDir dir;
+  StudySpec s;
+  s.protocol_text = source_file("protocols/elmqvist2008.toml");
+  s.participants = {"P1"};
+  s.trial = [](size_t, const design::PlannedTrial&) -> std::optional<Outcome> { return std::nullopt; };
+  build_study(dir.file("s.sqlite"), s);
+  auto r = write_report(dir.file("s.sqlite"), dir.file("out"));
+  ASSERT_FALSE(r);
+  EXPECT_FALSE(is_environment_error(r.error()));
+  EXPECT_NE(r.error().message.find("no recorded trial"), std::string::npos) << r.error().to_string();
+}
+
+TEST(ReportErrors, UnwritableDirectoryAndMissingGnuplotAreEnvironmentErrors) {
+  TempDir dir;
+  build_small_reference(dir.file("s.sqlite"), 2);
+  std::ofstream(dir.file("file")) << "x";
+  auto r = write_report(dir.file("s.sqlite"), dir.file("file/out"));  // a regular file as parent
+  ASSERT_FALSE(r);
+  EXPECT_TRUE(is_environment_error(r.error())) << r.error().to_string();
+  ReportOptions o;
+  o.gnuplot = dir.file("no-such-gnuplot");
+  auto g = write_report(dir.file("s.sqlite"), dir.file("out"), {}, o);
+  ASSERT_FALSE(g);
+  EXPECT_TRUE(is_environment_error(g.error()));
+  EXPECT_NE(g.error().message.find("gnuplot"), std::string::npos);
+}
+
+// The CLI as a user runs it: exit codes 0, 1, 3 and --json.
+int run_cli(const std::string& args, std::string* out = nullptr) {
+  const std::string cmd = std::string(DTLAB_BINARY) + " analyze " + args + " 2>/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string text;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) text.append(buf, n);
+  const int status = pclose(p);
+  if (out) *out = text;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(ReportCli, ExitCodesAndJson) {
+  TempDir dir;
+  build_small_reference(dir.file("s.sqlite"), 2);
+  std::string out;
+  ASSERT_EQ(run_cli(dir.file("s.sqlite") + " --out " + dir.file("out") + " --json", &out), 0);
+  const auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j.at("participants"), 2);
+  EXPECT_EQ(j.at("trials"), 48);
+  std::ofstream(dir.file("text.txt")) << "not a database";
+  EXPECT_EQ(run_cli(dir.file("text.txt") + " --out " + dir.file("o2")), 1);
+  EXPECT_EQ(run_cli(dir.file("s.sqlite") + " --out " + dir.file("o3") + " --gnuplot " + dir.file("nope")), 3);
+  EXPECT_EQ(run_cli(dir.file("missing.sqlite") + " --out " + dir.file("o4")), 2);  // CLI11: not an existing file
+}
+
+}  // namespace
+}  // namespace dtlab::report::testing
