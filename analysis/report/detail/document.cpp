@@ -2,6 +2,7 @@
 #include "analysis/report/detail/document.h"
 
 #include <cctype>
+#include <map>
 
 namespace dtlab::report::detail {
 namespace {
@@ -54,6 +55,7 @@ std::string inline_svg(const std::string& svg, const std::string& prefix) {
   std::string out;
   out.reserve(s.size() + 1024);
   bool in_tag = false;
+  std::map<std::string, int> seen;
   for (size_t i = 0; i < s.size();) {
     const char c = s[i];
     if (c == '<') in_tag = true;
@@ -61,11 +63,20 @@ std::string inline_svg(const std::string& svg, const std::string& prefix) {
     if (in_tag) {
       const bool attr_start = i > 0 && std::isspace(static_cast<unsigned char>(s[i - 1]));
       if (attr_start && starts_with(s, i, "id=") && i + 3 < s.size() && (s[i + 3] == '"' || s[i + 3] == '\'')) {
-        out += "id=";
-        out += s[i + 3];
-        out += prefix;
-        i += 4;
-        continue;
+        const char q = s[i + 3];
+        const size_t close = s.find(q, i + 4);
+        if (close != std::string::npos) {
+          // gnuplot may repeat an id inside one SVG (e.g. an opaque key drawn twice): later copies
+          // get a suffix, and references keep pointing at the first.
+          const std::string id = s.substr(i + 4, close - i - 4);
+          const int n = ++seen[id];
+          out += "id=";
+          out += q;
+          out += prefix + id + (n > 1 ? "-" + std::to_string(n) : "");
+          out += q;
+          i = close + 1;
+          continue;
+        }
       }
       if (starts_with(s, i, "href=") && i + 6 < s.size() && (s[i + 5] == '"' || s[i + 5] == '\'') &&
           s[i + 6] == '#') {

@@ -23,6 +23,7 @@ struct Table {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> notes;                         // printed under the table
+  int text_columns = 1;                                   // leading columns of text (left-aligned); the rest are numbers
 };
 
 struct Figure {

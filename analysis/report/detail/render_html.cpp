@@ -31,7 +31,8 @@ figcaption b { font-weight: 700; }
 table { border-collapse: collapse; font: 14px/1.45 system-ui, "DejaVu Sans", sans-serif;
         font-variant-numeric: tabular-nums; border-top: 2px solid var(--rule); border-bottom: 2px solid var(--rule); }
 th, td { padding: .25rem .7rem; text-align: right; white-space: nowrap; vertical-align: top; }
-th:first-child, td:first-child { text-align: left; }
+th.text, td.text { text-align: left; white-space: normal; }
+td.text { min-width: 6rem; }
 thead tr:last-child th { border-bottom: 1px solid var(--rule); }
 thead tr.groups th { border-bottom: 1px solid var(--light); text-align: center; font-weight: 600; color: var(--muted); }
 tbody tr:nth-child(even) { background: #fafafb; }
@@ -100,11 +101,15 @@ std::string render_html(const Document& doc, const std::map<std::string, std::st
           o << "</tr>\n";
         }
         o << "<tr>";
-        for (const auto& h : t->header) o << "<th>" << text_html(h) << "</th>";
+        for (size_t c = 0; c < t->header.size(); ++c)
+          o << (static_cast<int>(c) < t->text_columns ? "<th class=\"text\">" : "<th>") << text_html(t->header[c])
+            << "</th>";
         o << "</tr>\n</thead>\n<tbody>\n";
         for (const auto& row : t->rows) {
           o << "<tr>";
-          for (const auto& cell : row) o << "<td>" << text_html(cell) << "</td>";
+          for (size_t c = 0; c < row.size(); ++c)
+            o << (static_cast<int>(c) < t->text_columns ? "<td class=\"text\">" : "<td>") << text_html(row[c])
+              << "</td>";
           o << "</tr>\n";
         }
         o << "</tbody>\n</table>\n";

@@ -46,17 +46,18 @@ std::string render_markdown(const Document& doc) {
       } else if (const auto* t = std::get_if<Table>(&b)) {
         o << "<a id=\"" << t->id << "\"></a>\n\n**Table " << ++tables << ".** " << md(t->caption) << "\n\n";
         std::vector<std::string> header = t->header;
-        if (!t->groups.empty()) {  // Markdown has no spanning headers: prefix the group label
+        if (!t->groups.empty()) {  // Markdown has no spanning headers: prefix the labels of the later groups
           size_t col = 0;
-          for (const auto& [label, span] : t->groups) {
+          for (size_t g = 0; g < t->groups.size(); ++g) {
+            const auto& [label, span] = t->groups[g];
             for (int k = 0; k < span && col < header.size(); ++k, ++col)
-              if (!label.empty()) header[col] = label + ": " + header[col];
+              if (g > 0 && !label.empty()) header[col] = label + ": " + header[col];
           }
         }
         o << "|";
         for (const auto& h : header) o << " " << md(h, true) << " |";
         o << "\n|";
-        for (size_t c = 0; c < header.size(); ++c) o << (c == 0 ? ":---|" : "---:|");
+        for (size_t c = 0; c < header.size(); ++c) o << (static_cast<int>(c) < t->text_columns ? ":---|" : "---:|");
         o << "\n";
         for (const auto& row : t->rows) {
           o << "|";

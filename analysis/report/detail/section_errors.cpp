@@ -152,6 +152,7 @@ void section_errors(Context& ctx) {
   t.caption = "Accuracy per task: mean (SD) over participants of the participant x condition values, and the test "
               "of " + primary.name + ".";
   t.header = {"Task", "Measure"};
+  t.text_columns = 2;
   for (size_t l = 0; l < primary.levels.size(); ++l) t.header.push_back(d.level_label(d.primary, static_cast<int>(l)));
   t.header.insert(t.header.end(), {"n", "Test", "p", "Effect size"});
   if (two) t.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");

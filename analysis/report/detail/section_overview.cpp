@@ -26,7 +26,7 @@ void section_overview(Context& ctx) {
   const auto& p = *d.protocol;
   ctx.doc.title = "Results: " + p.title;
   ctx.doc.subtitle = "Protocol `" + p.id + "` (SHA-256 " + p.sha256.substr(0, 12) + "…), database `" + data.path +
-                     "`, recorded with dtlab " + data.software_version + ".";
+                     "`, recorded with " + data.software_version + ".";
 
   Section s{"data", "Data", 2, {}};
   // Who and what is in the file.

@@ -109,7 +109,7 @@ void section_position(Context& ctx) {
   jp["balanced"] = balanced;
   std::vector<std::pair<std::string, int>> splits = {{"block position", blocks}, {"repetition", reps}};
   std::string plot_data;
-  std::vector<std::string> plot_titles;
+  std::vector<std::pair<std::string, int>> plot_titles;  // (title or "" when nothing to draw, positions)
   for (const auto& [name, levels] : splits) {
     if (levels < 2) continue;
     PositionDesign pd(name, levels);
@@ -171,19 +171,22 @@ void section_position(Context& ctx) {
       jl.push_back(jx);
     }
     plot_data += "\n\n";
-    plot_titles.push_back(finite ? (by_block ? "Block position" : "Repetition in the task set") : "");
+    plot_titles.push_back({finite ? (by_block ? "Block position" : "Repetition in the task set") : "", levels});
     const stats::Effect* e = r.effect(name);
     t.notes = test_notes(r);
     std::string verdict = e ? name + ": " + effect_sentence(*e) + ". " : "";
+    const double first = r.cells.front().mean, last = r.cells.back().mean;
     if (e && std::isfinite(e->p))
       verdict += e->p_gg < 0.05
-                     ? "Times differ between positions" + std::string(by_block ? " (practice or fatigue across the "
-                                                                                 "session)"
-                                                                               : " (learning within a task set)") +
-                           (balanced || !by_block ? "; with a balanced order this adds noise, not bias, to the "
+                     ? std::string(last < first ? "Participants became faster at later " : "Participants became slower at later ") +
+                           (by_block ? "blocks of the session" : "repetitions inside a task set") + " (relative time " +
+                           fixed(first, 2) + " at the first, " + fixed(last, 2) + " at the last; " +
+                           (last < first ? "practice" : by_block ? "fatigue" : "fatigue, or trials that differ by repetition") +
+                           (balanced || !by_block ? "). With a balanced order this adds noise, not bias, to the "
                                                     "condition means."
-                                                  : "; with an unbalanced order it can bias the condition means.")
-                     : "No reliable position effect.";
+                                                  : "). With an unbalanced order it can bias the condition means.")
+                     : "No reliable position effect (relative time " + fixed(first, 2) + " at the first, " +
+                           fixed(last, 2) + " at the last).";
     if (!verdict.empty()) s.text(verdict);
     s.add(t);
     jp[by_block ? "block" : "repetition"] = {{"levels", jl}, {"test", to_json(r, pd.design)}};
@@ -240,14 +243,14 @@ void section_position(Context& ctx) {
     p.data["fig-position.dat"] = plot_data;
     p.width = 380 * static_cast<int>(plot_titles.size()) + 40;
     p.height = 320;
-    const auto shown = std::count_if(plot_titles.begin(), plot_titles.end(), [](const std::string& x) { return !x.empty(); });
+    const auto shown = std::count_if(plot_titles.begin(), plot_titles.end(), [](const auto& x) { return !x.first.empty(); });
     std::string cmd = "set multiplot layout 1," + std::to_string(std::max<long>(shown, 1)) +
                       "\nset ylabel 'Relative time (1 = task x condition mean)'\nunset key\nset xtics 1\n";
     int drawn = 0;
     for (size_t i = 0; i < plot_titles.size(); ++i)
-      if (!plot_titles[i].empty() && ++drawn)
-      cmd += "set title " + gp_quote(plot_titles[i]) + "\nset xlabel " + gp_quote(plot_titles[i]) +
-             "\nset xrange [0.5:*]\nplot 'fig-position.dat' index " + std::to_string(i) +
+      if (!plot_titles[i].first.empty() && ++drawn)
+      cmd += "set title " + gp_quote(plot_titles[i].first) + "\nset xlabel " + gp_quote(plot_titles[i].first) +
+             "\nset xrange [0.5:" + std::to_string(plot_titles[i].second) + ".5]\nplot 'fig-position.dat' index " + std::to_string(i) +
              " using 1:2:3 with yerrorlines lc rgb '" + series_color(0) + "' pt 7 lw 2\n";
     p.commands = cmd;
     p.empty = drawn == 0;

@@ -99,6 +99,7 @@ void section_questionnaire(Context& ctx) {
   summary.caption = "Questionnaire: ratings per level of " + d.factor(pf).name + " (mean (SD) over participants) "
                     "and Friedman's test.";
   summary.header = {"Item", "Scope"};
+  summary.text_columns = 2;
   for (size_t l = 0; l < d.factor(pf).levels.size(); ++l) summary.header.push_back(d.level_label(pf, static_cast<int>(l)));
   summary.header.insert(summary.header.end(), {"n", "χ² (df)", "p", "Kendall's W"});
   const size_t ours = summary.header.size();
@@ -113,6 +114,7 @@ void section_questionnaire(Context& ctx) {
   others.id = "table-questionnaire-items";
   others.caption = "Questionnaire: the other items (self-reports, choices, depth test).";
   others.header = {"Item", "Question", "Summary", "n", "Test", "p"};
+  others.text_columns = 3;
   if (d.reference) others.header.push_back("Article (VII.3)");
 
   for (const auto& item : items) {

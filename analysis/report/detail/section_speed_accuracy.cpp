@@ -59,11 +59,13 @@ void section_speed_accuracy(Context& ctx) {
     t.header.push_back("error, " + primary.levels[l]);
   }
   t.header.push_back("Reading");
+  t.text_columns = 2;
   Table c;
   c.id = "table-speed-accuracy-rmcorr";
   c.caption = "Within-participant relation of a trial's completion time and its error (repeated-measures "
               "correlation over trials, groups = participant x condition).";
   c.header = {"Task", "Error measure", "Trials", "Groups", "r_rm", "95% CI", "df", "p", "Error change per 10 s"};
+  c.text_columns = 2;
 
   nlohmann::json jrows = nlohmann::json::array();
   std::string scatter;
@@ -138,7 +140,8 @@ void section_speed_accuracy(Context& ctx) {
     }
     const RmCorr rc = rm_corr(group, x, y);
     c.rows.push_back({d.task_label(task), error_name(task.type), std::to_string(rc.n), std::to_string(rc.groups),
-                      fixed(rc.r, 3), "[" + fixed(rc.ci_low, 2) + ", " + fixed(rc.ci_high, 2) + "]", df_text(rc.df),
+                      fixed(rc.r, 3),
+                      std::isfinite(rc.ci_low) ? "[" + fixed(rc.ci_low, 2) + ", " + fixed(rc.ci_high, 2) + "]" : kDash, df_text(rc.df),
                       p_text(rc.p, rc.log10_p), fixed(10 * rc.slope, task.type == TaskType::find_unique ? 2 : 4)});
     jr["rmcorr"] = {{"n", rc.n}, {"groups", rc.groups}, {"r", num(rc.r)}, {"df", num(rc.df)}, {"p", num(rc.p)},
                     {"ci_low", num(rc.ci_low)}, {"ci_high", num(rc.ci_high)}, {"slope_per_s", num(rc.slope)}};

@@ -66,7 +66,7 @@ PlotSpec bar_plot(const Context& ctx, const std::vector<std::pair<std::string, c
   std::string c = "set style data histogram\nset style histogram errorbars gap 1.5 lw 1.2\n"
                   "set style fill solid 0.85 border rgb '#333333'\nset boxwidth 0.9\n"
                   "set yrange [0:*]\nset ylabel " + gp_quote(ylabel) + "\nset xtics scale 0\n"
-                  "set key top left vertical\nplot ";
+                  "set key above center horizontal\nplot ";
   for (size_t l = 0; l < levels; ++l) {
     c += (l ? ", '' " : gp_quote(id + ".dat") + " ") + "using " + std::to_string(2 + 2 * l) + ":" +
          std::to_string(3 + 2 * l) + (l == 0 ? ":xtic(1)" : "") + " title " +
@@ -263,6 +263,7 @@ void section_time(Context& ctx) {
   dt.id = "table-time-cells";
   dt.caption = "Completion time per task and condition (s): descriptives over the participants' means.";
   dt.header = {"Task", "Condition", "n", "Mean", "SD", "SE", "95% CI", "Median", "Min", "Max"};
+  dt.text_columns = 2;
   for (const auto& [label, r] : rows)
     for (size_t c = 0; c < r->m->cells(); ++c) {
       const auto& x = r->cells[c];

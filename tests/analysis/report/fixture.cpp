@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -34,6 +36,11 @@ TempDir::TempDir() {
 }
 
 TempDir::~TempDir() {
+  // DTLAB_KEEP_TEST_DIRS=1 keeps the databases and reports for a look in a browser.
+  if (const char* keep = std::getenv("DTLAB_KEEP_TEST_DIRS"); keep && *keep == '1') {
+    std::fprintf(stderr, "kept %s\n", path_.string().c_str());
+    return;
+  }
   std::error_code ec;
   fs::remove_all(path_, ec);
 }

@@ -18,7 +18,7 @@
 
 namespace dtlab::report::testing {
 
-// A fresh folder, removed when the object goes away.
+// A fresh folder, removed when the object goes away (kept when DTLAB_KEEP_TEST_DIRS=1).
 class TempDir {
  public:
   TempDir();

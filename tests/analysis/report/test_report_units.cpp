@@ -87,7 +87,7 @@ TEST(InlineSvg, StripsPrologAndMakesIdsUnique) {
       " xmlns=\"http://www.w3.org/2000/svg\"\n xmlns:xlink=\"http://www.w3.org/1999/xlink\"\n>\n"
       "<defs><circle id='gpDot' r='1'/><path id=\"gpPt0\" d='M0,0'/></defs>\n"
       "<use xlink:href='#gpDot'/><use href=\"#gpPt0\"/><rect fill=\"url(#gpPt0)\"/>\n"
-      "<text>id='gpDot' stays text</text></svg>\n";
+      "<text>id='gpDot' stays text</text><g id='key'/><g id='key'/></svg>\n";
   const std::string out = inline_svg(svg, "fig-");
   EXPECT_EQ(out.rfind("<svg", 0), 0u);
   EXPECT_EQ(out.find("xmlns"), std::string::npos);
@@ -98,6 +98,8 @@ TEST(InlineSvg, StripsPrologAndMakesIdsUnique) {
   EXPECT_NE(out.find("href=\"#fig-gpPt0\""), std::string::npos);
   EXPECT_NE(out.find("url(#fig-gpPt0)"), std::string::npos);
   EXPECT_NE(out.find("<text>id='gpDot' stays text</text>"), std::string::npos);
+  // An id gnuplot repeats inside one SVG becomes unique.
+  EXPECT_NE(out.find("<g id='fig-key'/><g id='fig-key-2'/>"), std::string::npos);
 }
 
 TEST(Reducers, AggregatedRelativeErrorIsTheArticles) {
