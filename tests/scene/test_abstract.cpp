@@ -267,6 +267,8 @@ struct BadParam {
   const char* field;
 };
 
+void PrintTo(const BadParam& b, std::ostream* os) { *os << b.name; }  // readable ctest names
+
 class AbstractBadParams : public ::testing::TestWithParam<BadParam> {};
 
 TEST_P(AbstractBadParams, AreReportedWithTheirField) {

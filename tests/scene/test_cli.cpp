@@ -65,10 +65,13 @@ TEST(SceneCommand, TextSummaryAndObjFiles) {
 }
 
 struct Failure {
+  const char* name;
   const char* args;
   int status;
   const char* says;
 };
+
+void PrintTo(const Failure& f, std::ostream* os) { *os << f.name; }  // readable ctest names
 
 class SceneCommandFails : public ::testing::TestWithParam<Failure> {};
 
@@ -80,15 +83,16 @@ TEST_P(SceneCommandFails, WithTheDocumentedStatus) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, SceneCommandFails,
-    ::testing::Values(Failure{"scene --scene abstract --task T3 --seed 1", 1, "T3 belongs to walkthrough scenes, not abstract"},
-                      Failure{"scene --scene walkthrough --task T1 --seed 1 --json", 1, "task"},
-                      Failure{"scene --scene city --task T1 --seed 1", 2, "--scene"},
-                      Failure{"scene --scene abstract --task T9 --seed 1", 2, "--task"},
-                      Failure{"scene --scene abstract --task T1 --seed -4", 2, "--seed"},
-                      Failure{"scene --scene abstract --task T1 --seed 18446744073709551616", 2, "--seed"},
-                      Failure{"scene --scene abstract --task T1 --seed 1e3", 2, "--seed"},
-                      Failure{"scene --scene abstract --task T1", 2, "--seed"},
-                      Failure{"scene --scene abstract --task T1 --seed 1 --obj /nonexistent/dir/x.obj", 3,
-                              "/nonexistent/dir/x.obj"}));
+    ::testing::Values(Failure{"AbstractWithT3", "scene --scene abstract --task T3 --seed 1", 1, "T3 belongs to walkthrough scenes, not abstract"},
+                      Failure{"WalkthroughWithT1", "scene --scene walkthrough --task T1 --seed 1 --json", 1, "task"},
+                      Failure{"UnknownScene", "scene --scene city --task T1 --seed 1", 2, "--scene"},
+                      Failure{"UnknownTask", "scene --scene abstract --task T9 --seed 1", 2, "--task"},
+                      Failure{"NegativeSeed", "scene --scene abstract --task T1 --seed -4", 2, "--seed"},
+                      Failure{"SeedOverflow", "scene --scene abstract --task T1 --seed 18446744073709551616", 2, "--seed"},
+                      Failure{"SeedNotInteger", "scene --scene abstract --task T1 --seed 1e3", 2, "--seed"},
+                      Failure{"MissingSeed", "scene --scene abstract --task T1", 2, "--seed"},
+                      Failure{"UnwritableObj", "scene --scene abstract --task T1 --seed 1 --obj /nonexistent/dir/x.obj", 3,
+                              "/nonexistent/dir/x.obj"}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -12,6 +12,9 @@
 #include "tests/scene/mesh_checks.h"
 
 namespace dtlab::scene {
+
+void PrintTo(const ModelInfo& m, std::ostream* os) { *os << m.kind; }  // readable ctest names
+
 namespace {
 
 TEST(Models, TwelveOrMoreKindsInThreeFamilies) {

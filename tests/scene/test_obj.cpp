@@ -125,7 +125,10 @@ TEST_P(ObjExport, ReadsBackAsValidObj) {
 INSTANTIATE_TEST_SUITE_P(Scenes, ObjExport,
                          ::testing::Values(std::pair{Kind::abstract, Task::T1}, std::pair{Kind::abstract, Task::T2},
                                            std::pair{Kind::walkthrough, Task::T3},
-                                           std::pair{Kind::walkthrough, Task::T4}));
+                                           std::pair{Kind::walkthrough, Task::T4}),
+                         [](const auto& info) {
+                           return std::string(kind_name(info.param.first)) + std::string(task_name(info.param.second));
+                         });
 
 TEST(ObjExport, SavesBothFilesAndReportsUnwritablePaths) {
   const auto dir = std::filesystem::temp_directory_path() / ("dtlab_obj_" + std::to_string(::getpid()));

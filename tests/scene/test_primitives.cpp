@@ -50,6 +50,8 @@ struct ShapeCase {
   float chord_length;
 };
 
+void PrintTo(const ShapeCase& c, std::ostream* os) { *os << c.name; }  // readable ctest names
+
 class AbstractShape : public ::testing::TestWithParam<ShapeCase> {};
 
 TEST_P(AbstractShape, ValidInsideUnitBallWithVertexChord) {

@@ -288,6 +288,8 @@ struct BadParam {
   const char* field;
 };
 
+void PrintTo(const BadParam& b, std::ostream* os) { *os << b.name; }  // readable ctest names
+
 class WalkthroughBadParams : public ::testing::TestWithParam<BadParam> {};
 
 TEST_P(WalkthroughBadParams, AreReportedWithTheirField) {

@@ -8,9 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <set>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
