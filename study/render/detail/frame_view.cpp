@@ -117,6 +117,29 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
   }
   for (auto i : sorter.sort(camera.eye, camera.forward))
     if (!v.rects[i].empty()) v.sorted.push_back(i);
+  // Depth ranges along the view direction (from the world boxes) for the sort-error test.
+  std::vector<glm::vec2> range(objects.size());
+  for (auto i : v.sorted) {
+    const ObjectRecord& o = objects[i];
+    float lo = std::numeric_limits<float>::max(), hi = -lo;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 p((c & 1) ? o.world_max.x : o.world_min.x, (c & 2) ? o.world_max.y : o.world_min.y,
+                        (c & 4) ? o.world_max.z : o.world_min.z);
+      const float d = glm::dot(p - camera.eye, camera.forward);
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+    range[i] = {lo, hi};
+  }
+  for (std::size_t k = 0; k < v.sorted.size(); ++k) {
+    const int slot = v.target_slot[v.sorted[k]];
+    if (slot < 0) continue;
+    TargetView& t = v.targets[static_cast<std::size_t>(slot)];
+    for (std::size_t j = 0; j < k && !t.may_be_drawn_late; ++j) {
+      const auto o = v.sorted[j];
+      t.may_be_drawn_late = v.rects[o].overlaps(t.rect) && range[o].x < range[t.object].y;
+    }
+  }
   if (dt.mode == DtMode::active)
     v.searchlight = glm::vec3(dt.searchlight_center.x, static_cast<float>(height) - dt.searchlight_center.y,
                               dt.searchlight_radius);

@@ -43,6 +43,9 @@ struct TargetView {
   PixelRect support;              // pixels whose alpha its mask can change, clipped to the viewport
   glm::vec2 shape_center{0.0f};   // circle / ellipse centre, window pixels
   glm::vec2 shape_radii{0.0f};    // semi-axes, window pixels (equal for a circle)
+  // Some object sorted before it overlaps it on screen and reaches nearer than its farthest
+  // point: a sort error could hide it (the R1 guard's repair is needed only then).
+  bool may_be_drawn_late = false;
 };
 
 struct FrameView {

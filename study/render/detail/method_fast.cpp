@@ -190,7 +190,7 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
         // Two separable passes: nearest covered texel per row, then Chebyshev per column (as alpha).
         auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler) {
           glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
-          glUseProgram(p.id);
+          fc.use_program(p);
           glActiveTexture(GL_TEXTURE0);
           glBindTexture(GL_TEXTURE_2D, r.texture(src));
           glUniform1i(p.loc(sampler), 0);
@@ -214,15 +214,15 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
 
 // Target `slot`'s mask, restricted to `area`: mark, multiply the atlas tile's gradient, aT inside.
 void apply_target_mask(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, int slot,
-                       const PixelRect& area, bool keep_codes) {
+                       const PixelRect& area, bool keep_codes, bool marked) {
   const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
   const Tile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
   if (area.empty() || tile.w == 0) return;
   scissor(area);
-  mark_target(fc, slot, keep_codes);
+  if (!marked) mark_target(fc, slot, keep_codes);
   begin_apply(fc, keep_codes);
   const Program& p = fc.programs.fast_apply;
-  glUseProgram(p.id);
+  fc.use_program(p);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, alpha_texture);
   glUniform1i(p.loc("u_mask"), 0);
@@ -247,19 +247,31 @@ void draw_effect(const FrameContext& fc, const Atlas& atlas, unsigned alpha_text
   std::vector<PixelRect> applied;  // supports of the targets already drawn
   for (auto i : fc.view.sorted) {
     const PixelRect part = fc.view.rects[i].intersect(region);
+    const int slot = fc.view.target_slot[i];
+    // Layer-limit counters and the shapes need the separate mark (mark_target resets the counter);
+    // a target nothing sorted earlier can hide needs no repair (FrameView::may_be_drawn_late).
+    const bool fused = slot >= 0 && fc.guard() && fc.view.single_pass[i] && fc.settings.dt.layer_limit == 0 &&
+                       fc.settings.dt.shape == MaskShape::outline;
+    bool marked = false;
     if (!part.empty()) {
       const bool masked =
           std::any_of(applied.begin(), applied.end(), [&](const PixelRect& s) { return s.overlaps(part); });
       const StencilWrite sw = object_stencil(fc, i, codes);
       masked ? draw_transparent_object(fc, i, true, sw) : draw_opaque_object(fc, i, sw);
-      if (fc.gpu.objects()[i].target && fc.guard()) repair_target(fc, i);
+      const bool late = slot >= 0 && fc.view.targets[static_cast<std::size_t>(slot)].may_be_drawn_late;
+      if (fused && late) {
+        scissor(fc.view.targets[static_cast<std::size_t>(slot)].support.intersect(region));
+        repair_and_mark_target(fc, i);
+        marked = true;
+      } else if (slot >= 0 && fc.guard() && late) {
+        repair_target(fc, i);
+      }
     }
-    const int slot = fc.view.target_slot[i];
     if (slot < 0) continue;
     const PixelRect area = fc.view.targets[static_cast<std::size_t>(slot)].support.intersect(region);
     if (area.empty()) continue;
     applied.push_back(area);
-    apply_target_mask(fc, atlas, alpha_texture, slot, area, codes);
+    apply_target_mask(fc, atlas, alpha_texture, slot, area, codes, marked);
     scissor(region);
   }
 }
@@ -360,7 +372,7 @@ Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
         glClearDepth(1.0);
         glClear(GL_DEPTH_BUFFER_BIT);
         const Program& p = fc.programs.quad_alpha;
-        glUseProgram(p.id);
+        fc.use_program(p);
         glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
         glBeginConditionalRender(r.query(d.query), GL_QUERY_WAIT);
         glDepthFunc(GL_ALWAYS);

@@ -43,6 +43,7 @@ Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc) {
         glEnable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
         glDisable(GL_STENCIL_TEST);
+        glDisable(GL_CULL_FACE);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);

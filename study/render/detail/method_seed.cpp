@@ -115,7 +115,9 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
             bind_main(fc, r, d.color, d.depth);
             for (auto i : run) {
               draw_transparent_object(fc, i, false, object_stencil(fc, i, false));  // always two passes
-              if (fc.gpu.objects()[i].target && fc.guard()) repair_target(fc, i);
+              const int slot = fc.view.target_slot[i];
+              if (slot >= 0 && fc.guard() && fc.view.targets[static_cast<std::size_t>(slot)].may_be_drawn_late)
+                repair_target(fc, i);
             }
           });
       cur = {d.color, d.depth};
@@ -146,6 +148,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           glDisable(GL_DEPTH_TEST);
           glDisable(GL_STENCIL_TEST);
           glDisable(GL_BLEND);
+          glDisable(GL_CULL_FACE);
           glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
           glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
           glClear(GL_COLOR_BUFFER_BIT);
@@ -156,7 +159,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           // Lines 3-8: n ping-pong passes, each adding one layer of the gradient.
           Handle src = d.ping, dst = d.pong;
           const Program& border = fc.programs.border;
-          glUseProgram(border.id);
+          fc.use_program(border);
           glUniform1i(border.loc("u_source"), 0);
           glActiveTexture(GL_TEXTURE0);
           for (int k = 1; k <= mask.layers; ++k) {
@@ -175,7 +178,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           mark_target(fc, slot, false);
           begin_apply(fc, false);
           const Program& apply = fc.programs.mask_apply;
-          glUseProgram(apply.id);
+          fc.use_program(apply);
           glBindTexture(GL_TEXTURE_2D, r.texture(src));
           glUniform1i(apply.loc("u_mask"), 0);
           glUniform2f(apply.loc("u_screen"), static_cast<float>(fc.width()), static_cast<float>(fc.height()));

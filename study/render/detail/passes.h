@@ -29,16 +29,32 @@ struct FrameContext {
   glm::vec4 flat_color(std::uint32_t object) const;  // a > 0.5: flat colour in use
   glm::vec3 background() const;                     // black in weight mode
 
-  // Scene geometry, lit (or flat in weight mode).
-  void use_lit(const glm::mat4& view_proj) const;
+  // Scene geometry, lit (or flat in weight mode); with `searchlight` fragments outside the
+  // circle are discarded (the R1 guard's repair only).
+  void use_lit(const glm::mat4& view_proj, bool searchlight = false) const;
   void draw_lit(std::uint32_t object) const;
   // Scene geometry writing `alpha` to every channel (depth-only passes, silhouettes, queries).
-  void use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight) const;
+  void use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight, bool outside_one = false) const;
   void draw_alpha(std::uint32_t object) const;
+  // Binds `p` unless it is bound (every program change in a frame goes through here).
+  void use_program(const Program& p) const;
   // A screen-aligned rectangle in window pixels of a w x h target, with `p` already in use.
   void quad(const Program& p, float x0, float y0, float x1, float y1, int w, int h) const;
   glm::vec3 searchlight_uniform(bool on) const;  // (x, y, r) or r = -1
   bool guard() const { return settings.dt.r1_guard; }
+
+  // What this frame last set (state changes cost llvmpipe far more than draws; redundant
+  // glUniform calls are not filtered by Mesa). Reset per frame: a FrameContext lives one frame.
+  struct Bound {
+    unsigned program = 0;
+    const Program* lit_for = nullptr;  // object program's view uniforms valid
+    glm::mat4 lit_vp{0.0f}, alpha_vp{0.0f};
+    bool lit_valid = false, alpha_valid = false;
+    glm::vec3 lit_searchlight{0.0f}, alpha_searchlight{0.0f};
+    float alpha = -1.0f;
+    int outside_one = -1;
+  };
+  mutable Bound bound;
   bool track_impenetrable() const { return settings.dt.r1_guard && !view.impenetrable.empty(); }
 };
 
@@ -93,6 +109,10 @@ void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw
 // R1 guard, step 2: target `i`'s fragments hidden by something drawn before it (a sort error),
 // except behind impenetrable surfaces, blended once per pixel as c (1 - aT) + C aT.
 void repair_target(const FrameContext& fc, std::uint32_t i);
+// The same repair fused with mark_target, for a target drawn in one culled pass (convex, seen
+// from outside, outline mask): each of its front-face fragments sets bit 7 whatever the tests
+// say, and blends only where hidden by something drawn earlier and not impenetrable.
+void repair_and_mark_target(const FrameContext& fc, std::uint32_t i);
 // Target `slot`'s silhouette (outline: its mesh through `view_proj`) or shape (circle /
 // ellipse: window pixel p maps to p * px_map.xy + px_map.zw of the bound framebuffer), with
 // whatever colour/stencil state the caller set (the program is chosen here). With

@@ -24,12 +24,26 @@ glm::vec3 FrameContext::searchlight_uniform(bool on) const {
   return on ? view.searchlight : glm::vec3(0.0f, 0.0f, -1.0f);
 }
 
-void FrameContext::use_lit(const glm::mat4& view_proj) const {
-  const Program& p = programs.object;
+void FrameContext::use_program(const Program& p) const {
+  if (bound.program == p.id) return;
   glUseProgram(p.id);
-  glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-  glUniform3fv(p.loc("u_eye"), 1, glm::value_ptr(view.camera.eye));
-  glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
+  bound.program = p.id;
+}
+
+void FrameContext::use_lit(const glm::mat4& view_proj, bool searchlight) const {
+  const Program& p = programs.object;
+  use_program(p);
+  if (!bound.lit_valid || bound.lit_vp != view_proj) {
+    glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+    glUniform3fv(p.loc("u_eye"), 1, glm::value_ptr(view.camera.eye));
+    bound.lit_vp = view_proj;
+  }
+  const glm::vec3 sl = searchlight_uniform(searchlight);
+  if (!bound.lit_valid || bound.lit_searchlight != sl) {
+    glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(sl));
+    bound.lit_searchlight = sl;
+  }
+  bound.lit_valid = true;
 }
 
 void FrameContext::draw_lit(std::uint32_t object) const {
@@ -42,13 +56,27 @@ void FrameContext::draw_lit(std::uint32_t object) const {
   gpu.draw(o);
 }
 
-void FrameContext::use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight) const {
+void FrameContext::use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight, bool outside_one) const {
   const Program& p = programs.object_alpha;
-  glUseProgram(p.id);
-  glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-  glUniform1f(p.loc("u_alpha"), alpha);
-  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(searchlight_uniform(searchlight)));
-  glUniform1i(p.loc("u_outside_one"), 0);
+  use_program(p);
+  if (!bound.alpha_valid || bound.alpha_vp != view_proj) {
+    glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+    bound.alpha_vp = view_proj;
+  }
+  if (!bound.alpha_valid || bound.alpha != alpha) {
+    glUniform1f(p.loc("u_alpha"), alpha);
+    bound.alpha = alpha;
+  }
+  const glm::vec3 sl = searchlight_uniform(searchlight);
+  if (!bound.alpha_valid || bound.alpha_searchlight != sl) {
+    glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(sl));
+    bound.alpha_searchlight = sl;
+  }
+  if (!bound.alpha_valid || bound.outside_one != static_cast<int>(outside_one)) {
+    glUniform1i(p.loc("u_outside_one"), outside_one ? 1 : 0);
+    bound.outside_one = outside_one ? 1 : 0;
+  }
+  bound.alpha_valid = true;
 }
 
 void FrameContext::draw_alpha(std::uint32_t object) const {
@@ -108,7 +136,6 @@ void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw
   glDisable(GL_CULL_FACE);
   stencil_writes(sw);
   fc.draw_lit(i);
-  glDisable(GL_STENCIL_TEST);
 }
 
 void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, StencilWrite sw) {
@@ -174,15 +201,11 @@ void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool singl
     glEnable(GL_BLEND);
     fc.gpu.draw(o);
   }
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_CULL_FACE);
 }
 
 void repair_target(const FrameContext& fc, std::uint32_t i) {
   const ObjectRecord& o = fc.gpu.objects()[i];
-  const Program& p = fc.programs.object;
-  fc.use_lit(fc.view.view_proj);
-  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
+  fc.use_lit(fc.view.view_proj, true);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);  // hidden by something already drawn
@@ -198,25 +221,43 @@ void repair_target(const FrameContext& fc, std::uint32_t i) {
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glFrontFace(o.mirrored ? GL_CW : GL_CCW);
+  } else {
+    glDisable(GL_CULL_FACE);
   }
   fc.draw_lit(i);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_STENCIL_TEST);
-  glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
+}
+
+void repair_and_mark_target(const FrameContext& fc, std::uint32_t i) {
+  const ObjectRecord& o = fc.gpu.objects()[i];
+  fc.use_lit(fc.view.view_proj, true);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendColor(0.0f, 0.0f, 0.0f, fc.settings.dt.alpha_target);
+  glBlendFuncSeparate(GL_ONE_MINUS_CONSTANT_ALPHA, GL_CONSTANT_ALPHA, GL_ZERO, GL_ONE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0x80, 0x40);  // passes where bit 6 is clear; REPLACE writes bit 7
+  glStencilOp(GL_REPLACE, GL_REPLACE, GL_REPLACE);
+  glStencilMask(0x80);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(o.mirrored ? GL_CW : GL_CCW);
+  fc.draw_lit(i);
 }
 
 void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::mat4& view_proj, glm::vec4 px_map,
                       bool searchlight, bool outside_one) {
   const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
   if (fc.settings.dt.shape == MaskShape::outline) {
-    fc.use_alpha(view_proj, alpha, searchlight);
-    glUniform1i(fc.programs.object_alpha.loc("u_outside_one"), outside_one ? 1 : 0);
+    fc.use_alpha(view_proj, alpha, searchlight, outside_one);
     fc.draw_alpha(t.object);
     return;
   }
   // Shapes are analytic, drawn over the whole viewport and cut by the shader.
   const Program& p = fc.programs.shape;
-  glUseProgram(p.id);
+  fc.use_program(p);
   glUniform2f(p.loc("u_center"), t.shape_center.x * px_map.x + px_map.z, t.shape_center.y * px_map.y + px_map.w);
   glUniform2f(p.loc("u_radii"), t.shape_radii.x * px_map.x, t.shape_radii.y * px_map.y);
   glUniform1f(p.loc("u_alpha"), alpha);
@@ -227,6 +268,7 @@ void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::
 }
 
 void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
+  glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -240,6 +282,7 @@ void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
 }
 
 void begin_apply(const FrameContext&, bool keep_codes) {
+  glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -252,6 +295,7 @@ void begin_apply(const FrameContext&, bool keep_codes) {
 }
 
 void finish_target(const FrameContext& fc, int slot) {
+  glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -263,7 +307,6 @@ void finish_target(const FrameContext& fc, int slot) {
   glStencilMask(0x80);                  // clears the mark, keeps the rest
   // aT inside the searchlight, 1 (no change) outside it: every marked pixel is visited.
   draw_target_seed(fc, slot, fc.settings.dt.alpha_target, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true, true);
-  glDisable(GL_STENCIL_TEST);
 }
 
 // --- opaque, target-query, present -----------------------------------------------------------
@@ -283,6 +326,7 @@ MainTargets add_opaque_pass(FrameGraph& fg, const FrameContext& fc, bool stencil
         glViewport(0, 0, fc.width(), fc.height());
         glDisable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
@@ -329,6 +373,7 @@ Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle dept
         glViewport(0, 0, fc.width(), fc.height());
         glDisable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);  // behind the frontmost surface ...

@@ -98,7 +98,7 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   const detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, target.width,
                                                          target.height, settings.dt, *impl_->sorter);
   const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, settings, impl_->scene,
-                                settings.float_color ? TextureFormat::rgba16f : TextureFormat::rgba8};
+                                settings.float_color ? TextureFormat::rgba16f : TextureFormat::rgba8, {}};
   FrameGraph fg;
   const Handle output = fg.import_target("output", target);
   const bool transparency = uses_transparency(settings.method);

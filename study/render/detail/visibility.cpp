@@ -38,7 +38,7 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
     FrameSettings plain = settings;
     plain.flat_colors.clear();
     detail::GlStateGuard guard;
-    const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, plain, impl_->scene, TextureFormat::r8};
+    const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, plain, impl_->scene, TextureFormat::r8, {}};
     std::vector<GLuint> queries(out.size(), 0);
     glGenQueries(static_cast<GLsizei>(queries.size()), queries.data());
     FrameGraph fg;
@@ -58,6 +58,7 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
           glDisable(GL_SCISSOR_TEST);
           glDisable(GL_DEPTH_TEST);
           glDisable(GL_BLEND);
+          glDisable(GL_CULL_FACE);
           glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
           glEnable(GL_STENCIL_TEST);
           glStencilFunc(GL_EQUAL, 0, 0xFF);  // a pixel's first fragment only
