@@ -69,6 +69,13 @@ int Design::tasks_in(const std::string& scenario) const {
 
 std::string Design::task_label(const TaskInfo& t) const { return t.id + " (" + task_type_label(t.type) + ")"; }
 
+std::string Design::tasks_note() const {
+  std::string s = "Tasks: ";
+  for (size_t i = 0; i < tasks.size(); ++i)
+    s += (i ? "; " : "") + tasks[i].id + " " + task_type_label(tasks[i].type) + " (" + tasks[i].scenario + ")";
+  return s + ".";
+}
+
 Design make_design(const protocol::Protocol& p) {
   Design d;
   d.protocol = &p;

@@ -40,6 +40,8 @@ struct Design {
   int tasks_in(const std::string& scenario) const;
   // "T1 (count targets)".
   std::string task_label(const TaskInfo& t) const;
+  // "Tasks: T1 count targets (abstract), T2 ...": the note under tables that name tasks by id.
+  std::string tasks_note() const;
 };
 
 Design make_design(const protocol::Protocol& p);

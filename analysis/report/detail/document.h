@@ -24,11 +24,16 @@ struct Table {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> notes;                         // printed under the table
   int text_columns = 1;                                   // leading columns of text (left-aligned); the rest are numbers
+  bool last_is_text = false;                              // the last column is text too (e.g. a reading)
+  bool is_text(size_t column) const {
+    return static_cast<int>(column) < text_columns || (last_is_text && column + 1 == header.size());
+  }
 };
 
 struct Figure {
   std::string id;       // also the SVG's file stem: figures/<id>.svg
   std::string caption;  // without "Figure N."
+  int width = 0;        // natural width in pixels (the page never draws it wider); 0 = the column's
 };
 
 struct Callout {

@@ -50,6 +50,14 @@ std::string p_text(double p, double log10_p) {
   return s;
 }
 
+std::string p_short(double p, double log10_p) {
+  if (p > 0 || std::isnan(p)) {
+    const std::string full = p_text(p, log10_p);
+    return full.substr(0, full.find(" (log10"));
+  }
+  return p_text(p, log10_p);
+}
+
 std::string f_text(double f) {
   if (std::isnan(f)) return kDash;
   if (std::isinf(f)) return "∞";

@@ -16,6 +16,8 @@ inline constexpr const char* kDash = "—";  // undefined value in a table
 std::string fixed(double v, int decimals);            // "12.35"; kDash for NaN; "∞"/"−∞" for infinities
 std::string mean_sd(double mean, double sd, int decimals);  // "56.26 (38.72)"; sd NaN -> "56.26 (—)"
 std::string p_text(double p, double log10_p);         // "0.0240", "3.91e-05", "2.1e-12 (log10 p = -11.68)"
+std::string p_short(double p, double log10_p);        // the same without the log10 part, for narrow table cells
+                                                      // (kept when p underflowed: "6.31e-346 (log10 p = -345.20)")
 std::string f_text(double f);                         // F with 2 decimals (3 below 1)
 std::string df_text(double df);                       // "15" or "12.47" (GG-corrected df)
 std::string integer(long long v);

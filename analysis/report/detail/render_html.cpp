@@ -15,7 +15,7 @@ constexpr const char* kCss = R"css(
         --note: #eef3fb; --note-edge: #6d8fc7; }
 * { box-sizing: border-box; }
 body { margin: 0; color: var(--ink); background: #fff; font: 16px/1.55 Georgia, "DejaVu Serif", "Times New Roman", serif; }
-main { max-width: 62rem; margin: 0 auto; padding: 2rem 1.5rem 4rem; }
+main { max-width: 76rem; margin: 0 auto; padding: 2rem 1.5rem 4rem; }
 header h1 { font-size: 1.7rem; line-height: 1.25; margin: 0 0 .4rem; }
 header p { color: var(--muted); margin: 0 0 1rem; }
 nav { font: 14px/1.6 system-ui, "DejaVu Sans", sans-serif; border-top: 1px solid var(--light);
@@ -28,18 +28,18 @@ code { font: 0.88em/1.4 "DejaVu Sans Mono", monospace; background: #f3f3f5; padd
 figure.table { margin: 1.4rem 0; overflow-x: auto; }
 figcaption { font-size: .95rem; margin: 0 0 .4rem; }
 figcaption b { font-weight: 700; }
-table { border-collapse: collapse; font: 14px/1.45 system-ui, "DejaVu Sans", sans-serif;
+table { border-collapse: collapse; font: 13px/1.45 system-ui, "DejaVu Sans", sans-serif;
         font-variant-numeric: tabular-nums; border-top: 2px solid var(--rule); border-bottom: 2px solid var(--rule); }
 th, td { padding: .25rem .7rem; text-align: right; white-space: nowrap; vertical-align: top; }
 th.text, td.text { text-align: left; white-space: normal; }
-td.text { min-width: 6rem; }
+td.text { min-width: 4rem; max-width: 26rem; }
 thead tr:last-child th { border-bottom: 1px solid var(--rule); }
 thead tr.groups th { border-bottom: 1px solid var(--light); text-align: center; font-weight: 600; color: var(--muted); }
 tbody tr:nth-child(even) { background: #fafafb; }
 .notes { font-size: .85rem; color: var(--muted); margin: .35rem 0 0; }
 .notes p { margin: .15rem 0; }
 figure.plot { margin: 1.6rem 0; }
-figure.plot svg { width: 100%; height: auto; max-width: 760px; display: block; }
+figure.plot svg { width: 100%; height: auto; display: block; }
 figure.plot figcaption { margin-top: .4rem; }
 .callout { border-left: 4px solid var(--note-edge); background: var(--note); padding: .6rem 1rem; margin: 1rem 0; }
 .callout.warning { border-color: var(--warn-edge); background: var(--warn); }
@@ -83,7 +83,7 @@ std::string render_html(const Document& doc, const std::map<std::string, std::st
   if (!doc.subtitle.empty()) o << "<p>" << text_html(doc.subtitle) << "</p>\n";
   o << "</header>\n<nav>";
   for (const auto& s : doc.sections)
-    if (s.level == 2) o << "<a href=\"#" << s.id << "\">" << text_html(s.title) << "</a>";
+    if (s.level == 2) o << "<a href=\"#" << s.id << "\">" << text_html(s.title) << "</a>\n";
   o << "</nav>\n";
   int tables = 0, figures = 0;
   for (const auto& s : doc.sections) {
@@ -102,13 +102,13 @@ std::string render_html(const Document& doc, const std::map<std::string, std::st
         }
         o << "<tr>";
         for (size_t c = 0; c < t->header.size(); ++c)
-          o << (static_cast<int>(c) < t->text_columns ? "<th class=\"text\">" : "<th>") << text_html(t->header[c])
+          o << (t->is_text(c) ? "<th class=\"text\">" : "<th>") << text_html(t->header[c])
             << "</th>";
         o << "</tr>\n</thead>\n<tbody>\n";
         for (const auto& row : t->rows) {
           o << "<tr>";
           for (size_t c = 0; c < row.size(); ++c)
-            o << (static_cast<int>(c) < t->text_columns ? "<td class=\"text\">" : "<td>") << text_html(row[c])
+            o << (t->is_text(c) ? "<td class=\"text\">" : "<td>") << text_html(row[c])
               << "</td>";
           o << "</tr>\n";
         }
@@ -121,7 +121,9 @@ std::string render_html(const Document& doc, const std::map<std::string, std::st
         o << "</figure>\n";
       } else if (const auto* f = std::get_if<Figure>(&b)) {
         ++figures;
-        o << "<figure class=\"plot\" id=\"" << f->id << "\">\n";
+        o << "<figure class=\"plot\" id=\"" << f->id << "\"";
+        if (f->width > 0) o << " style=\"max-width: " << f->width << "px\"";
+        o << ">\n";
         auto it = svg.find(f->id);
         if (it != svg.end()) o << inline_svg(it->second, f->id + "-") << "\n";
         o << "<figcaption><b>Figure " << figures << ".</b> " << text_html(f->caption) << "</figcaption>\n</figure>\n";

@@ -57,7 +57,7 @@ std::string render_markdown(const Document& doc) {
         o << "|";
         for (const auto& h : header) o << " " << md(h, true) << " |";
         o << "\n|";
-        for (size_t c = 0; c < header.size(); ++c) o << (static_cast<int>(c) < t->text_columns ? ":---|" : "---:|");
+        for (size_t c = 0; c < header.size(); ++c) o << (t->is_text(c) ? ":---|" : "---:|");
         o << "\n";
         for (const auto& row : t->rows) {
           o << "|";

@@ -26,7 +26,7 @@ void Context::add_figure(Section& s, PlotSpec p, const std::string& caption) {
     s.text("(Figure \"" + p.id + "\" is not drawn: there is no finite value to plot.)");
     return;
   }
-  s.add(Figure{p.id, caption});
+  s.add(Figure{p.id, caption, p.width});
   plots.push_back(std::move(p));
 }
 
@@ -54,13 +54,13 @@ Table anova_table(const TestReport& r, const Design& d, const std::string& id, c
   if (r.anova)
     for (const auto& e : r.anova->effects) {
       std::vector<std::string> row = {e.name,  df_text(e.df1),           df_text(e.df2),
-                                      fixed(e.ss, 3), f_text(e.F),       p_text(e.p, e.log10_p),
+                                      fixed(e.ss, 3), f_text(e.F),       p_short(e.p, e.log10_p),
                                       fixed(e.log10_p, 2), fixed(e.eta_p2, 3), fixed(e.eta_g2, 3)};
       if (sphericity) {
         if (e.df1 > 1) {
-          for (const auto& s : {fixed(e.mauchly_W, 3), p_text(e.mauchly_p, std::log10(e.mauchly_p)),
-                                fixed(e.gg_epsilon, 3), p_text(e.p_gg, e.log10_p_gg), fixed(e.hf_epsilon, 3),
-                                p_text(e.p_hf, e.log10_p_hf)})
+          for (const auto& s : {fixed(e.mauchly_W, 3), p_short(e.mauchly_p, std::log10(e.mauchly_p)),
+                                fixed(e.gg_epsilon, 3), p_short(e.p_gg, e.log10_p_gg), fixed(e.hf_epsilon, 3),
+                                p_short(e.p_hf, e.log10_p_hf)})
             row.push_back(s);
         } else {
           for (const char* s : {"—", "—", "1", "= p", "1", "= p"}) row.push_back(s);

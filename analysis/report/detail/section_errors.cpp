@@ -32,10 +32,10 @@ std::string statistic_text(const TestReport& r, const std::string& factor) {
 }
 
 std::string p_of(const TestReport& r, const std::string& factor, bool gg) {
-  if (const stats::Effect* e = r.effect(factor)) return gg ? p_text(e->p_gg, e->log10_p_gg) : p_text(e->p, e->log10_p);
+  if (const stats::Effect* e = r.effect(factor)) return gg ? p_short(e->p_gg, e->log10_p_gg) : p_short(e->p, e->log10_p);
   if (r.friedman) {
-    std::string s = p_text(r.friedman->p, r.friedman->log10_p);
-    if (std::isfinite(r.friedman->p_exact)) s += " (exact " + p_text(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")";
+    std::string s = p_short(r.friedman->p, r.friedman->log10_p);
+    if (std::isfinite(r.friedman->p_exact)) s += " (exact " + p_short(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")";
     return s;
   }
   return kDash;
@@ -101,10 +101,10 @@ void section_errors(Context& ctx) {
       const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.rel_error; }));
       const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
       ctx.accuracy[task.id] = &r1;
-      add({d.task_label(task), "relative error, per-trial mean", "", &r1, nullptr, 3}, m1, "rel_error_mean");
+      add({task.id, "rel. error, mean of trials", "", &r1, nullptr, 3}, m1, "rel_error_mean");
       const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
       const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
-      add({d.task_label(task), "relative error, aggregated", "", &r2, find_article(task.id), 3}, m2,
+      add({task.id, "rel. error, aggregated", "", &r2, find_article(task.id), 3}, m2,
           "rel_error_aggregated");
       const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
                                    return t.signed_error ? std::optional<double>(static_cast<double>(*t.signed_error))
@@ -115,12 +115,12 @@ void section_errors(Context& ctx) {
       const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
       const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
       ctx.accuracy[task.id] = &r;
-      add({d.task_label(task), "proportion correct", "", &r, find_article(task.id), 3}, m, "proportion_correct");
+      add({task.id, "proportion correct", "", &r, find_article(task.id), 3}, m, "proportion_correct");
     } else if (task.type == TaskType::find_unique) {
       const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.distance; }));
       const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
       ctx.accuracy[task.id] = &r;
-      add({d.task_label(task), "distance (world units)", "world units", &r, find_article(task.id), 2}, m, "distance_mean");
+      add({task.id, "distance (world units)", "world units", &r, find_article(task.id), 2}, m, "distance_mean");
     }
   }
   if (count_tasks.size() > 1) {
@@ -133,11 +133,11 @@ void section_errors(Context& ctx) {
     };
     std::sort(count_factors.begin(), count_factors.end());
     const auto& m1 = ctx.cells(count_factors, in_count, mean_of([](const TrialRow& t) { return t.rel_error; }));
-    add({ids + " (counting tasks)", "relative error, per-trial mean", "",
+    add({ids, "rel. error, mean of trials", "",
          &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), nullptr, 3},
         m1, "rel_error_mean");
     const auto& m2 = ctx.cells(count_factors, in_count, aggregated_relative_error());
-    add({ids + " (counting tasks)", "relative error, aggregated", "",
+    add({ids, "rel. error, aggregated", "",
          &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), find_article("count"), 3},
         m2, "rel_error_aggregated");
   }
@@ -190,7 +190,7 @@ void section_errors(Context& ctx) {
     t.rows.push_back(std::move(cells));
   }
   if (d.reference) t.groups = {{"this study", static_cast<int>(ours)}, {"article (VII.2)", 4}};
-  t.notes.push_back("Relative error is a proportion (0 = exact count); proportion correct is 0..1; distance is in "
+  t.notes.push_back(d.tasks_note() + " Relative error is a proportion (0 = exact count); proportion correct is 0..1; distance is in "
                     "world units. Test: repeated-measures ANOVA (F) or Friedman's test (χ², with the exact "
                     "permutation p in parentheses when computed). Effect size: partial η² or Kendall's W.");
   if (!two)

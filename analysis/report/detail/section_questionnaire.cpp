@@ -159,9 +159,9 @@ void section_questionnaire(Context& ctx) {
         for (const auto& c : primary_cells(r, d, 2)) row.push_back(c);
         row.push_back(std::to_string(r.kept.size()));
         row.push_back(r.friedman ? fixed(r.friedman->Q, 2) + " (" + df_text(r.friedman->df) + ")" : kDash);
-        row.push_back(r.friedman ? p_text(r.friedman->p, r.friedman->log10_p) +
+        row.push_back(r.friedman ? p_short(r.friedman->p, r.friedman->log10_p) +
                                        (std::isfinite(r.friedman->p_exact)
-                                            ? " (exact " + p_text(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")"
+                                            ? " (exact " + p_short(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")"
                                             : "")
                                  : kDash);
         row.push_back(r.friedman ? fixed(r.friedman->kendall_W, 3) : kDash);

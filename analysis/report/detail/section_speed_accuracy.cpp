@@ -60,6 +60,7 @@ void section_speed_accuracy(Context& ctx) {
   }
   t.header.push_back("Reading");
   t.text_columns = 2;
+  t.last_is_text = true;
   Table c;
   c.id = "table-speed-accuracy-rmcorr";
   c.caption = "Within-participant relation of a trial's completion time and its error (repeated-measures "
@@ -79,7 +80,7 @@ void section_speed_accuracy(Context& ctx) {
     const TestReport& ar = *ai->second;
     const auto* tm = tr.marginal_of(d.primary);
     const auto* am = ar.marginal_of(d.primary);
-    std::vector<std::string> row = {d.task_label(task), error_name(task.type)};
+    std::vector<std::string> row = {task.id, error_name(task.type)};
     nlohmann::json jr{{"task", task.id}, {"error_measure", error_name(task.type)}, {"levels", nlohmann::json::array()}};
     for (size_t l = 0; l < primary.levels.size(); ++l) {
       const double time = tm ? (*tm)[l].mean : NAN;
@@ -139,7 +140,7 @@ void section_speed_accuracy(Context& ctx) {
       y.push_back(e ? *e : NAN);
     }
     const RmCorr rc = rm_corr(group, x, y);
-    c.rows.push_back({d.task_label(task), error_name(task.type), std::to_string(rc.n), std::to_string(rc.groups),
+    c.rows.push_back({task.id, error_name(task.type), std::to_string(rc.n), std::to_string(rc.groups),
                       fixed(rc.r, 3),
                       std::isfinite(rc.ci_low) ? "[" + fixed(rc.ci_low, 2) + ", " + fixed(rc.ci_high, 2) + "]" : kDash, df_text(rc.df),
                       p_text(rc.p, rc.log10_p), fixed(10 * rc.slope, task.type == TaskType::find_unique ? 2 : 4)});
@@ -174,7 +175,7 @@ void section_speed_accuracy(Context& ctx) {
     ctx.doc.sections.push_back(std::move(s));
     return;
   }
-  t.notes.push_back("Reading: from the paired difference of the participants' mean times (paired t) and the test of "
+  t.notes.push_back(d.tasks_note() + " Reading: from the paired difference of the participants' mean times (paired t) and the test of "
                     "the error measure in the Accuracy section; \"reliable\" means p < .05. Percentages are relative "
                     "to the first level's mean time.");
   s.add(t);
@@ -191,7 +192,7 @@ void section_speed_accuracy(Context& ctx) {
   p.width = 420 * std::max(cols, 1) + 40;
   p.height = 330 * std::max(rows, 1) + 40;
   std::string cmd = "set multiplot layout " + std::to_string(rows) + "," + std::to_string(std::max(cols, 1)) +
-                    "\nset xlabel 'Completion time (s)'\nset key top right vertical\n";
+                    "\nset xlabel 'Completion time (s)'\nset key above center horizontal\n";
   const size_t levels = primary.levels.size();
   int drawn = 0;
   for (int i = 0; i < panel_index; ++i) {
