@@ -3,9 +3,15 @@
 // parsing. A callback reports failure by throwing CLI::RuntimeError(exit_code)
 // after printing its message to stderr; it never calls exit() itself.
 #pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
 
 namespace CLI {
 class App;
+}
+namespace dtlab::protocol {
+struct Protocol;
 }
 
 namespace dtlab::app {
@@ -15,6 +21,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitInvalid = 1;  // the input is wrong (protocol, CSV, database); message on stderr
 inline constexpr int kExitUsage = 2;    // the command line is wrong (CLI11's own exit code for parse errors)
 inline constexpr int kExitFailure = 3;  // the environment failed (I/O, GL context, SQLite)
+inline constexpr int kExitInterrupted = 130;  // Ctrl-C: stopped after the work in progress; rerun to resume
 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
 void add_render_command(CLI::App& root);   // `dtlab render ... --method M --out FILE.png`: one frame headless, --json
@@ -25,4 +32,22 @@ void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every 
 void add_plan_command(CLI::App& root);  // `dtlab plan PROTOCOL --index K`: one participant's trials, --json
 void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one tidy CSV row per recorded trial, --json
 void add_analyze_command(CLI::App& root);  // `dtlab analyze DB --out DIR`: study report (report.md, index.html, JSON, CSV)
+void add_simulate_command(CLI::App& root);  // `dtlab simulate PROTOCOL --participants N --db FILE`: simulated participants, headless
+void add_demo_command(CLI::App& root);  // `dtlab demo [--out DIR]`: the reference study simulated end to end, then its report
+
+// Shared by `dtlab simulate` and `dtlab demo` (cmd_simulate.cpp): enrolls sim-001 .. sim-N into
+// run.db and runs their sessions with progress on stderr (lines start with `prefix`); returns an exit code.
+struct SimulationRun {
+  std::string db;
+  int participants = 16, jobs = 1, width = 160, height = 120;
+  std::uint64_t seed = 0;
+};
+struct SimulationResult {
+  int finished_total = 0, already_finished = 0, resumed = 0, trials_run = 0;
+  bool stopped = false;
+  double wall_s = 0;
+  std::vector<std::string> errors;
+};
+int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const std::string& prefix,
+                   SimulationResult& result);
 }  // namespace dtlab::app

@@ -1,0 +1,220 @@
+// `dtlab simulate PROTOCOL --participants N --db FILE [--seed S] [--width W
+// --height H] [--jobs J] [--json]`: simulated participants (study/sim) run the
+// protocol headless (OSMesa) into a study database; progress on stderr, a
+// summary on stdout. Into an existing database it continues: running sessions
+// resume, finished ones are skipped, ids up to sim-N are added. Ctrl-C stops
+// after the trials in progress (a second Ctrl-C at once); SIGKILL loses at
+// most the trials in progress. Exit 0 all finished, 1 bad protocol/database,
+// 2 bad command line, 3 environment (GL, SQLite, fork), 130 interrupted.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <thread>
+#include <unistd.h>
+
+#include "app/commands.h"
+#include "app/platform/gl_context.h"
+#include "study/design/design.h"
+#include "study/protocol/protocol.h"
+#include "study/sim/driver.h"
+#include "study/sim/summary.h"
+#include "study/store/store.h"
+
+namespace dtlab::app {
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void on_interrupt(int) {
+  g_stop = 1;
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+std::string clock_text(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
+// Progress on stderr: one line per recorded trial, with the run's ETA from its own pace.
+class ProgressPrinter {
+ public:
+  ProgressPrinter(std::string prefix, long long planned_total) : prefix_(std::move(prefix)), total_(planned_total) {}
+  void operator()(const sim::Progress& p) {
+    using K = sim::Progress::Kind;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    char line[512];
+    switch (p.kind) {
+      case K::started:
+        total_ -= p.position;  // trials recorded before this run are not ahead of us
+        if (p.resumed)
+          std::fprintf(stderr, "%s: %s resumes at trial %d of %d\n", prefix_.c_str(), p.participant.c_str(),
+                       p.position + 1, p.planned);
+        break;
+      case K::trial: {
+        ++done_;
+        const double eta = done_ > 0 ? elapsed / static_cast<double>(done_) * static_cast<double>(total_ - done_) : 0;
+        std::snprintf(line, sizeof line, "%s: [%lld/%lld] %s trial %d/%d %s %s: %.1f s simulated | %s elapsed, ETA %s",
+                      prefix_.c_str(), done_, total_, p.participant.c_str(), p.position, p.planned, p.task.c_str(),
+                      p.condition.c_str(), p.simulated_s, clock_text(elapsed).c_str(),
+                      clock_text(std::max(0.0, eta)).c_str());
+        std::fprintf(stderr, "%s\n", line);
+        break;
+      }
+      case K::finished:
+        std::fprintf(stderr, "%s: %s finished\n", prefix_.c_str(), p.participant.c_str());
+        break;
+      case K::failed:
+        if (!g_stop) std::fprintf(stderr, "%s: %s failed: %s\n", prefix_.c_str(), p.participant.c_str(), p.message.c_str());
+        break;
+    }
+  }
+
+ private:
+  std::string prefix_;
+  long long total_ = 0, done_ = 0;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+struct SimulateArgs {
+  std::string protocol, db;
+  SimulationRun run;
+  bool json = false;
+};
+
+std::string rendering_factor(const protocol::Protocol& p) {
+  for (const auto& f : p.factors)
+    if (f.role == protocol::FactorRole::rendering) return f.name;
+  return "";
+}
+
+void run_simulate(const SimulateArgs& a) {
+  auto p = protocol::load_protocol(a.protocol);
+  if (!p) {
+    std::cerr << "dtlab simulate: " << p.error().to_string() << "\n";
+    throw CLI::RuntimeError(kExitInvalid);
+  }
+  SimulationResult r;
+  SimulationRun run = a.run;
+  run.db = a.db;
+  const int rc = run_simulation(p.value(), run, "dtlab simulate", r);
+  if (rc != kExitOk && rc != kExitInterrupted && rc != kExitFailure) throw CLI::RuntimeError(rc);
+  auto summary = sim::summarize(a.db, rendering_factor(p.value()));
+  if (a.json) {
+    nlohmann::json j{{"protocol", p->id},          {"database", a.db},
+                     {"participants", run.participants}, {"finished", r.finished_total},
+                     {"skipped_finished", r.already_finished}, {"resumed", r.resumed},
+                     {"trials_run", r.trials_run}, {"failed", r.errors},
+                     {"interrupted", r.stopped},   {"wall_s", r.wall_s}};
+    if (summary) {
+      nlohmann::json cells = nlohmann::json::array();
+      for (const auto& c : summary->cells)
+        cells.push_back({{"task", c.task}, {"rendering", c.rendering}, {"trials", c.trials},
+                         {"time_mean_s", c.time_mean}, {"time_sd_s", c.time_sd}, {"measure", c.measure},
+                         {"measure_mean", c.measure_mean}});
+      j["summary"] = cells;
+    }
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << "dtlab simulate: " << p->id << " -> " << a.db << ": " << r.finished_total << " of "
+              << run.participants << " participants finished (" << r.already_finished << " before this run, "
+              << r.resumed << " resumed); " << r.trials_run << " trials in " << clock_text(r.wall_s) << "\n";
+    if (summary) std::cout << sim::format_summary(summary.value());
+  }
+  if (rc != kExitOk) throw CLI::RuntimeError(rc);
+}
+
+}  // namespace
+
+int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const std::string& prefix,
+                   SimulationResult& result) {
+  const auto start = std::chrono::steady_clock::now();
+  auto roster = sim::enroll_simulated(run.db, p, run.participants);
+  if (!roster) {
+    std::cerr << prefix << ": " << roster.error().to_string() << "\n";
+    return store::is_environment_error(roster.error()) ? kExitFailure : kExitInvalid;
+  }
+  result.already_finished = roster->finished;
+  result.resumed = roster->resumable;
+
+  sim::RunOptions o;
+  o.db_path = run.db;
+  o.protocol = &p;
+  o.participants = roster->to_run;
+  o.jobs = run.jobs;
+  o.sim.width = run.width;
+  o.sim.height = run.height;
+  o.sim.seed = run.seed;
+  o.make_context = [](int w, int h) -> Result<std::shared_ptr<void>> {
+    auto ctx = platform::create_headless(w, h);
+    if (!ctx) return ctx.error();
+    return std::shared_ptr<void>(std::move(ctx.value()));
+  };
+  const long long per = static_cast<long long>(design::make_plan(p, 0).trials.size());
+  ProgressPrinter printer(prefix, per * static_cast<long long>(roster->to_run.size()));
+  o.on_progress = [&](const sim::Progress& pr) { printer(pr); };
+  g_stop = 0;
+  o.stop = &g_stop;
+  auto old_int = std::signal(SIGINT, on_interrupt);
+  auto old_term = std::signal(SIGTERM, on_interrupt);
+  auto ran = sim::run_simulated(o);
+  std::signal(SIGINT, old_int);
+  std::signal(SIGTERM, old_term);
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!ran) {
+    std::cerr << prefix << ": " << ran.error().to_string() << "\n";
+    return kExitFailure;
+  }
+  result.trials_run = ran->trials_run;
+  result.finished_total = roster->finished + ran->finished;
+  result.errors = ran->errors;
+  result.stopped = ran->stopped;
+  for (const std::string& e : ran->errors) std::cerr << prefix << ": " << e << "\n";
+  if (ran->stopped) {
+    std::cerr << prefix << ": interrupted; every recorded trial is saved in " << run.db
+              << ". Run the same command again to resume.\n";
+    return kExitInterrupted;
+  }
+  return ran->failed > 0 ? kExitFailure : kExitOk;
+}
+
+void add_simulate_command(CLI::App& root) {
+  auto a = std::make_shared<SimulateArgs>();
+  auto* cmd = root.add_subcommand(
+      "simulate",
+      "Run simulated participants through a protocol, headless, into a study database. Each one looks at every "
+      "trial through the real renderer (the trial's own method) and answers from what it saw; completion times are "
+      "simulated seconds from the model in docs/sim.md. An existing database is continued: running sessions resume, "
+      "finished ones are skipped, participants sim-001 .. sim-N are added as needed. Ctrl-C stops after the trials "
+      "in progress; rerun to resume");
+  cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--participants", a->run.participants, "Simulated participants sim-001 .. sim-N")
+      ->required()
+      ->check(CLI::Range(1, 9999));
+  cmd->add_option("--db", a->db, "Study database (SQLite; created if missing)")->required();
+  cmd->add_option("--seed", a->run.seed, "Seed of the simulated participants' traits and choices (plans and scenes "
+                                         "come from the protocol's master seed)")
+      ->capture_default_str();
+  cmd->add_option("--width", a->run.width, "Width of every view the agents look at, pixels")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
+  cmd->add_option("--height", a->run.height, "Height of every view, pixels")->check(CLI::Range(16, 4096))->capture_default_str();
+  cmd->add_option("--jobs", a->run.jobs, "Worker processes (each its own GL context and database connection)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_flag("--json", a->json,
+                "Print {protocol, database, participants, finished, skipped_finished, resumed, trials_run, failed, "
+                "interrupted, wall_s, summary} as JSON on stdout");
+  cmd->callback([a] { run_simulate(*a); });
+}
+
+}  // namespace dtlab::app

@@ -1,0 +1,224 @@
+// The post-test questionnaire (session.h): items expanded into questions, the
+// depth test's static view and its answer key, and the session's recorded
+// trials read back from the file for the responder's memory.
+// Guarantees: the same (protocol, enrollment index, viewport) gives the same
+// questions, view and pairs; the depth-test key is geometry (distance from
+// the eye), never what a renderer shows. Never: writes to the store.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "analysis/stats/csv.h"
+#include "study/design/seeds.h"
+#include "study/session/detail/stream.h"
+#include "study/session/session.h"
+#include "study/store/export.h"
+
+namespace dtlab::session {
+
+namespace {
+
+const protocol::Factor* find_factor(const protocol::Protocol& p, const std::string& name) {
+  for (const auto& f : p.factors)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+const protocol::Rendering* find_rendering(const protocol::Protocol& p, const std::string& name) {
+  for (const auto& r : p.renderings)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
+const protocol::Scenario* find_scenario(const protocol::Protocol& p, const std::string& name) {
+  for (const auto& s : p.scenarios)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<Question> expand_questionnaire(const protocol::Protocol& p) {
+  std::vector<Question> out;
+  for (const protocol::QuestionnaireItem& item : p.questionnaire) {
+    switch (item.type) {
+      case protocol::ItemType::rating: {
+        // Every combination of the `per` factors' levels, first factor slowest.
+        std::vector<const protocol::Factor*> per;
+        std::size_t combinations = 1;
+        for (const auto& name : item.per) {
+          const protocol::Factor* f = find_factor(p, name);
+          if (!f) continue;  // load_protocol checked the names; a hand-built protocol may not have
+          per.push_back(f);
+          combinations *= f->levels.size();
+        }
+        for (std::size_t c = 0; c < combinations; ++c) {
+          Question q;
+          q.item = &item;
+          std::size_t rest = c, stride = combinations;
+          for (const protocol::Factor* f : per) {
+            stride /= f->levels.size();
+            const std::string& level = f->levels[rest / stride];
+            rest %= stride;
+            q.levels.emplace_back(f->name, level);
+            q.scope += (q.scope.empty() ? "" : ";") + f->name + "=" + level;
+          }
+          out.push_back(std::move(q));
+        }
+        break;
+      }
+      case protocol::ItemType::choice: {
+        Question q;
+        q.item = &item;
+        if (const protocol::Factor* f = find_factor(p, item.factor)) q.options = f->levels;
+        else q.options = item.options;
+        out.push_back(std::move(q));
+        break;
+      }
+      case protocol::ItemType::depth_test:
+        for (int k = 1; k <= item.pairs; ++k) {
+          Question q;
+          q.item = &item;
+          q.pair = k;
+          q.scope = "pair=" + std::to_string(k);
+          out.push_back(std::move(q));
+        }
+        break;
+    }
+  }
+  return out;
+}
+
+std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, int item_position) {
+  return mix64(design::participant_seed(master_seed, static_cast<std::uint64_t>(enrollment_index)),
+               kDepthTestDomain + static_cast<std::uint64_t>(item_position));
+}
+
+Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol::QuestionnaireItem& item,
+                                     int enrollment_index, const Viewport& vp, std::vector<Question>& questions) {
+  const std::string field = "questionnaire." + item.id;
+  auto bad = [&](const std::string& f, const std::string& m) { return Error{p.source_path, 0, 0, f, m}; };
+  const protocol::Scenario* scenario = find_scenario(p, item.scenario);
+  const protocol::Rendering* rendering = find_rendering(p, item.rendering);
+  if (!scenario || scenario->tasks.empty()) return bad(field + ".scenario", "no scenario '" + item.scenario + "' with tasks");
+  if (!rendering) return bad(field + ".rendering", "no rendering '" + item.rendering + "'");
+  if (scenario->scene.kind != protocol::ScenarioKind::walkthrough)
+    return bad(field + ".scenario", "the depth test needs a walkthrough scenario (objects at eye level in rooms)");
+
+  int item_position = 0;
+  for (std::size_t i = 0; i < p.questionnaire.size(); ++i)
+    if (&p.questionnaire[i] == &item) item_position = static_cast<int>(i);
+  const std::uint64_t seed = depth_test_seed(p.master_seed, enrollment_index, item_position);
+  // The scene of the scenario's first task: its objects are what the participant saw all session.
+  const protocol::Task& task = scenario->tasks.front();
+  auto params = scene_params(p, *scenario, task);
+  if (!params) return params.error();
+  auto sc = scene::generate(scene_kind(task.scene.kind), scene_task(task.type), seed, params.value());
+  if (!sc) return sc.error();
+  auto frame = frame_settings(p, *rendering, vp.width, vp.height);
+  if (!frame) return frame.error();
+
+  DepthTestKey key;
+  key.view.item = item.id;
+  key.view.scene = std::move(sc.value());
+  key.view.frame = std::move(frame.value());
+  const scene::Scene& s = key.view.scene;
+  scene::CameraStart cam = s.camera;
+  const float aspect = static_cast<float>(vp.width) / static_cast<float>(vp.height);
+  const double half_h = 0.8 * std::atan(std::tan(0.5 * cam.fov_y) * aspect);  // inner 80% of the horizontal field
+
+  // Objects (the placed models, not the building) in view from the start, for yaw step k of 16.
+  struct Seen {
+    std::uint32_t id;
+    double dist;
+  };
+  auto in_view = [&](double yaw) {
+    std::vector<Seen> seen;
+    const glm::dvec2 fwd(-std::sin(yaw), -std::cos(yaw));  // yaw 0 looks along -z, yaw pi/2 along -x
+    for (const scene::Object& o : s.objects) {
+      if (!o.target) continue;
+      const glm::dvec2 d(o.transform[3].x - cam.position.x, o.transform[3].z - cam.position.z);
+      const double dist = std::hypot(d.x, d.y);
+      if (dist < 2.0 || dist > 40.0) continue;
+      const double ang = std::acos(std::clamp(glm::dot(d / dist, fwd), -1.0, 1.0));
+      if (ang <= half_h) seen.push_back({o.id, dist});
+    }
+    return seen;
+  };
+  // Yaw steps by how many objects they show (most first, ties to the lower step).
+  std::vector<std::pair<int, int>> steps;
+  for (int k = 0; k < 16; ++k) steps.emplace_back(-static_cast<int>(in_view(k * 6.283185307179586 / 16).size()), k);
+  std::sort(steps.begin(), steps.end());
+
+  detail::Stream rng(seed);
+  for (const double lo : {1.2, 1.05}) {
+    const double hi = lo == 1.2 ? 2.0 : 3.0;
+    for (const auto& [neg, k] : steps) {
+      if (-neg < 2 * item.pairs) break;
+      const double yaw = k * 6.283185307179586 / 16;
+      std::vector<Seen> seen = in_view(yaw);
+      // Seeded shuffle, then greedy disjoint pairs whose distance ratio lies in [lo, hi].
+      for (std::size_t i = seen.size(); i > 1; --i) std::swap(seen[i - 1], seen[rng.below(i)]);
+      std::vector<std::pair<Seen, Seen>> pairs;
+      std::vector<char> used(seen.size(), 0);
+      for (std::size_t i = 0; i < seen.size() && static_cast<int>(pairs.size()) < item.pairs; ++i) {
+        if (used[i]) continue;
+        for (std::size_t j = i + 1; j < seen.size(); ++j) {
+          if (used[j]) continue;
+          const double r = std::max(seen[i].dist, seen[j].dist) / std::min(seen[i].dist, seen[j].dist);
+          if (r >= lo && r <= hi) {
+            used[i] = used[j] = 1;
+            pairs.emplace_back(seen[i], seen[j]);
+            break;
+          }
+        }
+      }
+      if (static_cast<int>(pairs.size()) < item.pairs) continue;
+      cam.yaw = static_cast<float>(yaw);
+      key.view.camera = cam;
+      for (Question& q : questions) {
+        if (q.item != &item) continue;
+        const auto& [a, b] = pairs[static_cast<std::size_t>(q.pair - 1)];
+        q.object_a = a.id;
+        q.object_b = b.id;
+      }
+      for (const auto& [a, b] : pairs) key.closer.push_back(a.dist < b.dist ? a.id : b.id);
+      return key;
+    }
+  }
+  return bad(field + ".pairs", "no view from the start cell shows " + std::to_string(item.pairs) +
+                                   " pairs of objects at distinguishable distances");
+}
+
+Result<std::vector<RecordedTrial>> recorded_trials(const std::string& db_path, const design::Plan& plan,
+                                                   const std::string& participant_id) {
+  std::ostringstream csv;
+  auto exported = store::export_trials_csv(db_path, csv);
+  if (!exported) return exported.error();
+  auto table = stats::parse_csv(csv.str(), db_path + " (trial_table)");
+  if (!table) return table.error();
+  const stats::CsvTable& t = table.value();
+  const int c_participant = t.column("participant"), c_position = t.column("position"),
+            c_time = t.column("completion_time_s"), c_count = t.column("answer_count"),
+            c_letter = t.column("answer_letter"), c_x = t.column("answer_x");
+  for (int c : {c_participant, c_position, c_time, c_count, c_letter, c_x})
+    if (c < 0) return Error{db_path, 0, 0, "trial_table", "the export lacks a column the session reads"};
+  std::vector<RecordedTrial> out;
+  for (const auto& row : t.rows) {
+    if (row[static_cast<std::size_t>(c_participant)] != participant_id) continue;
+    const int position = std::stoi(row[static_cast<std::size_t>(c_position)]);
+    if (position < 1 || position > static_cast<int>(plan.trials.size()))
+      return Error{db_path, 0, 0, "trial_table.position", "position " + std::to_string(position) + " is not in the plan"};
+    RecordedTrial r;
+    r.planned = plan.trials[static_cast<std::size_t>(position - 1)];
+    r.completion_s = std::stod(row[static_cast<std::size_t>(c_time)]);
+    for (int c : {c_count, c_letter, c_x})
+      if (row[static_cast<std::size_t>(c)] != "NA") r.answered = true;
+    out.push_back(std::move(r));
+  }
+  std::sort(out.begin(), out.end(),
+            [](const RecordedTrial& a, const RecordedTrial& b) { return a.planned.position < b.planned.position; });
+  return out;
+}
+
+}  // namespace dtlab::session

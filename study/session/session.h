@@ -1,0 +1,179 @@
+// The session runner: runs one participant's session of a protocol against a
+// study database, with a Responder (a person behind a window, or a simulated
+// participant) doing the trials. Study -> Participant -> Session -> Block ->
+// Trial as in UXF (docs/session.md has the model, the lifecycle and the state
+// diagram). Guarantees: every finished trial is committed in ONE
+// Store::record_trial transaction before the next one starts; the next trial
+// is always read from the file, so a crash at any point loses at most the
+// trial in progress and rerunning resumes with exactly the trials it would
+// have run; the answer key comes from the generated scene, scores from
+// store::score(). Never: creates a GL context, writes SQL, or keeps results
+// only in memory.
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "study/common/error.h"
+#include "study/design/plan.h"
+#include "study/protocol/protocol.h"
+#include "study/render/render.h"
+#include "study/scene/scene.h"
+#include "study/session/mapping.h"
+#include "study/store/store.h"
+
+namespace dtlab::session {
+
+// The pixel size a responder draws and looks at; frame settings are made for it.
+struct Viewport {
+  int width = 800;
+  int height = 600;
+};
+
+// One trial as handed to the responder. Pointers stay valid until run_trial returns.
+struct TrialSpec {
+  const protocol::Protocol* protocol = nullptr;
+  std::string participant_id;
+  int enrollment_index = 0;       // the participant's 0-based index in the ledger
+  design::PlannedTrial planned;   // position, block, levels, task, trial, seed, method, practice
+  int planned_trials = 0;         // trials in the whole session
+  const TrialSetup* setup = nullptr;  // condition, scenario, task and rendering of the protocol
+  const scene::Scene* scene = nullptr;  // the generated scene (answer key inside: never show it)
+  render::FrameSettings frame;    // the condition's rendering for the responder's viewport()
+  double time_limit_s = 0;        // session time left: session.time_limit_s - completion times recorded so far
+};
+
+// What the responder measured in one trial.
+struct TrialOutcome {
+  std::optional<store::Answer> answer;  // nullopt: no answer (time ran out, skipped); else the task's kind
+  double completion_s = 0;              // completion time in seconds (>= 0)
+  std::chrono::system_clock::time_point started_at, ended_at;  // wall clock
+  std::vector<double> frame_ms;          // frame time of every rendered frame
+  std::vector<store::CameraPose> poses;  // the camera of every rendered frame (same length as frame_ms)
+  std::vector<store::InputEvent> events;  // in time order
+};
+
+// A task set: the consecutive trials of one task in one block; training precedes it.
+struct TaskSetSpec {
+  const protocol::Protocol* protocol = nullptr;
+  std::string participant_id;
+  int enrollment_index = 0;
+  int block = 0;                  // 1-based
+  std::string task;               // task id
+  const TrialSetup* setup = nullptr;
+  double time_limit_s = 0;        // training.time_limit_s
+  bool resumed = false;           // the set was begun before an interruption (its first trial is recorded)
+};
+
+// One question of the post-test questionnaire, expanded from a protocol item.
+struct Question {
+  const protocol::QuestionnaireItem* item = nullptr;
+  std::string scope;  // "" | "scenario=abstract;transparency=on" (rating per factors) | "pair=2" (depth test)
+  std::vector<std::pair<std::string, std::string>> levels;  // rating: the factor levels it is about
+  std::vector<std::string> options;  // choice: what may be answered
+  int pair = 0;                      // depth test: 1-based pair number
+  std::uint32_t object_a = 0, object_b = 0;  // depth test: Object::id of the two objects shown
+};
+
+// The static view of a depth-test item: one scene, one camera, transparency as the item says.
+struct DepthTestView {
+  std::string item;
+  scene::Scene scene;
+  scene::CameraStart camera;     // the fixed view (walk mode, chosen so that every pair is in it)
+  render::FrameSettings frame;   // the item's rendering for the responder's viewport()
+};
+
+// A recorded trial as stored in the file (the responder's "memory" of the session).
+struct RecordedTrial {
+  design::PlannedTrial planned;
+  double completion_s = 0;
+  bool answered = false;
+};
+
+struct QuestionnaireSpec {
+  const protocol::Protocol* protocol = nullptr;
+  std::string participant_id;
+  int enrollment_index = 0;
+  std::vector<Question> questions;      // in protocol item order, then scope order
+  std::vector<DepthTestView> depth_tests;  // one per depth-test item
+  std::vector<RecordedTrial> history;   // every recorded trial of the session, in position order
+};
+
+// A questionnaire answer: a number (rating; depth test: the Object::id judged closer) or a text (choice).
+using QuestionAnswer = std::variant<double, std::string>;
+
+// Who does the trials. Calls come in session order from one thread; a responder may keep
+// state between calls, but a resumed session must not need it (the file is the memory).
+class Responder {
+ public:
+  virtual ~Responder() = default;
+  virtual Viewport viewport() const = 0;                       // constant for the responder's life
+  virtual Status train(const TaskSetSpec& set) = 0;            // before the first trial of a task set run here
+  virtual Result<TrialOutcome> run_trial(const TrialSpec& trial) = 0;  // one trial, start to answer
+  // One answer per question, in the order of spec.questions.
+  virtual Result<std::vector<QuestionAnswer>> answer_questionnaire(const QuestionnaireSpec& spec) = 0;
+};
+
+// Lifecycle hooks (all optional), called on the runner's thread. docs/session.md says what is
+// safe in each; none may write to the store, and none should throw (an exception propagates
+// out of run_session; everything committed stays committed).
+struct Hooks {
+  std::function<void(const store::Session&, const design::Plan&)> on_session_start;  // after begin_session
+  std::function<void(const TaskSetSpec&)> on_task_set_start;   // before training
+  std::function<void(const TrialSpec&)> on_trial_start;        // scene generated; not in the file yet
+  std::function<void(const TrialSpec&, const store::TrialRecord&)> on_trial_recorded;  // committed
+  std::function<void(const store::Session&)> on_session_finished;  // questionnaire stored, status finished
+  std::function<bool()> stop_requested;  // polled before each trial: true = return now (resumable)
+};
+
+struct SessionSummary {
+  store::Enrollment enrollment;
+  design::Plan plan;
+  int trials_run = 0;          // trials recorded by this call
+  int trials_recorded = 0;     // trials in the file now
+  bool resumed = false;        // the session was running before this call
+  bool already_finished = false;  // nothing to do: the session had finished before
+  bool questionnaire_recorded = false;  // by this call
+  bool finished = false;       // the session is finished now
+  bool stopped = false;        // stop_requested ended the call early
+};
+
+// Enrolls `participant_id` (or looks it up), builds the plan with the ledger's index and
+// order row, begins or resumes the session, runs every remaining trial, the questionnaire,
+// and finishes the session. A finished session is left alone (already_finished). Errors:
+// the store's, the protocol mapping's, the responder's; the file then holds every trial
+// committed before the error.
+Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol& protocol,
+                                   const std::string& participant_id, Responder& responder, const Hooks& hooks = {});
+
+// The questions of the protocol's questionnaire, in item order: a rating with `per` once per
+// combination of those factors' levels (first factor slowest), a choice once, a depth test
+// once per pair (objects filled in by depth_test_view).
+std::vector<Question> expand_questionnaire(const protocol::Protocol& p);
+
+// The view and object pairs of depth-test `item` for participant `index`: a scene of the item's
+// scenario (seed depth_test_seed), a camera from the start cell facing the most objects, and
+// item.pairs pairs of objects in view whose distances from the eye differ by 20% to 100%.
+// Fills questions' object ids; returns the view and, per pair, the id of the closer object.
+struct DepthTestKey {
+  DepthTestView view;
+  std::vector<std::uint32_t> closer;  // per pair: Object::id of the closer object
+};
+Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol::QuestionnaireItem& item,
+                                     int enrollment_index, const Viewport& viewport, std::vector<Question>& questions);
+
+// Seed of depth-test item `item_position` (0-based in the questionnaire) of participant k:
+// mix64(participant_seed(M, k), kDepthTestDomain + item_position).
+std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, int item_position);
+inline constexpr std::uint64_t kDepthTestDomain = 0x4000000000000000ULL + 0x6465707468ULL;  // 2^62 + "depth"
+
+// The recorded trials of `participant_id` in the database at `db_path` (read-only), in position order.
+Result<std::vector<RecordedTrial>> recorded_trials(const std::string& db_path, const design::Plan& plan,
+                                                   const std::string& participant_id);
+
+}  // namespace dtlab::session

@@ -1,0 +1,82 @@
+// TrialRun (agent.h): the simulated clock, frames, poses and input events of
+// one trial. Mouse sensitivity is 0.005 radians per pixel (a common orbit and
+// mouse-look default), so a drag of 45 degrees is 157 pixels of cursor motion.
+#include "study/sim/detail/agent.h"
+
+#include <cmath>
+
+namespace dtlab::sim::detail {
+
+namespace {
+constexpr double kRadPerPixel = 0.005;
+constexpr double kReferencePixels = 800.0 * 600.0;  // the article's screen (VII: 800 x 600 and up)
+}  // namespace
+
+TrialRun::TrialRun(const session::TrialSpec& s, const ModelParams& model, const Traits& tr, std::uint64_t seed,
+                   render::Renderer& r, int w, int h)
+    : spec(s), m(model), traits(tr), rng(seed), renderer(r), width(w), height(h), bounds(object_bounds(*s.scene)) {
+  out.started_at = std::chrono::system_clock::now();
+}
+
+View TrialRun::look(const render::Camera& camera, float yaw, float pitch, std::span<const std::uint32_t> objects) {
+  View v = sim::look(renderer, camera, spec.frame, width, height, objects, bounds);
+  for (double ms : v.frame_ms) {
+    out.frame_ms.push_back(ms);
+    out.poses.push_back(store::CameraPose{t_, camera.eye.x, camera.eye.y, camera.eye.z, yaw, pitch});
+  }
+  ++trace.views;
+  int visible = 0;
+  for (const Seen& s : v.seen) visible += s.visible_px > 0;
+  trace.visible.push_back(visible);
+  return v;
+}
+
+double TrialRun::notice_probability(long visible_px) const {
+  const double a = static_cast<double>(visible_px) * kReferencePixels / (static_cast<double>(width) * height);
+  return traits.attention * (1.0 - std::exp(-a / m.notice_px));
+}
+
+void TrialRun::drag(double dyaw, double dpitch) {
+  const double angle = std::hypot(dyaw, dpitch);
+  const double d = scaled(m.drag_base_s + m.drag_s_per_rad * angle);
+  const double cx = 0.5 * width, cy = 0.5 * height;
+  const double dx = dyaw / kRadPerPixel, dy = -dpitch / kRadPerPixel;
+  out.events.push_back({t_, store::InputEvent::Kind::button_down, "left", cx, cy});
+  for (int k = 1; k <= 4; ++k)
+    out.events.push_back({t_ + d * k / 5.0, store::InputEvent::Kind::cursor, "", cx + dx * k / 4.0, cy + dy * k / 4.0});
+  out.events.push_back({t_ + d, store::InputEvent::Kind::button_up, "left", cx + dx, cy + dy});
+  spend(d);
+}
+
+void TrialRun::turn(double dyaw) {
+  const double d = scaled(m.turn_base_s + m.turn_s_per_rad * std::abs(dyaw));
+  const double cx = 0.5 * width, cy = 0.5 * height;
+  for (int k = 1; k <= 4; ++k)
+    out.events.push_back({t_ + d * k / 4.0, store::InputEvent::Kind::cursor, "", cx - dyaw / kRadPerPixel * k / 4.0, cy});
+  spend(d);
+}
+
+void TrialRun::walk(double distance) {
+  if (distance <= 0) return;
+  const double d = scaled(distance / m.walk_speed);
+  out.events.push_back({t_, store::InputEvent::Kind::key_down, "Up", 0, 0});
+  out.events.push_back({t_ + d, store::InputEvent::Kind::key_up, "Up", 0, 0});
+  spend(d);
+}
+
+void TrialRun::finish(std::optional<store::Answer> answer, const std::string& text, double entry_s) {
+  if (t_ >= spec.time_limit_s) {
+    trace.timed_out = true;
+    t_ = spec.time_limit_s;
+  } else {
+    spend(scaled(entry_s));
+    if (t_ > spec.time_limit_s) t_ = spec.time_limit_s;
+  }
+  if (answer) out.events.push_back({t_, store::InputEvent::Kind::answer, text, 0, 0});
+  out.answer = std::move(answer);
+  out.completion_s = t_;
+  out.ended_at = std::chrono::system_clock::now();
+  trace.simulated_s = t_;
+}
+
+}  // namespace dtlab::sim::detail

@@ -1,0 +1,227 @@
+// Protocol -> stage parameters (study/session/mapping.h): every value of the
+// reference protocol arrives where docs/session.md says, and every value a
+// stage cannot take is an Error naming the protocol field.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "study/design/design.h"
+#include "study/scene/models.h"
+#include "study/session/mapping.h"
+
+namespace dtlab::session {
+namespace {
+
+protocol::Protocol reference() {
+  auto p = protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/elmqvist2008.toml");
+  EXPECT_TRUE(p.ok()) << (p.ok() ? "" : p.error().to_string());
+  return p.value();
+}
+
+const protocol::Task& task(const protocol::Protocol& p, const std::string& id, const protocol::Scenario** scenario) {
+  for (const auto& s : p.scenarios)
+    for (const auto& t : s.tasks)
+      if (t.id == id) {
+        *scenario = &s;
+        return t;
+      }
+  throw std::runtime_error("no task " + id);
+}
+
+TEST(Mapping, KindsAndTasks) {
+  EXPECT_EQ(scene_kind(protocol::ScenarioKind::abstract), scene::Kind::abstract);
+  EXPECT_EQ(scene_kind(protocol::ScenarioKind::walkthrough), scene::Kind::walkthrough);
+  const std::pair<protocol::TaskType, scene::Task> cases[] = {
+      {protocol::TaskType::count_targets, scene::Task::T1},
+      {protocol::TaskType::identify_letter, scene::Task::T2},
+      {protocol::TaskType::find_unique, scene::Task::T3},
+      {protocol::TaskType::count_kind, scene::Task::T4},
+  };
+  for (const auto& [type, t] : cases) EXPECT_EQ(scene_task(type), t) << protocol::to_string(type);
+}
+
+// Reference values (protocols/elmqvist2008.toml) arrive in the generator's parameters.
+TEST(Mapping, ReferenceAbstractParameters) {
+  const protocol::Protocol p = reference();
+  for (const char* id : {"T1", "T2"}) {
+    const protocol::Scenario* s = nullptr;
+    const protocol::Task& t = task(p, id, &s);
+    auto params = scene_params(p, *s, t);
+    ASSERT_TRUE(params.ok()) << params.error().to_string();
+    const scene::AbstractParams& a = params->abstract;
+    EXPECT_EQ(a.objects, 200) << id;
+    EXPECT_EQ(a.cube_size, 100.0f) << id;
+    EXPECT_EQ(a.min_radius, 3.0f) << id;
+    EXPECT_EQ(a.max_radius, 6.0f) << id;
+    EXPECT_EQ(a.target_ratio_min, 0.10) << id;
+    EXPECT_EQ(a.target_ratio_max, 0.20) << id;
+    EXPECT_EQ(a.letters, "CKRXY") << id;
+  }
+}
+
+TEST(Mapping, ReferenceWalkthroughParameters) {
+  const protocol::Protocol p = reference();
+  std::vector<std::string> every_model;
+  for (const auto& m : scene::model_catalogue()) every_model.emplace_back(m.kind);
+  for (const char* id : {"T3", "T4"}) {
+    const protocol::Scenario* s = nullptr;
+    const protocol::Task& t = task(p, id, &s);
+    auto params = scene_params(p, *s, t);
+    ASSERT_TRUE(params.ok()) << params.error().to_string();
+    const scene::WalkthroughParams& w = params->walkthrough;
+    EXPECT_EQ(w.grid_width, 16) << id;
+    EXPECT_EQ(w.grid_depth, 16) << id;
+    EXPECT_EQ(w.cell_size, 4.0f) << id;
+    EXPECT_EQ(w.objects, 50) << id;
+    EXPECT_EQ(w.count_min, 3) << id;
+    EXPECT_EQ(w.count_max, 8) << id;
+    // pet + vehicle + furniture = the whole catalogue, in catalogue order.
+    EXPECT_EQ(w.kinds, every_model) << id;
+  }
+}
+
+TEST(Mapping, FamiliesSelectTheirModelsOnly) {
+  protocol::Protocol p = reference();
+  const protocol::Scenario* s = nullptr;
+  protocol::Task t = task(p, "T4", &s);
+  t.scene.object_kinds = {"vehicle", "pet"};  // file order must not matter
+  auto params = scene_params(p, *s, t);
+  ASSERT_TRUE(params.ok()) << params.error().to_string();
+  std::vector<std::string> expected;
+  for (const auto& m : scene::model_catalogue())
+    if (m.family == "pet" || m.family == "vehicle") expected.emplace_back(m.kind);
+  EXPECT_EQ(params->walkthrough.kinds, expected);
+}
+
+TEST(Mapping, ReferenceRenderings) {
+  const protocol::Protocol p = reference();
+  struct Case {
+    const char* name;
+    render::Method method;
+  };
+  for (const Case c : {Case{"off", render::Method::standard}, Case{"on", render::Method::dt_seed}}) {
+    const auto it = std::find_if(p.renderings.begin(), p.renderings.end(), [&](const auto& r) { return r.name == c.name; });
+    ASSERT_NE(it, p.renderings.end());
+    auto f = frame_settings(p, *it, 800, 600);
+    ASSERT_TRUE(f.ok()) << f.error().to_string();
+    EXPECT_EQ(f->method, c.method) << c.name;
+    EXPECT_FLOAT_EQ(f->dt.alpha_start, 0.1f) << c.name;
+    EXPECT_FLOAT_EQ(f->dt.alpha_target, 0.3f) << c.name;
+    EXPECT_EQ(f->dt.mask_resolution, 128) << c.name;
+    EXPECT_EQ(f->dt.shape, render::MaskShape::outline) << c.name;
+    EXPECT_EQ(f->dt.mode, render::DtMode::passive) << c.name;
+    EXPECT_EQ(f->dt.layer_limit, 0) << c.name;
+    // n = 8 mask pixels of a 128-pixel mask over 800 x 600, as the renderer converts it.
+    EXPECT_FLOAT_EQ(f->dt.gradient_px, render::gradient_px_from_mask_pixels(8.0f, 128, 800, 600)) << c.name;
+    auto small = frame_settings(p, *it, 160, 120);
+    ASSERT_TRUE(small.ok());
+    EXPECT_FLOAT_EQ(small->dt.gradient_px, render::gradient_px_from_mask_pixels(8.0f, 128, 160, 120));
+    EXPECT_LT(small->dt.gradient_px, f->dt.gradient_px) << "the gradient scales with the viewport";
+  }
+}
+
+// Values a stage cannot take: each an Error naming the protocol field.
+TEST(Mapping, UnsupportedValuesNameTheField) {
+  const protocol::Protocol ref = reference();
+  struct Case {
+    const char* what;
+    void (*mutate)(protocol::Protocol&);
+    const char* task;        // "" = a rendering case
+    std::string field;
+  };
+  const Case cases[] = {
+      {"unknown model family", [](protocol::Protocol& p) { p.scenarios[1].tasks[0].scene.object_kinds = {"pet", "robot"}; },
+       "T3", "scenarios.walkthrough.tasks.T3.object_kinds"},
+      {"subset of primitives", [](protocol::Protocol& p) { p.scenarios[0].tasks[0].scene.object_kinds = {"sphere", "cone"}; },
+       "T1", "scenarios.abstract.tasks.T1.object_kinds"},
+      {"two-letter letter", [](protocol::Protocol& p) { p.scenarios[0].tasks[1].scene.letters = {"CK"}; }, "T2",
+       "scenarios.abstract.tasks.T2.letters"},
+      {"letter outside C K R X Y", [](protocol::Protocol& p) { p.scenarios[0].tasks[1].scene.letters = {"Q"}; }, "T2",
+       "scenarios.abstract.tasks.T2.letters"},
+      {"objects too large for the cube", [](protocol::Protocol& p) { p.scenarios[0].tasks[0].scene.object_radius = {3, 60}; },
+       "T1", "scenarios.abstract.tasks.T1.object_radius"},
+      {"too many objects for the grid", [](protocol::Protocol& p) { p.scenarios[1].tasks[1].scene.objects = 400; }, "T4",
+       "scenarios.walkthrough.tasks.T4.objects"},
+      {"unknown method", [](protocol::Protocol& p) { p.renderings[1].method = "x-ray"; }, "", "rendering.on.method"},
+      {"unknown mask shape", [](protocol::Protocol& p) { p.renderings[1].mask_shape = "star"; }, "", "rendering.on.mask_shape"},
+      {"unknown mode", [](protocol::Protocol& p) { p.renderings[1].mode = "sometimes"; }, "", "rendering.on.mode"},
+      {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].aT = 1.5; }, "", "rendering.on"},
+  };
+  for (const Case& c : cases) {
+    protocol::Protocol p = ref;
+    c.mutate(p);
+    Error e;
+    if (*c.task) {
+      const protocol::Scenario* s = nullptr;
+      const protocol::Task& t = task(p, c.task, &s);
+      auto r = scene_params(p, *s, t);
+      ASSERT_FALSE(r.ok()) << c.what;
+      e = r.error();
+    } else {
+      auto r = frame_settings(p, p.renderings[1], 800, 600);
+      ASSERT_FALSE(r.ok()) << c.what;
+      e = r.error();
+    }
+    EXPECT_EQ(e.field, c.field) << c.what << ": " << e.to_string();
+    EXPECT_EQ(e.file, p.source_path) << c.what;
+    EXPECT_FALSE(e.message.empty()) << c.what;
+  }
+}
+
+// Every planned trial of every participant maps to its condition's scenario, task and rendering.
+TEST(Mapping, TrialSetupFollowsThePlan) {
+  const protocol::Protocol p = reference();
+  for (int k = 0; k < 4; ++k) {
+    const design::Plan plan = design::make_plan(p, k);
+    for (const auto& t : plan.trials) {
+      auto s = trial_setup(p, t);
+      ASSERT_TRUE(s.ok()) << s.error().to_string();
+      EXPECT_EQ(s->task->id, t.task);
+      EXPECT_EQ(s->rendering->method, t.method);
+      const auto& c = p.conditions[static_cast<std::size_t>(s->condition)];
+      for (std::size_t f = 0; f < p.factors.size(); ++f)
+        EXPECT_EQ(p.factors[f].levels[static_cast<std::size_t>(c.levels[f])], t.levels[f].second);
+      EXPECT_EQ(s->scenario->name, t.levels[1].second);  // factor 2 is the scenario
+    }
+  }
+  design::PlannedTrial bad = design::make_plan(p, 0).trials.front();
+  bad.levels[0].second = "sometimes";
+  auto r = trial_setup(p, bad);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().field, "plan.trials[1].levels");
+  bad = design::make_plan(p, 0).trials.front();
+  bad.task = "T9";
+  r = trial_setup(p, bad);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().field, "plan.trials[1].task");
+}
+
+TEST(Mapping, AnswerKeysAndStudyInfo) {
+  scene::Answer a;
+  a.task = scene::Task::T1;
+  a.count = 27;
+  EXPECT_EQ(std::get<store::Count>(answer_key(a)).n, 27);
+  a.task = scene::Task::T2;
+  a.letter = 'K';
+  EXPECT_EQ(std::get<store::Letter>(answer_key(a)).letter, "K");
+  a.task = scene::Task::T3;
+  a.position = {12.5f, -3.25f};
+  const auto pos = std::get<store::Position>(answer_key(a));
+  EXPECT_EQ(pos.x, 12.5);
+  EXPECT_EQ(pos.z, -3.25);
+  a.task = scene::Task::T4;
+  a.count = 5;
+  EXPECT_EQ(std::get<store::Count>(answer_key(a)).n, 5);
+
+  const protocol::Protocol p = reference();
+  const store::StudyInfo s = study_info(p);
+  EXPECT_EQ(s.protocol_id, "elmqvist2008");
+  EXPECT_EQ(s.protocol_sha256, p.sha256);
+  EXPECT_EQ(s.protocol_text, p.source_text);
+  EXPECT_EQ(s.order_rows, 4);
+  EXPECT_EQ(s.factors, (std::vector<std::string>{"transparency", "scenario"}));
+}
+
+}  // namespace
+}  // namespace dtlab::session
