@@ -195,7 +195,9 @@ TEST(Runner, RecordsEveryTrialInPlanOrderWithScoresQuestionnaireAndFinish) {
       EXPECT_EQ(r["correct"], none ? "NA" : right ? "1" : "0");
     } else {
       EXPECT_NEAR(std::stod(r["truth_x"]), sc->answer.position.x, 1e-4);
-      if (!none) EXPECT_NEAR(std::stod(r["distance"]), right ? 0.0 : 5.0, 1e-9);
+      if (!none) {
+        EXPECT_NEAR(std::stod(r["distance"]), right ? 0.0 : 5.0, 1e-9);
+      }
     }
   }
 

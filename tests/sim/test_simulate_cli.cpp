@@ -160,7 +160,9 @@ TEST(SimulateCli, KilledAtIncreasingDelaysResumesToTheUninterruptedResult) {
     // Increasing delays: early kills land in enrollment and plan creation, later ones mid-trial.
     if (kill_after(c, std::chrono::milliseconds(150 + 350 * round))) {
       ++kills;
-      if (fs::exists(crashed)) EXPECT_EQ(integrity(crashed), "ok") << "after kill " << kills;
+      if (fs::exists(crashed)) {
+        EXPECT_EQ(integrity(crashed), "ok") << "after kill " << kills;
+      }
     } else {
       rc = WIFEXITED(c.status) ? WEXITSTATUS(c.status) : 128 + WTERMSIG(c.status);
     }
