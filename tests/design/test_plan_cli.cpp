@@ -11,40 +11,17 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
+
+#include "tests/common/run_cli.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int rc = -1;
-  std::string out, err;
-};
+using Outcome = dtlab::test::CliOutcome;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Outcome dtlab(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path();
-  const std::string tag = "dtlab_plan_cli_" + std::to_string(getpid());  // ctest runs tests in parallel
-  const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  const std::string cmd = std::string("'") + DTLAB_BINARY + "' " + args + " >'" + out.string() + "' 2>'" +
-                          err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Outcome r;
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
+Outcome dtlab(const std::string& args) { return dtlab::test::run_dtlab(args); }
 
 const std::string kReference = std::string("'") + DTLAB_SOURCE_DIR + "/protocols/elmqvist2008.toml'";
 

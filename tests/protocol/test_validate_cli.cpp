@@ -10,41 +10,18 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
+
+#include "tests/common/run_cli.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int rc = -1;
-  std::string out, err;
-};
+using Outcome = dtlab::test::CliOutcome;
+using dtlab::test::read_text;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `dtlab <args>`; rc is the exit status, or 128 + signal if it crashed.
-Outcome dtlab(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path();
-  const std::string tag = "dtlab_validate_cli_" + std::to_string(getpid());  // ctest runs tests in parallel
-  const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  const std::string cmd = std::string("'") + DTLAB_BINARY + "' " + args + " >'" + out.string() + "' 2>'" +
-                          err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Outcome r;
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
+Outcome dtlab(const std::string& args) { return dtlab::test::run_dtlab(args); }
 
 fs::path write_temp(const std::string& name, const std::string& text) {
   const fs::path p = fs::temp_directory_path() / ("dtlab_validate_cli_" + std::to_string(getpid()) + "_" + name);
@@ -64,7 +41,7 @@ TEST(ValidateCli, ShippedProtocolsExitZero) {
 }
 
 TEST(ValidateCli, BrokenProtocolExitsOneNamingLineAndField) {
-  std::string text = slurp(fs::path(DTLAB_SOURCE_DIR) / "protocols/pilot.toml");
+  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/pilot.toml");
   const std::string from = "trials = 1\ncount_range";
   const auto at = text.find(from);
   ASSERT_NE(at, std::string::npos);
@@ -128,7 +105,7 @@ TEST(ValidateCli, BadFilesExitOneWithoutCrashing) {
 }
 
 TEST(ValidateCli, WarningsKeepExitZero) {
-  std::string text = slurp(fs::path(DTLAB_SOURCE_DIR) / "protocols/elmqvist2008.toml");
+  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/elmqvist2008.toml");
   const std::string from = "participants = 16";
   const auto at = text.find(from);
   ASSERT_NE(at, std::string::npos);

@@ -14,6 +14,7 @@
 #include "study/common/version.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
+#include "tests/common/run_cli.h"
 #include "tests/store/store_fixtures.h"
 
 namespace dtlab::store {
@@ -29,20 +30,9 @@ StudyInfo info_of(const protocol::Protocol& p) {
   return s;
 }
 
-struct Outcome {
-  int rc = -1;
-  std::string out, err;
-};
+using Outcome = dtlab::test::CliOutcome;
 
-Outcome dtlab(const TempDir& dir, const std::string& args) {
-  const std::string out = dir.file("out.txt"), err = dir.file("err.txt");
-  const int st = std::system(("'" + std::string(DTLAB_BINARY) + "' " + args + " >'" + out + "' 2>'" + err + "'").c_str());
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  };
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, slurp(out), slurp(err)};
-}
+Outcome dtlab(const TempDir&, const std::string& args) { return dtlab::test::run_dtlab(args); }
 
 TEST(PlanDb, TakesIndexAndRowFromTheLedger) {
   auto p = protocol::load_protocol(kReference);

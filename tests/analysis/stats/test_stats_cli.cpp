@@ -8,40 +8,20 @@
 #include <cstdlib>
 #include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
 #include "test_util.h"
+#include "tests/common/run_cli.h"
 
 namespace dtlab::stats {
 namespace {
 
 using nlohmann::json;
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using CliRun = dtlab::test::CliOutcome;
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-CliRun dtlab(const std::string& args) {
-  const std::string dir = ::testing::TempDir();
-  const std::string out = dir + "/stats_cli_out.txt", err = dir + "/stats_cli_err.txt";
-  const std::string cmd = std::string(DTLAB_BINARY) + " " + args + " > " + out + " 2> " + err;
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+CliRun dtlab(const std::string& args) { return dtlab::test::run_dtlab(args); }
 
 std::string data(const std::string& name) { return test::data_path(name); }
 
@@ -59,7 +39,7 @@ TEST(StatsCli, NistLreThroughTheCommandLine) {
   for (const auto& row : cert->rows) {
     SCOPED_TRACE(row[0]);
     const CliRun r = dtlab("stats anova --data " + data("nist/" + row[0] + ".csv") + " --dv response --between treatment --json");
-    ASSERT_EQ(r.code, 0) << r.err;
+    ASSERT_EQ(r.rc, 0) << r.err;
     const json j = json::parse(r.out);
     const json& e = j["effects"][0];
     EXPECT_GE(test::lre(number(e["ss"]), std::strtod(row[2].c_str(), nullptr)), 12.0);
@@ -70,7 +50,7 @@ TEST(StatsCli, NistLreThroughTheCommandLine) {
 
 TEST(StatsCli, RmAnovaJsonHasTheSixteenFieldsPerEffect) {
   const CliRun r = dtlab("stats rm-anova --data " + data("md_12.1.csv") + " --dv rt --subject id --within angle,noise --json");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
   const json j = json::parse(r.out);
   const std::set<std::string> expected{"effect", "df1", "df2", "ss", "ss_error", "F", "p", "log10_p", "eta_p2", "eta_g2",
                                        "mauchly_W", "mauchly_p", "gg_epsilon", "hf_epsilon", "p_gg", "p_hf"};
@@ -99,7 +79,7 @@ TEST(StatsCli, FriedmanAndWilcoxonJsonFields) {
                                       "5.05,5.00,4.95\n5.50,5.50,5.40\n5.45,5.55,5.50\n5.55,5.55,5.35\n5.45,5.50,5.55\n"
                                       "5.50,5.45,5.25\n5.65,5.60,5.40\n5.70,5.65,5.55\n6.30,6.30,6.25\n");
   const CliRun f = dtlab("stats friedman --data " + wide + " --wide --json");
-  ASSERT_EQ(f.code, 0) << f.err;
+  ASSERT_EQ(f.rc, 0) << f.err;
   const json fj = json::parse(f.out);
   for (const char* key : {"Q", "df", "p", "p_exact", "kendall_W", "iman_davenport_F", "p_iman_davenport"})
     EXPECT_TRUE(fj.contains(key)) << key;
@@ -110,7 +90,7 @@ TEST(StatsCli, FriedmanAndWilcoxonJsonFields) {
 
   const CliRun mc1 = dtlab("stats friedman --data " + wide + " --wide --exact monte-carlo=2000 --seed 3 --json");
   const CliRun mc2 = dtlab("stats friedman --data " + wide + " --wide --exact monte-carlo=2000 --seed 3 --json");
-  ASSERT_EQ(mc1.code, 0) << mc1.err;
+  ASSERT_EQ(mc1.rc, 0) << mc1.err;
   EXPECT_EQ(json::parse(mc1.out)["p_exact"], json::parse(mc2.out)["p_exact"]);
   EXPECT_EQ(json::parse(mc1.out)["exact_method"], "monte-carlo");
 
@@ -120,7 +100,7 @@ TEST(StatsCli, FriedmanAndWilcoxonJsonFields) {
                                        "6,first,1.88\n6,second,1.29\n7,first,1.55\n7,second,1.06\n8,first,3.06\n8,second,3.14\n"
                                        "9,first,1.30\n9,second,1.29\n");
   const CliRun w = dtlab("stats wilcoxon --data " + pairs + " --dv hamilton --subject id --within visit --json");
-  ASSERT_EQ(w.code, 0) << w.err;
+  ASSERT_EQ(w.rc, 0) << w.err;
   const json wj = json::parse(w.out);
   for (const char* key : {"V", "p", "p_exact", "z"}) EXPECT_TRUE(wj.contains(key)) << key;
   // R: wilcox.test(Pair(first, second) ~ 1, data = depression) -> V = 40, p-value = 0.03906
@@ -131,7 +111,7 @@ TEST(StatsCli, FriedmanAndWilcoxonJsonFields) {
 TEST(StatsCli, MissingCellWarnsNamingTheSubject) {
   const std::string csv = write_temp("missing.csv", "id,cond,y\nann,a,1\nann,b,3\nbob,a,2\nbob,b,\ncid,a,2\ncid,b,5\ndan,a,1\ndan,b,4\n");
   const CliRun r = dtlab("stats rm-anova --data " + csv + " --dv y --subject id --within cond --json");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("warning: listwise deletion"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bob (cond=b)"), std::string::npos) << r.err;
   const json j = json::parse(r.out);
@@ -142,7 +122,7 @@ TEST(StatsCli, MissingCellWarnsNamingTheSubject) {
 TEST(StatsCli, InfiniteAndUndefinedValuesInJson) {
   const std::string csv = write_temp("zero_var.csv", "g,y\na,1.5\na,1.5\nb,2.5\nb,2.5\n");
   const CliRun r = dtlab("stats anova --data " + csv + " --dv y --between g --json");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
   const json e = json::parse(r.out)["effects"][0];
   EXPECT_EQ(e["F"], "Infinity");
   EXPECT_EQ(number(e["p"]), 0.0);
@@ -173,7 +153,7 @@ TEST(StatsCli, BadInputExitsWithCodeAndPlace) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);
     const CliRun r = dtlab(c.args);
-    EXPECT_EQ(r.code, c.code) << r.err;
+    EXPECT_EQ(r.rc, c.rc) << r.err;
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
