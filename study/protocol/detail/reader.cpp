@@ -4,6 +4,7 @@
 #include "study/protocol/detail/reader.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -338,11 +339,10 @@ std::optional<Range<double>> TableReader::number_range(std::string_view key, boo
   return Range<double>{v[0], v[1]};
 }
 
-std::optional<Range<int>> TableReader::int_range(std::string_view key, bool required, int lo, int hi,
-                                                 bool strictly_increasing) {
+// Two integers at `key`, each in [lo, hi]; nullopt (after reporting) when absent or malformed.
+std::optional<std::array<int, 2>> TableReader::two_ints(std::string_view key, bool required, int lo, int hi,
+                                                         const std::string& expected) {
   const toml::node* n = node(key);
-  const std::string expected = "[min, max] of integers with " + std::to_string(lo) + " <= min " +
-                               (strictly_increasing ? "<" : "<=") + " max <= " + std::to_string(hi);
   if (!n) {
     if (required) missing(key, expected);
     return std::nullopt;
@@ -354,7 +354,7 @@ std::optional<Range<int>> TableReader::int_range(std::string_view key, bool requ
                  (a ? "an array of " + std::to_string(a->size()) + " values" : type_name(*n)));
     return std::nullopt;
   }
-  int v[2];
+  std::array<int, 2> v{};
   for (std::size_t i = 0; i < 2; ++i) {
     const toml::node& e = *a->get(i);
     if (!e.is_integer()) {
@@ -369,46 +369,29 @@ std::optional<Range<int>> TableReader::int_range(std::string_view key, bool requ
     }
     v[i] = static_cast<int>(x);
   }
-  if (v[0] > v[1] || (strictly_increasing && v[0] == v[1])) {
-    d_.error(pos_of(*n), field(key),
-             "min " + std::to_string(v[0]) + (v[0] == v[1] ? " == max " : " > max ") + std::to_string(v[1]) +
-                 "; expected " + expected);
+  return v;
+}
+
+std::optional<Range<int>> TableReader::int_range(std::string_view key, bool required, int lo, int hi,
+                                                 bool strictly_increasing) {
+  const std::string expected = "[min, max] of integers with " + std::to_string(lo) + " <= min " +
+                               (strictly_increasing ? "<" : "<=") + " max <= " + std::to_string(hi);
+  const auto v = two_ints(key, required, lo, hi, expected);
+  if (!v) return std::nullopt;
+  if ((*v)[0] > (*v)[1] || (strictly_increasing && (*v)[0] == (*v)[1])) {
+    d_.error(pos_of(*node(key)), field(key),
+             "min " + std::to_string((*v)[0]) + ((*v)[0] == (*v)[1] ? " == max " : " > max ") +
+                 std::to_string((*v)[1]) + "; expected " + expected);
     return std::nullopt;
   }
-  return Range<int>{v[0], v[1]};
+  return Range<int>{(*v)[0], (*v)[1]};
 }
 
 std::optional<std::pair<int, int>> TableReader::int_pair(std::string_view key, bool required, int lo, int hi) {
-  const toml::node* n = node(key);
-  const std::string expected =
-      "two integers [a, b], each in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-  if (!n) {
-    if (required) missing(key, expected);
-    return std::nullopt;
-  }
-  const toml::array* a = n->as_array();
-  if (!a || a->size() != 2) {
-    d_.error(pos_of(*n), field(key),
-             "expected " + expected + ", got " +
-                 (a ? "an array of " + std::to_string(a->size()) + " values" : type_name(*n)));
-    return std::nullopt;
-  }
-  int v[2];
-  for (std::size_t i = 0; i < 2; ++i) {
-    const toml::node& e = *a->get(i);
-    if (!e.is_integer()) {
-      d_.error(pos_of(e), indexed(field(key), i), "expected an integer, got " + type_name(e));
-      return std::nullopt;
-    }
-    const std::int64_t x = e.as_integer()->get();
-    if (x < lo || x > hi) {
-      d_.error(pos_of(e), indexed(field(key), i),
-               "value " + std::to_string(x) + " out of range; expected " + expected);
-      return std::nullopt;
-    }
-    v[i] = static_cast<int>(x);
-  }
-  return std::pair{v[0], v[1]};
+  const auto v = two_ints(key, required, lo, hi,
+                          "two integers [a, b], each in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  if (!v) return std::nullopt;
+  return std::pair{(*v)[0], (*v)[1]};
 }
 
 const toml::table* TableReader::table(std::string_view key, bool required) {

@@ -4,6 +4,7 @@
 // TableReader remembers which keys were asked for, so finish() can report
 // every other key of the table as unknown. Never aborts on any input.
 #pragma once
+#include <array>
 #include <toml++/toml.h>
 
 #include <cstdint>
@@ -88,6 +89,8 @@ class TableReader {
 
  private:
   void missing(std::string_view key, std::string_view expected);
+  std::optional<std::array<int, 2>> two_ints(std::string_view key, bool required, int lo, int hi,
+                                             const std::string& expected);
   void wrong_type(std::string_view key, const toml::node& n, std::string_view expected);
 
   const toml::table& t_;
