@@ -1,9 +1,14 @@
-// `dtlab render (--scene KIND --task T --seed S | --protocol P --index K --trial N)
-// --method M --out FILE.png [--width W --height H] [--frames K] [--camera ...] [--json]`:
-// renders one trial scene headless (OSMesa) with one rendering method and
-// writes the PNG; --json prints the passes that ran, the median frame time,
-// per-target visible pixel counts and GL errors. Exit 1 bad scene/protocol
-// input, 2 bad command line, 3 no GL context or PNG not written.
+// `dtlab render (--scene KIND --task T --seed S --method M | --protocol P
+// (--index K | --db FILE --participant ID) --trial N) --out FILE.png
+// [--width W --height H] [--frames K] [--camera ...] [--json]`: renders one
+// trial scene headless (OSMesa) with one rendering method and writes the PNG;
+// --json prints the passes that ran, the median frame time, per-target
+// visible pixel counts and GL errors. The protocol form renders trial N of the
+// participant's plan (design::make_plan) exactly as a session would: the
+// plan's seed, the task's scene parameters and the condition's [rendering]
+// table (session/mapping.h); it never takes a method or mask parameter from
+// the command line. Exit 1 bad scene/protocol/database input, 2 bad command
+// line, 3 no GL context, SQLite failure or PNG not written.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -20,8 +25,12 @@
 
 #include "app/commands.h"
 #include "app/platform/gl_context.h"
+#include "study/design/design.h"
+#include "study/protocol/protocol.h"
 #include "study/render/render.h"
 #include "study/scene/generate.h"
+#include "study/session/mapping.h"
+#include "study/store/store.h"
 
 namespace dtlab::app {
 
@@ -30,6 +39,10 @@ namespace {
 struct RenderOptions {
   std::string kind, task;
   std::uint64_t seed = 0;
+  // Protocol form: trial `trial` (0-based) of enrollment index `index`, or of `participant` in `db`.
+  std::string protocol, db, participant;
+  std::optional<int> index;
+  std::optional<int> trial;
   std::string method = "standard";
   std::string out;
   int width = 800, height = 600, frames = 1;
@@ -105,17 +118,97 @@ render::DtSettings dt_settings(const RenderOptions& o) {
   return dt;
 }
 
-void run(const RenderOptions& o) {
-  if (o.kind.empty()) fail(kExitUsage, "give --scene KIND --task T --seed S (the --protocol form is not available yet)");
+// What to render: the scene, the method's settings and the start camera, from either form.
+struct Job {
+  scene::Scene scene;
+  render::FrameSettings settings;
+  std::string method, kind, task;
+  std::uint64_t seed = 0;
+  nlohmann::ordered_json trial;  // protocol form: where the trial comes from (JSON output)
+};
+
+[[noreturn]] void fail_diagnostic(int code, const Error& e) {
+  std::cerr << Diagnostic{Severity::error, e}.to_string() << "\n";
+  throw CLI::RuntimeError(code);
+}
+
+// Protocol form: trial o.trial of the participant's plan, rendered as a session would.
+Job protocol_job(const RenderOptions& o) {
+  const auto p = protocol::load_protocol(o.protocol);
+  if (!p.ok()) {
+    std::cerr << Diagnostic{Severity::error, p.error()}.to_string() << "\n"
+              << "(run `dtlab validate " << o.protocol << "` for every problem)\n";
+    throw CLI::RuntimeError(kExitInvalid);
+  }
+  int index = o.index.value_or(0);
+  std::optional<int> row;
+  if (!o.db.empty()) {
+    const auto e = store::find_enrollment(o.db, p->sha256, o.participant);
+    if (!e.ok()) fail_diagnostic(store::is_environment_error(e.error()) ? kExitFailure : kExitInvalid, e.error());
+    if (e->order_row >= design::order_rows(*p))
+      fail_diagnostic(kExitInvalid, Error{o.db, 0, 0, "participants.order_row",
+                                          "participant \"" + o.participant + "\" has order row " +
+                                              std::to_string(e->order_row) + " but the protocol has " +
+                                              std::to_string(design::order_rows(*p)) + " rows"});
+    index = e->index;
+    row = e->order_row;
+  }
+  const design::Plan plan = design::make_plan(*p, index, row);
+  const int n = *o.trial;
+  if (n < 0 || static_cast<std::size_t>(n) >= plan.trials.size())
+    fail(kExitUsage, "--trial " + std::to_string(n) + ": participant " + std::to_string(index) + "'s plan has " +
+                         std::to_string(plan.trials.size()) + " trials (0-based: 0.." +
+                         std::to_string(plan.trials.size() - 1) + ")");
+  const design::PlannedTrial& t = plan.trials[static_cast<std::size_t>(n)];
+  const auto setup = session::trial_setup(*p, t);
+  if (!setup.ok()) fail_diagnostic(kExitInvalid, setup.error());
+  auto sc = session::trial_scene(setup.value(), t);
+  if (!sc.ok()) fail_diagnostic(kExitInvalid, sc.error());
+  auto fs = session::frame_settings(*p, *setup->rendering, o.width, o.height);
+  if (!fs.ok()) fail_diagnostic(kExitInvalid, fs.error());
+  Job job;
+  job.scene = std::move(sc.value());
+  job.settings = std::move(fs.value());
+  job.method = std::string(render::to_string(job.settings.method));
+  job.kind = std::string(scene::kind_name(setup->kind));
+  job.task = std::string(scene::task_name(setup->scene_task));
+  job.seed = t.seed;
+  nlohmann::ordered_json levels = nlohmann::ordered_json::object();
+  for (const auto& [factor, level] : t.levels) levels[factor] = level;
+  job.trial = {{"protocol", plan.protocol_id},
+               {"index", plan.index},
+               {"order_row", plan.order_row},
+               {"trial", n},
+               {"position", t.position},
+               {"levels", levels},
+               {"task_id", t.task},
+               {"rendering", setup->rendering->name},
+               {"practice", t.practice}};
+  if (!o.participant.empty()) job.trial["participant"] = o.participant;
+  return job;
+}
+
+// Scene form: the generator's default parameters, the method and parameters from the command line.
+Job scene_job(const RenderOptions& o) {
   const auto kind = *scene::parse_kind(o.kind);
   const auto task = *scene::parse_task(o.task);
   auto generated = scene::generate(kind, task, o.seed);
   if (!generated) fail(kExitInvalid, generated.error().to_string());
-  const scene::Scene& sc = generated.value();
+  Job job;
+  job.scene = std::move(generated.value());
+  job.settings.method = *render::parse_method(o.method);
+  job.settings.dt = dt_settings(o);
+  job.method = o.method;
+  job.kind = o.kind;
+  job.task = o.task;
+  job.seed = o.seed;
+  return job;
+}
 
-  render::FrameSettings settings;
-  settings.method = *render::parse_method(o.method);
-  settings.dt = dt_settings(o);
+void run(const RenderOptions& o) {
+  Job job = o.protocol.empty() ? scene_job(o) : protocol_job(o);
+  const scene::Scene& sc = job.scene;
+  render::FrameSettings& settings = job.settings;
   settings.timed = true;
   settings.profile_passes = o.profile;
   const scene::CameraStart start = apply_camera(sc.camera, o.camera);
@@ -154,7 +247,8 @@ void run(const RenderOptions& o) {
   }
   const std::vector<std::string> passes = report.passes_run();
   if (!o.json) {
-    std::cout << "wrote " << o.out << " (" << o.width << "x" << o.height << ", " << o.method << ")\n"
+    std::cout << "wrote " << o.out << " (" << o.width << "x" << o.height << ", " << job.method << ", " << job.kind
+              << " " << job.task << " seed " << job.seed << ")\n"
               << "passes  ";
     for (std::size_t i = 0; i < passes.size(); ++i) std::cout << (i ? ", " : "") << passes[i];
     std::cout << "\nframe   " << median << " ms (median of " << o.frames << "; CPU time of all threads " << cpu_median
@@ -173,19 +267,21 @@ void run(const RenderOptions& o) {
                        {"visible_pixels", v.visible_pixels},
                        {"silhouette_pixels", v.silhouette_pixels},
                        {"in_view", v.silhouette_pixels > 0}});
-  const nlohmann::ordered_json j{{"method", o.method},
-                                 {"scene", o.kind},
-                                 {"task", o.task},
-                                 {"seed", o.seed},
-                                 {"width", o.width},
-                                 {"height", o.height},
-                                 {"passes", passes},
-                                 {"frame_ms_median", median},
-                                 {"cpu_ms_median", cpu_median},
-                                 {"frames", o.frames},
-                                 {"targets", targets},
-                                 {"gl_errors", gl_errors},
-                                 {"out", o.out}};
+  nlohmann::ordered_json j{{"method", job.method},
+                           {"scene", job.kind},
+                           {"task", job.task},
+                           {"seed", job.seed},
+                           {"scene_hash", sc.hash},
+                           {"width", o.width},
+                           {"height", o.height},
+                           {"passes", passes},
+                           {"frame_ms_median", median},
+                           {"cpu_ms_median", cpu_median},
+                           {"frames", o.frames},
+                           {"targets", targets},
+                           {"gl_errors", gl_errors},
+                           {"out", o.out}};
+  if (!job.trial.is_null()) j["trial"] = job.trial;
   std::cout << j.dump(2) << "\n";
 }
 
@@ -194,14 +290,23 @@ void run(const RenderOptions& o) {
 void add_render_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("render", "Render one trial scene headless with one method; write a PNG");
   auto o = std::make_shared<RenderOptions>();
-  cmd->add_option("--scene", o->kind, "Scene kind: abstract (tasks T1, T2) or walkthrough (T3, T4)")
-      ->check(CLI::IsMember({"abstract", "walkthrough"}));
-  cmd->add_option("--task", o->task, "Task: T1, T2 (abstract), T3, T4 (walkthrough)")
-      ->check(CLI::IsMember({"T1", "T2", "T3", "T4"}));
-  cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)");
-  cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference")
-      ->required()
-      ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference"}));
+  auto* scene_opt = cmd->add_option("--scene", o->kind, "Scene kind: abstract (tasks T1, T2) or walkthrough (T3, T4)")
+                        ->check(CLI::IsMember({"abstract", "walkthrough"}));
+  auto* task_opt = cmd->add_option("--task", o->task, "Task: T1, T2 (abstract), T3, T4 (walkthrough)")
+                       ->check(CLI::IsMember({"T1", "T2", "T3", "T4"}));
+  auto* seed_opt = cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)");
+  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference")
+                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference"}));
+  auto* protocol_opt = cmd->add_option("--protocol", o->protocol,
+                                       "Protocol file: render a planned trial (with --index K or --db/--participant, "
+                                       "and --trial N)");
+  auto* index_opt = cmd->add_option("--index", o->index, "0-based enrollment index K (order row K mod rows)")
+                        ->check(CLI::NonNegativeNumber);
+  auto* db_opt = cmd->add_option("--db", o->db, "Study database: K and the order row from its participant ledger")
+                     ->check(CLI::ExistingFile);
+  auto* participant_opt = cmd->add_option("--participant", o->participant, "Participant id enrolled in --db");
+  auto* trial_opt = cmd->add_option("--trial", o->trial, "0-based position N in the participant's plan (dtlab plan)")
+                        ->check(CLI::NonNegativeNumber);
   cmd->add_option("--out", o->out, "PNG file to write")->required();
   cmd->add_option("--width", o->width, "Image width in pixels")->check(CLI::Range(1, 8192));
   cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 8192));
@@ -210,19 +315,19 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--camera", o->camera,
                   "Override the start camera: key=value list, keys yaw, pitch, fov (degrees), distance (orbit), "
                   "x, y, z (walk position), e.g. yaw=40,pitch=-20");
-  cmd->add_option("--alpha-target", o->alpha_target, "aT: weight of surfaces in front of a target, [0, 1)");
-  cmd->add_option("--alpha-start", o->alpha_start, "a0: weight where the gradient starts, [0, 1)");
-  cmd->add_option("--gradient", o->gradient,
+  auto* alpha_target_opt = cmd->add_option("--alpha-target", o->alpha_target, "aT: weight of surfaces in front of a target, [0, 1)");
+  auto* alpha_start_opt = cmd->add_option("--alpha-start", o->alpha_start, "a0: weight where the gradient starts, [0, 1)");
+  auto* gradient_opt = cmd->add_option("--gradient", o->gradient,
                   "n: gradient width in mask pixels of the --mask-res mask (the article's unit; protocol "
                   "gradient_width)");
-  cmd->add_option("--gradient-px", o->gradient_px, "n in output pixels (overrides --gradient)");
-  cmd->add_option("--mask-res", o->mask_res, "Mask buffer side R (R x R, the article's 128); 0 = full resolution")
+  auto* gradient_px_opt = cmd->add_option("--gradient-px", o->gradient_px, "n in output pixels (overrides --gradient)");
+  auto* mask_res_opt = cmd->add_option("--mask-res", o->mask_res, "Mask buffer side R (R x R, the article's 128); 0 = full resolution")
       ->check(CLI::Range(0, 8192));
-  cmd->add_option("--shape", o->shape, "Mask shape: outline | circle | ellipse")
+  auto* shape_opt = cmd->add_option("--shape", o->shape, "Mask shape: outline | circle | ellipse")
       ->check(CLI::IsMember({"outline", "circle", "ellipse"}));
-  cmd->add_option("--searchlight", o->searchlight,
+  auto* searchlight_opt = cmd->add_option("--searchlight", o->searchlight,
                   "Active mode: X,Y,R in pixels (origin top-left); without it, passive mode (whole view)");
-  cmd->add_option("--layer-limit", o->layer_limit, "At most this many transparent surfaces in front of a target "
+  auto* layer_limit_opt = cmd->add_option("--layer-limit", o->layer_limit, "At most this many transparent surfaces in front of a target "
                                                    "(0 = no limit)")
       ->check(CLI::Range(0, 100));
   cmd->add_option("--graphviz", o->graphviz, "Write the last frame's frame graph (dot) to FILE");
@@ -231,12 +336,45 @@ void add_render_command(CLI::App& root) {
                 "Print {\"method\", \"passes\", \"frame_ms_median\", \"targets\": [{\"id\", \"visible_pixels\", "
                 "\"silhouette_pixels\", \"in_view\"}], \"gl_errors\", ...} as JSON");
   cmd->footer(
+      "Two forms: --scene KIND --task T --seed S --method M [mask options] renders a generated scene;\n"
+      "--protocol P (--index K | --db FILE --participant ID) --trial N renders trial N (0-based) of that\n"
+      "participant's plan (`dtlab plan`) as a session would: the plan's seed, the task's scene parameters,\n"
+      "the method and mask parameters of the condition's [rendering] table. The forms do not mix.\n"
       "Visible pixels (docs/render.md): pixels where the target's own surface makes up at least 10% of\n"
       "the final colour as the method composited it, counted with the method's own passes (weight\n"
       "frames: the target flat white, everything else black). silhouette_pixels: pixels the target\n"
       "covers with every other object ignored; in_view: silhouette_pixels > 0.\n"
       "Exit status: 0 ok, 1 bad scene input, 2 bad command line, 3 no GL context or file not written.");
-  cmd->callback([o] { run(*o); });
+  const std::vector<CLI::Option*> scene_form{scene_opt, task_opt, seed_opt, method_opt};
+  const std::vector<CLI::Option*> dt_options{alpha_target_opt, alpha_start_opt, gradient_opt, gradient_px_opt,
+                                             mask_res_opt,     shape_opt,       searchlight_opt, layer_limit_opt};
+  const std::vector<CLI::Option*> protocol_form{protocol_opt, index_opt, db_opt, participant_opt, trial_opt};
+  cmd->callback([o, scene_form, dt_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
+                 trial_opt] {
+    const auto given = [](const std::vector<CLI::Option*>& opts) {
+      std::string names;
+      for (const CLI::Option* opt : opts)
+        if (opt->count() > 0) names += (names.empty() ? "" : ", ") + opt->get_name();
+      return names;
+    };
+    if (protocol_opt->count() > 0) {
+      if (const std::string bad = given(scene_form) + given(dt_options); !bad.empty())
+        fail(kExitUsage, "--protocol renders a planned trial: its scene, seed, method and mask parameters come from "
+                         "the protocol; drop " + bad);
+      if ((index_opt->count() > 0) == (db_opt->count() > 0 || participant_opt->count() > 0) ||
+          (db_opt->count() > 0) != (participant_opt->count() > 0))
+        fail(kExitUsage, "--protocol needs either --index K or --db FILE --participant ID");
+      if (trial_opt->count() == 0) fail(kExitUsage, "--protocol needs --trial N (0-based position in the plan)");
+    } else {
+      if (const std::string bad = given(protocol_form); !bad.empty())
+        fail(kExitUsage, bad + " belong(s) to the protocol form: give --protocol P too");
+      for (const CLI::Option* opt : scene_form)
+        if (opt->count() == 0)
+          fail(kExitUsage, "give --scene KIND --task T --seed S --method M, or --protocol P --index K --trial N "
+                           "(missing " + opt->get_name() + ")");
+    }
+    run(*o);
+  });
 }
 
 }  // namespace dtlab::app

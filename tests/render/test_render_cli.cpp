@@ -1,0 +1,112 @@
+// `dtlab render` run as a separate process (DTLAB_BINARY), protocol form:
+// trial N of participant K's plan renders the scene `dtlab scene` gives for
+// the plan's seed (same content hash) with the method of the trial's
+// transparency level, and writes a PNG. The two forms do not mix; a wrong
+// combination or a trial past the plan's end exits 2 with a message.
+// Small images (64 x 48) keep each run well under a second of rendering.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+#include "tests/common/run_cli.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using dtlab::test::CliOutcome;
+using dtlab::test::run_dtlab;
+
+const std::string kReference = std::string("'") + DTLAB_SOURCE_DIR + "/protocols/elmqvist2008.toml'";
+
+fs::path png_path(const std::string& tag) {
+  return fs::temp_directory_path() / ("dtlab_render_cli_" + std::to_string(getpid()) + "_" + tag + ".png");
+}
+
+nlohmann::json plan_of(int index) {
+  const CliOutcome r = run_dtlab("plan " + kReference + " --index " + std::to_string(index) + " --json");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+// The content hash `dtlab scene` prints for (kind, task, seed).
+std::string scene_hash(const std::string& kind, const std::string& task, std::uint64_t seed) {
+  const CliOutcome r =
+      run_dtlab("scene --scene " + kind + " --task " + task + " --seed " + std::to_string(seed) + " --json");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  return nlohmann::json::parse(r.out).value("hash", std::string("missing"));
+}
+
+TEST(RenderCli, PlanTrialRendersThePlannedSceneWithTheLevelsMethod) {
+  const int index = 1;
+  const nlohmann::json plan = plan_of(index);
+  ASSERT_EQ(plan["trials"].size(), 24u);
+  bool saw_off = false, saw_on = false;
+  // One trial of each transparency level and of each scenario: the first trial of every block.
+  for (std::size_t n = 0; n < plan["trials"].size(); ++n) {
+    const auto& t = plan["trials"][n];
+    if (n > 0 && plan["trials"][n - 1]["block"] == t["block"]) continue;
+    const std::string level = t["levels"]["transparency"];
+    const std::string scenario = t["levels"]["scenario"];
+    const fs::path out = png_path(std::to_string(n));
+    const CliOutcome r = run_dtlab("render --protocol " + kReference + " --index " + std::to_string(index) +
+                                   " --trial " + std::to_string(n) + " --width 64 --height 48 --out '" +
+                                   out.string() + "' --json");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    SCOPED_TRACE("trial " + std::to_string(n) + " " + level + "/" + scenario);
+    EXPECT_EQ(j["method"], level == "on" ? "dt-seed" : "standard");  // elmqvist2008.toml [rendering.*]
+    EXPECT_EQ(j["scene"], scenario);
+    EXPECT_EQ(j["task"], t["task"]);
+    EXPECT_EQ(j["seed"], t["seed"]);
+    EXPECT_EQ(j["scene_hash"], scene_hash(scenario, t["task"], t["seed"].get<std::uint64_t>()));
+    EXPECT_EQ(j["trial"]["position"], t["position"]);
+    EXPECT_EQ(j["trial"]["index"], index);
+    EXPECT_TRUE(j["gl_errors"].empty());
+    EXPECT_GT(fs::file_size(out), 8u);
+    fs::remove(out);
+    (level == "on" ? saw_on : saw_off) = true;
+  }
+  EXPECT_TRUE(saw_on);
+  EXPECT_TRUE(saw_off);
+}
+
+struct BadCase {
+  const char* name;
+  std::string args;
+  const char* message;  // a part of the error message
+};
+
+// ctest lists the case's name, not a byte dump.
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+class RenderCliBad : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(RenderCliBad, ExitsTwoWithAMessageAndWritesNothing) {
+  const fs::path out = png_path(GetParam().name);
+  const CliOutcome r = run_dtlab("render " + GetParam().args + " --out '" + out.string() + "'");
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Forms, RenderCliBad,
+    ::testing::Values(
+        BadCase{"protocol_and_scene", "--protocol " + kReference + " --index 0 --trial 0 --scene abstract",
+                "drop --scene"},
+        BadCase{"protocol_and_method", "--protocol " + kReference + " --index 0 --trial 0 --method dt-fast",
+                "drop --method"},
+        BadCase{"protocol_and_seed", "--protocol " + kReference + " --index 0 --trial 0 --seed 5", "drop --seed"},
+        BadCase{"protocol_without_trial", "--protocol " + kReference + " --index 0", "--trial"},
+        BadCase{"protocol_without_index", "--protocol " + kReference + " --trial 0", "--index K"},
+        BadCase{"trial_past_the_plan", "--protocol " + kReference + " --index 0 --trial 24", "24 trials"},
+        BadCase{"index_without_protocol", "--scene abstract --task T1 --seed 1 --method standard --index 0",
+                "give --protocol"},
+        BadCase{"scene_form_without_method", "--scene abstract --task T1 --seed 1", "missing --method"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
