@@ -2,8 +2,9 @@
 // writes one participant number at a time into a worker's own command pipe;
 // workers write fixed-size messages (smaller than PIPE_BUF, so writes from
 // several workers never interleave) into one shared report pipe. A worker
-// exits when its command pipe closes. The parent never touches SQLite or GL
-// while workers run.
+// exits when its command pipe closes, after closing its database connection
+// (_exit skips destructors, so the connection must be gone before it). The
+// parent never touches SQLite or GL while workers run.
 #include "study/sim/driver.h"
 
 #include <fcntl.h>
@@ -200,13 +201,15 @@ Result<RunResult> run_here(const RunOptions& o) {
     }
     _exit(3);
   };
-  auto ctx = o.make_context(o.sim.width, o.sim.height);
-  if (!ctx) fail_all(ctx.error().to_string());
-  auto store = store::Store::open(o.db_path, session::study_info(*o.protocol));
-  if (!store) fail_all(store.error().to_string());
-  SimulatedParticipant agent(o.sim);
-  int k = 0;
-  while (read_all(command_fd, &k, sizeof k)) run_one(o, store.value(), agent, worker, k, report);
+  {
+    auto ctx = o.make_context(o.sim.width, o.sim.height);
+    if (!ctx) fail_all(ctx.error().to_string());
+    auto store = store::Store::open(o.db_path, session::study_info(*o.protocol));
+    if (!store) fail_all(store.error().to_string());
+    SimulatedParticipant agent(o.sim);
+    int k = 0;
+    while (read_all(command_fd, &k, sizeof k)) run_one(o, store.value(), agent, worker, k, report);
+  }  // the connection closes here, before _exit: the last one to close checkpoints and removes the -wal
   std::fflush(nullptr);
   _exit(0);
 }

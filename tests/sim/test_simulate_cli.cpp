@@ -4,7 +4,8 @@
 // per-trial answers, simulated times and questionnaire must equal an
 // uninterrupted single-process run (the export minus wall-clock and
 // measured-frame-time columns). Also: a finished database is left alone, and
-// `dtlab demo` refuses to overwrite another protocol's files.
+// `dtlab demo` refuses to overwrite another protocol's files; no -wal or -shm
+// file is left beside a database after `dtlab simulate` exits.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -144,6 +145,27 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
+// Every connection was closed: the last one to close checkpoints the write-ahead log and removes
+// it; a -wal or -shm left beside the file means one was not (or the last was read-only). Call before
+// the test opens the file itself.
+void expect_closed_cleanly(const fs::path& db) {
+  EXPECT_TRUE(fs::exists(db));
+  EXPECT_FALSE(fs::exists(db.string() + "-wal")) << db << ": a connection was not closed cleanly";
+  EXPECT_FALSE(fs::exists(db.string() + "-shm")) << db;
+}
+
+// Worker processes end with _exit (no destructors): each must close its connection first, and the
+// summary printed at the end must not leave the log behind either.
+TEST(SimulateCli, LeavesNoWriteAheadLogBehind) {
+  const fs::path dir = temp_dir();
+  const fs::path db = dir / "workers.sqlite", log = dir / "workers.txt";
+  fs::remove(db);
+  Child c = start(simulate_args(db, 2), log);
+  ASSERT_EQ(wait_for(c), 0) << slurp(log);
+  expect_closed_cleanly(db);
+  EXPECT_EQ(integrity(db), "ok");
+}
+
 TEST(SimulateCli, KilledAtIncreasingDelaysResumesToTheUninterruptedResult) {
   const fs::path dir = temp_dir();
   const fs::path reference = dir / "reference.sqlite", crashed = dir / "crashed.sqlite", log = dir / "log.txt";
@@ -151,6 +173,7 @@ TEST(SimulateCli, KilledAtIncreasingDelaysResumesToTheUninterruptedResult) {
 
   Child ref = start(simulate_args(reference, 1), log);
   ASSERT_EQ(wait_for(ref), 0) << slurp(log);
+  expect_closed_cleanly(reference);
   const auto expected = deterministic_rows(reference);
   ASSERT_EQ(expected.size(), 16u) << "2 participants x 8 pilot trials";
 

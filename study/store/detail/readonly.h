@@ -1,7 +1,8 @@
 // Read-only access for the commands that only look (export, plan --db): opens
 // an existing file without SQLITE_OPEN_CREATE and checks that it is a dtlab
 // database of a schema version this build reads. Never creates, migrates or
-// writes anything.
+// writes content (PRAGMA query_only); as the last connection to close it
+// checkpoints the write-ahead log and removes -wal and -shm, as writers do.
 #pragma once
 #include <string>
 
