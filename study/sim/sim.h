@@ -46,7 +46,8 @@ struct ModelParams {
   double answer_count_s = 2.0, answer_letter_s = 1.0, mark_map_s = 5.0;  // entering the answer
   // WALKTHROUGH.
   double walk_speed = 4.5;                  // world units per second (arrow keys)
-  double turn_step = 1.570796;              // radians between views at a room centre (90 degrees)
+  double turn_step = 1.570796;              // largest turn between views at a stop (90 degrees); smaller
+                                            // when the view is narrower, so the views cover the circle
   double turn_base_s = 0.15, turn_s_per_rad = 0.3;  // one turn of the camera (mouse)
   double walk_scan_s = 0.45;                // looking over a view in a building
   double count_kind_s = 0.7;                // T4: counting one more object of the kind

@@ -6,6 +6,7 @@
 // finds the WALKTHROUGH target in fewer views when walls turn transparent.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "app/platform/gl_context.h"
@@ -174,6 +175,35 @@ TEST_F(Sim, TransparentWallsShortenTheWalkthroughSearch) {
     dt_views += agent.last_trace().views;
   }
   EXPECT_LT(dt_views * 2, standard_views) << dt_views << " views with dt-seed, " << standard_views << " standard";
+}
+
+// At every stop in a building the agent turns a full circle; its views must leave no blind sector
+// (a regression: 90-degree turns with a 75-degree horizontal field of view never looked into
+// four 15-degree sectors at any stop). Checked at the first stop of T4 (which always completes its
+// turn), before the first walk.
+TEST_F(Sim, LookingAroundAtAStopCoversTheFullCircle) {
+  for (int k = 0; k < 2; ++k) {
+    SCOPED_TRACE(k);
+    auto t = trial(k, "T4", 0);
+    SimulatedParticipant agent(options());
+    auto out = agent.run_trial(t->spec);
+    ASSERT_TRUE(out.ok());
+    double first_walk = 1e300;
+    for (const auto& e : out->events)
+      if (e.kind == store::InputEvent::Kind::key_down) first_walk = std::min(first_walk, e.t_s);
+    std::vector<double> yaws;
+    for (const auto& p : out->poses)
+      if (p.t_s < first_walk) yaws.push_back(std::remainder(static_cast<double>(p.yaw), 2 * M_PI) + M_PI);
+    std::sort(yaws.begin(), yaws.end());
+    yaws.erase(std::unique(yaws.begin(), yaws.end(), [](double a, double b) { return std::abs(a - b) < 1e-6; }),
+               yaws.end());
+    const double fov_x = 2 * std::atan(std::tan(0.5 * t->scene.camera.fov_y) * kW / kH);
+    ASSERT_GE(yaws.size(), 2u);
+    double widest = 2 * M_PI - (yaws.back() - yaws.front());
+    for (std::size_t i = 1; i < yaws.size(); ++i) widest = std::max(widest, yaws[i] - yaws[i - 1]);
+    EXPECT_LE(widest, fov_x + 1e-6) << yaws.size() << " views; widest turn between views " << widest
+                                    << " rad, horizontal field of view " << fov_x << " rad";
+  }
 }
 
 // Ratings come from the agent's own recorded times: a condition where it was twice as fast gets

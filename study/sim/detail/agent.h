@@ -70,6 +70,10 @@ inline double completeness(const Seen& s) {
                              : 0.0;
 }
 
+// WALKTHROUGH: views in one full turn at a stop (walkthrough.cpp): 2 pi / turn_step, more if
+// the viewport's horizontal field of view is narrower than turn_step, so the views cover the circle.
+int views_per_stop(const TrialRun& run);
+
 // The tasks (abstract.cpp, walkthrough.cpp).
 void run_count_targets(TrialRun& run);   // T1
 void run_identify_letter(TrialRun& run); // T2

@@ -24,6 +24,20 @@ constexpr double kPi = 3.14159265358979;
 
 glm::vec2 floor_position(const scene::Object& o) { return {o.transform[3].x, o.transform[3].z}; }
 
+}  // namespace
+
+// Views per full turn at a stop: at least 2 pi / turn_step, and enough that views of the camera's
+// horizontal field of view leave no gap (at 60 degrees vertical and 4:3 it is 75 degrees, so
+// 90-degree turns would leave four blind sectors of 15 degrees: 5 views of 72 degrees instead).
+int views_per_stop(const TrialRun& run) {
+  const double aspect = static_cast<double>(run.width) / static_cast<double>(run.height);
+  const double fov_x = 2 * std::atan(std::tan(0.5 * static_cast<double>(run.spec.scene->camera.fov_y)) * aspect);
+  const double need = std::max(2 * kPi / run.m.turn_step, 2 * kPi / fov_x);
+  return std::max(1, static_cast<int>(std::ceil(need - 1e-9)));
+}
+
+namespace {
+
 struct Walker {
   TrialRun& run;
   Building building;
@@ -79,13 +93,16 @@ struct Walker {
     return v;
   }
 
-  // Turns around in place: `views` views, turn_step apart, calling `at_view` after each.
+  // Turns around in place: views_per_stop() views, 2 pi / views apart (so they cover the full
+  // circle), calling `at_view` after each until it returns false.
   template <class F>
-  void look_around(int views, F&& at_view) {
+  void look_around(F&& at_view) {
+    const int views = views_per_stop(run);
+    const double step = 2 * kPi / views;
     for (int k = 0; k < views && !run.out_of_time(); ++k) {
       if (k > 0) {
-        run.turn(run.m.turn_step);
-        yaw += static_cast<float>(run.m.turn_step);
+        run.turn(step);
+        yaw += static_cast<float>(step);
       }
       if (!at_view(look())) return;
     }
@@ -118,10 +135,6 @@ struct Walker {
   }
 };
 
-int views_per_stop(const TrialRun& run) {
-  return std::max(1, static_cast<int>(std::lround(2 * kPi / run.m.turn_step)));
-}
-
 }  // namespace
 
 // T3: walk until the object of the shown kind is noticed; mark where it was seen, with an
@@ -134,7 +147,7 @@ void run_find_unique(TrialRun& run) {
   std::optional<glm::vec2> mark;
   bool thorough = false;
   for (;;) {
-    w.look_around(views_per_stop(run), [&](const View& v) {
+    w.look_around([&](const View& v) {
       int noticed = 0;
       for (const Seen& s : v.seen) {
         if (!run.notice(s.visible_px)) continue;
@@ -183,7 +196,7 @@ void run_count_kind(TrialRun& run) {
   int idle_rooms = 0;  // stops in a row without a new find
   for (;;) {
     bool found = false;
-    w.look_around(views_per_stop(run), [&](const View& v) {
+    w.look_around([&](const View& v) {
       int fresh = 0, noticed = 0;
       double effort = 0;
       for (const Seen& s : v.seen) {
