@@ -196,6 +196,10 @@ void add_simulate_command(CLI::App& root) {
       "simulated seconds from the model in docs/sim.md. An existing database is continued: running sessions resume, "
       "finished ones are skipped, participants sim-001 .. sim-N are added as needed. Ctrl-C stops after the trials "
       "in progress; rerun to resume");
+  cmd->footer(
+      "Progress on stderr (one line per recorded trial, with an ETA); a per-task summary on stdout.\n"
+      "Exit status: 0 all finished, 1 invalid protocol or database, 2 bad command line, 3 environment (GL, SQLite, "
+      "fork) or a participant failed, 130 interrupted (rerun to resume).");
   cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--participants", a->run.participants, "Simulated participants sim-001 .. sim-N")
       ->required()
