@@ -26,6 +26,7 @@ inline constexpr int kExitInterrupted = 130;  // Ctrl-C: stopped after the work 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
 void add_render_command(CLI::App& root);   // `dtlab render ... --method M --out FILE.png`: one frame headless, --json
 void add_bench_command(CLI::App& root);    // `dtlab bench`: frame-time ratios and image error per method, --json
+void add_icons_command(CLI::App& root);    // `dtlab icons --out DIR`: "find this" icons of the WALKTHROUGH kinds + contact sheet, --json
 void add_scene_command(CLI::App& root);  // `dtlab scene --scene K --task T --seed S`: one generated scene, --json, --obj
 void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman|wilcoxon`: statistics on a CSV, --json
 void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every error with file:line:field, --json

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   dtlab::app::add_render_command(root);
   dtlab::app::add_bench_command(root);
   dtlab::app::add_scene_command(root);
+  dtlab::app::add_icons_command(root);
   dtlab::app::add_stats_command(root);
   dtlab::app::add_validate_command(root);
   dtlab::app::add_plan_command(root);
