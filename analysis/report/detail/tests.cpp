@@ -14,7 +14,14 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-void common_setup(TestReport& r, const CellMatrix& m) {
+// What every test report holds: names, the participants kept, cell and marginal descriptives.
+// False, with not_tested set, when nothing can be tested.
+bool begin_report(TestReport& r, const CellMatrix& m, std::string test, std::string measure, std::string unit,
+                  std::string scope) {
+  r.test = std::move(test);
+  r.measure = std::move(measure);
+  r.unit = std::move(unit);
+  r.scope = std::move(scope);
   r.m = &m;
   r.kept = m.complete();
   r.excluded = m.missing_notes();
@@ -35,6 +42,15 @@ void common_setup(TestReport& r, const CellMatrix& m) {
     }
     r.marginals.push_back(std::move(per_level));
   }
+  if (m.factors.empty()) {
+    r.not_tested = "no factor varies";
+    return false;
+  }
+  if (r.kept.empty()) {
+    r.not_tested = "no participant has a value in every cell";
+    return false;
+  }
+  return true;
 }
 
 // The paired difference of a two-level primary factor (marginal means).
@@ -73,19 +89,7 @@ const std::vector<stats::Descriptives>* TestReport::marginal_of(int f) const {
 TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
                         std::string scope) {
   TestReport r;
-  r.measure = std::move(measure);
-  r.unit = std::move(unit);
-  r.scope = std::move(scope);
-  r.test = "rm-anova";
-  common_setup(r, m);
-  if (m.factors.empty()) {
-    r.not_tested = "no factor varies";
-    return r;
-  }
-  if (r.kept.empty()) {
-    r.not_tested = "no participant has a value in every cell";
-    return r;
-  }
+  if (!begin_report(r, m, "rm-anova", std::move(measure), std::move(unit), std::move(scope))) return r;
   const auto data = long_data(m, d, r.kept, "y");
   auto res = stats::rm_anova(data);
   if (!res) {
@@ -108,19 +112,7 @@ TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measur
 TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
                         std::string scope, std::uint64_t seed) {
   TestReport r;
-  r.measure = std::move(measure);
-  r.unit = std::move(unit);
-  r.scope = std::move(scope);
-  r.test = "friedman";
-  common_setup(r, m);
-  if (m.factors.empty()) {
-    r.not_tested = "no factor varies";
-    return r;
-  }
-  if (r.kept.empty()) {
-    r.not_tested = "no participant has a value in every cell";
-    return r;
-  }
+  if (!begin_report(r, m, "friedman", std::move(measure), std::move(unit), std::move(scope))) return r;
   const auto data = long_data(m, d, r.kept, "y");
   stats::ExactOptions exact;
   exact.seed = seed;
