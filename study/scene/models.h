@@ -19,7 +19,9 @@ struct ModelInfo {
   std::string_view kind;      // Object::kind, e.g. "dog", "directors_chair"
   std::string_view family;    // "pet", "vehicle" or "furniture"
   std::string_view label;     // human-readable, e.g. "director's chair"
-  glm::vec3 main_color;       // the colour that covers most of the model
+  // The kind's identifying colour (body, paint, upholstery). Not always the largest area: a
+  // bird's stand, a bike's tyres or a bed's headboard cover more of its icon (tests/icons).
+  glm::vec3 main_color;
   float footprint_radius;     // world units: x^2 + z^2 <= r^2 for every vertex
   float height;               // world units: 0 <= y <= height for every vertex
   Mesh (*build)();            // builds the mesh (named `kind`), vertex colours set
