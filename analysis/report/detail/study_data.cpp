@@ -72,8 +72,13 @@ std::map<std::string, std::string> parse_demographics(const std::string& text) {
 Result<StudyData> read_study(const std::string& path) {
   Conn c;
   c.path = path;
-  if (sqlite3_open_v2(path.c_str(), &c.db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK)
-    return c.error("opening the database read-only");
+  // Read-write without CREATE, made read-only by query_only (as the store's read-only connections,
+  // study/store/detail/readonly.cpp): a SQLITE_OPEN_READONLY connection cannot checkpoint, so as the
+  // last one to close it would leave -wal and -shm behind. A write-protected file opens read-only.
+  if (sqlite3_open_v2(path.c_str(), &c.db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
+    return c.error("opening the database");
+  if (sqlite3_exec(c.db, "PRAGMA query_only = ON", nullptr, nullptr, nullptr) != SQLITE_OK)
+    return c.error("making the connection read-only");
   sqlite3_busy_timeout(c.db, 10000);
   if (sqlite3_exec(c.db, "BEGIN", nullptr, nullptr, nullptr) != SQLITE_OK) return c.error("starting a read transaction");
 

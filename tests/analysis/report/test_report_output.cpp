@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -201,8 +202,13 @@ TEST(ReportCli, ExitCodesAndJson) {
   const auto j = nlohmann::json::parse(out);
   EXPECT_EQ(j.at("participants"), 2);
   EXPECT_EQ(j.at("trials"), 48);
+  // Reading checkpoints like a writer: no write-ahead log is left next to the database.
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.sqlite-wal")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.sqlite-shm")));
   std::ofstream(dir.file("text.txt")) << "not a database";
   EXPECT_EQ(run_cli(dir.file("text.txt") + " --out " + dir.file("o2")), 1);
+  std::ifstream text(dir.file("text.txt"));
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(text), {}), "not a database");  // left as it was
   EXPECT_EQ(run_cli(dir.file("s.sqlite") + " --out " + dir.file("o3") + " --gnuplot " + dir.file("nope")), 3);
   EXPECT_EQ(run_cli(dir.file("missing.sqlite") + " --out " + dir.file("o4")), 2);  // CLI11: not an existing file
 }
