@@ -3,6 +3,7 @@
 // the plan's seed (same content hash) with the method of the trial's
 // transparency level, and writes a PNG. The two forms do not mix; a wrong
 // combination or a trial past the plan's end exits 2 with a message.
+// --db/--participant takes K from the study database's ledger.
 // Small images (64 x 48) keep each run well under a second of rendering.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,9 @@
 #include <ostream>
 #include <string>
 
+#include "study/protocol/protocol.h"
+#include "study/session/mapping.h"
+#include "study/store/store.h"
 #include "tests/common/run_cli.h"
 
 namespace {
@@ -72,6 +76,37 @@ TEST(RenderCli, PlanTrialRendersThePlannedSceneWithTheLevelsMethod) {
   }
   EXPECT_TRUE(saw_on);
   EXPECT_TRUE(saw_off);
+}
+
+TEST(RenderCli, DbParticipantTakesTheEnrollmentIndexFromTheLedger) {
+  const fs::path db = fs::temp_directory_path() / ("dtlab_render_cli_" + std::to_string(getpid()) + ".sqlite");
+  fs::remove(db);
+  {
+    const auto p = dtlab::protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/elmqvist2008.toml");
+    ASSERT_TRUE(p.ok()) << p.error().to_string();
+    auto store = dtlab::store::Store::open(db.string(), dtlab::session::study_info(*p));
+    ASSERT_TRUE(store.ok()) << store.error().to_string();
+    ASSERT_TRUE(store->enroll("first").ok());
+    ASSERT_TRUE(store->enroll("second").ok());  // enrollment index 1
+  }
+  const nlohmann::json plan = plan_of(1);
+  const int n = 7;
+  const fs::path out = png_path("db");
+  const CliOutcome r = run_dtlab("render --protocol " + kReference + " --db '" + db.string() +
+                                 "' --participant second --trial " + std::to_string(n) +
+                                 " --width 64 --height 48 --out '" + out.string() + "' --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["trial"]["index"], 1);
+  EXPECT_EQ(j["trial"]["participant"], "second");
+  EXPECT_EQ(j["seed"], plan["trials"][n]["seed"]);
+  EXPECT_EQ(j["method"], plan["trials"][n]["method"]);
+  const CliOutcome unknown = run_dtlab("render --protocol " + kReference + " --db '" + db.string() +
+                                       "' --participant nobody --trial 0 --out '" + out.string() + "'");
+  EXPECT_EQ(unknown.rc, 1) << unknown.err;
+  EXPECT_NE(unknown.err.find("nobody"), std::string::npos) << unknown.err;
+  fs::remove(out);
+  for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(db.string() + suffix);
 }
 
 struct BadCase {
