@@ -153,7 +153,7 @@ TEST(StatsCli, BadInputExitsWithCodeAndPlace) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);
     const CliRun r = dtlab(c.args);
-    EXPECT_EQ(r.rc, c.rc) << r.err;
+    EXPECT_EQ(r.rc, c.code) << r.err;
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
