@@ -82,6 +82,7 @@ struct Case {
   const char* field;
   const char* message;  // a fragment of the expected message
 };
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }  // readable ctest names
 
 const Case kCases[] = {
     // unknown keys, anywhere
@@ -324,6 +325,7 @@ struct WarningCase {
   const char* field;
   const char* message;
 };
+void PrintTo(const WarningCase& c, std::ostream* os) { *os << c.name; }  // readable ctest names
 
 const WarningCase kWarnings[] = {
     {"participants not a multiple of rows", {{3, "participants = 6"}}, 3, "participants", "not a multiple of the 4"},

@@ -60,6 +60,9 @@ struct Case {
   Method method;
   int mask_resolution;
 };
+void PrintTo(const Case& c, std::ostream* os) {  // readable ctest names
+  *os << to_string(c.method) << " mask " << c.mask_resolution;
+}
 std::string name_of(const ::testing::TestParamInfo<Case>& info) {
   std::string n(to_string(info.param.method));
   for (auto& c : n)

@@ -91,6 +91,10 @@ struct Case {
   int layer_limit;
   bool active;
 };
+void PrintTo(const Case& c, std::ostream* os) {  // readable ctest names
+  *os << to_string(c.method) << ' ' << to_string(c.shape) << " layers " << c.layer_limit
+      << (c.active ? " active" : " passive");
+}
 
 class Robustness : public ::testing::TestWithParam<Case> {
  protected:

@@ -93,7 +93,15 @@ std::set<std::string> read_mtl(const std::string& text) {
   return names;
 }
 
-class ObjExport : public ::testing::TestWithParam<std::pair<Kind, Task>> {};
+struct SceneCase {
+  Kind kind;
+  Task task;
+};
+void PrintTo(const SceneCase& c, std::ostream* os) {  // readable ctest names
+  *os << kind_name(c.kind) << ' ' << task_name(c.task);
+}
+
+class ObjExport : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(ObjExport, ReadsBackAsValidObj) {
   const auto [kind, task] = GetParam();
@@ -123,11 +131,11 @@ TEST_P(ObjExport, ReadsBackAsValidObj) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ObjExport,
-                         ::testing::Values(std::pair{Kind::abstract, Task::T1}, std::pair{Kind::abstract, Task::T2},
-                                           std::pair{Kind::walkthrough, Task::T3},
-                                           std::pair{Kind::walkthrough, Task::T4}),
+                         ::testing::Values(SceneCase{Kind::abstract, Task::T1}, SceneCase{Kind::abstract, Task::T2},
+                                           SceneCase{Kind::walkthrough, Task::T3},
+                                           SceneCase{Kind::walkthrough, Task::T4}),
                          [](const auto& info) {
-                           return std::string(kind_name(info.param.first)) + std::string(task_name(info.param.second));
+                           return std::string(kind_name(info.param.kind)) + std::string(task_name(info.param.task));
                          });
 
 TEST(ObjExport, SavesBothFilesAndReportsUnwritablePaths) {
