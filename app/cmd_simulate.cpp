@@ -138,7 +138,9 @@ void run_simulate(const SimulateArgs& a) {
 int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const std::string& prefix,
                    SimulationResult& result) {
   const auto start = std::chrono::steady_clock::now();
-  auto roster = sim::enroll_simulated(run.db, p, run.participants);
+  store::OpenOptions open;
+  open.allow_protocol_change = run.allow_protocol_change;
+  auto roster = sim::enroll_simulated(run.db, p, run.participants, open);
   if (!roster) {
     std::cerr << prefix << ": " << roster.error().to_string() << "\n";
     return store::is_environment_error(roster.error()) ? kExitFailure : kExitInvalid;
@@ -149,6 +151,7 @@ int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const 
   sim::RunOptions o;
   o.db_path = run.db;
   o.protocol = &p;
+  o.open = open;
   o.participants = roster->to_run;
   o.jobs = run.jobs;
   o.sim.width = run.width;
@@ -215,6 +218,10 @@ void add_simulate_command(CLI::App& root) {
   cmd->add_option("--jobs", a->run.jobs, "Worker processes (each its own GL context and database connection)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  cmd->add_flag("--allow-protocol-change", a->run.allow_protocol_change,
+                "Continue a database recorded under another version of the protocol (its SHA-256 differs): the new "
+                "text is recorded as a new study row beside the old; without this flag such a database is refused "
+                "(exit 1) and left untouched");
   cmd->add_flag("--json", a->json,
                 "Print {protocol, database, participants, finished, skipped_finished, resumed, trials_run, failed, "
                 "interrupted, wall_s, summary} as JSON on stdout");

@@ -42,6 +42,7 @@ struct SimulationRun {
   std::string db;
   int participants = 16, jobs = 1, width = 160, height = 120;
   std::uint64_t seed = 0;
+  bool allow_protocol_change = false;  // continue a database recorded under another protocol hash
 };
 struct SimulationResult {
   int finished_total = 0, already_finished = 0, resumed = 0, trials_run = 0;

@@ -31,8 +31,9 @@ std::string participant_id(int number) {
   return buf;
 }
 
-Result<Roster> enroll_simulated(const std::string& db_path, const protocol::Protocol& p, int participants) {
-  auto store = store::Store::open(db_path, session::study_info(p));
+Result<Roster> enroll_simulated(const std::string& db_path, const protocol::Protocol& p, int participants,
+                                store::OpenOptions open) {
+  auto store = store::Store::open(db_path, session::study_info(p), open);
   if (!store) return store.error();
   Roster r;
   for (int k = 1; k <= participants; ++k) {
@@ -171,7 +172,7 @@ Result<RunResult> run_here(const RunOptions& o) {
   RunResult r;
   auto ctx = o.make_context(o.sim.width, o.sim.height);
   if (!ctx) return ctx.error();
-  auto store = store::Store::open(o.db_path, session::study_info(*o.protocol));
+  auto store = store::Store::open(o.db_path, session::study_info(*o.protocol), o.open);
   if (!store) return store.error();
   SimulatedParticipant agent(o.sim);
   const auto report = [&](const Message& m) {
@@ -204,7 +205,7 @@ Result<RunResult> run_here(const RunOptions& o) {
   {
     auto ctx = o.make_context(o.sim.width, o.sim.height);
     if (!ctx) fail_all(ctx.error().to_string());
-    auto store = store::Store::open(o.db_path, session::study_info(*o.protocol));
+    auto store = store::Store::open(o.db_path, session::study_info(*o.protocol), o.open);
     if (!store) fail_all(store.error().to_string());
     SimulatedParticipant agent(o.sim);
     int k = 0;

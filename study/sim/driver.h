@@ -18,6 +18,7 @@
 #include "study/common/error.h"
 #include "study/protocol/protocol.h"
 #include "study/sim/sim.h"
+#include "study/store/store.h"
 
 namespace dtlab::sim {
 
@@ -31,7 +32,9 @@ struct Roster {
   int finished = 0;                 // already finished, skipped
   int resumable = 0;                // of to_run: sessions already running
 };
-Result<Roster> enroll_simulated(const std::string& db_path, const protocol::Protocol& p, int participants);
+// `open` as Store::open takes it (allow_protocol_change: continue a database of another protocol hash).
+Result<Roster> enroll_simulated(const std::string& db_path, const protocol::Protocol& p, int participants,
+                                store::OpenOptions open = {});
 
 // A GL 3.3 core context made current in the calling process; kept alive by the returned handle.
 using ContextFactory = std::function<Result<std::shared_ptr<void>>(int width, int height)>;
@@ -50,6 +53,7 @@ struct Progress {
 struct RunOptions {
   std::string db_path;
   const protocol::Protocol* protocol = nullptr;
+  store::OpenOptions open;                // how every process opens db_path (Store::open)
   std::vector<std::string> participants;  // ids to run (enroll_simulated().to_run)
   int jobs = 1;                           // 1: in this process; > 1: forked workers
   SimOptions sim;

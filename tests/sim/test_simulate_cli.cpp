@@ -217,6 +217,41 @@ TEST(SimulateCli, KilledAtIncreasingDelaysResumesToTheUninterruptedResult) {
   EXPECT_EQ(deterministic_rows(crashed), got);
 }
 
+// A database recorded under one version of a protocol refuses an edited one (exit 1, file untouched)
+// unless --allow-protocol-change; then the new text is recorded as a second study row.
+TEST(SimulateCli, AnEditedProtocolNeedsAllowProtocolChange) {
+  const fs::path dir = temp_dir();
+  const fs::path db = dir / "changed.sqlite", log = dir / "changed.txt", edited = dir / "pilot-edited.toml";
+  fs::remove(db);
+  {
+    auto pilot = dtlab::protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml");
+    ASSERT_TRUE(pilot.ok());
+    auto st = dtlab::store::Store::open(db.string(), dtlab::session::study_info(pilot.value()));
+    ASSERT_TRUE(st.ok()) << st.error().to_string();
+  }
+  std::ofstream(edited) << slurp(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml") << "# edited\n";
+  const std::vector<std::string> args{"simulate", edited.string(), "--participants", "1", "--db", db.string(),
+                                      "--width", "96", "--height", "72"};
+  const std::string before = slurp(db);
+  Child refused = start(args, log);
+  EXPECT_EQ(wait_for(refused), 1) << slurp(log);
+  EXPECT_NE(slurp(log).find("--allow-protocol-change"), std::string::npos) << slurp(log);
+  EXPECT_TRUE(slurp(db) == before) << "the refused run modified the database";
+
+  auto allowed = args;
+  allowed.push_back("--allow-protocol-change");
+  Child c = start(allowed, log);
+  ASSERT_EQ(wait_for(c), 0) << slurp(log);
+  sqlite3* h = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(h, "SELECT count(*) FROM studies", -1, &st, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(st, 0), 2) << "the old and the edited protocol, both recorded";
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+}
+
 TEST(SimulateCli, BadInputIsAClearErrorAndTouchesNothing) {
   const fs::path dir = temp_dir();
   const fs::path log = dir / "bad.txt";
