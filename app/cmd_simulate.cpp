@@ -1,7 +1,7 @@
 // `dtlab simulate PROTOCOL --participants N --db FILE [--seed S] [--width W
-// --height H] [--jobs J] [--json]`: simulated participants (study/sim) run the
-// protocol headless (OSMesa) into a study database; progress on stderr, a
-// summary on stdout. Into an existing database it continues: running sessions
+// --height H] [--jobs J] [--allow-protocol-change] [--json]`: simulated
+// participants (study/sim) run the protocol headless (OSMesa) into a study
+// database; progress on stderr, a summary on stdout. Into an existing database it continues: running sessions
 // resume, finished ones are skipped, ids up to sim-N are added. Ctrl-C stops
 // after the trials in progress (a second Ctrl-C at once); SIGKILL loses at
 // most the trials in progress. Exit 0 all finished, 1 bad protocol/database,
