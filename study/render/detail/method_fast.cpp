@@ -278,14 +278,7 @@ void draw_effect(const FrameContext& fc, const Atlas& atlas, unsigned alpha_text
 
 void clear_region(const FrameContext& fc, const PixelRect& region) {
   scissor(region);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthMask(GL_TRUE);
-  glStencilMask(0xFF);
-  const glm::vec3 bg = fc.background();
-  glClearColor(bg.r, bg.g, bg.b, 1.0f);
-  glClearDepth(1.0);
-  glClearStencil(0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  clear_to_background(fc);
 }
 
 }  // namespace

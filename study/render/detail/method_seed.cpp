@@ -63,14 +63,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
       },
       [&fc](const DtClearPassData& d, PassResources& r) {
         bind_main(fc, r, d.color, d.depth);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glDepthMask(GL_TRUE);
-        glStencilMask(0xFF);
-        const glm::vec3 bg = fc.background();
-        glClearColor(bg.r, bg.g, bg.b, 1.0f);
-        glClearDepth(1.0);
-        glClearStencil(0);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        clear_to_background(fc);
       });
   MainTargets cur{cleared.color, cleared.depth};
 

@@ -99,6 +99,10 @@ struct StencilWrite {  // written where an object's draw passes the depth test
 // bit 7 for a target under the R1 guard.
 StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes);
 
+// Clears colour (to the background, alpha 1), depth (1) and stencil (0) of the bound framebuffer
+// within the scissor, if enabled; leaves every write mask on.
+void clear_to_background(const FrameContext& fc);
+
 // Draws object `i` of a back-to-front sequence so that only its frontmost surfaces blend with
 // the destination alpha (article V.3): a depth pass, then a colour pass with depth EQUAL; or,
 // with `single_pass` and a convex object seen from outside, one back-face-culled pass (the same

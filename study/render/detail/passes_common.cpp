@@ -94,6 +94,17 @@ void FrameContext::quad(const Program& p, float x0, float y0, float x1, float y1
 
 // --- shared GL sequences -------------------------------------------------------------------
 
+void clear_to_background(const FrameContext& fc) {
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xFF);
+  const glm::vec3 bg = fc.background();
+  glClearColor(bg.r, bg.g, bg.b, 1.0f);
+  glClearDepth(1.0);
+  glClearStencil(0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+}
+
 StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes) {
   const ObjectRecord& o = fc.gpu.objects()[i];
   StencilWrite w;
@@ -330,13 +341,7 @@ MainTargets add_opaque_pass(FrameGraph& fg, const FrameContext& fc, bool stencil
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glStencilMask(0xFF);
-        const glm::vec3 bg = fc.background();
-        glClearColor(bg.r, bg.g, bg.b, 1.0f);
-        glClearDepth(1.0);
-        glClearStencil(0);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        clear_to_background(fc);
         if (stencil_codes) {
           glEnable(GL_STENCIL_TEST);
           glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
