@@ -1,8 +1,9 @@
-// `dtlab analyze DB --out DIR [--json]`: the study report (analysis/report,
-// docs/report.md): report.md, a self-contained index.html with inline SVG
-// plots, report.json, trials.csv and per-analysis CSVs in DIR. Never
-// modifies the database. Progress goes to stderr; exit 1 for a database that
-// cannot be analysed, 3 for an environment failure (I/O, SQLite, gnuplot).
+// `dtlab analyze DB --out DIR [--revision all|latest|N] [--with-excluded]
+// [--json]`: the study report (analysis/report, docs/report.md): report.md, a
+// self-contained index.html with inline SVG plots, report.json, trials.csv
+// and per-analysis CSVs in DIR. Never modifies the database. Progress goes to
+// stderr; exit 1 for a database that cannot be analysed, 3 for an
+// environment failure (I/O, SQLite, gnuplot).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,8 @@ struct AnalyzeArgs {
   std::string out;
   std::string gnuplot;
   double frame_threshold_ms = 1000.0 / 30;
+  std::string revision = "all";
+  bool with_excluded = false;
   bool json = false;
   bool quiet = false;
 };
@@ -29,22 +32,31 @@ void run_analyze(const AnalyzeArgs& a) {
   report::ReportOptions options;
   options.gnuplot = a.gnuplot;
   options.frame_threshold_ms = a.frame_threshold_ms;
+  options.revision = a.revision;
+  options.with_excluded = a.with_excluded;
   auto progress = [&a](const std::string& step) {
     if (!a.quiet) std::cerr << "dtlab analyze: " << step << "\n";
   };
   auto sum = report::write_report(a.db, a.out, progress, options);
   if (!sum) {
     std::cerr << "dtlab analyze: " << sum.error().to_string() << "\n";
-    throw CLI::RuntimeError(report::is_environment_error(sum.error()) ? kExitFailure : kExitInvalid);
+    throw CLI::RuntimeError(exit_code(sum.error()));
   }
   if (a.json) {
     nlohmann::json j{{"database", a.db},         {"out", a.out},          {"files", sum->files},
                      {"participants", sum->participants}, {"trials", sum->trials}, {"tests", sum->tests},
+                     {"excluded_trials", sum->excluded_trials}, {"revisions", sum->revisions},
                      {"simulated", sum->simulated}, {"warnings", sum->warnings}};
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cerr << "dtlab analyze: wrote " << a.out << "/index.html and report.md (" << sum->participants
-              << " participants, " << sum->trials << " trials, " << sum->tests << " tests"
+    auto count = [](long long n, const char* what) {
+      return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    std::cerr << "dtlab analyze: wrote " << a.out << "/index.html and report.md (" << count(sum->participants, "participant")
+              << ", " << count(sum->trials, "trial") << ", " << count(sum->tests, "test")
+              << (sum->excluded_trials ? ", " + count(sum->excluded_trials, "excluded trial") +
+                                             (a.with_excluded ? " kept" : " left out")
+                                       : std::string())
               << (sum->simulated ? ", simulated participants" : "") << ")\n";
     for (const auto& w : sum->warnings) std::cerr << "dtlab analyze: warning: " << w << "\n";
   }
@@ -70,7 +82,16 @@ void add_analyze_command(CLI::App& root) {
   cmd->add_option("--frame-threshold-ms", args->frame_threshold_ms,
                   "Frame-time audit: a trial is slow when its 95th-percentile frame time exceeds this (default 33.3)")
       ->check(CLI::PositiveNumber);
-  cmd->add_flag("--json", args->json, "Print {database, out, files, participants, trials, tests, simulated, warnings}");
+  cmd->add_option("--revision", args->revision,
+                  "Design revision to analyse when the protocol's design was changed mid-study "
+                  "(--allow-protocol-change): all (each its own report in DIR/revision-N/), latest, or N")
+      ->capture_default_str();
+  cmd->add_flag("--with-excluded", args->with_excluded,
+                "Keep excluded participants and trials (dtlab exclude) in the analysis; by default they are left out "
+                "and listed with their reasons");
+  cmd->add_flag("--json", args->json,
+                "Print {database, out, files, participants, trials, tests, excluded_trials, revisions, simulated, "
+                "warnings}");
   cmd->add_flag("--quiet", args->quiet, "No progress lines on stderr");
   cmd->callback([args] { run_analyze(*args); });
 }

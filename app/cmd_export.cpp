@@ -1,7 +1,8 @@
 // `dtlab export DB --csv FILE [--json]`: the study database as a tidy CSV,
 // one row per recorded trial (columns in README.md, "Study database and
-// export"). Never modifies the database; writes FILE through a temporary
-// file renamed into place, so FILE is either the whole table or untouched.
+// export"; excluded trials are kept, with the reason in `excluded`). Never
+// modifies the database (reads work on read-only media); FILE is written
+// whole or left untouched.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -12,8 +13,10 @@
 #include <system_error>
 
 #include "app/commands.h"
+#include "study/common/file.h"
+#include "study/session/mapping.h"
 #include "study/store/export.h"
-#include "study/store/store.h"
+#include "study/store/read.h"
 
 namespace dtlab::app {
 
@@ -26,38 +29,32 @@ struct ExportArgs {
 };
 
 void run_export(const ExportArgs& a) {
-  namespace fs = std::filesystem;
-  const fs::path target(a.csv);
-  const fs::path tmp = target.string() + ".tmp";
-  Result<store::ExportSummary> sum = Error{};
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      std::cerr << "dtlab export: " << tmp.string() << ": cannot write the CSV file\n";
-      throw CLI::RuntimeError(kExitFailure);
-    }
-    sum = store::export_trials_csv(a.db, out);
-    out.flush();
-    if (sum && !out) sum = Error{tmp.string(), 0, 0, "", "writing the CSV file failed"};
+  auto reader = store::StudyReader::open(a.db, session::read_options());
+  if (!reader) {
+    std::cerr << "dtlab export: " << reader.error().to_string() << "\n";
+    throw CLI::RuntimeError(exit_code(reader.error()));
   }
-  std::error_code ec;
-  if (!sum) {
-    fs::remove(tmp, ec);
-    std::cerr << "dtlab export: " << sum.error().to_string() << "\n";
-    throw CLI::RuntimeError(store::is_environment_error(sum.error()) ? kExitFailure : kExitInvalid);
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    std::cerr << "dtlab export: " << target.string() << ": cannot move the CSV into place: " << ec.message() << "\n";
-    throw CLI::RuntimeError(kExitFailure);
+  store::ExportSummary sum;
+  Status st = write_file_atomically(a.csv, [&](std::ostream& out) -> Status {
+    auto s = store::export_trials_csv(*reader, out);
+    if (!s) return s.error();
+    sum = std::move(s.value());
+    return {};
+  });
+  if (!st) {
+    std::cerr << "dtlab export: " << st.error().to_string() << "\n";
+    throw CLI::RuntimeError(exit_code(st.error()));
   }
   if (a.json) {
-    nlohmann::json j{{"database", a.db}, {"csv", a.csv}, {"rows", sum->rows}, {"columns", sum->columns}};
+    nlohmann::json j{{"database", a.db}, {"csv", a.csv}, {"rows", sum.rows}, {"excluded_rows", sum.excluded},
+                     {"columns", sum.columns}};
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cerr << "dtlab export: wrote " << sum->rows << " trials (" << sum->columns.size() << " columns) to "
-              << a.csv << "\n";
+    std::cerr << "dtlab export: wrote " << sum.rows << (sum.rows == 1 ? " trial" : " trials") << " ("
+              << sum.columns.size() << " columns) to " << a.csv;
+    if (sum.excluded > 0)
+      std::cerr << "; " << sum.excluded << " of them excluded (their `excluded` column holds the reason)";
+    std::cerr << "\n";
   }
 }
 
@@ -69,12 +66,13 @@ void add_export_command(CLI::App& root) {
       "export",
       "Write a study database as a tidy CSV: one row per recorded trial (participant, session, order row, "
       "position, block, one column per factor, task, trial seed, scene hash, answer, truth, scores, completion "
-      "time in seconds, ...). Readable by R's read.csv and pandas.read_csv as is; NA marks missing values");
+      "time in seconds, ..., design revision, and `excluded` with the reason of an exclusion). Readable by R's "
+      "read.csv and pandas.read_csv as is; NA marks missing values");
   cmd->add_option("database", args->db, "Study database (SQLite) written by dtlab run or dtlab simulate")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--csv", args->csv, "Output CSV file (replaced as a whole)")->required();
-  cmd->add_flag("--json", args->json, "Print {database, csv, rows, columns} as JSON on stdout");
+  cmd->add_flag("--json", args->json, "Print {database, csv, rows, excluded_rows, columns} as JSON on stdout");
   cmd->callback([args] { run_export(*args); });
 }
 

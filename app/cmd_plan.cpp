@@ -18,7 +18,8 @@
 #include "app/commands.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
-#include "study/store/store.h"
+#include "study/session/mapping.h"
+#include "study/store/read.h"
 
 namespace dtlab::app {
 
@@ -112,27 +113,18 @@ void add_plan_command(CLI::App& root) {
                 << "(run `dtlab validate " << *path << "` for every problem)\n";
       throw CLI::RuntimeError(kExitInvalid);
     }
-    std::optional<int> row;
+    design::Plan plan;
     if (!db->empty()) {
-      const auto e = store::find_enrollment(*db, p->sha256, *participant);
-      if (!e.ok()) {
-        std::cerr << Diagnostic{Severity::error, e.error()}.to_string() << "\n";
-        throw CLI::RuntimeError(store::is_environment_error(e.error()) ? kExitFailure : kExitInvalid);
+      auto reader = store::StudyReader::open(*db, session::read_options());
+      auto planned = reader ? session::ledger_plan(*reader, *p, *participant) : Result<design::Plan>(reader.error());
+      if (!planned.ok()) {
+        std::cerr << Diagnostic{Severity::error, planned.error()}.to_string() << "\n";
+        throw CLI::RuntimeError(exit_code(planned.error()));
       }
-      if (e->order_row >= design::order_rows(*p)) {
-        std::cerr << Diagnostic{Severity::error,
-                                Error{*db, 0, 0, "participants.order_row",
-                                      "participant \"" + *participant + "\" has order row " +
-                                          std::to_string(e->order_row) + " but the protocol has " +
-                                          std::to_string(design::order_rows(*p)) + " rows"}}
-                         .to_string()
-                  << "\n";
-        throw CLI::RuntimeError(kExitInvalid);
-      }
-      *index = e->index;
-      row = e->order_row;
+      plan = std::move(planned.value());
+    } else {
+      plan = design::make_plan(*p, *index);
     }
-    const design::Plan plan = design::make_plan(*p, *index, row);
     if (*json)
       std::cout << plan_json(plan).dump(2) << "\n";
     else

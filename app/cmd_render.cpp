@@ -30,7 +30,7 @@
 #include "study/render/render.h"
 #include "study/scene/generate.h"
 #include "study/session/mapping.h"
-#include "study/store/store.h"
+#include "study/store/read.h"
 
 namespace dtlab::app {
 
@@ -141,19 +141,16 @@ Job protocol_job(const RenderOptions& o) {
     throw CLI::RuntimeError(kExitInvalid);
   }
   int index = o.index.value_or(0);
-  std::optional<int> row;
+  design::Plan plan;
   if (!o.db.empty()) {
-    const auto e = store::find_enrollment(o.db, p->sha256, o.participant);
-    if (!e.ok()) fail_diagnostic(store::is_environment_error(e.error()) ? kExitFailure : kExitInvalid, e.error());
-    if (e->order_row >= design::order_rows(*p))
-      fail_diagnostic(kExitInvalid, Error{o.db, 0, 0, "participants.order_row",
-                                          "participant \"" + o.participant + "\" has order row " +
-                                              std::to_string(e->order_row) + " but the protocol has " +
-                                              std::to_string(design::order_rows(*p)) + " rows"});
-    index = e->index;
-    row = e->order_row;
+    auto reader = store::StudyReader::open(o.db, session::read_options());
+    auto planned = reader ? session::ledger_plan(*reader, *p, o.participant) : Result<design::Plan>(reader.error());
+    if (!planned.ok()) fail_diagnostic(exit_code(planned.error()), planned.error());
+    plan = std::move(planned.value());
+    index = plan.index;
+  } else {
+    plan = design::make_plan(*p, index);
   }
-  const design::Plan plan = design::make_plan(*p, index, row);
   const int n = *o.trial;
   if (n < 0 || static_cast<std::size_t>(n) >= plan.trials.size())
     fail(kExitUsage, "--trial " + std::to_string(n) + ": participant " + std::to_string(index) + "'s plan has " +

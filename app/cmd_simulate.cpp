@@ -23,7 +23,8 @@
 #include "study/protocol/protocol.h"
 #include "study/sim/driver.h"
 #include "study/sim/summary.h"
-#include "study/store/store.h"
+#include "study/session/mapping.h"
+#include "study/store/read.h"
 
 namespace dtlab::app {
 
@@ -76,6 +77,9 @@ class ProgressPrinter {
       case K::failed:
         if (!g_stop) std::fprintf(stderr, "%s: %s failed: %s\n", prefix_.c_str(), p.participant.c_str(), p.message.c_str());
         break;
+      case K::elsewhere:
+        std::fprintf(stderr, "%s: %s skipped: %s\n", prefix_.c_str(), p.participant.c_str(), p.message.c_str());
+        break;
     }
   }
 
@@ -91,12 +95,6 @@ struct SimulateArgs {
   bool json = false;
 };
 
-std::string rendering_factor(const protocol::Protocol& p) {
-  for (const auto& f : p.factors)
-    if (f.role == protocol::FactorRole::rendering) return f.name;
-  return "";
-}
-
 void run_simulate(const SimulateArgs& a) {
   auto p = protocol::load_protocol(a.protocol);
   if (!p) {
@@ -108,11 +106,14 @@ void run_simulate(const SimulateArgs& a) {
   run.db = a.db;
   const int rc = run_simulation(p.value(), run, "dtlab simulate", r);
   if (rc != kExitOk && rc != kExitInterrupted && rc != kExitFailure) throw CLI::RuntimeError(rc);
-  auto summary = sim::summarize(a.db, rendering_factor(p.value()));
+  auto reader = store::StudyReader::open(a.db, session::read_options());
+  const protocol::Factor* rendering = protocol::rendering_factor(p.value());
+  auto summary = reader ? sim::summarize(*reader, rendering ? rendering->name : "") : Result<sim::Summary>(reader.error());
   if (a.json) {
     nlohmann::json j{{"protocol", p->id},          {"database", a.db},
                      {"participants", run.participants}, {"finished", r.finished_total},
                      {"skipped_finished", r.already_finished}, {"resumed", r.resumed},
+                     {"run_elsewhere", r.elsewhere},
                      {"trials_run", r.trials_run}, {"failed", r.errors},
                      {"interrupted", r.stopped},   {"wall_s", r.wall_s}};
     if (summary) {
@@ -127,7 +128,10 @@ void run_simulate(const SimulateArgs& a) {
   } else {
     std::cout << "dtlab simulate: " << p->id << " -> " << a.db << ": " << r.finished_total << " of "
               << run.participants << " participants finished (" << r.already_finished << " before this run, "
-              << r.resumed << " resumed); " << r.trials_run << " trials in " << clock_text(r.wall_s) << "\n";
+              << r.resumed << " resumed";
+    if (r.elsewhere > 0) std::cout << ", " << r.elsewhere << " run by another process";
+    std::cout << "); " << r.trials_run << (r.trials_run == 1 ? " trial" : " trials") << " in "
+              << clock_text(r.wall_s) << "\n";
     if (summary) std::cout << sim::format_summary(summary.value());
   }
   if (rc != kExitOk) throw CLI::RuntimeError(rc);
@@ -138,12 +142,11 @@ void run_simulate(const SimulateArgs& a) {
 int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const std::string& prefix,
                    SimulationResult& result) {
   const auto start = std::chrono::steady_clock::now();
-  store::OpenOptions open;
-  open.allow_protocol_change = run.allow_protocol_change;
+  const store::OpenOptions open = session::open_options(run.allow_protocol_change);
   auto roster = sim::enroll_simulated(run.db, p, run.participants, open);
   if (!roster) {
     std::cerr << prefix << ": " << roster.error().to_string() << "\n";
-    return store::is_environment_error(roster.error()) ? kExitFailure : kExitInvalid;
+    return exit_code(roster.error());
   }
   result.already_finished = roster->finished;
   result.resumed = roster->resumable;
@@ -178,7 +181,19 @@ int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const 
     return kExitFailure;
   }
   result.trials_run = ran->trials_run;
+  result.elsewhere = ran->elsewhere;
   result.finished_total = roster->finished + ran->finished;
+  if (ran->elsewhere > 0) {  // other processes ran some: count what the file says now
+    auto reader = store::StudyReader::open(run.db, session::read_options());
+    auto sessions = reader ? reader->sessions() : Result<std::vector<store::SessionRecord>>(reader.error());
+    if (sessions) {
+      result.finished_total = 0;
+      for (int k = 1; k <= run.participants; ++k)
+        for (const auto& s : *sessions)
+          if (s.participant == sim::participant_id(k) && s.status == store::SessionStatus::finished)
+            ++result.finished_total;
+    }
+  }
   result.errors = ran->errors;
   result.stopped = ran->stopped;
   for (const std::string& e : ran->errors) std::cerr << prefix << ": " << e << "\n";

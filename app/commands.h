@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "study/common/error.h"
+
 namespace CLI {
 class App;
 }
@@ -23,6 +25,21 @@ inline constexpr int kExitUsage = 2;    // the command line is wrong (CLI11's ow
 inline constexpr int kExitFailure = 3;  // the environment failed (I/O, GL context, SQLite)
 inline constexpr int kExitInterrupted = 130;  // Ctrl-C: stopped after the work in progress; rerun to resume
 
+// The exit code of a failure, from its kind (the one place that maps kinds to codes): the
+// input's fault (invalid, not found, conflicting with what is stored) 1; the environment's
+// (I/O, SQLite, GL, a lock held past its timeout, a session another process runs) and bugs 3.
+inline int exit_code(const Error& e) {
+  switch (e.kind) {
+    case ErrorKind::invalid_input:
+    case ErrorKind::not_found:
+    case ErrorKind::conflict: return kExitInvalid;
+    case ErrorKind::environment:
+    case ErrorKind::busy:
+    case ErrorKind::internal: return kExitFailure;
+  }
+  return kExitFailure;
+}
+
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
 void add_render_command(CLI::App& root);   // `dtlab render ... --method M --out FILE.png`: one frame headless, --json
 void add_bench_command(CLI::App& root);    // `dtlab bench`: frame-time ratios and image error per method, --json
@@ -32,6 +49,7 @@ void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman
 void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every error with file:line:field, --json
 void add_plan_command(CLI::App& root);  // `dtlab plan PROTOCOL --index K`: one participant's trials, --json
 void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one tidy CSV row per recorded trial, --json
+void add_exclude_command(CLI::App& root);  // `dtlab exclude|include DB --participant ID [--trial N] --reason R`
 void add_analyze_command(CLI::App& root);  // `dtlab analyze DB --out DIR`: study report (report.md, index.html, JSON, CSV)
 void add_simulate_command(CLI::App& root);  // `dtlab simulate PROTOCOL --participants N --db FILE`: simulated participants, headless
 void add_demo_command(CLI::App& root);  // `dtlab demo [--out DIR]`: the reference study simulated end to end, then its report
@@ -46,6 +64,7 @@ struct SimulationRun {
 };
 struct SimulationResult {
   int finished_total = 0, already_finished = 0, resumed = 0, trials_run = 0;
+  int elsewhere = 0;  // participants another process was running (claimed): skipped here
   bool stopped = false;
   double wall_s = 0;
   std::vector<std::string> errors;

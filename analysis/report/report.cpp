@@ -1,13 +1,13 @@
 // write_report: read, analyse, draw, write (report.h). The database is read
-// twice, both times read-only: once through store::export_trials_csv (the
-// tidy CSV, byte for byte what `dtlab export` writes, and the check that the
-// file is a dtlab database) and once for the analysis. Output files are
-// written to a temporary name and renamed, so each is whole or absent.
+// through one StudyReader snapshot: the tidy table (byte for byte what
+// `dtlab export` writes) and each design revision's data come from it.
+// Output files are written whole or not at all (write_file_atomically).
 #include "analysis/report/report.h"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <charconv>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -18,9 +18,9 @@
 #include "analysis/report/detail/plots.h"
 #include "analysis/report/detail/sections.h"
 #include "analysis/report/detail/study_data.h"
+#include "study/common/file.h"
 #include "study/common/version.h"
 #include "study/store/export.h"
-#include "study/store/store.h"
 
 namespace dtlab::report {
 namespace {
@@ -28,24 +28,15 @@ namespace {
 namespace fs = std::filesystem;
 using namespace detail;
 
-Error output_error(const fs::path& p, const std::string& what) { return Error{p.string(), 0, 0, "output", what}; }
+Error output_error(const fs::path& p, const std::string& what) {
+  return Error{p.string(), 0, 0, "output", what, ErrorKind::environment};
+}
 
 Status write_whole(const fs::path& p, const std::string& text) {
-  const fs::path tmp = p.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) return output_error(p, "cannot write the file (is the output directory writable?)");
+  return write_file_atomically(p.string(), [&](std::ostream& out) -> Status {
     out << text;
-    out.flush();
-    if (!out) return output_error(p, "writing the file failed (disk full?)");
-  }
-  std::error_code ec;
-  fs::rename(tmp, p, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    return output_error(p, "cannot move the file into place: " + ec.message());
-  }
-  return {};
+    return {};
+  });
 }
 
 std::string utc_now() {
@@ -72,29 +63,9 @@ nlohmann::json design_json(const Design& d) {
   return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.reference}};
 }
 
-}  // namespace
-
-bool is_environment_error(const Error& e) { return e.field == "sqlite" || e.field == "output" || e.field == "gnuplot"; }
-
-Result<ReportSummary> write_report(const std::string& db_path, const std::string& out_dir, const ProgressFn& progress,
-                                   const ReportOptions& options) {
-  auto say = [&](const std::string& step) {
-    if (progress) progress(step);
-  };
-  const std::string gnuplot = gnuplot_executable(options.gnuplot);
-  if (auto s = check_gnuplot(gnuplot); !s) return s.error();
-
-  say("reading " + db_path);
-  std::ostringstream tidy;
-  auto exported = store::export_trials_csv(db_path, tidy);
-  if (!exported) {
-    Error e = exported.error();
-    if (store::is_environment_error(e)) e.field = "sqlite";
-    return e;
-  }
-  auto read = read_study(db_path);
-  if (!read) return read.error();
-  const StudyData& data = *read;
+// The report of one design revision into `out`.
+Result<ReportSummary> write_one(const StudyData& data, const fs::path& out, const std::string& tidy,
+                                const std::string& gnuplot, const ProgressFn& say, const ReportOptions& options) {
   const Design design = make_design(data.protocol);
   Context ctx(data, design, options);
   for (const auto& p : data.participants) {
@@ -104,14 +75,16 @@ Result<ReportSummary> write_report(const std::string& db_path, const std::string
     ctx.analysed_trials += n;
   }
   if (ctx.analysed_trials == 0)
-    return Error{db_path, 0, 0, "trial_table",
-                 "no recorded trial to analyse (" + std::to_string(data.participants.size()) +
-                     " participants enrolled, " + std::to_string(data.trials.size()) +
-                     " trials of the current protocol, practice trials excluded); run sessions first"};
+    return Error{data.path, 0, 0, "trial_table",
+                 "no recorded trial to analyse in design revision " + std::to_string(data.design_revision) + " (" +
+                     std::to_string(data.participants.size()) + " participant" +
+                     (data.participants.size() == 1 ? "" : "s") + " enrolled, " + std::to_string(data.trials.size()) +
+                     " trial" + (data.trials.size() == 1 ? "" : "s") + ", practice trials" +
+                     (data.with_excluded ? "" : " and excluded data") + " left out); run sessions first"};
   for (const auto& id : simulated_participants(data))
     if (std::find(ctx.subjects.begin(), ctx.subjects.end(), id) != ctx.subjects.end()) ctx.simulated.push_back(id);
 
-  const fs::path out(out_dir), figures = out / "figures";
+  const fs::path figures = out / "figures";
   std::error_code ec;
   fs::create_directories(figures, ec);
   if (ec || !fs::is_directory(figures))
@@ -139,40 +112,54 @@ Result<ReportSummary> write_report(const std::string& db_path, const std::string
   if (!svg) return svg.error();
 
   ReportSummary sum;
-  sum.out_dir = out_dir;
+  sum.out_dir = out.string();
   sum.participants = static_cast<int>(ctx.subjects.size());
   sum.trials = ctx.analysed_trials;
+  sum.excluded_trials = data.excluded_trials;
   sum.tests = ctx.tests;
   sum.simulated = !ctx.simulated.empty() && ctx.simulated.size() == ctx.subjects.size();
+  sum.revisions = {data.design_revision};
   sum.warnings = ctx.warnings;
 
   nlohmann::json& j = ctx.json;
   j["report_format"] = 1;
   j["generated_by"] = std::string(dtlab::version_string());
   j["generated_at"] = utc_now();
-  j["database"] = db_path;
+  j["database"] = data.path;
   j["protocol"] = {{"id", data.protocol.id}, {"title", data.protocol.title}, {"sha256", data.protocol.sha256},
-                   {"software_version", data.software_version}};
+                   {"design_sha256", protocol::design_sha256(data.protocol)},
+                   {"design_revision", data.design_revision}, {"design_revisions", data.design_revisions},
+                   {"protocol_texts", data.protocol_texts}, {"software_version", data.software_version}};
   j["design"] = design_json(design);
   nlohmann::json parts = nlohmann::json::array();
   for (const auto& p : data.participants) {
     const bool analysed = std::find(ctx.subjects.begin(), ctx.subjects.end(), p.id) != ctx.subjects.end();
     const bool sim = std::find(ctx.simulated.begin(), ctx.simulated.end(), p.id) != ctx.simulated.end();
+    const bool excluded = std::find(data.excluded_participants.begin(), data.excluded_participants.end(), p.id) !=
+                          data.excluded_participants.end();
     parts.push_back({{"id", p.id}, {"index", p.index}, {"order_row", p.order_row},
                      {"session", p.session_status.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.session_status)},
-                     {"planned", p.planned}, {"recorded", p.recorded}, {"analysed", analysed}, {"simulated", sim}});
+                     {"planned", p.planned}, {"recorded", p.recorded}, {"analysed", analysed}, {"simulated", sim},
+                     {"excluded", excluded}});
   }
   j["participants"] = parts;
+  nlohmann::json excl = nlohmann::json::array();
+  for (const auto& x : data.exclusions)
+    excl.push_back({{"participant", x.participant},
+                    {"trial", x.position ? nlohmann::json(*x.position) : nlohmann::json(nullptr)},
+                    {"decision", x.exclude ? "exclude" : "include"}, {"reason", x.reason}, {"by", x.by}, {"at", x.at}});
+  j["exclusions"] = excl;
   j["summary"] = {{"participants", sum.participants}, {"trials", sum.trials}, {"tests", sum.tests},
+                  {"excluded_trials", data.excluded_trials}, {"with_excluded", data.with_excluded},
                   {"simulated", sum.simulated}, {"simulated_participants", ctx.simulated}};
   j["warnings"] = ctx.warnings;
   std::vector<std::string> figure_files;
   for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
   j["figures"] = figure_files;
 
-  say("writing " + out_dir);
+  say("writing " + out.string());
   std::vector<std::pair<std::string, std::string>> files = {
-      {"trials.csv", tidy.str()},
+      {"trials.csv", tidy},
       {"tests.csv", tests_csv(ctx)},
       {"report.json", j.dump(2) + "\n"},
       {"report.md", render_markdown(ctx.doc)},
@@ -185,6 +172,124 @@ Result<ReportSummary> write_report(const std::string& db_path, const std::string
   }
   for (const auto& f : figure_files) sum.files.push_back(f);
   return sum;
+}
+
+// Which design revisions `spec` ("all", "latest", "N") names, of `count`.
+Result<std::vector<int>> chosen_revisions(const std::string& spec, int count, const std::string& path) {
+  if (spec == "all" || spec.empty()) {
+    std::vector<int> all;
+    for (int k = 1; k <= count; ++k) all.push_back(k);
+    return all;
+  }
+  if (spec == "latest") return std::vector<int>{count};
+  int k = 0;
+  const auto [ptr, ec] = std::from_chars(spec.data(), spec.data() + spec.size(), k);
+  if (ec != std::errc() || ptr != spec.data() + spec.size() || k < 1)
+    return Error{path, 0, 0, "revision", "\"" + spec + "\": expected all, latest or a revision number 1.." +
+                                             std::to_string(count)};
+  if (k > count)
+    return Error{path, 0, 0, "revision",
+                 "there is no design revision " + spec + "; the database has " + std::to_string(count) +
+                     (count == 1 ? " (revision 1)" : " (revisions 1.." + std::to_string(count) + ")"),
+                 ErrorKind::not_found};
+  return std::vector<int>{k};
+}
+
+// out/index.html and out/report.md when several design revisions got a report each.
+Status write_revision_index(const fs::path& out, const std::vector<store::Revision>& designs,
+                            const std::vector<ReportSummary>& reports, const std::string& path) {
+  Document doc;
+  doc.title = "Results: " + designs.back().protocol_id + " (" + std::to_string(designs.size()) + " design revisions)";
+  doc.subtitle = "Database `" + path + "`.";
+  Section s{"revisions", "Design revisions, analysed separately", 2, {}};
+  s.add(Callout{"warning", "This database holds " + std::to_string(designs.size()) + " design revisions",
+                {"The protocol was changed in a way that changes what runs (its design hash differs), with "
+                 "--allow-protocol-change. Participants of different designs are not pooled: each revision has its "
+                 "own report below. Rewordings that keep the design (comments, titles, prompts) are pooled within a "
+                 "revision."}});
+  Table t;
+  t.id = "table-revisions";
+  t.caption = "Design revisions: the latest protocol text of each, and its report.";
+  t.header = {"Revision", "Protocol SHA-256", "Recorded", "Participants", "Trials", "Report"};
+  t.text_columns = 3;
+  t.last_is_text = true;
+  for (const ReportSummary& r : reports) {
+    const store::Revision& d = designs[static_cast<std::size_t>(r.revisions.front() - 1)];
+    const std::string dir = "revision-" + std::to_string(r.revisions.front());
+    t.rows.push_back({std::to_string(r.revisions.front()), d.protocol_sha256.substr(0, 12) + "…", d.created_at,
+                      std::to_string(r.participants), std::to_string(r.trials), "`" + dir + "/index.html`"});
+  }
+  s.add(t);
+  doc.sections.push_back(std::move(s));
+  if (auto st = write_whole(out / "report.md", render_markdown(doc)); !st) return st;
+  return write_whole(out / "index.html", render_html(doc, {}));
+}
+
+}  // namespace
+
+Result<ReportSummary> write_report(store::StudyReader& reader, const std::string& out_dir, const ProgressFn& progress,
+                                   const ReportOptions& options) {
+  auto say = [&](const std::string& step) {
+    if (progress) progress(step);
+  };
+  const std::string gnuplot = gnuplot_executable(options.gnuplot);
+  if (auto s = check_gnuplot(gnuplot); !s) return s.error();
+
+  say("reading " + reader.path());
+  auto designs = design_revisions(reader);
+  if (!designs) return designs.error();
+  auto chosen = chosen_revisions(options.revision, static_cast<int>(designs->size()), reader.path());
+  if (!chosen) return chosen.error();
+  std::ostringstream tidy;
+  if (auto exported = store::export_trials_csv(reader, tidy); !exported) return exported.error();
+
+  const fs::path out(out_dir);
+  std::vector<ReportSummary> reports;
+  for (int k : *chosen) {
+    auto data = read_study(reader, k, options.with_excluded);
+    if (!data) return data.error();
+    const bool separate = chosen->size() > 1;
+    auto one = write_one(*data, separate ? out / ("revision-" + std::to_string(k)) : out, tidy.str(), gnuplot,
+                         separate ? ProgressFn([&](const std::string& step) {
+                           say("revision " + std::to_string(k) + ": " + step);
+                         })
+                                  : ProgressFn(say),
+                         options);
+    if (!one) return one.error();
+    reports.push_back(std::move(*one));
+  }
+  if (reports.size() == 1) {
+    reports.front().out_dir = out_dir;
+    return reports.front();
+  }
+  ReportSummary sum;
+  sum.out_dir = out_dir;
+  sum.simulated = true;
+  for (const ReportSummary& r : reports) {
+    const std::string dir = "revision-" + std::to_string(r.revisions.front()) + "/";
+    for (const auto& f : r.files) sum.files.push_back(dir + f);
+    sum.participants += r.participants;
+    sum.trials += r.trials;
+    sum.excluded_trials += r.excluded_trials;
+    sum.tests += r.tests;
+    sum.simulated = sum.simulated && r.simulated;
+    sum.revisions.push_back(r.revisions.front());
+    for (const auto& w : r.warnings) sum.warnings.push_back("revision " + std::to_string(r.revisions.front()) + ": " + w);
+  }
+  sum.warnings.insert(sum.warnings.begin(), "the database holds " + std::to_string(designs->size()) +
+                                                " design revisions; each is analysed separately (revision-N/)");
+  if (auto s = write_revision_index(out, *designs, reports, reader.path()); !s) return s.error();
+  sum.files.insert(sum.files.begin(), {"index.html", "report.md"});
+  return sum;
+}
+
+Result<ReportSummary> write_report(const std::string& db_path, const std::string& out_dir, const ProgressFn& progress,
+                                   const ReportOptions& options) {
+  store::ReadOptions ro;
+  ro.design_hash_of = &protocol::design_sha256_of_text;
+  auto reader = store::StudyReader::open(db_path, ro);
+  if (!reader) return reader.error();
+  return write_report(*reader, out_dir, progress, options);
 }
 
 }  // namespace dtlab::report

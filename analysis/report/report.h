@@ -1,13 +1,14 @@
 // The study report (`dtlab analyze DB --out DIR`, docs/report.md): from a study
-// database to the results section of a paper. Reads the protocol recorded in
-// the database and the tidy trial table, runs the statistics of analysis/stats
-// (RM ANOVA, Friedman, paired tests, Holm) per task and overall, and writes
-// report.md, a self-contained index.html (inline CSS and SVG, no script, no
-// external reference), report.json (every number the tables show), the SVG
-// plots (gnuplot, run as a subprocess), trials.csv and per-analysis CSVs.
-// Guarantees: the database is opened read-only and never modified; every
-// failure is an Error (never an abort), and is_environment_error() tells the
-// environment's faults (I/O, SQLite, gnuplot) from the input's.
+// database to the results section of a paper. Reads the study through the
+// store's StudyReader (one snapshot): the protocol recorded in the database,
+// the recorded trials, the questionnaire and the lab's exclusions; runs the
+// statistics of analysis/stats (RM ANOVA, Friedman, paired tests, Holm) per
+// task and overall, and writes report.md, a self-contained index.html (inline
+// CSS and SVG, no script, no external reference), report.json (every number
+// the tables show), the SVG plots (gnuplot, run as a subprocess), trials.csv
+// and per-analysis CSVs. A database holding several design revisions gets one
+// report per revision (each says so at the top). Guarantees: the database is
+// never modified; every failure is an Error of a kind (never an abort).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "study/common/error.h"
+#include "study/store/read.h"
 
 namespace dtlab::report {
 
@@ -22,30 +24,36 @@ struct ReportOptions {
   std::string gnuplot;                       // gnuplot executable; "" = $DTLAB_GNUPLOT, else "gnuplot" on PATH
   double frame_threshold_ms = 1000.0 / 30;   // frame-time audit: a trial is "slow" when its p95 frame time exceeds this
   std::uint64_t seed = 1;                    // seed of Monte Carlo exact p-values (Friedman with many blocks)
+  std::string revision = "all";              // design revision(s): "all" (each its own report), "latest", or "N"
+  bool with_excluded = false;                // keep excluded participants and trials in the analysis
 };
 
 struct ReportSummary {
   std::string out_dir;
   std::vector<std::string> files;     // paths written, relative to out_dir
   int participants = 0;               // participants with at least one analysed trial
-  long long trials = 0;               // analysed (recorded, non-practice) trials
+  long long trials = 0;               // analysed (recorded, non-practice, not excluded) trials
+  long long excluded_trials = 0;      // recorded trials left out because they are excluded
   int tests = 0;                      // statistical tests reported
   bool simulated = false;             // every participant is marked simulated in the database
+  std::vector<int> revisions;         // the design revisions analysed (one report each)
   std::vector<std::string> warnings;  // also shown in the report
 };
 
 // One line of progress for a human ("reading the database", "completion time"); may be empty.
 using ProgressFn = std::function<void(const std::string& step)>;
 
-// Analyses the database at db_path and writes the report into out_dir
-// (created if missing; files of the same names are replaced whole). A file
-// that is not a dtlab database, a protocol that does not parse, or a database
-// without any recorded trial is an input Error; an unwritable out_dir, a
-// failing SQLite read or a missing/failing gnuplot an environment Error.
+// Analyses the study `reader` reads and writes the report into out_dir
+// (created if missing; files of the same names are replaced whole). With
+// several design revisions and revision "all", each goes to
+// out_dir/revision-N/ and out_dir/index.html lists them. A protocol that does
+// not parse or no recorded trial to analyse is an input Error; an unknown
+// revision not_found; an unwritable out_dir or a missing or failing gnuplot an
+// environment Error.
+Result<ReportSummary> write_report(store::StudyReader& reader, const std::string& out_dir,
+                                   const ProgressFn& progress = {}, const ReportOptions& options = {});
+// The same for the database at db_path, opened read-only (a file that is not a dtlab database is refused).
 Result<ReportSummary> write_report(const std::string& db_path, const std::string& out_dir,
                                    const ProgressFn& progress = {}, const ReportOptions& options = {});
-
-// True if `e` is the environment's fault (exit code 3), not the input's (exit code 1).
-bool is_environment_error(const Error& e);
 
 }  // namespace dtlab::report

@@ -3,6 +3,18 @@
 
 namespace dtlab {
 
+const char* to_string(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::invalid_input: return "invalid_input";
+    case ErrorKind::not_found: return "not_found";
+    case ErrorKind::conflict: return "conflict";
+    case ErrorKind::environment: return "environment";
+    case ErrorKind::busy: return "busy";
+    case ErrorKind::internal: return "internal";
+  }
+  return "internal";
+}
+
 std::string Error::to_string() const {
   std::string s;
   if (!file.empty()) {

@@ -1,7 +1,8 @@
 // Errors that come from the environment (a file, a protocol, SQLite, a shader,
-// a CSV) as values: each names where it happened (file, line, column, field)
-// and what was expected, so the user can fix the input. Programmer errors are
-// asserts instead; a violated public precondition throws std::invalid_argument.
+// a CSV) as values: each names where it happened (file, line, column, field),
+// what was expected, and its kind, set where the error is made, so callers
+// decide by kind, never by message text. Programmer errors are asserts
+// instead; a violated public precondition throws std::invalid_argument.
 #pragma once
 #include <cassert>
 #include <string>
@@ -10,12 +11,25 @@
 
 namespace dtlab {
 
+// What kind of failure an Error is; it decides the exit code (app/commands.h,
+// exit_code) and whether a caller may retry. Never inferred from the message.
+enum class ErrorKind {
+  invalid_input,  // the input is wrong (protocol, CSV, database content, an argument value)
+  not_found,      // a named thing does not exist (file, participant, trial, revision)
+  conflict,       // the request contradicts what is stored (answered twice, a finished session, another protocol)
+  environment,    // the environment failed: I/O, SQLite, GL context, a subprocess
+  busy,           // a resource is held by someone else (a database lock past its timeout, a claimed session)
+  internal,       // a bug: a state the code promises never to reach
+};
+const char* to_string(ErrorKind kind);  // "invalid_input", "not_found", ... (stable: used in JSON)
+
 struct Error {
   std::string file;     // path of the input at fault, empty if none
   int line = 0;         // 1-based; 0 = unknown / whole file
   int column = 0;       // 1-based; 0 = unknown
   std::string field;    // dotted path of the field at fault, e.g. "factors.transparency.levels"
   std::string message;  // what was wrong and what was expected
+  ErrorKind kind = ErrorKind::invalid_input;
 
   // "file:line:column: field: message" with the empty parts left out.
   std::string to_string() const;

@@ -254,4 +254,27 @@ int condition_index(const Protocol& p, const std::vector<int>& levels) {
   return index;
 }
 
+namespace {
+
+template <class T>
+const T* by_name(const std::vector<T>& items, std::string_view name) {
+  for (const T& x : items)
+    if (x.name == name) return &x;
+  return nullptr;
+}
+
+const Factor* by_role(const Protocol& p, FactorRole role) {
+  for (const Factor& f : p.factors)
+    if (f.role == role) return &f;
+  return nullptr;
+}
+
+}  // namespace
+
+const Factor* find_factor(const Protocol& p, std::string_view name) { return by_name(p.factors, name); }
+const Scenario* find_scenario(const Protocol& p, std::string_view name) { return by_name(p.scenarios, name); }
+const Rendering* find_rendering(const Protocol& p, std::string_view name) { return by_name(p.renderings, name); }
+const Factor* rendering_factor(const Protocol& p) { return by_role(p, FactorRole::rendering); }
+const Factor* scenario_factor(const Protocol& p) { return by_role(p, FactorRole::scenario); }
+
 }  // namespace dtlab::protocol

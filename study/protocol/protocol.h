@@ -7,6 +7,7 @@
 // OpenGL, SQLite or the scene generator.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -200,5 +201,23 @@ int declared_order_rows(const Protocol& p);
 
 // Index of the condition with these level indices (one per factor); -1 if out of range.
 int condition_index(const Protocol& p, const std::vector<int>& levels);
+
+// --- lookups (nullptr when there is none) ---------------------------------------------------
+
+const Factor* find_factor(const Protocol& p, std::string_view name);
+const Scenario* find_scenario(const Protocol& p, std::string_view name);
+const Rendering* find_rendering(const Protocol& p, std::string_view name);
+const Factor* rendering_factor(const Protocol& p);  // the factor with role = "rendering"
+const Factor* scenario_factor(const Protocol& p);   // the factor with role = "scenario"
+
+// --- identity ----------------------------------------------------------------------------
+
+// SHA-256 of a canonical serialization of everything that changes what a session runs
+// (factors, ordering, seeds, limits, training, scene and rendering parameters, the
+// questionnaire's structure); comments, white space, key order, title, descriptions and
+// prompt texts do not change it. Two protocols with equal design hashes run the same sessions.
+std::string design_sha256(const Protocol& p);
+// The same of a protocol text (as a study database records it); nullopt if it does not load.
+std::optional<std::string> design_sha256_of_text(const std::string& text);
 
 }  // namespace dtlab::protocol

@@ -221,10 +221,57 @@ store::StudyInfo study_info(const protocol::Protocol& p) {
   s.protocol_id = p.id;
   s.protocol_text = p.source_text;
   s.protocol_sha256 = p.sha256;
+  s.design_sha256 = protocol::design_sha256(p);
   s.software_version = std::string(version_string());
   s.order_rows = design::order_rows(p);
   for (const protocol::Factor& f : p.factors) s.factors.push_back(f.name);
   return s;
+}
+
+Result<design::Plan> ledger_plan(store::StudyReader& reader, const protocol::Protocol& p, const std::string& participant) {
+  auto ledger = reader.ledger();
+  if (!ledger) return ledger.error();
+  const auto e = std::find_if(ledger->begin(), ledger->end(),
+                              [&](const store::LedgerEntry& x) { return x.participant == participant; });
+  if (e == ledger->end())
+    return Error{reader.path(), 0, 0, "participant", "unknown participant \"" + participant + "\"",
+                 ErrorKind::not_found};
+  auto revisions = reader.revisions();
+  if (!revisions) return revisions.error();
+  auto sessions = reader.sessions();
+  if (!sessions) return sessions.error();
+  std::int64_t study = e->study_id;  // the revision their session began under, else the one they enrolled under
+  for (const auto& s : *sessions)
+    if (s.participant == participant) study = s.study_id;
+  const std::string design = protocol::design_sha256(p);
+  for (const store::Revision& r : *revisions)
+    if (r.study_id == study && r.design_sha256 != design)
+      return Error{reader.path(), 0, 0, "studies.design",
+                   "participant \"" + participant + "\" was enrolled under protocol \"" + r.protocol_id +
+                       "\" (SHA-256 " + r.protocol_sha256 + ", design revision " + std::to_string(r.design_revision) +
+                       "), whose design differs from this protocol's (" + p.source_path + ", SHA-256 " + p.sha256 +
+                       "); use the protocol the database records",
+                   ErrorKind::conflict};
+  const int rows = design::order_rows(p);
+  if (e->order_row >= rows)
+    return Error{reader.path(), 0, 0, "participants.order_row",
+                 "participant \"" + participant + "\" has order row " + std::to_string(e->order_row) +
+                     " but the protocol has " + std::to_string(rows) + (rows == 1 ? " row" : " rows"),
+                 ErrorKind::conflict};
+  return design::make_plan(p, e->index, e->order_row);
+}
+
+store::OpenOptions open_options(bool allow_protocol_change) {
+  store::OpenOptions o;
+  o.allow_protocol_change = allow_protocol_change;
+  o.design_hash_of = &protocol::design_sha256_of_text;
+  return o;
+}
+
+store::ReadOptions read_options() {
+  store::ReadOptions o;
+  o.design_hash_of = &protocol::design_sha256_of_text;
+  return o;
 }
 
 }  // namespace dtlab::session

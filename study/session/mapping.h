@@ -15,6 +15,7 @@
 #include "study/protocol/protocol.h"
 #include "study/render/render.h"
 #include "study/scene/generate.h"
+#include "study/store/read.h"
 #include "study/store/store.h"
 
 namespace dtlab::session {
@@ -57,7 +58,18 @@ Result<scene::Scene> trial_scene(const TrialSetup& setup, const design::PlannedT
 // The answer key of a scene in the store's terms: T1/T4 Count, T2 Letter, T3 Position.
 store::Answer answer_key(const scene::Answer& answer);
 
-// What Store::open needs to know about the protocol (id, text, hash, version, rows, factors).
+// What Store::open needs to know about the protocol (id, text, hash, design hash, version, rows, factors).
 store::StudyInfo study_info(const protocol::Protocol& p);
+
+// The plan of `participant` as enrolled in the study database behind `reader`: the ledger's
+// enrollment index and order row applied to protocol `p`. not_found: unknown participant;
+// conflict: the participant was enrolled under another design than p's (another protocol,
+// or a revision that changed what runs); a reworded protocol with the same design is fine.
+Result<design::Plan> ledger_plan(store::StudyReader& reader, const protocol::Protocol& p, const std::string& participant);
+
+// How every command opens or reads a study database: recorded protocol texts are hashed by
+// protocol::design_sha256_of_text (for revisions recorded before design hashes were stored).
+store::OpenOptions open_options(bool allow_protocol_change = false);
+store::ReadOptions read_options();
 
 }  // namespace dtlab::session

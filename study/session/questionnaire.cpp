@@ -1,6 +1,6 @@
 // The post-test questionnaire (session.h): items expanded into questions, the
 // depth test's static view and its answer key, and the session's recorded
-// trials read back from the file for the responder's memory.
+// trials read back through the store for the responder's memory.
 // Guarantees: the same (protocol, enrollment index, viewport) gives the same
 // questions, view and pairs; the depth-test key is geometry (distance from
 // the eye), never what a renderer shows. Never: writes to the store.
@@ -8,35 +8,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "analysis/stats/csv.h"
 #include "study/design/seeds.h"
 #include "study/session/detail/stream.h"
 #include "study/session/session.h"
-#include "study/store/export.h"
+#include "study/store/read.h"
 
 namespace dtlab::session {
-
-namespace {
-
-const protocol::Factor* find_factor(const protocol::Protocol& p, const std::string& name) {
-  for (const auto& f : p.factors)
-    if (f.name == name) return &f;
-  return nullptr;
-}
-
-const protocol::Rendering* find_rendering(const protocol::Protocol& p, const std::string& name) {
-  for (const auto& r : p.renderings)
-    if (r.name == name) return &r;
-  return nullptr;
-}
-
-const protocol::Scenario* find_scenario(const protocol::Protocol& p, const std::string& name) {
-  for (const auto& s : p.scenarios)
-    if (s.name == name) return &s;
-  return nullptr;
-}
-
-}  // namespace
 
 std::vector<Question> expand_questionnaire(const protocol::Protocol& p) {
   std::vector<Question> out;
@@ -47,7 +24,7 @@ std::vector<Question> expand_questionnaire(const protocol::Protocol& p) {
         std::vector<const protocol::Factor*> per;
         std::size_t combinations = 1;
         for (const auto& name : item.per) {
-          const protocol::Factor* f = find_factor(p, name);
+          const protocol::Factor* f = protocol::find_factor(p, name);
           if (!f) continue;  // load_protocol checked the names; a hand-built protocol may not have
           per.push_back(f);
           combinations *= f->levels.size();
@@ -70,7 +47,7 @@ std::vector<Question> expand_questionnaire(const protocol::Protocol& p) {
       case protocol::ItemType::choice: {
         Question q;
         q.item = &item;
-        if (const protocol::Factor* f = find_factor(p, item.factor)) q.options = f->levels;
+        if (const protocol::Factor* f = protocol::find_factor(p, item.factor)) q.options = f->levels;
         else q.options = item.options;
         out.push_back(std::move(q));
         break;
@@ -98,8 +75,8 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
                                      int enrollment_index, const Viewport& vp, std::vector<Question>& questions) {
   const std::string field = "questionnaire." + item.id;
   auto bad = [&](const std::string& f, const std::string& m) { return Error{p.source_path, 0, 0, f, m}; };
-  const protocol::Scenario* scenario = find_scenario(p, item.scenario);
-  const protocol::Rendering* rendering = find_rendering(p, item.rendering);
+  const protocol::Scenario* scenario = protocol::find_scenario(p, item.scenario);
+  const protocol::Rendering* rendering = protocol::find_rendering(p, item.rendering);
   if (!scenario || scenario->tasks.empty()) return bad(field + ".scenario", "no scenario '" + item.scenario + "' with tasks");
   if (!rendering) return bad(field + ".rendering", "no rendering '" + item.rendering + "'");
   if (scenario->scene.kind != protocol::ScenarioKind::walkthrough)
@@ -190,34 +167,11 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
                                    " pairs of objects at distinguishable distances");
 }
 
-Result<std::vector<RecordedTrial>> recorded_trials(const std::string& db_path, const design::Plan& plan,
-                                                   const std::string& participant_id) {
-  std::ostringstream csv;
-  auto exported = store::export_trials_csv(db_path, csv);
-  if (!exported) return exported.error();
-  auto table = stats::parse_csv(csv.str(), db_path + " (trial_table)");
-  if (!table) return table.error();
-  const stats::CsvTable& t = table.value();
-  const int c_participant = t.column("participant"), c_position = t.column("position"),
-            c_time = t.column("completion_time_s"), c_count = t.column("answer_count"),
-            c_letter = t.column("answer_letter"), c_x = t.column("answer_x");
-  for (int c : {c_participant, c_position, c_time, c_count, c_letter, c_x})
-    if (c < 0) return Error{db_path, 0, 0, "trial_table", "the export lacks a column the session reads"};
+Result<std::vector<RecordedTrial>> recorded_trials(store::Store& store, const std::string& participant_id) {
+  auto rows = store.read().trials(participant_id);
+  if (!rows) return rows.error();
   std::vector<RecordedTrial> out;
-  for (const auto& row : t.rows) {
-    if (row[static_cast<std::size_t>(c_participant)] != participant_id) continue;
-    const int position = std::stoi(row[static_cast<std::size_t>(c_position)]);
-    if (position < 1 || position > static_cast<int>(plan.trials.size()))
-      return Error{db_path, 0, 0, "trial_table.position", "position " + std::to_string(position) + " is not in the plan"};
-    RecordedTrial r;
-    r.planned = plan.trials[static_cast<std::size_t>(position - 1)];
-    r.completion_s = std::stod(row[static_cast<std::size_t>(c_time)]);
-    for (int c : {c_count, c_letter, c_x})
-      if (row[static_cast<std::size_t>(c)] != "NA") r.answered = true;
-    out.push_back(std::move(r));
-  }
-  std::sort(out.begin(), out.end(),
-            [](const RecordedTrial& a, const RecordedTrial& b) { return a.planned.position < b.planned.position; });
+  for (const store::TrialRow& t : *rows) out.push_back(RecordedTrial{t.planned, t.completion_s, t.answer.has_value()});
   return out;
 }
 

@@ -91,12 +91,6 @@ Result<std::vector<store::QuestionnaireAnswer>> score_questionnaire(const std::v
   return out;
 }
 
-// True if `e` is the store refusing an (item, scope) answered before: the questionnaire's one
-// transaction committed in an earlier, interrupted run.
-bool already_answered(const Error& e, const std::vector<store::QuestionnaireAnswer>& answers) {
-  return !answers.empty() && !store::is_environment_error(e) && e.field == "questionnaire." + answers.front().item &&
-         e.message.find("already answered") != std::string::npos;
-}
 
 }  // namespace
 
@@ -116,7 +110,7 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
       sum.trials_recorded = existing->recorded;
       return sum;
     }
-    if (!existing && store::is_environment_error(existing.error())) return existing.error();
+    if (!existing && existing.error().kind != ErrorKind::not_found) return existing.error();
   }
 
   auto begun = store.begin_session(participant_id, sum.plan);
@@ -125,7 +119,7 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   sum.resumed = session.resumed;
   if (hooks.on_session_start) hooks.on_session_start(session, sum.plan);
 
-  auto history = recorded_trials(store.path(), sum.plan, participant_id);
+  auto history = recorded_trials(store, participant_id);
   if (!history) return history.error();
   double elapsed = 0;
   for (const RecordedTrial& t : history.value()) elapsed += t.completion_s;
@@ -171,6 +165,8 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
     spec.scene = &sc.value();
     spec.frame = std::move(frame.value());
     spec.time_limit_s = std::max(0.0, p.session_time_limit_s - elapsed);
+    spec.keep_claim = [&store, &session] { return store.heartbeat(session); };
+    if (Status st = store.begin_trial(session, planned.position); !st) return st.error();
     if (hooks.on_trial_start) hooks.on_trial_start(spec);
 
     auto outcome = responder.run_trial(spec);
@@ -185,8 +181,10 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   }
   sum.trials_recorded = static_cast<int>(history->size());
 
-  // Questionnaire: one transaction; if an interrupted run committed it already, the store
-  // refuses the repeat and the session goes straight on to FINISHED.
+  // Questionnaire: one transaction. If an interrupted run committed it already, nobody is asked
+  // again and the session goes straight on to FINISHED.
+  auto answered = store.read().questionnaire(participant_id);
+  if (!answered) return answered.error();
   QuestionnaireSpec q;
   q.protocol = &p;
   q.participant_id = participant_id;
@@ -201,16 +199,13 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
     q.depth_tests.push_back(key->view);
     keys.push_back(std::move(key.value()));
   }
-  if (!q.questions.empty()) {
+  if (!q.questions.empty() && answered->empty()) {
     auto answers = responder.answer_questionnaire(q);
     if (!answers) return answers.error();
     auto stored = score_questionnaire(q.questions, answers.value(), keys);
     if (!stored) return stored.error();
-    if (Status st = store.record_questionnaire(session, stored.value()); !st) {
-      if (!already_answered(st.error(), stored.value())) return st.error();
-    } else {
-      sum.questionnaire_recorded = true;
-    }
+    if (Status st = store.record_questionnaire(session, stored.value()); !st) return st.error();
+    sum.questionnaire_recorded = true;
   }
 
   if (Status st = store.finish_session(session); !st) return st.error();

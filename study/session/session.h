@@ -46,6 +46,10 @@ struct TrialSpec {
   const scene::Scene* scene = nullptr;  // the generated scene (answer key inside: never show it)
   render::FrameSettings frame;    // the condition's rendering for the responder's viewport()
   double time_limit_s = 0;        // session time left: session.time_limit_s - completion times recorded so far
+  // Renews this process's claim on the session (Store::heartbeat). A responder whose trials can
+  // outlast the claim's lifetime (a person) calls it every few seconds; an Error means another
+  // process took the session over: stop the trial and return that Error.
+  std::function<Status()> keep_claim;
 };
 
 // What the responder measured in one trial.
@@ -172,8 +176,7 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
 std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, int item_position);
 inline constexpr std::uint64_t kDepthTestDomain = 0x4000000000000000ULL + 0x6465707468ULL;  // 2^62 + "depth"
 
-// The recorded trials of `participant_id` in the database at `db_path` (read-only), in position order.
-Result<std::vector<RecordedTrial>> recorded_trials(const std::string& db_path, const design::Plan& plan,
-                                                   const std::string& participant_id);
+// The recorded trials of `participant_id`, read through the store, in position order.
+Result<std::vector<RecordedTrial>> recorded_trials(store::Store& store, const std::string& participant_id);
 
 }  // namespace dtlab::session

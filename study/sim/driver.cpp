@@ -146,9 +146,15 @@ void run_one(const RunOptions& o, store::Store& store, SimulatedParticipant& age
   Message m;
   m.worker = worker;
   m.participant = k;
-  if (!result) {
+  if (!result && result.error().kind == ErrorKind::busy && result.error().field == store::kClaimField) {
+    m.kind = static_cast<int>(Progress::Kind::elsewhere);  // another process runs it: not ours to run
+    copy(m.message, sizeof m.message, result.error().message);
+  } else if (!result) {
     m.kind = static_cast<int>(Progress::Kind::failed);
     copy(m.message, sizeof m.message, result.error().to_string());
+  } else if (result->already_finished) {
+    m.kind = static_cast<int>(Progress::Kind::elsewhere);  // finished by another process since the roster was made
+    copy(m.message, sizeof m.message, "finished by another process");
   } else {
     m.kind = static_cast<int>(result->finished ? Progress::Kind::finished : Progress::Kind::failed);
     m.trials_run = result->trials_run;
@@ -162,6 +168,7 @@ void run_one(const RunOptions& o, store::Store& store, SimulatedParticipant& age
 void tally(RunResult& r, const Message& m, const RunOptions& o) {
   if (m.kind == static_cast<int>(Progress::Kind::trial)) ++r.trials_run;
   if (m.kind == static_cast<int>(Progress::Kind::finished)) ++r.finished;
+  if (m.kind == static_cast<int>(Progress::Kind::elsewhere)) ++r.elsewhere;
   if (m.kind == static_cast<int>(Progress::Kind::failed) && !(o.stop && *o.stop)) {
     ++r.failed;
     r.errors.push_back(o.participants[static_cast<std::size_t>(m.participant)] + ": " + m.message);
@@ -269,7 +276,8 @@ Result<RunResult> run_forked(const RunOptions& o) {
   while (read_all(report_pipe[0], &m, sizeof m)) {
     tally(r, m, o);
     if (o.on_progress) o.on_progress(to_progress(m, o));
-    if (m.kind == static_cast<int>(Progress::Kind::finished) || m.kind == static_cast<int>(Progress::Kind::failed))
+    if (m.kind == static_cast<int>(Progress::Kind::finished) || m.kind == static_cast<int>(Progress::Kind::failed) ||
+        m.kind == static_cast<int>(Progress::Kind::elsewhere))
       assign(workers[static_cast<std::size_t>(m.worker)]);
   }
   ::close(report_pipe[0]);

@@ -3,7 +3,10 @@
 // Each worker has its own GL context (from the caller's factory, created
 // after the fork) and its own database connection; the store is multi-process
 // safe. Participants are handed out one at a time, so a slow one does not
-// hold the others back. Guarantees: every trial a worker reports is committed
+// hold the others back. Several `dtlab simulate` processes may run on one
+// database at once: each session is claimed by the one process running it,
+// and the others skip it (Progress::Kind::elsewhere), so they share the work.
+// Guarantees: every trial a worker reports is committed
 // (it reports after record_trial returns); killing any process at any moment
 // loses at most the trials in progress, and running again resumes them.
 // Never: shares a SQLite connection or a GL context across fork(), or kills
@@ -40,7 +43,8 @@ Result<Roster> enroll_simulated(const std::string& db_path, const protocol::Prot
 using ContextFactory = std::function<Result<std::shared_ptr<void>>(int width, int height)>;
 
 struct Progress {
-  enum class Kind { started, trial, finished, failed } kind = Kind::trial;
+  // elsewhere: another process runs (or has just finished) this participant's session; skipped here.
+  enum class Kind { started, trial, finished, failed, elsewhere } kind = Kind::trial;
   std::string participant;
   int worker = 0;
   int position = 0, planned = 0;  // trial: the recorded trial's position; planned trials
@@ -64,6 +68,7 @@ struct RunOptions {
 
 struct RunResult {
   int finished = 0;     // sessions finished by this run
+  int elsewhere = 0;    // sessions another process was running (claimed) or finished meanwhile: skipped
   int trials_run = 0;   // trials recorded by this run
   int failed = 0;       // participants whose session stopped with an error (messages in `errors`)
   bool stopped = false; // *stop ended the run early

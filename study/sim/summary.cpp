@@ -1,4 +1,4 @@
-// summarize (summary.h): one pass over the exported trial table.
+// summarize (summary.h): one pass over the recorded trials.
 #include "study/sim/summary.h"
 
 #include <algorithm>
@@ -8,24 +8,23 @@
 #include <set>
 #include <sstream>
 
-#include "analysis/stats/csv.h"
-#include "study/store/export.h"
-
 namespace dtlab::sim {
 
-Result<Summary> summarize(const std::string& db_path, const std::string& rendering_factor) {
-  std::ostringstream csv;
-  auto exported = store::export_trials_csv(db_path, csv);
-  if (!exported) return exported.error();
-  auto table = stats::parse_csv(csv.str(), db_path + " (trial_table)");
-  if (!table) return table.error();
-  const stats::CsvTable& t = table.value();
-  const int c_participant = t.column("participant"), c_task = t.column("task"), c_practice = t.column("practice"),
-            c_time = t.column("completion_time_s"), c_rel = t.column("rel_error"), c_correct = t.column("correct"),
-            c_distance = t.column("distance"), c_render = rendering_factor.empty() ? -1 : t.column(rendering_factor);
-  for (int c : {c_participant, c_task, c_practice, c_time, c_rel, c_correct, c_distance})
-    if (c < 0) return Error{db_path, 0, 0, "trial_table", "the export lacks a column the summary reads"};
+namespace {
 
+// The task's accuracy measure of one trial: (name, value), or nullopt when it has none.
+std::optional<std::pair<const char*, double>> measure(const store::Scores& s) {
+  if (s.rel_error) return std::pair{"rel_error", *s.rel_error};
+  if (s.correct) return std::pair{"correct", *s.correct ? 1.0 : 0.0};
+  if (s.distance) return std::pair{"distance", *s.distance};
+  return std::nullopt;
+}
+
+}  // namespace
+
+Result<Summary> summarize(store::StudyReader& reader, const std::string& rendering_factor) {
+  auto rows = reader.trials();
+  if (!rows) return rows.error();
   struct Acc {
     std::vector<double> times, measure;
     std::string name;
@@ -34,19 +33,22 @@ Result<Summary> summarize(const std::string& db_path, const std::string& renderi
   std::map<std::pair<std::string, std::string>, Acc> acc;
   std::set<std::string> participants;
   Summary s;
-  for (const auto& row : t.rows) {
-    auto at = [&](int c) -> const std::string& { return row[static_cast<std::size_t>(c)]; };
-    if (at(c_practice) == "1") continue;
-    const std::pair<std::string, std::string> key{at(c_task), c_render >= 0 ? at(c_render) : std::string()};
+  for (const store::TrialRow& t : *rows) {
+    if (t.planned.practice) continue;
+    if (t.excluded) {
+      ++s.excluded;
+      continue;
+    }
+    const std::pair<std::string, std::string> key{t.planned.task,
+                                                  rendering_factor.empty() ? std::string() : t.level(rendering_factor)};
     if (!acc.count(key)) order.push_back(key);
     Acc& a = acc[key];
-    a.times.push_back(std::stod(at(c_time)));
-    for (const auto& [c, name] : {std::pair{c_rel, "rel_error"}, {c_correct, "correct"}, {c_distance, "distance"}})
-      if (at(c) != "NA") {
-        a.measure.push_back(std::stod(at(c)));
-        a.name = name;
-      }
-    participants.insert(at(c_participant));
+    a.times.push_back(t.completion_s);
+    if (auto m = measure(t.scores)) {
+      a.measure.push_back(m->second);
+      a.name = m->first;
+    }
+    participants.insert(t.participant);
     ++s.trials;
   }
   s.participants = static_cast<int>(participants.size());
@@ -75,7 +77,10 @@ Result<Summary> summarize(const std::string& db_path, const std::string& renderi
 
 std::string format_summary(const Summary& s) {
   std::ostringstream out;
-  out << s.participants << " participants, " << s.trials << " trials\n";
+  out << s.participants << (s.participants == 1 ? " participant, " : " participants, ") << s.trials
+      << (s.trials == 1 ? " trial" : " trials");
+  if (s.excluded > 0) out << " (" << s.excluded << " excluded trial" << (s.excluded == 1 ? "" : "s") << " left out)";
+  out << "\n";
   char line[160];
   std::snprintf(line, sizeof line, "  %-5s %-12s %6s %10s %8s   %s\n", "task", "rendering", "trials", "time mean", "sd",
                 "accuracy (mean)");

@@ -1,13 +1,12 @@
-// CSV export of trial_table; see export.h. Numbers are written with
+// CSV export of the recorded trials; see export.h. Numbers are written with
 // std::to_chars (shortest form that reads back to the same double, never
 // locale-dependent), so the file round-trips exactly through R and pandas.
 #include "study/store/export.h"
 
+#include <algorithm>
 #include <charconv>
-#include <cstdio>
 
-#include "study/store/detail/readonly.h"
-#include "study/store/store.h"
+#include "study/store/detail/schema.h"
 
 namespace dtlab::store {
 
@@ -26,44 +25,104 @@ std::string number(double v) {
   return std::string(buf, r.ptr);
 }
 
+template <class T>
+std::string opt(const std::optional<T>& v) {
+  if (!v) return "NA";
+  if constexpr (std::is_same_v<T, double>) return number(*v);
+  else return std::to_string(*v);
+}
+
+std::vector<std::string> factor_names(const std::vector<Revision>& revisions) {
+  std::vector<std::string> out;
+  for (const Revision& r : revisions)
+    for (const std::string& f : r.factors)
+      if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
+  return out;
+}
+
+// The answer columns (count, letter, x, z) of an answer; NA where it has none.
+void answer_fields(const std::optional<Answer>& a, std::vector<std::string>& row) {
+  const Count* c = a ? std::get_if<Count>(&*a) : nullptr;
+  const Letter* l = a ? std::get_if<Letter>(&*a) : nullptr;
+  const Position* p = a ? std::get_if<Position>(&*a) : nullptr;
+  row.push_back(c ? std::to_string(c->n) : "NA");
+  row.push_back(l ? csv_field(l->letter) : "NA");
+  row.push_back(p ? number(p->x) : "NA");
+  row.push_back(p ? number(p->z) : "NA");
+}
+
 }  // namespace
 
-Result<ExportSummary> export_trials_csv(const std::string& db_path, std::ostream& out) {
-  auto opened = detail::open_readonly_dtlab(db_path);
-  if (!opened) return opened.error();
-  detail::Db& db = *opened;
+std::vector<std::string> export_columns(const std::vector<Revision>& revisions) {
+  std::vector<std::string> c = detail::fixed_trial_columns_before_factors();
+  for (const std::string& f : factor_names(revisions)) c.push_back(f);
+  for (const std::string& f : detail::fixed_trial_columns_after_factors()) c.push_back(f);
+  return c;
+}
 
-  // One read transaction: the export is a consistent snapshot even while a
-  // session keeps writing to the file.
-  if (auto s = db.exec("BEGIN", "starting a read transaction"); !s) return s.error();
-  const char* what = "reading trial_table";
-  auto st = detail::Stmt::prepare(db, "SELECT * FROM trial_table ORDER BY enrollment_index, position", what);
-  if (!st) return st.error();
+Result<ExportSummary> export_trials_csv(StudyReader& reader, std::ostream& out) {
+  auto revisions = reader.revisions();
+  if (!revisions) return revisions.error();
+  auto trials = reader.trials();
+  if (!trials) return trials.error();
   ExportSummary sum;
-  for (int c = 0; c < st->columns(); ++c) sum.columns.push_back(st->column_name(c));
+  sum.columns = export_columns(*revisions);
+  const std::vector<std::string> factors = factor_names(*revisions);
   std::string line;
   for (std::size_t c = 0; c < sum.columns.size(); ++c) line += (c ? "," : "") + csv_field(sum.columns[c]);
   out << line << '\n';
-  for (;;) {
-    auto row = st->step(what);
-    if (!row) return row.error();
-    if (!*row) break;
-    line.clear();
-    for (int c = 0; c < st->columns(); ++c) {
-      if (c) line += ',';
-      switch (st->column_type(c)) {
-        case SQLITE_NULL: line += "NA"; break;
-        case SQLITE_INTEGER: line += std::to_string(st->int64(c)); break;
-        case SQLITE_FLOAT: line += number(st->real(c)); break;
-        default: line += csv_field(st->text(c)); break;
-      }
+  std::vector<std::string> row;
+  for (const TrialRow& t : *trials) {
+    row.clear();
+    row.push_back(csv_field(t.participant));
+    row.push_back(std::to_string(t.enrollment_index));
+    row.push_back(std::to_string(t.session_id));
+    row.push_back(to_string(t.session_status));
+    row.push_back(std::to_string(t.order_row));
+    row.push_back(std::to_string(t.planned.position));
+    row.push_back(std::to_string(t.planned.block));
+    for (const std::string& f : factors) {
+      const auto it = std::find_if(t.planned.levels.begin(), t.planned.levels.end(),
+                                   [&](const auto& l) { return l.first == f; });
+      row.push_back(it == t.planned.levels.end() ? "NA" : csv_field(it->second));
     }
+    row.push_back(csv_field(t.planned.task));
+    row.push_back(std::to_string(t.planned.trial));
+    row.push_back(t.planned.practice ? "1" : "0");
+    row.push_back(csv_field(t.planned.method));
+    row.push_back(std::to_string(t.planned.seed));
+    row.push_back(t.scene_hash);
+    answer_fields(t.answer, row);
+    answer_fields(t.truth, row);
+    row.push_back(opt(t.scores.rel_error));
+    row.push_back(opt(t.scores.signed_error));
+    row.push_back(t.scores.correct ? (*t.scores.correct ? "1" : "0") : "NA");
+    row.push_back(opt(t.scores.distance));
+    row.push_back(number(t.completion_s));
+    row.push_back(t.started_at);
+    row.push_back(t.ended_at);
+    row.push_back(std::to_string(t.frames.frames));
+    row.push_back(opt(t.frames.mean_ms));
+    row.push_back(opt(t.frames.sd_ms));
+    row.push_back(opt(t.frames.p95_ms));
+    row.push_back(opt(t.frames.max_ms));
+    row.push_back(t.protocol_sha256);
+    row.push_back(t.design_revision > 0 ? std::to_string(t.design_revision) : "NA");
+    row.push_back(t.excluded ? csv_field(*t.excluded) : "NA");
+    if (t.excluded) ++sum.excluded;
+    line.clear();
+    for (std::size_t c = 0; c < row.size(); ++c) line += (c ? "," : "") + row[c];
     out << line << '\n';
     ++sum.rows;
   }
-  db.exec("COMMIT", "ending the read transaction");
-  if (!out) return Error{db_path, 0, 0, "", "writing the CSV failed"};
+  if (!out) return Error{reader.path(), 0, 0, "", "writing the CSV failed", ErrorKind::environment};
   return sum;
+}
+
+Result<ExportSummary> export_trials_csv(const std::string& db_path, std::ostream& out, ReadOptions options) {
+  auto reader = StudyReader::open(db_path, std::move(options));
+  if (!reader) return reader.error();
+  return export_trials_csv(*reader, out);
 }
 
 }  // namespace dtlab::store

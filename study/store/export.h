@@ -1,26 +1,36 @@
-// `dtlab export`: the trial_table view of a study database as a tidy CSV
-// file, one row per recorded trial (docs/store.md, "Export"). Opens the
-// database read-only and never modifies it; the CSV is what R's read.csv and
-// pandas.read_csv read without options: a header row, RFC 4180 quoting, '.'
-// decimals, NA for missing values, ISO-8601 UTC timestamps, LF line ends.
+// `dtlab export`: the recorded trials of a study database as a tidy CSV
+// file, one row per recorded trial (README, "Study database and export"),
+// read through the store's StudyReader (one snapshot) and never modifying the
+// database. The CSV is what R's read.csv and pandas.read_csv read without
+// options: a header row, RFC 4180 quoting, '.' decimals, NA for missing
+// values, ISO-8601 UTC timestamps, LF line ends. Its columns equal the
+// trial_table view's, which SQLite clients read (a test holds them equal).
 #pragma once
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "study/common/error.h"
+#include "study/store/read.h"
 
 namespace dtlab::store {
 
 struct ExportSummary {
   std::vector<std::string> columns;  // the header, in order
   long long rows = 0;                // data rows written
+  long long excluded = 0;            // rows whose `excluded` column holds a reason
 };
 
-// Writes every recorded trial of the database at `db_path` to `out`, ordered
-// by enrollment index, then position. Errors name the file; on error `out`
-// may hold a partial table (callers write to a temporary file and rename).
-Result<ExportSummary> export_trials_csv(const std::string& db_path, std::ostream& out);
+// The export's columns: the fixed ones, with one column per factor named in any protocol
+// revision (order of first appearance) after "block"; the last two are design_revision, excluded.
+std::vector<std::string> export_columns(const std::vector<Revision>& revisions);
+
+// Writes every recorded trial to `out`, ordered by enrollment index, then position. Errors
+// name the file; on error `out` may hold a partial table (callers write to a temporary file
+// and rename, e.g. write_file_atomically in study/common).
+Result<ExportSummary> export_trials_csv(StudyReader& reader, std::ostream& out);
+// The same for the database at `db_path`, opened read-only with `options`.
+Result<ExportSummary> export_trials_csv(const std::string& db_path, std::ostream& out, ReadOptions options = {});
 
 // One CSV field as written by the export: quoted only when it holds a comma,
 // a double quote, CR or LF (quotes doubled); "NA" for a missing value.

@@ -63,7 +63,8 @@ Result<SessionStatus> read_status(Db& db, const Session& s) {
   st->bind(1, s.id);
   auto row = st->step("reading the session");
   if (!row) return row.error();
-  if (!*row) return Error{db.path(), 0, 0, "session", describe(s) + " does not exist in this database"};
+  if (!*row)
+    return Error{db.path(), 0, 0, "session", describe(s) + " does not exist in this database", ErrorKind::not_found};
   return parse_status(st->text(0));
 }
 
@@ -285,14 +286,16 @@ const char* to_string(InputEvent::Kind k) {
   return "?";
 }
 
-Result<Session> Store::begin_session(const std::string& participant_id, const design::Plan& plan) {
+Result<Session> Store::begin_session(const std::string& participant_id, const design::Plan& plan,
+                                     BeginOptions options) {
   Impl& m = *impl_;
   Session out;
   Status st = m.write("beginning the session of \"" + participant_id + "\"", [&]() -> Status {
     auto e = lookup(participant_id);
     if (!e) return e.error();
     if (e->released)
-      return m.invalid("participant", "participant \"" + participant_id + "\" was released; their session is abandoned");
+      return m.invalid("participant", "participant \"" + participant_id + "\" was released; their session is abandoned",
+                       ErrorKind::conflict);
     if (auto v = validate_plan(m, *e, plan); !v) return v;
     auto existing = read_session(m.db, participant_id);
     if (!existing) return existing.error();
@@ -306,23 +309,28 @@ Result<Session> Store::begin_session(const std::string& participant_id, const de
       if (auto s = ins->run("creating the session"); !s) return s;
       const std::int64_t id = sqlite3_last_insert_rowid(m.db.get());
       if (auto s = insert_plan(m.db, id, plan); !s) return s;
-      out = Session{id, participant_id, SessionStatus::running, static_cast<int>(plan.trials.size()), 0, false};
-      return {};
+      out = Session{id, participant_id, SessionStatus::running, static_cast<int>(plan.trials.size()), 0, false, false};
+      return m.take_claim(id, participant_id, options.take_over, nullptr);
     }
     out = **existing;
     if (out.status != SessionStatus::running)
-      return m.invalid("session", describe(out) + " is " + to_string(out.status) + "; only a running session resumes");
+      return m.invalid("session", describe(out) + " is " + to_string(out.status) + "; only a running session resumes",
+                       ErrorKind::conflict);
+    if (auto c = m.take_claim(out.id, participant_id, options.take_over, &out.took_over); !c) return c;
     auto stored = read_planned(m.db, out.id, false);
     if (!stored) return stored.error();
     if (stored->size() != plan.trials.size())
-      return m.invalid("plan.trials", "the stored plan of " + describe(out) + " has " + std::to_string(stored->size()) +
-                                          " trials, this plan " + std::to_string(plan.trials.size()) +
-                                          "; the protocol or the design code changed since the session began");
+      return m.invalid("plan.trials",
+                       "the stored plan of " + describe(out) + " has " + std::to_string(stored->size()) +
+                           " trials, this plan " + std::to_string(plan.trials.size()) +
+                           "; the protocol or the design code changed since the session began",
+                       ErrorKind::conflict);
     for (std::size_t i = 0; i < stored->size(); ++i)
       if (auto d = first_difference((*stored)[i].second, plan.trials[i]); !d.empty())
         return m.invalid("plan.trials[" + std::to_string(i) + "]." + d,
                          "differs from the stored plan of " + describe(out) +
-                             "; the protocol or the design code changed since the session began");
+                             "; the protocol or the design code changed since the session began",
+                         ErrorKind::conflict);
     auto res = Stmt::prepare(m.db,
                              "INSERT INTO session_resumes (session_id, resumed_at, software_version, next_position) "
                              "VALUES (?, ?, ?, ?)",
@@ -348,24 +356,75 @@ Result<std::optional<design::PlannedTrial>> Store::next_trial(const Session& ses
   return std::optional<design::PlannedTrial>{std::move(next->front().second)};
 }
 
+// In a write transaction: the session is running, claimed by this Store (renewed), and
+// `position` is its next trial. Returns the planned trial's row id.
+Result<std::int64_t> check_next(Store::Impl& m, const Session& session, int position, const char* doing) {
+  auto status = read_status(m.db, session);
+  if (!status) return status.error();
+  if (*status != SessionStatus::running)
+    return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session " + doing,
+                     ErrorKind::conflict);
+  if (auto c = m.renew_claim(session.id, session.participant_id); !c) return c.error();
+  auto next = read_planned(m.db, session.id, true);
+  if (!next) return next.error();
+  if (next->empty())
+    return m.invalid("trial " + std::to_string(position) + ".position",
+                     "every planned trial of " + describe(session) + " already has a result", ErrorKind::conflict);
+  if (next->front().second.position != position)
+    return m.invalid("trial " + std::to_string(position) + ".position",
+                     "trial " + std::to_string(next->front().second.position) + " is next in " + describe(session) +
+                         ", not trial " + std::to_string(position) + " (trials are recorded once, in plan order)",
+                     ErrorKind::conflict);
+  return next->front().first;
+}
+
+Status Store::begin_trial(const Session& session, int position) {
+  Impl& m = *impl_;
+  return m.write("starting trial " + std::to_string(position) + " of " + describe(session), [&]() -> Status {
+    auto id = check_next(m, session, position, "runs trials");
+    if (!id) return id.error();
+    auto ins = Stmt::prepare(m.db,
+                             "INSERT INTO trial_attempts (session_id, position, attempt, started_at, owner) "
+                             "SELECT ?1, ?2, coalesce(max(attempt), 0) + 1, ?3, ?4 FROM trial_attempts "
+                             "WHERE session_id = ?1 AND position = ?2",
+                             "recording the trial attempt");
+    if (!ins) return ins.error();
+    ins->bind(1, session.id).bind(2, position).bind(3, detail::now_iso8601_utc()).bind(4, m.me.owner);
+    return ins->run("recording the trial attempt");
+  });
+}
+
 Status Store::record_trial(const Session& session, const TrialRecord& record) {
   Impl& m = *impl_;
   if (auto v = validate_record(m, record); !v) return v;
   return m.write("recording trial " + std::to_string(record.position) + " of " + describe(session), [&]() -> Status {
+    auto id = check_next(m, session, record.position, "records trials");
+    if (!id) return id.error();
+    return insert_result(m.db, *id, record);
+  });
+}
+
+Status Store::record_pause(const Session& session, std::optional<int> position,
+                           std::chrono::system_clock::time_point paused_at,
+                           std::chrono::system_clock::time_point resumed_at) {
+  Impl& m = *impl_;
+  if (resumed_at < paused_at) return m.invalid("pause", "resumed before it was paused");
+  if (position && *position < 1) return m.invalid("pause.position", "must be >= 1");
+  return m.write("recording a pause of " + describe(session), [&]() -> Status {
     auto status = read_status(m.db, session);
     if (!status) return status.error();
     if (*status != SessionStatus::running)
-      return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session records trials");
-    auto next = read_planned(m.db, session.id, true);
-    if (!next) return next.error();
-    if (next->empty())
-      return m.invalid("trial " + std::to_string(record.position) + ".position",
-                       "every planned trial of " + describe(session) + " already has a result");
-    if (next->front().second.position != record.position)
-      return m.invalid("trial " + std::to_string(record.position) + ".position",
-                       "trial " + std::to_string(next->front().second.position) + " is next in " + describe(session) +
-                           ", not trial " + std::to_string(record.position) + " (trials are recorded once, in plan order)");
-    return insert_result(m.db, next->front().first, record);
+      return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session pauses",
+                       ErrorKind::conflict);
+    auto ins = Stmt::prepare(m.db,
+                             "INSERT INTO session_pauses (session_id, position, paused_at, resumed_at, duration_s) "
+                             "VALUES (?, ?, ?, ?, ?)",
+                             "recording the pause");
+    if (!ins) return ins.error();
+    const double seconds = std::chrono::duration<double>(resumed_at - paused_at).count();
+    ins->bind(1, session.id).bind(2, position).bind(3, detail::iso8601_utc(paused_at));
+    ins->bind(4, detail::iso8601_utc(resumed_at)).bind(5, seconds);
+    return ins->run("recording the pause");
   });
 }
 
@@ -375,7 +434,8 @@ Status Store::finish_session(const Session& session) {
     auto status = read_status(m.db, session);
     if (!status) return status.error();
     if (*status != SessionStatus::running)
-      return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session finishes");
+      return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session finishes",
+                       ErrorKind::conflict);
     auto left = Stmt::prepare(m.db,
                               "SELECT count(*) FROM planned_trials p WHERE session_id = ? AND NOT EXISTS "
                               "(SELECT 1 FROM trial_results r WHERE r.planned_trial_id = p.id)",
@@ -385,12 +445,19 @@ Status Store::finish_session(const Session& session) {
     if (auto r = left->step("counting the remaining trials"); !r) return r.error();
     if (const auto n = left->int64(0); n > 0)
       return m.invalid("session", describe(session) + " still has " + std::to_string(n) +
-                                      " planned trials without a result; record them or release the participant");
+                                      " planned trials without a result; record them or release the participant",
+                       ErrorKind::conflict);
     left->reset();
     auto up = Stmt::prepare(m.db, "UPDATE sessions SET status = 'finished', ended_at = ? WHERE id = ?", "finishing");
     if (!up) return up.error();
     up->bind(1, detail::now_iso8601_utc()).bind(2, session.id);
-    return up->run("finishing");
+    if (auto s = up->run("finishing"); !s) return s;
+    auto del = Stmt::prepare(m.db, "DELETE FROM session_claims WHERE session_id = ?", "releasing the claim");
+    if (!del) return del.error();
+    del->bind(1, session.id);
+    if (auto s = del->run("releasing the claim"); !s) return s;
+    m.claimed.erase(session.id);
+    return {};
   });
 }
 
@@ -405,7 +472,8 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
     auto status = read_status(m.db, session);
     if (!status) return status.error();
     if (*status == SessionStatus::abandoned)
-      return m.invalid("session", describe(session) + " is abandoned; it takes no questionnaire answers");
+      return m.invalid("session", describe(session) + " is abandoned; it takes no questionnaire answers",
+                       ErrorKind::conflict);
     auto seen = Stmt::prepare(m.db, "SELECT count(*) FROM questionnaire_answers WHERE session_id = ? AND item = ? AND scope = ?",
                               "checking the questionnaire");
     auto ins = Stmt::prepare(m.db,
@@ -421,9 +489,10 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
       const auto n = seen->int64(0);
       seen->reset();
       if (n > 0)
-        return m.invalid("questionnaire." + a.item, "item \"" + a.item + "\"" +
-                                                        (a.scope.empty() ? std::string() : " (" + a.scope + ")") +
-                                                        " was already answered in " + describe(session));
+        return m.invalid("questionnaire." + a.item,
+                         "item \"" + a.item + "\"" + (a.scope.empty() ? std::string() : " (" + a.scope + ")") +
+                             " was already answered in " + describe(session),
+                         ErrorKind::conflict);
       ins->bind(1, session.id).bind(2, a.item).bind(3, a.scope).bind(6, now);
       if (const auto* d = std::get_if<double>(&a.value)) ins->bind(4, *d);
       else ins->bind(5, std::get<std::string>(a.value));
@@ -440,7 +509,7 @@ Result<Session> Store::session(const std::string& participant_id) {
   if (!e) return e.error();
   auto s = read_session(m.db, participant_id);
   if (!s) return s.error();
-  if (!*s) return m.invalid("participant", "participant \"" + participant_id + "\" has no session yet");
+  if (!*s) return m.invalid("participant", "participant \"" + participant_id + "\" has no session yet", ErrorKind::not_found);
   return **s;
 }
 

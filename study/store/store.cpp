@@ -1,7 +1,9 @@
-// Opening a study database and the participant ledger (docs/store.md,
-// invariants 1-4). open() inspects a file read-only before touching it, so a
-// foreign or newer file is never modified; every write is one BEGIN
-// IMMEDIATE transaction, which makes enrollment atomic across processes.
+// Opening a study database, its protocol revisions and the participant
+// ledger (docs/store.md, invariants 1-4). open() inspects a file read-only
+// (one snapshot) before touching it, so a foreign or newer file is never
+// modified, and inspects it again inside its first write transaction, so
+// processes creating one file together all see it whole; every write is one
+// BEGIN IMMEDIATE transaction, which makes enrollment atomic across processes.
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -11,10 +13,12 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "study/store/detail/readonly.h"
+#include "study/common/version.h"
+#include "study/store/detail/file_check.h"
 #include "study/store/detail/schema.h"
 #include "study/store/detail/store_impl.h"
 #include "study/store/detail/time.h"
+#include "study/store/read.h"
 #include "study/store/store.h"
 
 namespace dtlab::store {
@@ -22,12 +26,6 @@ namespace {
 
 using detail::Db;
 using detail::Stmt;
-
-std::string hex32(std::int64_t v) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "0x%08x", static_cast<unsigned>(static_cast<std::uint32_t>(v)));
-  return buf;
-}
 
 bool is_lower_hex(const std::string& s, std::size_t n) {
   return s.size() == n && std::all_of(s.begin(), s.end(), [](char c) {
@@ -46,6 +44,8 @@ Status validate_study(const std::string& path, const StudyInfo& s) {
   if (s.protocol_id.empty()) return bad("study.protocol_id", "is empty; expected the protocol's id");
   if (!is_lower_hex(s.protocol_sha256, 64))
     return bad("study.protocol_sha256", "\"" + s.protocol_sha256 + "\" is not 64 lowercase hex digits");
+  if (!s.design_sha256.empty() && !is_lower_hex(s.design_sha256, 64))
+    return bad("study.design_sha256", "\"" + s.design_sha256 + "\" is not 64 lowercase hex digits (or empty)");
   if (s.order_rows < 1) return bad("study.order_rows", std::to_string(s.order_rows) + " rows; expected >= 1");
   std::vector<std::string> seen;
   for (const std::string& f : s.factors) {
@@ -88,36 +88,112 @@ Result<std::int64_t> insert_study(Db& db, const StudyInfo& s) {
     f->bind(1, id).bind(2, static_cast<int>(i + 1)).bind(3, s.factors[i]);
     if (auto r = f->run(what); !r) return r.error();
   }
+  if (!s.design_sha256.empty()) {
+    auto d = Stmt::prepare(db, "INSERT INTO study_designs (study_id, design_sha256) VALUES (?, ?)", what);
+    if (!d) return d.error();
+    d->bind(1, id).bind(2, s.design_sha256);
+    if (auto r = d->run(what); !r) return r.error();
+  }
   if (auto r = detail::create_trial_table_view(db); !r) return r.error();
   return id;
 }
 
-// Reads the current (latest) study and decides whether `s` may use the file.
+// Rows recorded before schema v2 get their design hash once a caller can compute it.
+Status hash_legacy_designs(Db& db, const OpenOptions& options) {
+  if (!options.design_hash_of) return {};
+  const char* what = "recording design hashes";
+  auto st = Stmt::prepare(db,
+                          "SELECT s.id, s.protocol_text FROM studies s WHERE NOT EXISTS "
+                          "(SELECT 1 FROM study_designs d WHERE d.study_id = s.id) ORDER BY s.id",
+                          what);
+  if (!st) return st.error();
+  std::vector<std::pair<std::int64_t, std::string>> missing;
+  for (;;) {
+    auto row = st->step(what);
+    if (!row) return row.error();
+    if (!*row) break;
+    if (auto h = options.design_hash_of(st->text(1)); h && is_lower_hex(*h, 64)) missing.emplace_back(st->int64(0), *h);
+  }
+  if (missing.empty()) return {};
+  auto ins = Stmt::prepare(db, "INSERT INTO study_designs (study_id, design_sha256) VALUES (?, ?)", what);
+  if (!ins) return ins.error();
+  for (const auto& [id, hash] : missing) {
+    ins->bind(1, id).bind(2, hash);
+    if (auto r = ins->run(what); !r) return r;
+  }
+  return detail::create_trial_table_view(db);
+}
+
+// Reads the current (latest) study and decides whether `s` may use the file:
+// the same text uses its row; the same design with another text is a new
+// revision, recorded without asking; another design needs allow_protocol_change.
 Result<std::int64_t> check_study(Db& db, const StudyInfo& s, const OpenOptions& options) {
   const char* what = "reading the protocol record";
-  auto st = Stmt::prepare(db, "SELECT id, protocol_id, protocol_sha256, order_rows FROM studies ORDER BY id DESC LIMIT 1",
+  auto st = Stmt::prepare(db,
+                          "SELECT s.id, s.protocol_id, s.protocol_sha256, s.order_rows, coalesce(d.design_sha256, '') "
+                          "FROM studies s LEFT JOIN study_designs d ON d.study_id = s.id ORDER BY s.id DESC LIMIT 1",
                           what);
   if (!st) return st.error();
   auto row = st->step(what);
   if (!row) return row.error();
   if (!*row) return insert_study(db, s);
   const std::int64_t id = st->int64(0);
-  const std::string old_id = st->text(1), old_hash = st->text(2);
+  const std::string old_id = st->text(1), old_hash = st->text(2), old_design = st->text(4);
   const auto old_rows = st->int64(3);
-  if (old_hash == s.protocol_sha256) {
-    if (old_rows != s.order_rows)
-      return Error{db.path(), 0, 0, "study.order_rows",
-                   "the database records " + std::to_string(old_rows) + " order rows for this protocol, the caller " +
-                       std::to_string(s.order_rows) + "; the design code changed, the protocol did not"};
-    return id;
-  }
+  const bool same_text = old_hash == s.protocol_sha256;
+  const bool same_design = same_text || (!s.design_sha256.empty() && s.design_sha256 == old_design);
+  if (same_design && old_rows != s.order_rows)
+    return Error{db.path(), 0, 0, "study.order_rows",
+                 "the database records " + std::to_string(old_rows) + " order rows for this design, the caller " +
+                     std::to_string(s.order_rows) + "; the design code changed, the protocol did not",
+                 ErrorKind::internal};
+  if (same_text) return id;
+  if (same_design) return insert_study(db, s);  // a revision of the wording: sessions continue, analyses pool
   if (!options.allow_protocol_change)
     return Error{db.path(), 0, 0, "studies.protocol_sha256",
                  "the database belongs to protocol \"" + old_id + "\" with SHA-256 " + old_hash +
-                     ", not to protocol \"" + s.protocol_id + "\" with SHA-256 " + s.protocol_sha256 +
-                     "; use the protocol it was created with, a new database, or allow a protocol change "
-                     "(--allow-protocol-change) to record the new protocol beside the old one"};
+                     (old_design.empty() ? std::string() : " (design " + old_design.substr(0, 12) + ")") +
+                     ", and protocol \"" + s.protocol_id + "\" with SHA-256 " + s.protocol_sha256 +
+                     (s.design_sha256.empty() ? std::string() : " (design " + s.design_sha256.substr(0, 12) + ")") +
+                     " changes what runs (its design, not only its wording); use the protocol it was created with, a "
+                     "new database, or allow a protocol change (--allow-protocol-change) to record it as a new design "
+                     "revision, which the analysis reports separately",
+                 ErrorKind::conflict};
   return insert_study(db, s);
+}
+
+// The current (latest) study row as a StudyInfo, for open_existing().
+Result<std::pair<std::int64_t, StudyInfo>> current_study(Db& db) {
+  const char* what = "reading the protocol record";
+  auto st = Stmt::prepare(db,
+                          "SELECT s.id, s.protocol_id, s.protocol_text, s.protocol_sha256, s.order_rows, "
+                          "coalesce(d.design_sha256, '') FROM studies s LEFT JOIN study_designs d ON d.study_id = s.id "
+                          "ORDER BY s.id DESC LIMIT 1",
+                          what);
+  if (!st) return st.error();
+  auto row = st->step(what);
+  if (!row) return row.error();
+  if (!*row)
+    return Error{db.path(), 0, 0, "studies", "the database records no protocol (no study was ever started)",
+                 ErrorKind::not_found};
+  StudyInfo info;
+  const std::int64_t id = st->int64(0);
+  info.protocol_id = st->text(1);
+  info.protocol_text = st->text(2);
+  info.protocol_sha256 = st->text(3);
+  info.order_rows = static_cast<int>(st->int64(4));
+  info.design_sha256 = st->text(5);
+  info.software_version = std::string(version_string());
+  auto f = Stmt::prepare(db, "SELECT name FROM study_factors WHERE study_id = ? ORDER BY position", what);
+  if (!f) return f.error();
+  f->bind(1, id);
+  for (;;) {
+    auto r = f->step(what);
+    if (!r) return r.error();
+    if (!*r) break;
+    info.factors.push_back(f->text(0));
+  }
+  return std::make_pair(id, std::move(info));
 }
 
 // PRAGMA journal_mode = WAL. Switching needs an exclusive lock, and SQLite
@@ -145,7 +221,8 @@ Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
   st->bind(1, participant_id);
   auto row = st->step(what);
   if (!row) return row.error();
-  if (!*row) return Error{db.path(), 0, 0, "participant", "unknown participant \"" + participant_id + "\""};
+  if (!*row)
+    return Error{db.path(), 0, 0, "participant", "unknown participant \"" + participant_id + "\"", ErrorKind::not_found};
   Enrollment e;
   e.participant_id = participant_id;
   e.index = static_cast<int>(st->int64(0));
@@ -165,91 +242,90 @@ const char* to_string(SessionStatus s) {
   return "?";
 }
 
-bool is_environment_error(const Error& e) { return e.field == "sqlite"; }
-
-Result<Enrollment> find_enrollment(const std::string& path, const std::string& protocol_sha256,
-                                   const std::string& participant_id) {
-  auto db = detail::open_readonly_dtlab(path);
-  if (!db) return db.error();
-  auto cur = db->query_text("SELECT protocol_id || ' ' || protocol_sha256 FROM studies ORDER BY id DESC LIMIT 1",
-                            "reading the protocol record");
-  if (!cur) return cur.error();
-  const std::string id_hash = cur->value_or(" (none)");
-  const std::string hash = id_hash.substr(id_hash.rfind(' ') + 1);
-  if (hash != protocol_sha256)
-    return Error{path, 0, 0, "studies.protocol_sha256",
-                 "the database belongs to protocol \"" + id_hash.substr(0, id_hash.rfind(' ')) + "\" with SHA-256 " +
-                     hash + ", not to this protocol with SHA-256 " + protocol_sha256};
-  return read_enrollment(*db, participant_id);
-}
-
 Store::Store(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Store::Store(Store&&) noexcept = default;
 Store& Store::operator=(Store&&) noexcept = default;
 Store::~Store() = default;
 const std::string& Store::path() const { return impl_->path; }
 
-Result<Store> Store::open(const std::string& path, const StudyInfo& study, OpenOptions options) {
-  if (auto s = validate_study(path, study); !s) return s.error();
-  auto opened = Db::open(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+// Opens the connection and makes it a study database connection: the file is looked at
+// first (one read snapshot, nothing written), then switched to WAL and configured. `create`:
+// a missing file becomes a new database; otherwise it must exist and be a dtlab database.
+Result<std::unique_ptr<Store::Impl>> connect(const std::string& path, const OpenOptions& options, bool create) {
+  if (!create && !std::filesystem::exists(path))
+    return Error{path, 0, 0, "", "no such file; expected an existing dtlab study database", ErrorKind::not_found};
+  auto opened = Db::open(path, SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0));
   if (!opened) return opened.error();
-  auto impl = std::make_unique<Impl>();
-  impl->db = std::move(*opened);
-  impl->path = path;
-  impl->study = study;
+  auto impl = std::make_unique<Store::Impl>(std::move(*opened), path, options);
   Db& db = impl->db;
   sqlite3_busy_timeout(db.get(), options.busy_timeout_ms);
 
   // 1. Look before touching: a foreign or newer file is refused unmodified.
-  auto app_id = db.query_int("PRAGMA application_id", "reading the file header");
-  if (!app_id) {
-    if (sqlite3_extended_errcode(db.get()) == SQLITE_NOTADB)
-      return Error{path, 0, 0, "", "not an SQLite database; expected a dtlab study database (or a new file)"};
-    return app_id.error();
-  }
-  auto objects = db.query_int("SELECT count(*) FROM sqlite_schema", "reading the schema");
-  if (!objects) return objects.error();
-  auto user_version = db.query_int("PRAGMA user_version", "reading the schema version");
-  if (!user_version) return user_version.error();
-  const std::int64_t aid = app_id->value_or(0);
-  if (aid != kApplicationId && (aid != 0 || objects->value_or(0) != 0))
-    return Error{path, 0, 0, "",
-                 "not a dtlab study database (application_id " + hex32(aid) + ", expected " + hex32(kApplicationId) +
-                     "); refusing to modify it"};
-  if (aid == kApplicationId && user_version->value_or(0) > kSchemaVersion)
-    return Error{path, 0, 0, "schema_migrations.version",
-                 "schema version " + std::to_string(user_version->value_or(0)) +
-                     " was written by a newer dtlab; this build reads schema versions up to " +
-                     std::to_string(kSchemaVersion)};
+  auto state = detail::inspect(db);
+  if (!state) return state.error();
+  if (auto s = detail::check_dtlab(path, *state, create); !s) return s.error();
 
   // 2. Connection settings. WAL: readers never block the writer. FULL: a
   //    committed trial survives power loss too (NORMAL only an app crash).
   auto mode = set_wal(db, options.busy_timeout_ms);
   if (!mode) return mode.error();
   if (mode->value_or("") != "wal")
-    return Error{path, 0, 0, "sqlite", "cannot use WAL mode (journal_mode is \"" + mode->value_or("") + "\")"};
+    return Error{path, 0, 0, "sqlite", "cannot use WAL mode (journal_mode is \"" + mode->value_or("") + "\")",
+                 ErrorKind::environment};
   if (auto s = db.exec("PRAGMA foreign_keys = ON; PRAGMA synchronous = FULL", "configuring the connection"); !s)
     return s.error();
+  return impl;
+}
 
+// Inside the first write transaction: the file is looked at again (another process may have
+// created it since step 1), then its schema is brought to kSchemaVersion.
+Status prepare_schema(Store::Impl& m, const std::string& software_version, bool allow_empty) {
+  auto state = detail::inspect(m.db, /*in_transaction=*/true);
+  if (!state) return state.error();
+  if (auto s = detail::check_dtlab(m.path, *state, allow_empty); !s) return s;
+  auto version = detail::applied_schema_version(m.db);
+  if (!version) return version.error();
+  if (*version < kSchemaVersion)
+    if (auto s = detail::migrate(m.db, *version, software_version); !s) return s;
+  return hash_legacy_designs(m.db, m.options);
+}
+
+Result<Store> Store::open(const std::string& path, const StudyInfo& study, OpenOptions options) {
+  if (auto s = validate_study(path, study); !s) return s.error();
+  auto impl = connect(path, options, /*create=*/true);
+  if (!impl) return impl.error();
+  Impl& m = **impl;
+  m.study = study;
   // 3. Create or check the schema and the protocol in one write transaction,
   //    so two processes creating the same file cannot both create it.
-  Status st = impl->write("opening the study database", [&]() -> Status {
-    auto version = detail::applied_schema_version(db);
-    if (!version) return version.error();
-    if (*version > kSchemaVersion)
-      return Error{path, 0, 0, "schema_migrations.version",
-                   "schema version " + std::to_string(*version) + " was written by a newer dtlab; this build reads "
-                   "schema versions up to " + std::to_string(kSchemaVersion)};
-    if (*version < kSchemaVersion)
-      if (auto s = detail::migrate(db, *version, study.software_version); !s) return s;
-    auto id = check_study(db, study, options);
+  Status st = m.write("opening the study database", [&]() -> Status {
+    if (auto s = prepare_schema(m, study.software_version, /*allow_empty=*/true); !s) return s;
+    auto id = check_study(m.db, study, m.options);
     if (!id) return id.error();
-    impl->study_id = *id;
+    m.study_id = *id;
     return {};
   });
   if (!st) return st.error();
-  return Store(std::move(impl));
+  return Store(std::move(*impl));
 }
+
+Result<Store> Store::open_existing(const std::string& path, OpenOptions options) {
+  auto impl = connect(path, options, /*create=*/false);
+  if (!impl) return impl.error();
+  Impl& m = **impl;
+  Status st = m.write("opening the study database", [&]() -> Status {
+    if (auto s = prepare_schema(m, std::string(version_string()), /*allow_empty=*/false); !s) return s;
+    auto cur = current_study(m.db);
+    if (!cur) return cur.error();
+    m.study_id = cur->first;
+    m.study = std::move(cur->second);
+    return {};
+  });
+  if (!st) return st.error();
+  return Store(std::move(*impl));
+}
+
+StudyReader& Store::read() { return impl_->reader; }
 
 Result<Enrollment> Store::enroll(const std::string& participant_id, const Demographics& demographics) {
   Impl& m = *impl_;
@@ -265,12 +341,13 @@ Result<Enrollment> Store::enroll(const std::string& participant_id, const Demogr
     auto existing = read_enrollment(m.db, participant_id);
     if (existing) {
       if (existing->released)
-        return m.invalid("participant", "participant \"" + participant_id +
-                                            "\" was released (abandoned session); enroll them under a new id");
+        return m.invalid("participant",
+                         "participant \"" + participant_id + "\" was released (abandoned session); enroll them under a new id",
+                         ErrorKind::conflict);
       out = *existing;
       return {};
     }
-    if (existing.error().field != "participant") return existing.error();
+    if (existing.error().kind != ErrorKind::not_found) return existing.error();
     const char* what = "assigning an order row";
     auto next = m.db.query_int("SELECT coalesce(max(enrollment_index) + 1, 0) FROM participants", what);
     if (!next) return next.error();
@@ -317,7 +394,7 @@ Status Store::release(const std::string& participant_id) {
     if (!e) return e.error();
     if (e->released) return {};  // releasing twice is harmless
     auto q = Stmt::prepare(m.db,
-                           "SELECT s.status FROM sessions s JOIN participants p ON p.id = s.participant_id "
+                           "SELECT s.status, s.id FROM sessions s JOIN participants p ON p.id = s.participant_id "
                            "WHERE p.participant = ?",
                            "reading the session");
     if (!q) return q.error();
@@ -325,9 +402,16 @@ Status Store::release(const std::string& participant_id) {
     auto has = q->step("reading the session");
     if (!has) return has.error();
     const std::string status = *has ? q->text(0) : std::string();
+    const std::int64_t session_id = *has ? q->int64(1) : 0;
     if (status == "finished")
-      return m.invalid("participant", "participant \"" + participant_id +
-                                          "\" finished their session; a finished session cannot be released");
+      return m.invalid("participant",
+                       "participant \"" + participant_id + "\" finished their session; a finished session cannot be released",
+                       ErrorKind::conflict);
+    if (status == "running") {
+      // A session another live process runs is not abandoned under it (busy); a dead one's claim is taken.
+      if (auto c = m.take_claim(session_id, participant_id, /*take_over=*/false, nullptr); !c) return c;
+      if (auto c = m.drop_claim(session_id); !c) return c;
+    }
     const std::string now = detail::now_iso8601_utc();
     auto up = Stmt::prepare(m.db,
                             "UPDATE sessions SET status = 'abandoned', ended_at = ?1 WHERE status = 'running' AND "

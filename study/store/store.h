@@ -1,15 +1,19 @@
-// The study database (SQLite, schema v1; docs/store.md is the reference):
+// The study database (SQLite, schema v2; docs/store.md is the reference):
 // participants and their order rows (the ledger), sessions, planned trials,
-// trial results with events and camera poses, questionnaire answers.
+// trial results with events and camera poses, questionnaire answers, and the
+// lab's decisions (exclusions, notes, pauses). This is the writing half;
+// read.h is the reading half (StudyReader, also lent by Store::read()).
 // Guarantees: a finished trial is committed in one transaction with all its
 // data, so a crash loses at most the trial in progress; enrollment is atomic
-// across processes sharing the file; a session resumes with exactly the
-// trials it would have run. It never aborts on bad input or a failing disk
-// (every failure is a dtlab::Error naming the file) and never writes to a
-// file that is not a dtlab database of a schema version it knows.
+// across processes sharing the file; a running session is claimed by the one
+// process that runs it; a session resumes with exactly the trials it would
+// have run. It never aborts on bad input or a failing disk (every failure is
+// a dtlab::Error of a kind, naming the file) and never writes to a file that
+// is not a dtlab database of a schema version it knows.
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,7 +27,7 @@
 
 namespace dtlab::store {
 
-inline constexpr int kSchemaVersion = 1;                 // the newest schema this build reads and writes
+inline constexpr int kSchemaVersion = 2;                 // the newest schema this build reads and writes
 inline constexpr std::int32_t kApplicationId = 0x64746c62;  // PRAGMA application_id of every dtlab database ("dtlb")
 
 // The study a database belongs to, as plain values (no Protocol type, so the
@@ -32,14 +36,19 @@ struct StudyInfo {
   std::string protocol_id;       // e.g. "elmqvist2008"
   std::string protocol_text;     // the protocol file, byte for byte
   std::string protocol_sha256;   // SHA-256 of protocol_text, 64 lowercase hex digits
+  std::string design_sha256;     // canonical hash of what runs (protocol::design_sha256); "" = unknown: then
+                                 // every text change counts as a design change
   std::string software_version;  // dtlab::version_string()
   int order_rows = 1;            // rows of the condition-ordering scheme (Latin square), >= 1
   std::vector<std::string> factors;  // factor names in protocol order; they become export columns
 };
 
 struct OpenOptions {
-  bool allow_protocol_change = false;  // accept a protocol hash other than the database's current one
+  bool allow_protocol_change = false;  // accept a protocol whose DESIGN differs from the database's current one
   int busy_timeout_ms = 10000;         // how long to wait for another process's write lock
+  double claim_ttl_s = 30;             // a session claim not renewed for this long may be taken over
+  // Design hash of a recorded protocol text, for rows recorded before schema v2 (see ReadOptions).
+  std::function<std::optional<std::string>(const std::string& protocol_text)> design_hash_of;
 };
 
 // A participant's place in the ledger.
@@ -64,6 +73,14 @@ struct Session {
   int planned = 0;           // planned trials
   int recorded = 0;          // trials with a result (always positions 1..recorded)
   bool resumed = false;      // begin_session found the session already running (after a crash or quit)
+  bool took_over = false;    // begin_session took the claim from a process that is gone or expired
+};
+
+// The Error::field of begin_session's busy Error when another live process claims the session.
+inline constexpr const char* kClaimField = "session.claim";
+
+struct BeginOptions {
+  bool take_over = false;    // the experimenter's override: take the claim even from a live process
 };
 
 // One input event of a trial; t_s is seconds since the trial started.
@@ -104,15 +121,7 @@ struct QuestionnaireAnswer {
   std::variant<double, std::string> value;
 };
 
-// True if `e` came from SQLite itself (I/O, locking, disk full): the
-// environment's fault (exit code 3), not the input's (exit code 1).
-bool is_environment_error(const Error& e);
-
-// Read-only: the enrollment of `participant_id` in the existing database at
-// `path`, whose current protocol must have `protocol_sha256` (else an Error
-// naming both hashes). Never creates or modifies the file (`dtlab plan --db`).
-Result<Enrollment> find_enrollment(const std::string& path, const std::string& protocol_sha256,
-                                   const std::string& participant_id);
+class StudyReader;
 
 // An open study database. Move-only; one per thread (it owns one SQLite
 // connection). Any number of processes may open the same file at once.
@@ -121,13 +130,22 @@ class Store {
   // Creates the file (schema v1) or opens it. Refuses: a non-SQLite or
   // non-dtlab file, a newer schema, and -- unless options allow it -- a
   // protocol whose SHA-256 differs from the database's current one.
+  // A protocol with a new text but the same design hash is recorded as a new revision without
+  // any option; a different design needs allow_protocol_change (else a conflict Error).
   static Result<Store> open(const std::string& path, const StudyInfo& study, OpenOptions options = {});
+
+  // Opens an existing database under its current protocol, for the experimenter's decisions
+  // (exclude, include, add_note, release) when no protocol file is at hand. not_found if missing.
+  static Result<Store> open_existing(const std::string& path, OpenOptions options = {});
 
   Store(Store&&) noexcept;
   Store& operator=(Store&&) noexcept;
   ~Store();
 
   const std::string& path() const;
+
+  // Reads on this connection (each call one short read transaction); valid while the Store lives.
+  StudyReader& read();
 
   // Gives the participant the next enrollment index and an order row (rule:
   // the row with the fewest participants not released, ties to the lowest
@@ -145,19 +163,39 @@ class Store {
 
   // Starts the participant's session with `plan` (stored once, in one
   // transaction), or resumes it if it is running: then `plan` must equal the
-  // stored one. Refused for finished or abandoned sessions, and when the
-  // plan's index/order row/protocol differ from the enrollment's.
-  Result<Session> begin_session(const std::string& participant_id, const design::Plan& plan);
+  // stored one. Either way the session is CLAIMED by this Store in the same
+  // transaction; a session claimed by another live process is refused (busy)
+  // unless options.take_over. A claim whose process is gone (same host) or
+  // whose heartbeat expired is taken over. Refused (conflict) for finished or
+  // abandoned sessions, and when the plan's index/order row/protocol differ.
+  Result<Session> begin_session(const std::string& participant_id, const design::Plan& plan,
+                                BeginOptions options = {});
 
   // The first planned trial without a result; nullopt when all have one.
   Result<std::optional<design::PlannedTrial>> next_trial(const Session& session);
 
+  // Records that the trial at `position` (the next_trial()) starts now: an attempt. An attempt
+  // that never gets a result is an interruption (read.h). Renews the claim.
+  Status begin_trial(const Session& session, int position);
+
   // Stores one finished trial -- result, scores (score()), frame stats,
   // events and poses -- in ONE transaction. record.position must be the
-  // next_trial() position; the session must be running.
+  // next_trial() position; the session must be running and claimed by this
+  // Store (conflict if another process took it over). Renews the claim.
   Status record_trial(const Session& session, const TrialRecord& record);
 
-  // Marks a running session finished; refused while planned trials remain.
+  // Renews this Store's claim on the session; conflict if the claim was taken over. Call it at
+  // least every claim_ttl_s / 3 while a trial runs long (a person's trial).
+  Status heartbeat(const Session& session);
+
+  // Records a pause of the session (the experimenter paused it; `position`: the trial it
+  // interrupted, nullopt between trials). Paused time is not completion time: the caller
+  // subtracts it; this row says how long it was.
+  Status record_pause(const Session& session, std::optional<int> position,
+                      std::chrono::system_clock::time_point paused_at,
+                      std::chrono::system_clock::time_point resumed_at);
+
+  // Marks a running session finished (and releases its claim); refused while planned trials remain.
   Status finish_session(const Session& session);
 
   // Stores questionnaire answers in one transaction (running or finished
@@ -166,6 +204,23 @@ class Store {
 
   // The session as stored now (status and counts), e.g. after another process wrote.
   Result<Session> session(const std::string& participant_id);
+
+  // Gives up this Store's claim on the session (it stays running, resumable by anyone).
+  // The destructor releases every claim the Store holds.
+  Status release_claim(const Session& session);
+
+  // Leaves the participant (position nullopt) or one planned trial of their session out of the
+  // analysis, with a reason (non-empty) and who decided; appended, never changed. include()
+  // appends the decision that takes an exclusion back. not_found: unknown participant or
+  // position; invalid_input: empty reason.
+  Status exclude(const std::string& participant_id, std::optional<int> position, const std::string& reason,
+                 const std::string& by);
+  Status include(const std::string& participant_id, std::optional<int> position, const std::string& reason,
+                 const std::string& by);
+
+  // A free-text note about the study (participant ""), a participant, or one of their trials.
+  Status add_note(const std::string& participant_id, std::optional<int> position, const std::string& author,
+                  const std::string& text);
 
   struct Impl;  // opaque: the connection and the current study (detail/store_impl.h)
 

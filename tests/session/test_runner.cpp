@@ -4,7 +4,6 @@
 // protocol's ids and scopes, the session finished; interruptions at every
 // stage resume to the same file contents as an uninterrupted run.
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -16,6 +15,7 @@
 #include "study/design/design.h"
 #include "study/session/session.h"
 #include "study/store/export.h"
+#include "study/store/read.h"
 
 namespace dtlab::session {
 namespace {
@@ -114,20 +114,19 @@ std::vector<Row> exported(const std::string& db) {
   return rows;
 }
 
-// Every questionnaire row: "item|scope" -> value (number or text).
+// Every questionnaire row: "item|scope" -> value (number or text), read through the store's reader.
 std::map<std::string, std::string> questionnaire(const std::string& db) {
-  sqlite3* h = nullptr;
-  EXPECT_EQ(sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-  sqlite3_stmt* st = nullptr;
-  EXPECT_EQ(sqlite3_prepare_v2(h, "SELECT item, scope, coalesce(value_text, value_number) FROM questionnaire_answers",
-                               -1, &st, nullptr),
-            SQLITE_OK);
+  auto r = store::StudyReader::open(db);
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
   std::map<std::string, std::string> out;
-  while (sqlite3_step(st) == SQLITE_ROW)
-    out[std::string(reinterpret_cast<const char*>(sqlite3_column_text(st, 0))) + "|" +
-        reinterpret_cast<const char*>(sqlite3_column_text(st, 1))] = reinterpret_cast<const char*>(sqlite3_column_text(st, 2));
-  sqlite3_finalize(st);
-  sqlite3_close(h);
+  if (!r) return out;
+  auto answers = r->questionnaire();
+  EXPECT_TRUE(answers.ok());
+  for (const auto& a : *answers) {
+    char buf[40];
+    if (const double* v = std::get_if<double>(&a.value)) std::snprintf(buf, sizeof buf, "%.17g", *v);
+    out[a.item + "|" + a.scope] = std::holds_alternative<double>(a.value) ? std::string(buf) : std::get<std::string>(a.value);
+  }
   return out;
 }
 

@@ -9,7 +9,6 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sqlite3.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,6 +25,7 @@
 #include "study/protocol/protocol.h"
 #include "study/session/mapping.h"
 #include "study/store/export.h"
+#include "study/store/read.h"
 #include "study/store/store.h"
 
 namespace {
@@ -79,15 +79,10 @@ bool kill_after(Child& c, std::chrono::milliseconds delay) {
 }
 
 std::string integrity(const fs::path& db) {
-  sqlite3* h = nullptr;
-  if (sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) return "cannot open";
-  sqlite3_stmt* st = nullptr;
-  std::string out;
-  if (sqlite3_prepare_v2(h, "PRAGMA integrity_check", -1, &st, nullptr) == SQLITE_OK)
-    while (sqlite3_step(st) == SQLITE_ROW) out += reinterpret_cast<const char*>(sqlite3_column_text(st, 0));
-  sqlite3_finalize(st);
-  sqlite3_close(h);
-  return out;
+  auto r = dtlab::store::StudyReader::open(db.string());
+  if (!r) return r.error().to_string();
+  auto ok = r->integrity_check();
+  return ok ? *ok : ok.error().to_string();
 }
 
 // participant|position -> the row's deterministic columns joined.
@@ -113,23 +108,18 @@ std::map<std::string, std::string> deterministic_rows(const fs::path& db) {
 }
 
 std::map<std::string, std::string> questionnaires(const fs::path& db) {
-  sqlite3* h = nullptr;
-  EXPECT_EQ(sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-  sqlite3_stmt* st = nullptr;
-  EXPECT_EQ(sqlite3_prepare_v2(h,
-                               "SELECT p.participant, q.item, q.scope, coalesce(q.value_text, q.value_number) FROM "
-                               "questionnaire_answers q JOIN sessions s ON s.id = q.session_id JOIN participants p ON "
-                               "p.id = s.participant_id",
-                               -1, &st, nullptr),
-            SQLITE_OK);
+  auto r = dtlab::store::StudyReader::open(db.string());
+  EXPECT_TRUE(r.ok());
   std::map<std::string, std::string> out;
-  while (sqlite3_step(st) == SQLITE_ROW) {
-    std::string key;
-    for (int c = 0; c < 3; ++c) key += std::string(reinterpret_cast<const char*>(sqlite3_column_text(st, c))) + "|";
-    out[key] = reinterpret_cast<const char*>(sqlite3_column_text(st, 3));
+  if (!r) return out;
+  auto answers = r->questionnaire();
+  EXPECT_TRUE(answers.ok());
+  for (const auto& a : *answers) {
+    char buf[40];
+    if (const double* v = std::get_if<double>(&a.value)) std::snprintf(buf, sizeof buf, "%.17g", *v);
+    out[a.participant + "|" + a.item + "|" + a.scope + "|"] =
+        std::holds_alternative<double>(a.value) ? std::string(buf) : std::get<std::string>(a.value);
   }
-  sqlite3_finalize(st);
-  sqlite3_close(h);
   return out;
 }
 
@@ -217,39 +207,100 @@ TEST(SimulateCli, KilledAtIncreasingDelaysResumesToTheUninterruptedResult) {
   EXPECT_EQ(deterministic_rows(crashed), got);
 }
 
-// A database recorded under one version of a protocol refuses an edited one (exit 1, file untouched)
-// unless --allow-protocol-change; then the new text is recorded as a second study row.
-TEST(SimulateCli, AnEditedProtocolNeedsAllowProtocolChange) {
+// A protocol edited in its wording only (a comment) continues without any flag and is recorded as
+// a new revision of the same design; an edit that changes what runs (the master seed) is refused
+// (exit 1, file untouched) unless --allow-protocol-change, and is then design revision 2.
+TEST(SimulateCli, ARewordedProtocolContinuesAndAChangedDesignNeedsAllowProtocolChange) {
   const fs::path dir = temp_dir();
-  const fs::path db = dir / "changed.sqlite", log = dir / "changed.txt", edited = dir / "pilot-edited.toml";
+  const fs::path db = dir / "changed.sqlite", log = dir / "changed.txt";
+  const fs::path reworded = dir / "pilot-reworded.toml", redesigned = dir / "pilot-redesigned.toml";
   fs::remove(db);
+  const std::string pilot_text = slurp(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml");
   {
     auto pilot = dtlab::protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml");
     ASSERT_TRUE(pilot.ok());
     auto st = dtlab::store::Store::open(db.string(), dtlab::session::study_info(pilot.value()));
     ASSERT_TRUE(st.ok()) << st.error().to_string();
   }
-  std::ofstream(edited) << slurp(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml") << "# edited\n";
-  const std::vector<std::string> args{"simulate", edited.string(), "--participants", "1", "--db", db.string(),
-                                      "--width", "96", "--height", "72"};
+  std::ofstream(reworded) << pilot_text << "# a comment added mid-study\n";
+  const std::vector<std::string> args{"simulate", reworded.string(), "--participants", "1", "--db", db.string(),
+                                      "--width", "64", "--height", "48"};
+  Child c1 = start(args, log);
+  ASSERT_EQ(wait_for(c1), 0) << slurp(log);
+
+  std::string changed = pilot_text;
+  const auto at = changed.find("master_seed = 1");
+  ASSERT_NE(at, std::string::npos);
+  changed.replace(at, std::string("master_seed = 1").size(), "master_seed = 2");
+  std::ofstream(redesigned) << changed;
+  auto args2 = args;
+  args2[1] = redesigned.string();
   const std::string before = slurp(db);
-  Child refused = start(args, log);
+  Child refused = start(args2, log);
   EXPECT_EQ(wait_for(refused), 1) << slurp(log);
   EXPECT_NE(slurp(log).find("--allow-protocol-change"), std::string::npos) << slurp(log);
   EXPECT_TRUE(slurp(db) == before) << "the refused run modified the database";
 
-  auto allowed = args;
-  allowed.push_back("--allow-protocol-change");
-  Child c = start(allowed, log);
+  args2.push_back("--allow-protocol-change");
+  Child c = start(args2, log);
   ASSERT_EQ(wait_for(c), 0) << slurp(log);
-  sqlite3* h = nullptr;
-  ASSERT_EQ(sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-  sqlite3_stmt* st = nullptr;
-  ASSERT_EQ(sqlite3_prepare_v2(h, "SELECT count(*) FROM studies", -1, &st, nullptr), SQLITE_OK);
-  ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
-  EXPECT_EQ(sqlite3_column_int(st, 0), 2) << "the old and the edited protocol, both recorded";
-  sqlite3_finalize(st);
-  sqlite3_close(h);
+  auto r = dtlab::store::StudyReader::open(db.string(), dtlab::session::read_options());
+  ASSERT_TRUE(r.ok());
+  auto revs = r->revisions();
+  ASSERT_TRUE(revs.ok());
+  ASSERT_EQ(revs->size(), 3u) << "the original, the reworded and the redesigned protocol, all recorded";
+  EXPECT_EQ((*revs)[1].design_revision, 1);
+  EXPECT_EQ((*revs)[2].design_revision, 2);
+}
+
+// Issue 9: several `dtlab simulate` processes on one database share the work. Each session is
+// claimed by the process running it; the others skip it. All exit 0, every trial is recorded
+// once, and the trials run by the processes add up to the whole study.
+TEST(SimulateCli, FourProcessesSplitEightParticipants) {
+  const fs::path dir = temp_dir();
+  const fs::path db = dir / "shared.sqlite", light = dir / "pilot-light.toml";
+  fs::remove(db);
+  // The pilot with lighter scenes (40 primitives, an 8 x 8 building with 20 models): the claims,
+  // not the rendering, are under test here.
+  std::string text = slurp(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml");
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"objects = 200", "objects = 40"}, {"grid = [16, 16]", "grid = [8, 8]"}, {"objects = 50", "objects = 20"}}) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  std::ofstream(light) << text;
+  std::vector<Child> children;
+  std::vector<fs::path> logs;
+  for (int k = 0; k < 4; ++k) {
+    logs.push_back(dir / ("station-" + std::to_string(k) + ".json"));
+    fs::remove(logs.back());
+    children.push_back(start({"simulate", light.string(), "--participants", "8", "--db", db.string(), "--width", "48",
+                              "--height", "36", "--json"},
+                             logs.back()));
+  }
+  long long trials_run = 0;
+  for (int k = 0; k < 4; ++k) {
+    ASSERT_EQ(wait_for(children[static_cast<std::size_t>(k)]), 0) << slurp(logs[static_cast<std::size_t>(k)]);
+    const std::string text = slurp(logs[static_cast<std::size_t>(k)]);
+    const auto j = nlohmann::json::parse(text.substr(text.rfind("\n{") + 1));
+    trials_run += j["trials_run"].get<long long>();
+    EXPECT_TRUE(j["failed"].empty()) << text;
+  }
+  auto r = dtlab::store::StudyReader::open(db.string());
+  ASSERT_TRUE(r.ok());
+  auto sessions = r->sessions();
+  ASSERT_TRUE(sessions.ok());
+  ASSERT_EQ(sessions->size(), 8u);
+  for (const auto& s : *sessions) {
+    EXPECT_EQ(s.status, dtlab::store::SessionStatus::finished) << s.participant;
+    EXPECT_EQ(s.resumes.size(), 0u) << s.participant << " was resumed: two processes ran it";
+    EXPECT_TRUE(s.interruptions.empty()) << s.participant;
+    EXPECT_FALSE(s.claim.has_value()) << s.participant;
+  }
+  EXPECT_EQ(r->trials()->size(), 64u);
+  EXPECT_EQ(trials_run, 64) << "every trial run exactly once across the four processes";
+  EXPECT_EQ(*r->integrity_check(), "ok");
 }
 
 TEST(SimulateCli, BadInputIsAClearErrorAndTouchesNothing) {

@@ -2,12 +2,17 @@
 // the same moment, enroll at the same moment, and run sessions side by side.
 // The ledger must never give one slot (enrollment index) twice, every order
 // row must follow the documented rule, and a participant id enrolled by two
-// processes at once must get one enrollment.
+// processes at once must get one enrollment. Creating one new file from many
+// processes at once always succeeds; a running session is claimed by one
+// process, and another takes it over only once the holder is gone or expired.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -137,6 +142,211 @@ TEST(Processes, ConcurrentEnrollmentNeverSharesALedgerSlot) {
   EXPECT_EQ(db.one("SELECT group_concat(n, ',') FROM (SELECT count(*) AS n FROM participants GROUP BY order_row "
                    "ORDER BY order_row)"),
             "14,14,13,13");
+}
+
+// Forks `n` children that wait on one pipe and then run body(k); returns their exit statuses.
+template <class F>
+std::vector<int> race(int n, F&& body) {
+  int go[2];
+  if (::pipe(go) != 0) return {};
+  std::vector<pid_t> pids;
+  for (int k = 0; k < n; ++k) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::close(go[1]);
+      char c;
+      if (::read(go[0], &c, 1) != 1) ::_exit(90);
+      ::_exit(body(k));
+    }
+    pids.push_back(pid);
+  }
+  ::close(go[0]);
+  const std::string start(static_cast<std::size_t>(n), 'g');
+  if (::write(go[1], start.data(), start.size()) != static_cast<ssize_t>(start.size())) ADD_FAILURE() << "barrier";
+  ::close(go[1]);
+  std::vector<int> out;
+  for (pid_t pid : pids) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    out.push_back(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
+  }
+  return out;
+}
+
+// Regression (issue 9): two processes opening a new file at once sometimes failed with "not a
+// dtlab study database (application_id 0x00000000)": the header and the schema were read in two
+// snapshots, around the other process's commit. 8 processes, 50 new files in a row.
+TEST(Processes, EightProcessesCreatingOneNewFileAllSucceed) {
+  TempDir dir;
+  for (int round = 0; round < 50; ++round) {
+    const std::string path = dir.file("new-" + std::to_string(round) + ".sqlite");
+    const auto codes = race(8, [&](int k) {
+      OpenOptions o;
+      o.busy_timeout_ms = 30000;
+      auto s = Store::open(path, study_info(), o);
+      if (!s) {
+        std::fprintf(stderr, "round %d child %d: %s\n", round, k, s.error().to_string().c_str());
+        return 1;
+      }
+      return s->enroll("C" + std::to_string(k)) ? 0 : 2;
+    });
+    ASSERT_EQ(codes, std::vector<int>(8, 0)) << "round " << round;
+    RawDb db(path);
+    ASSERT_EQ(db.count("SELECT count(*) FROM studies"), 1) << "round " << round;
+    ASSERT_EQ(db.count("SELECT count(*) FROM participants"), 8) << "round " << round;
+  }
+}
+
+// A session begun by one live process is refused to every other process (busy, naming the
+// holder) and free again once the holder closes its Store. Both are child processes (SQLite
+// connections must not cross fork()); the parent only passes messages.
+TEST(Claims, ASecondProcessCannotRunAClaimedSession) {
+  TempDir dir;
+  const std::string path = dir.file("s.sqlite");
+  const design::Plan plan = make_plan(0, 0, 1);
+  int to_holder[2], from_holder[2];
+  ASSERT_EQ(::pipe(to_holder), 0);
+  ASSERT_EQ(::pipe(from_holder), 0);
+  const pid_t holder = ::fork();
+  if (holder == 0) {
+    char c = 0;
+    int rc = 0;
+    {
+      auto s = Store::open(path, study_info());
+      auto b = s && s->enroll("P1") ? s->begin_session("P1", plan) : Result<Session>(Error{});
+      c = b ? 'r' : 'x';
+      if (::write(from_holder[1], &c, 1) != 1 || ::read(to_holder[0], &c, 1) != 1) ::_exit(91);
+      rc = b && s->record_trial(*b, make_record(1, plan.trials[0], 3)) ? 0 : 2;
+    }  // closing the Store releases its claim
+    c = 'd';
+    if (::write(from_holder[1], &c, 1) != 1) ::_exit(92);
+    ::_exit(rc);
+  }
+  char c = 0;
+  ASSERT_EQ(::read(from_holder[0], &c, 1), 1);
+  ASSERT_EQ(c, 'r');
+  const pid_t holder_pid = holder;
+  auto attempt = [&] {
+    return race(1, [&](int) {
+      auto s = Store::open(path, study_info());
+      if (!s) return 1;
+      auto b = s->begin_session("P1", plan);
+      if (b) return 0;
+      if (b.error().kind == ErrorKind::busy && b.error().field == kClaimField &&
+          b.error().message.find(std::to_string(holder_pid)) != std::string::npos)
+        return 10;  // refused, naming the holder's pid
+      std::fprintf(stderr, "%s\n", b.error().to_string().c_str());
+      return 2;
+    })[0];
+  };
+  EXPECT_EQ(attempt(), 10);
+  c = 'g';
+  ASSERT_EQ(::write(to_holder[1], &c, 1), 1);
+  ASSERT_EQ(::read(from_holder[0], &c, 1), 1);
+  EXPECT_EQ(c, 'd');
+  int status = 0;
+  ::waitpid(holder, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(attempt(), 0);
+}
+
+// kill -9 leaves the claim row behind; the dead holder's claim is taken over at once (same
+// host, pid gone), and the session resumes where it was. Regression: a killed worker whose
+// parent died too stays a zombie until reaped, and kill(pid, 0) succeeds on a zombie: the
+// claim was then held "alive" and the rerun skipped the participant. Taken over before reaping.
+TEST(Claims, AClaimOfAKilledProcessIsTakenOverAtOnceEvenBeforeItIsReaped) {
+  TempDir dir;
+  const std::string path = dir.file("s.sqlite");
+  const design::Plan plan = make_plan(0, 0, 1);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    auto s = Store::open(path, study_info());
+    if (!s || !s->enroll("P1")) ::_exit(1);
+    auto b = s->begin_session("P1", plan);
+    if (!b || !s->record_trial(*b, make_record(1, plan.trials[0], 3))) ::_exit(2);
+    ::kill(::getpid(), SIGKILL);
+    ::_exit(3);
+  }
+  // Wait until the child is dead but not reaped: /proc shows it as a zombie.
+  for (int i = 0; i < 500; ++i) {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+    if (text.find(") Z ") != std::string::npos) break;
+    ::usleep(10000);
+  }
+  ASSERT_EQ(RawDb(path).count("SELECT count(*) FROM session_claims"), 1);  // left behind by the dead process
+  {
+    auto s = Store::open(path, study_info());
+    ASSERT_TRUE(s);
+    auto b = s->begin_session("P1", plan);
+    ASSERT_TRUE(b) << b.error().to_string();
+    EXPECT_TRUE(b->resumed);
+    EXPECT_TRUE(b->took_over);
+    EXPECT_EQ(b->recorded, 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << status;
+}
+
+// A claim from another machine holds until it expires (its heartbeat is the only sign of life);
+// the experimenter may take it over at once.
+TEST(Claims, AClaimFromAnotherHostHoldsUntilItExpires) {
+  TempDir dir;
+  const std::string path = dir.file("s.sqlite");
+  const design::Plan plan = make_plan(0, 0, 1);
+  {
+    auto s = Store::open(path, study_info());
+    ASSERT_TRUE(s->enroll("P1"));
+    ASSERT_TRUE(s->begin_session("P1", plan));
+  }
+  RawDb db(path);
+  auto claim_until = [&](const std::string& expires) {
+    ASSERT_EQ(db.exec("INSERT OR REPLACE INTO session_claims VALUES (1, 'station-7/4242/1/x', 'station-7', 4242, "
+                      "'2026-01-01T00:00:00.000Z', '2026-01-01T00:00:00.000Z', '" + expires + "')"),
+              SQLITE_OK)
+        << db.errmsg();
+  };
+  claim_until("2999-01-01T00:00:00.000Z");
+  auto s = Store::open(path, study_info());
+  ASSERT_TRUE(s);
+  auto refused = s->begin_session("P1", plan);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().kind, ErrorKind::busy);
+  EXPECT_NE(refused.error().message.find("station-7"), std::string::npos) << refused.error().to_string();
+  BeginOptions take;
+  take.take_over = true;
+  auto forced = s->begin_session("P1", plan, take);
+  ASSERT_TRUE(forced) << forced.error().to_string();
+  EXPECT_TRUE(forced->took_over);
+  claim_until("2001-01-01T00:00:00.000Z");  // expired
+  auto expired = s->begin_session("P1", plan);
+  ASSERT_TRUE(expired) << expired.error().to_string();
+  EXPECT_TRUE(expired->took_over);
+}
+
+// After a take-over the old holder's writes are refused (conflict), so two processes never
+// interleave trials of one session.
+TEST(Claims, TheOldHolderCannotRecordAfterATakeOver) {
+  TempDir dir;
+  const std::string path = dir.file("s.sqlite");
+  const design::Plan plan = make_plan(0, 0, 1);
+  auto a = Store::open(path, study_info());
+  ASSERT_TRUE(a->enroll("P1"));
+  auto sa = a->begin_session("P1", plan);
+  ASSERT_TRUE(sa);
+  auto b = Store::open(path, study_info());
+  BeginOptions take;
+  take.take_over = true;
+  auto sb = b->begin_session("P1", plan, take);
+  ASSERT_TRUE(sb);
+  auto refused = a->record_trial(*sa, make_record(1, plan.trials[0], 3));
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().kind, ErrorKind::conflict);
+  EXPECT_FALSE(a->heartbeat(*sa));
+  EXPECT_TRUE(b->record_trial(*sb, make_record(1, plan.trials[0], 3)));
+  EXPECT_TRUE(b->heartbeat(*sb));
+  EXPECT_EQ(RawDb(path).count("SELECT count(*) FROM trial_results"), 1);
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ const char* kHeader =
     "participant,enrollment_index,session,session_status,order_row,position,block,transparency,scenario,task,trial,"
     "practice,method,trial_seed,scene_hash,answer_count,answer_letter,answer_x,answer_z,truth_count,truth_letter,"
     "truth_x,truth_z,rel_error,signed_error,correct,distance,completion_time_s,started_at,ended_at,frame_count,"
-    "frame_ms_mean,frame_ms_sd,frame_ms_p95,frame_ms_max,protocol_sha256";
+    "frame_ms_mean,frame_ms_sd,frame_ms_p95,frame_ms_max,protocol_sha256,design_revision,excluded";
 
 // Minimal RFC 4180 reader: records of fields, quoted fields may hold , " CR LF.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -127,6 +127,7 @@ TEST(Export, ErrorsNameTheFileAndNeverCreateOne) {
   auto a = export_trials_csv(missing, out);
   ASSERT_FALSE(a);
   EXPECT_EQ(a.error().file, missing);
+  EXPECT_EQ(a.error().kind, ErrorKind::not_found);
   EXPECT_FALSE(std::filesystem::exists(missing));
   const std::string text = dir.file("text.sqlite");
   std::ofstream(text) << "hello, world\n" << std::string(100, 'z');
@@ -157,6 +158,55 @@ TEST(ExportCommand, WritesTheFileAndReportsBadInput) {
   EXPECT_TRUE(WIFEXITED(usage) && WEXITSTATUS(usage) == 2);  // --csv is required
 }
 
+// The view SQLite clients read (trial_table) and the export come from two independent paths
+// (SQL in the schema, the typed reader + CSV writer here): they must agree cell for cell,
+// including the design revision and the excluded column, after revisions and decisions.
+TEST(Export, EqualsTheTrialTableViewCellForCell) {
+  TempDir dir;
+  int recorded = 0;
+  const std::string path = make_db(dir, &recorded);
+  {
+    StudyInfo reworded = study_info("id = \"test2x2\"\n# protocol text, reworded\n");
+    reworded.design_sha256 = std::string(64, 'a');
+    OpenOptions o;
+    o.design_hash_of = [](const std::string&) { return std::optional<std::string>(std::string(64, 'a')); };
+    auto s = Store::open(path, reworded, o);  // same design, new text: a revision without any flag
+    ASSERT_TRUE(s) << s.error().to_string();
+    ASSERT_TRUE(s->exclude("P1", std::nullopt, "misunderstood, \"the\" task", "RA"));
+    ASSERT_TRUE(s->exclude("P,2 \"x\"", 2, "fire alarm", "RA"));
+    ASSERT_TRUE(s->include("P1", std::nullopt, "", "PI"));
+    ASSERT_TRUE(s->exclude("P1", 3, "looked away", ""));
+  }
+  std::ostringstream out;
+  auto sum = export_trials_csv(path, out);
+  ASSERT_TRUE(sum) << sum.error().to_string();
+  EXPECT_EQ(sum->excluded, 2);
+  const auto exported = parse_csv(out.str());
+  RawDb db(path);
+  const auto view = db.rows("SELECT * FROM trial_table ORDER BY enrollment_index, position");
+  ASSERT_EQ(exported.size(), view.size() + 1);
+  std::vector<std::string> header;
+  for (const auto& r : db.rows("SELECT name FROM pragma_table_info('trial_table')")) header.push_back(r[0]);
+  EXPECT_EQ(exported[0], header);
+  for (std::size_t i = 0; i < view.size(); ++i)
+    for (std::size_t c = 0; c < header.size(); ++c) {
+      std::string v = view[i][c];
+      if (v == "NULL") v = "NA";
+      const std::string& e = exported[i + 1][c];
+      if (v != e && v.find_first_not_of("0123456789.-e+") == std::string::npos && !v.empty())
+        EXPECT_EQ(std::stod(v), std::stod(e)) << header[c] << " of row " << i + 1;  // same double, other spelling
+      else
+        EXPECT_EQ(v, e) << header[c] << " of row " << i + 1;
+    }
+  auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  EXPECT_EQ(exported[1][col("excluded")], "NA");  // P1 excluded, then included again
+  EXPECT_EQ(exported[3][col("excluded")], "looked away");
+  EXPECT_EQ(exported[6][col("excluded")], "fire alarm");
+  EXPECT_EQ(exported[1][col("design_revision")], "1");  // the old text hashed by the caller's function
+}
+
 // Optional: an independent CSV reader (Python's csv module) agrees on shape.
 TEST(ExportCommand, PythonCsvModuleReadsItAsIs) {
   if (!std::filesystem::exists("/usr/bin/python3")) GTEST_SKIP() << "/usr/bin/python3 not installed";
@@ -171,7 +221,7 @@ TEST(ExportCommand, PythonCsvModuleReadsItAsIs) {
       "import csv,sys; r=list(csv.DictReader(open(sys.argv[1], newline=''))); "
       "assert len(r)==" + std::to_string(recorded) + ", len(r); "
       "assert r[4]['participant']=='P,2 \"x\"', r[4]['participant']; "
-      "assert all(len(x)==36 for x in r); float(r[0]['completion_time_s'])";
+      "assert all(len(x)==38 for x in r); float(r[0]['completion_time_s'])";
   const std::string cmd = "/usr/bin/python3 -c '" + [&] {
     std::string q;
     for (char c : script) q += c == '\'' ? std::string("'\\''") : std::string(1, c);

@@ -25,7 +25,13 @@ using namespace dtlab::store::testing;
 const std::string kReference = std::string(DTLAB_SOURCE_DIR) + "/protocols/elmqvist2008.toml";
 
 StudyInfo info_of(const protocol::Protocol& p) {
-  StudyInfo s{p.id, p.source_text, p.sha256, std::string(version_string()), design::order_rows(p), {}};
+  StudyInfo s;
+  s.protocol_id = p.id;
+  s.protocol_text = p.source_text;
+  s.protocol_sha256 = p.sha256;
+  s.design_sha256 = protocol::design_sha256(p);
+  s.software_version = std::string(version_string());
+  s.order_rows = design::order_rows(p);
   for (const auto& f : p.factors) s.factors.push_back(f.name);
   return s;
 }

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "study/store/export.h"
+#include "study/store/read.h"
 #include "tests/store/store_fixtures.h"
 
 namespace dtlab::store {
@@ -32,15 +33,16 @@ std::string read_bytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-TEST(Store, CreatesSchemaV1WithPragmasAndProtocol) {
+TEST(Store, CreatesTheNewestSchemaWithPragmasAndProtocol) {
   TempDir dir;
   const auto path = dir.file("s.sqlite");
   { Store s = open_ok(path); }
   RawDb db(path);
   EXPECT_EQ(db.one("PRAGMA journal_mode"), "wal");
   EXPECT_EQ(db.one("PRAGMA application_id"), std::to_string(kApplicationId));
-  EXPECT_EQ(db.one("PRAGMA user_version"), "1");
-  EXPECT_EQ(db.one("SELECT max(version) FROM schema_migrations"), "1");
+  EXPECT_EQ(db.one("PRAGMA user_version"), "2");
+  EXPECT_EQ(db.one("SELECT max(version) FROM schema_migrations"), "2");
+  EXPECT_EQ(db.count("SELECT count(*) FROM schema_migrations"), 2);  // v1, then v2 on top of it
   const StudyInfo info = study_info();
   EXPECT_EQ(db.one("SELECT protocol_text FROM studies"), info.protocol_text);
   EXPECT_EQ(db.one("SELECT protocol_sha256 FROM studies"), info.protocol_sha256);
@@ -201,13 +203,15 @@ TEST(StoreOpen, RefusesANewerSchemaVersion) {
   { Store s = open_ok(path); }
   {
     RawDb db(path);
-    db.exec("PRAGMA user_version = 2");
-    db.exec("INSERT INTO schema_migrations VALUES (2, 'future', '2030-01-01T00:00:00.000Z', 'dtlab 9')");
+    db.exec("PRAGMA user_version = 3");
+    db.exec("INSERT INTO schema_migrations VALUES (3, 'future', '2030-01-01T00:00:00.000Z', 'dtlab 9')");
   }
+  const std::string before = read_bytes(path);
   auto s = Store::open(path, study_info());
   ASSERT_FALSE(s);
   EXPECT_EQ(s.error().field, "schema_migrations.version");
-  EXPECT_NE(s.error().message.find("schema version 2"), std::string::npos) << s.error().to_string();
+  EXPECT_NE(s.error().message.find("schema version 3"), std::string::npos) << s.error().to_string();
+  EXPECT_EQ(read_bytes(path), before);
 }
 
 TEST(StoreOpen, RefusesAnotherProtocolUnlessAllowed) {
@@ -220,7 +224,7 @@ TEST(StoreOpen, RefusesAnotherProtocolUnlessAllowed) {
   ASSERT_FALSE(refused);
   EXPECT_NE(refused.error().message.find(a.protocol_sha256), std::string::npos);
   EXPECT_NE(refused.error().message.find(b.protocol_sha256), std::string::npos);
-  EXPECT_FALSE(is_environment_error(refused.error()));
+  EXPECT_EQ(refused.error().kind, ErrorKind::conflict);
   { RawDb db(path); EXPECT_EQ(db.count("SELECT count(*) FROM studies"), 1); }
 
   OpenOptions allow;
@@ -231,6 +235,53 @@ TEST(StoreOpen, RefusesAnotherProtocolUnlessAllowed) {
   EXPECT_EQ(db.one("SELECT protocol_text FROM studies ORDER BY id DESC LIMIT 1"), "protocol B");
   // Now B is current: A is refused in turn.
   EXPECT_FALSE(Store::open(path, a));
+}
+
+// Protocol revisions (issue 9): a new text with the same design hash is recorded as a new
+// revision without any option, and a session begun under the old text resumes under the new;
+// a new design is refused (conflict) unless allowed, then it is design revision 2.
+TEST(StoreOpen, ARewordedProtocolContinuesAndANewDesignNeedsPermission) {
+  TempDir dir;
+  const auto path = dir.file("s.sqlite");
+  StudyInfo a = study_info("protocol A\n");
+  a.design_sha256 = std::string(64, '1');
+  StudyInfo a2 = study_info("protocol A\n# a comment added mid-study\n");
+  a2.design_sha256 = a.design_sha256;
+  StudyInfo b = study_info("protocol B\n");
+  b.design_sha256 = std::string(64, '2');
+  const design::Plan plan = make_plan(0, 0, 1);
+  {
+    Store s = open_ok(path, a);
+    ASSERT_TRUE(s.enroll("P1"));
+    auto ses = s.begin_session("P1", plan);
+    ASSERT_TRUE(s.record_trial(*ses, make_record(1, plan.trials[0], 3)));
+  }
+  {
+    Store s = open_ok(path, a2);  // no allow_protocol_change needed
+    auto ses = s.begin_session("P1", plan);
+    ASSERT_TRUE(ses) << ses.error().to_string();
+    EXPECT_TRUE(ses->resumed);
+    ASSERT_TRUE(s.record_trial(*ses, make_record(1, plan.trials[1], 3)));
+    ASSERT_TRUE(s.enroll("P2"));
+  }
+  auto refused = Store::open(path, b);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().kind, ErrorKind::conflict);
+  EXPECT_NE(refused.error().message.find("design"), std::string::npos) << refused.error().to_string();
+  OpenOptions allow;
+  allow.allow_protocol_change = true;
+  { Store s = open_ok(path, b, allow); }
+  auto r = StudyReader::open(path);
+  ASSERT_TRUE(r);
+  auto revs = r->revisions();
+  ASSERT_EQ(revs->size(), 3u);
+  EXPECT_EQ((*revs)[0].design_revision, 1);
+  EXPECT_EQ((*revs)[1].design_revision, 1);  // the reworded text shares the design
+  EXPECT_EQ((*revs)[2].design_revision, 2);
+  auto trials = r->trials();
+  ASSERT_EQ(trials->size(), 2u);
+  EXPECT_EQ((*trials)[0].design_revision, 1);
+  EXPECT_EQ((*trials)[1].design_revision, 1);  // the session keeps the revision it began under
 }
 
 // Regression guard for "never an abort": a database whose pages after the
@@ -509,7 +560,7 @@ TEST(Session, FailedWriteSavesNothingAndTheRetrySucceeds) {
   ASSERT_EQ(other.exec("BEGIN IMMEDIATE"), SQLITE_OK);
   auto busy = s.record_trial(*ses, make_record(1, plan.trials[1]));
   ASSERT_FALSE(busy);
-  EXPECT_TRUE(is_environment_error(busy.error())) << busy.error().to_string();
+  EXPECT_EQ(busy.error().kind, ErrorKind::busy) << busy.error().to_string();
   EXPECT_EQ(busy.error().file, path);
   ASSERT_EQ(other.exec("ROLLBACK"), SQLITE_OK);
   EXPECT_EQ((*s.next_trial(*ses))->position, 2);

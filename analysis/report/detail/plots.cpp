@@ -25,7 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 
 Error gnuplot_error(const std::string& file, std::string message) {
-  return Error{file, 0, 0, "gnuplot", std::move(message)};
+  return Error{file, 0, 0, "gnuplot", std::move(message), ErrorKind::environment};
 }
 
 std::string read_file(const fs::path& p) {
@@ -114,7 +114,7 @@ Result<std::map<std::string, std::string>> render_plots(const std::vector<PlotSp
   for (const auto& p : plots) {
     for (const auto& [name, content] : p.data)
       if (!write_file(dir / name, content))
-        return Error{(dir / name).string(), 0, 0, "output", "cannot write the plot data file"};
+        return Error{(dir / name).string(), 0, 0, "output", "cannot write the plot data file", ErrorKind::environment};
     script += "\n# --- " + p.id + " ---\nreset\n";
     script += "set terminal svg size " + std::to_string(p.width) + "," + std::to_string(p.height) +
               " dynamic enhanced font 'DejaVu Sans,12' background rgb 'white'\n";
@@ -122,7 +122,7 @@ Result<std::map<std::string, std::string>> render_plots(const std::vector<PlotSp
     script += gp_style() + p.commands + "\nunset multiplot\nset output\n";
   }
   const fs::path gp = dir / "report.gp";
-  if (!write_file(gp, script)) return Error{gp.string(), 0, 0, "output", "cannot write the gnuplot script"};
+  if (!write_file(gp, script)) return Error{gp.string(), 0, 0, "output", "cannot write the gnuplot script", ErrorKind::environment};
   // gnuplot reads and writes relative to its working directory: `cd` first.
   const std::string log = (dir / "gnuplot.log").string();
   auto rc = run(exe, {"-e", "cd " + gp_quote(fs::absolute(dir).string()), fs::absolute(gp).string()}, log);

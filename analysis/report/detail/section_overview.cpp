@@ -29,6 +29,19 @@ void section_overview(Context& ctx) {
                      "`, recorded with " + data.software_version + ".";
 
   Section s{"data", "Data", 2, {}};
+  if (data.design_revisions > 1)
+    s.add(Callout{"warning",
+                  "Design revision " + std::to_string(data.design_revision) + " of " +
+                      std::to_string(data.design_revisions) + " of this database",
+                  {"The protocol was changed during the study in a way that changes what runs (--allow-protocol-change). "
+                   "This report analyses only the participants who ran under design revision " +
+                       std::to_string(data.design_revision) + " (" + std::to_string(data.other_revision_trials) +
+                       " trials of other revisions are not pooled with them; `dtlab analyze --revision N` chooses)."}});
+  if (data.protocol_texts > 1)
+    s.text("The protocol text was revised " + std::to_string(data.protocol_texts - 1) +
+           (data.protocol_texts == 2 ? " time" : " times") +
+           " without changing its design (comments, wording): all its participants are pooled, and the latest text "
+           "is shown here.");
   // Who and what is in the file.
   int finished = 0, running = 0, abandoned = 0, none = 0;
   long long planned = 0, recorded = 0;
@@ -86,10 +99,17 @@ void section_overview(Context& ctx) {
   }
   if (unknown)
     warnings.push_back(std::to_string(unknown) + " trials carry a factor level the protocol does not declare; left out.");
-  if (data.other_protocol_trials)
-    warnings.push_back(std::to_string(data.other_protocol_trials) + " trials were recorded under an earlier protocol of "
-                       "this database (" + std::to_string(data.studies) + " protocol records); only the current "
-                       "protocol's trials are analysed.");
+  if (!data.excluded_participants.empty() || data.excluded_trials > 0)
+    warnings.push_back(data.with_excluded
+                           ? "Excluded data are KEPT in this analysis (--with-excluded): " +
+                                 std::to_string(data.excluded_trials) + " excluded trials are analysed; the "
+                                 "exclusions are listed below."
+                           : std::to_string(data.excluded_trials) + " recorded trial" +
+                                 (data.excluded_trials == 1 ? " is" : "s are") + " excluded (" +
+                                 std::to_string(data.excluded_participants.size()) + " excluded participant" +
+                                 (data.excluded_participants.size() == 1 ? "" : "s") +
+                                 ") and left out of every table and test; each exclusion and its reason is listed "
+                                 "below.");
   if (ctx.subjects.size() < 2)
     warnings.push_back("Only " + std::to_string(ctx.subjects.size()) + " participant: no test across participants "
                        "is possible (F and p are undefined); the tables show descriptives only.");
@@ -110,6 +130,22 @@ void section_overview(Context& ctx) {
   pt.notes.push_back("Index: 0-based enrollment index. Trials: recorded / planned. Resumes: times the session was "
                      "resumed after an interruption.");
   s.add(pt);
+  if (!data.exclusions.empty()) {
+    Table xt;
+    xt.id = "table-exclusions";
+    xt.caption = "Exclusions: every decision recorded about these participants (`dtlab exclude`, `dtlab include`, "
+                 "the experimenter console), in order; the latest decision about a participant or trial holds.";
+    xt.header = {"Participant", "Trial", "Decision", "Reason", "By", "When (UTC)"};
+    xt.text_columns = 6;
+    for (const auto& x : data.exclusions)
+      xt.rows.push_back({x.participant, x.position ? std::to_string(*x.position) : "all",
+                         x.exclude ? "excluded" : "included again", x.reason.empty() ? "-" : x.reason,
+                         x.by.empty() ? "-" : x.by, x.at});
+    xt.notes.push_back(data.with_excluded ? "Excluded data are kept in this report (--with-excluded)."
+                                          : "Excluded participants and trials are left out of every analysis; "
+                                            "`dtlab analyze --with-excluded` keeps them.");
+    s.add(xt);
+  }
   ctx.doc.sections.push_back(std::move(s));
 
   Section m{"methods", "Method of analysis", 2, {}};

@@ -1,103 +1,106 @@
-// Reading a study database for the report; see study_data.h. A small RAII
-// layer over the SQLite C API of its own (analysis reads the store's schema
-// through SQLite only, docs/store.md "Views"), read-only, one transaction.
+// Reading one design revision of a study for the report; see study_data.h.
+// Everything comes from the store's StudyReader; this file only selects (the
+// revision, the exclusions) and maps the store's rows to the report's.
 #include "analysis/report/detail/study_data.h"
 
-#include <sqlite3.h>
-
-#include <nlohmann/json.hpp>
-
-#include <memory>
+#include <algorithm>
+#include <map>
+#include <set>
+#include <tuple>
 
 namespace dtlab::report::detail {
 namespace {
 
-struct Conn {
-  sqlite3* db = nullptr;
-  std::string path;
-  ~Conn() { sqlite3_close_v2(db); }
-  Error error(const std::string& what) const {
-    return Error{path, 0, 0, "sqlite", what + ": " + (db ? sqlite3_errmsg(db) : "out of memory")};
-  }
-};
+std::string status_text(store::SessionStatus s) { return store::to_string(s); }
 
-struct Query {
-  sqlite3_stmt* st = nullptr;
-  ~Query() { sqlite3_finalize(st); }
-  bool null(int c) const { return sqlite3_column_type(st, c) == SQLITE_NULL; }
-  std::string text(int c) const {
-    const unsigned char* t = sqlite3_column_text(st, c);
-    return t ? std::string(reinterpret_cast<const char*>(t), static_cast<size_t>(sqlite3_column_bytes(st, c))) : "";
-  }
-  std::int64_t int64(int c) const { return sqlite3_column_int64(st, c); }
-  double real(int c) const { return sqlite3_column_double(st, c); }
-  std::optional<double> opt_real(int c) const { return null(c) ? std::nullopt : std::optional<double>(real(c)); }
-  std::optional<std::int64_t> opt_int(int c) const {
-    return null(c) ? std::nullopt : std::optional<std::int64_t>(int64(c));
-  }
-  std::optional<std::string> opt_text(int c) const {
-    return null(c) ? std::nullopt : std::optional<std::string>(text(c));
-  }
-};
-
-// Runs `sql`, calling row(q) per result row; an Error names what was read.
-template <class F>
-Status each_row(Conn& c, const std::string& sql, const std::string& what, F&& row) {
-  Query q;
-  if (sqlite3_prepare_v2(c.db, sql.c_str(), -1, &q.st, nullptr) != SQLITE_OK) return c.error(what);
-  for (;;) {
-    const int rc = sqlite3_step(q.st);
-    if (rc == SQLITE_DONE) return {};
-    if (rc != SQLITE_ROW) return c.error(what);
-    row(q);
+void split_answer(const std::optional<store::Answer>& a, std::optional<std::int64_t>& count,
+                  std::optional<std::string>& letter, std::optional<double>& x, std::optional<double>& z) {
+  if (!a) return;
+  if (const auto* c = std::get_if<store::Count>(&*a)) count = c->n;
+  if (const auto* l = std::get_if<store::Letter>(&*a)) letter = l->letter;
+  if (const auto* p = std::get_if<store::Position>(&*a)) {
+    x = p->x;
+    z = p->z;
   }
 }
 
-std::string quote_identifier(const std::string& name) {
-  std::string q = "\"";
-  for (char ch : name) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return q + "\"";
-}
-
-std::map<std::string, std::string> parse_demographics(const std::string& text) {
-  std::map<std::string, std::string> out;
-  const auto j = nlohmann::json::parse(text, nullptr, false);
-  if (!j.is_object()) return out;
-  for (const auto& [k, v] : j.items()) out[k] = v.is_string() ? v.get<std::string>() : v.dump();
-  return out;
+TrialRow to_report_row(const store::TrialRow& t, const protocol::Protocol& p) {
+  TrialRow r;
+  r.participant = t.participant;
+  r.enrollment_index = t.enrollment_index;
+  r.order_row = t.order_row;
+  r.session_status = status_text(t.session_status);
+  r.position = t.planned.position;
+  r.block = t.planned.block;
+  for (const protocol::Factor& f : p.factors) {
+    r.levels.push_back(t.level(f.name));
+    const auto it = std::find(f.levels.begin(), f.levels.end(), r.levels.back());
+    r.level_index.push_back(it == f.levels.end() ? -1 : static_cast<int>(it - f.levels.begin()));
+  }
+  r.task = t.planned.task;
+  r.trial = t.planned.trial;
+  r.practice = t.planned.practice;
+  r.method = t.planned.method;
+  split_answer(t.answer, r.answer_count, r.answer_letter, r.answer_x, r.answer_z);
+  split_answer(std::optional<store::Answer>(t.truth), r.truth_count, r.truth_letter, r.truth_x,
+                              r.truth_z);
+  r.rel_error = t.scores.rel_error;
+  r.signed_error = t.scores.signed_error;
+  r.correct = t.scores.correct;
+  r.distance = t.scores.distance;
+  r.time_s = t.completion_s;
+  r.frame_count = t.frames.frames;
+  r.frame_mean = t.frames.mean_ms;
+  r.frame_sd = t.frames.sd_ms;
+  r.frame_p95 = t.frames.p95_ms;
+  r.frame_max = t.frames.max_ms;
+  r.protocol_sha256 = t.protocol_sha256;
+  r.excluded = t.excluded;
+  return r;
 }
 
 }  // namespace
 
-Result<StudyData> read_study(const std::string& path) {
-  Conn c;
-  c.path = path;
-  // Read-write without CREATE, made read-only by query_only (as the store's read-only connections,
-  // study/store/detail/readonly.cpp): a SQLITE_OPEN_READONLY connection cannot checkpoint, so as the
-  // last one to close it would leave -wal and -shm behind. A write-protected file opens read-only.
-  if (sqlite3_open_v2(path.c_str(), &c.db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
-    return c.error("opening the database");
-  if (sqlite3_exec(c.db, "PRAGMA query_only = ON", nullptr, nullptr, nullptr) != SQLITE_OK)
-    return c.error("making the connection read-only");
-  sqlite3_busy_timeout(c.db, 10000);
-  if (sqlite3_exec(c.db, "BEGIN", nullptr, nullptr, nullptr) != SQLITE_OK) return c.error("starting a read transaction");
+Result<std::vector<store::Revision>> design_revisions(store::StudyReader& reader) {
+  auto revs = reader.revisions();
+  if (!revs) return revs.error();
+  std::vector<store::Revision> out;  // index k-1: the latest row of design revision k
+  for (const store::Revision& r : *revs) {
+    const int k = r.design_revision > 0 ? r.design_revision : static_cast<int>(out.size()) + 1;
+    if (static_cast<int>(out.size()) < k) out.resize(static_cast<std::size_t>(k));
+    out[static_cast<std::size_t>(k - 1)] = r;
+  }
+  if (out.empty())
+    return Error{reader.path(), 0, 0, "studies", "the database records no protocol (no study was ever started)"};
+  return out;
+}
+
+Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with_excluded) {
+  auto designs = design_revisions(reader);
+  if (!designs) return designs.error();
+  if (revision < 1 || revision > static_cast<int>(designs->size()))
+    return Error{reader.path(), 0, 0, "revision",
+                 "the database has design revision" + std::string(designs->size() == 1 ? " 1" : "s 1.." +
+                     std::to_string(designs->size())) + "; there is no revision " + std::to_string(revision),
+                 ErrorKind::not_found};
+  const store::Revision& latest = (*designs)[static_cast<std::size_t>(revision - 1)];
+  auto revs = reader.revisions();
+  if (!revs) return revs.error();
+  std::set<std::int64_t> studies;  // the protocol texts (study rows) of this design revision
+  auto in_revision = [&](const store::Revision& r) {
+    return r.design_revision == revision || (r.design_revision == 0 && r.study_id == latest.study_id);
+  };
+  for (const store::Revision& r : *revs)
+    if (in_revision(r)) studies.insert(r.study_id);
 
   StudyData d;
-  d.path = path;
-  std::int64_t study_id = -1;
-  std::string protocol_text, sha;
-  Status s = each_row(c, "SELECT id, protocol_text, protocol_sha256, software_version, "
-                         "(SELECT count(*) FROM studies) FROM studies ORDER BY id DESC LIMIT 1",
-                      "reading the protocol record", [&](const Query& q) {
-                        study_id = q.int64(0);
-                        protocol_text = q.text(1);
-                        sha = q.text(2);
-                        d.software_version = q.text(3);
-                        d.studies = static_cast<int>(q.int64(4));
-                      });
-  if (!s) return s.error();
-  if (study_id < 0) return Error{path, 0, 0, "studies", "the database records no protocol (no study was ever started)"};
-  auto proto = protocol::load_protocol_text(protocol_text, path + " (recorded protocol)");
+  d.path = reader.path();
+  d.design_revision = revision;
+  d.design_revisions = static_cast<int>(designs->size());
+  d.protocol_texts = static_cast<int>(studies.size());
+  d.software_version = latest.software_version;
+  d.with_excluded = with_excluded;
+  auto proto = protocol::load_protocol_text(latest.protocol_text, reader.path() + " (recorded protocol)");
   if (!proto) {
     Error e = proto.error();
     e.message = "the protocol recorded in the database does not load: " + e.message;
@@ -105,102 +108,75 @@ Result<StudyData> read_study(const std::string& path) {
   }
   d.protocol = std::move(*proto);
 
-  s = each_row(c,
-               "SELECT pa.participant, pa.enrollment_index, pa.order_row, pa.released_at IS NOT NULL, pa.demographics, "
-               "coalesce(s.status, ''), "
-               "(SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id), "
-               "(SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-               " WHERE p.session_id = s.id), "
-               "(SELECT count(*) FROM session_resumes x WHERE x.session_id = s.id), coalesce(s.software_version, '') "
-               "FROM participants pa LEFT JOIN sessions s ON s.participant_id = pa.id "
-               "WHERE coalesce(s.study_id, pa.study_id) = " + std::to_string(study_id) +
-                   " ORDER BY pa.enrollment_index",
-               "reading the participant ledger", [&](const Query& q) {
-                 ParticipantRow p;
-                 p.id = q.text(0);
-                 p.index = static_cast<int>(q.int64(1));
-                 p.order_row = static_cast<int>(q.int64(2));
-                 p.released = q.int64(3) != 0;
-                 p.demographics = parse_demographics(q.text(4));
-                 p.session_status = q.text(5);
-                 p.planned = static_cast<int>(q.int64(6));
-                 p.recorded = static_cast<int>(q.int64(7));
-                 p.resumes = static_cast<int>(q.int64(8));
-                 p.software_version = q.text(9);
-                 d.participants.push_back(std::move(p));
-               });
-  if (!s) return s.error();
-
-  // The trial table: the view's columns by name, factor columns in protocol order.
-  std::string sql = "SELECT participant, enrollment_index, order_row, session_status, position, block, ";
-  for (const auto& f : d.protocol.factors) {
-    // A factor missing from the view (cannot happen for the current protocol) reads as NULL.
-    sql += quote_identifier(f.name) + ", ";
+  auto ledger = reader.ledger();
+  if (!ledger) return ledger.error();
+  auto sessions = reader.sessions();
+  if (!sessions) return sessions.error();
+  std::map<std::string, const store::SessionRecord*> session_of;
+  for (const auto& s : *sessions) session_of[s.participant] = &s;
+  std::set<std::string> members;
+  for (const store::LedgerEntry& e : *ledger) {
+    const auto it = session_of.find(e.participant);
+    const std::int64_t study = it != session_of.end() ? it->second->study_id : e.study_id;
+    if (!studies.count(study)) continue;
+    members.insert(e.participant);
+    ParticipantRow p;
+    p.id = e.participant;
+    p.index = e.index;
+    p.order_row = e.order_row;
+    p.released = e.released_at.has_value();
+    for (const auto& [k, v] : e.demographics) p.demographics[k] = v;
+    if (it != session_of.end()) {
+      p.session_status = status_text(it->second->status);
+      p.planned = it->second->planned;
+      p.recorded = it->second->recorded;
+      p.resumes = static_cast<int>(it->second->resumes.size());
+      p.software_version = it->second->software_version;
+    }
+    d.participants.push_back(std::move(p));
   }
-  sql +=
-      "task, trial, practice, method, answer_count, answer_letter, answer_x, answer_z, truth_count, "
-      "truth_letter, truth_x, truth_z, rel_error, signed_error, correct, distance, completion_time_s, frame_count, "
-      "frame_ms_mean, frame_ms_sd, frame_ms_p95, frame_ms_max, protocol_sha256 "
-      "FROM trial_table ORDER BY enrollment_index, position";
-  const int nf = static_cast<int>(d.protocol.factors.size());
-  s = each_row(c, sql, "reading trial_table", [&](const Query& q) {
-    TrialRow t;
-    t.participant = q.text(0);
-    t.enrollment_index = static_cast<int>(q.int64(1));
-    t.order_row = static_cast<int>(q.int64(2));
-    t.session_status = q.text(3);
-    t.position = static_cast<int>(q.int64(4));
-    t.block = static_cast<int>(q.int64(5));
-    for (int f = 0; f < nf; ++f) {
-      t.levels.push_back(q.text(6 + f));
-      const auto& lv = d.protocol.factors[static_cast<size_t>(f)].levels;
-      int idx = -1;
-      for (size_t l = 0; l < lv.size(); ++l)
-        if (lv[l] == t.levels.back()) idx = static_cast<int>(l);
-      t.level_index.push_back(idx);
-    }
-    int k = 6 + nf;
-    t.task = q.text(k++);
-    t.trial = static_cast<int>(q.int64(k++));
-    t.practice = q.int64(k++) != 0;
-    t.method = q.text(k++);
-    t.answer_count = q.opt_int(k++);
-    t.answer_letter = q.opt_text(k++);
-    t.answer_x = q.opt_real(k++);
-    t.answer_z = q.opt_real(k++);
-    t.truth_count = q.opt_int(k++);
-    t.truth_letter = q.opt_text(k++);
-    t.truth_x = q.opt_real(k++);
-    t.truth_z = q.opt_real(k++);
-    t.rel_error = q.opt_real(k++);
-    t.signed_error = q.opt_int(k++);
-    if (!q.null(k)) t.correct = q.int64(k) != 0;
-    ++k;
-    t.distance = q.opt_real(k++);
-    t.time_s = q.real(k++);
-    t.frame_count = q.int64(k++);
-    t.frame_mean = q.opt_real(k++);
-    t.frame_sd = q.opt_real(k++);
-    t.frame_p95 = q.opt_real(k++);
-    t.frame_max = q.opt_real(k++);
-    t.protocol_sha256 = q.text(k++);
-    if (t.protocol_sha256 != sha) {
-      ++d.other_protocol_trials;
-      return;
-    }
-    d.trials.push_back(std::move(t));
-  });
-  if (!s) return s.error();
 
-  s = each_row(c,
-               "SELECT pa.participant, q.item, q.scope, q.value_number, q.value_text FROM questionnaire_answers q "
-               "JOIN sessions s ON s.id = q.session_id JOIN participants pa ON pa.id = s.participant_id "
-               "WHERE s.study_id = " + std::to_string(study_id) + " ORDER BY pa.enrollment_index, q.item, q.scope",
-               "reading questionnaire_answers", [&](const Query& q) {
-                 d.answers.push_back({q.text(0), q.text(1), q.text(2), q.opt_real(3), q.opt_text(4)});
-               });
-  if (!s) return s.error();
-  sqlite3_exec(c.db, "COMMIT", nullptr, nullptr, nullptr);
+  auto exclusions = reader.exclusions();
+  if (!exclusions) return exclusions.error();
+  std::map<std::string, bool> participant_out;  // the latest decision about each participant as a whole
+  for (const store::Exclusion& x : *exclusions) {
+    if (!members.count(x.participant)) continue;
+    d.exclusions.push_back(x);
+    if (!x.position) participant_out[x.participant] = x.exclude;
+  }
+  for (const auto& [who, out] : participant_out)
+    if (out) d.excluded_participants.push_back(who);
+
+  auto trials = reader.trials();
+  if (!trials) return trials.error();
+  for (const store::TrialRow& t : *trials) {
+    if (!members.count(t.participant)) {
+      ++d.other_revision_trials;
+      continue;
+    }
+    if (t.excluded) {
+      ++d.excluded_trials;
+      if (!with_excluded) continue;
+    }
+    d.trials.push_back(to_report_row(t, d.protocol));
+  }
+
+  auto answers = reader.questionnaire();
+  if (!answers) return answers.error();
+  const std::set<std::string> out(d.excluded_participants.begin(), d.excluded_participants.end());
+  for (const store::QuestionnaireRecord& a : *answers) {
+    if (!members.count(a.participant) || (!with_excluded && out.count(a.participant))) continue;
+    AnswerRow r{a.participant, a.item, a.scope, std::nullopt, std::nullopt};
+    if (const double* v = std::get_if<double>(&a.value)) r.number = *v;
+    else r.text = std::get<std::string>(a.value);
+    d.answers.push_back(std::move(r));
+  }
+  // Per participant (enrollment order), by item and scope.
+  std::map<std::string, int> order;
+  for (const auto& p : d.participants) order[p.id] = p.index;
+  std::stable_sort(d.answers.begin(), d.answers.end(), [&](const AnswerRow& a, const AnswerRow& b) {
+    return std::tie(order[a.participant], a.item, a.scope) < std::tie(order[b.participant], b.item, b.scope);
+  });
   return d;
 }
 

@@ -1,9 +1,9 @@
-// Everything the report reads from a study database, as plain values: the
-// current protocol (text, parsed), the participant ledger with sessions and
-// demographics, every recorded trial (the trial_table view) and the
-// questionnaire answers. Reads through SQLite with SQLITE_OPEN_READONLY inside
-// one read transaction (a consistent snapshot while a session writes); never
-// writes. Errors name the file; SQLite failures carry field "sqlite".
+// Everything the report reads from a study database, as plain values, for
+// ONE design revision (docs/store.md, "Protocol revisions"): the latest
+// protocol text of that revision (parsed), the participants whose session
+// (or enrollment) belongs to it, their recorded trials and questionnaire
+// answers, and the lab's exclusions. Read through the store's StudyReader
+// (one snapshot); never writes. Excluded data are left out unless asked for.
 #pragma once
 #include <cstdint>
 #include <map>
@@ -13,6 +13,7 @@
 
 #include "study/common/error.h"
 #include "study/protocol/protocol.h"
+#include "study/store/read.h"
 
 namespace dtlab::report::detail {
 
@@ -37,6 +38,7 @@ struct TrialRow {
   std::int64_t frame_count = 0;
   std::optional<double> frame_mean, frame_sd, frame_p95, frame_max;
   std::string protocol_sha256;
+  std::optional<std::string> excluded;  // the reason, when the trial or its participant is excluded (with_excluded)
 };
 
 struct ParticipantRow {
@@ -58,17 +60,26 @@ struct AnswerRow {
 
 struct StudyData {
   std::string path;
-  protocol::Protocol protocol;  // the current (latest) protocol of the file
-  std::string software_version; // that study's software version
-  int studies = 1;              // protocol records in the file (> 1 after an allowed protocol change)
-  std::vector<ParticipantRow> participants;  // enrollment order
-  std::vector<TrialRow> trials;              // every recorded trial of the current protocol, by index, position
-  long long other_protocol_trials = 0;       // recorded under an earlier protocol (not analysed)
-  std::vector<AnswerRow> answers;            // questionnaire answers of the current protocol's sessions
+  protocol::Protocol protocol;  // the latest protocol text of the analysed design revision
+  std::string software_version; // the software that recorded that text
+  int design_revision = 1;      // the analysed one, 1-based
+  int design_revisions = 1;     // distinct designs in the file (> 1 after an allowed design change)
+  int protocol_texts = 1;       // protocol texts of the analysed design (rewordings share a design)
+  std::vector<ParticipantRow> participants;  // of the analysed design, enrollment order
+  std::vector<TrialRow> trials;              // their recorded trials, by index, position
+  long long other_revision_trials = 0;       // recorded under another design revision (not analysed here)
+  std::vector<AnswerRow> answers;            // questionnaire answers of the analysed participants
+  std::vector<store::Exclusion> exclusions;  // every decision about the analysed participants, in order
+  std::vector<std::string> excluded_participants;  // excluded now (left out unless with_excluded)
+  long long excluded_trials = 0;             // recorded trials excluded now (theirs or their participant's)
+  bool with_excluded = false;                // excluded data are kept in `trials` and `answers`
 };
 
-// Reads the database at `path` (which must be a dtlab database: callers check
-// with store::export_trials_csv first, which names what is wrong).
-Result<StudyData> read_study(const std::string& path);
+// The 1-based design revisions of the database, with their latest revision row each.
+Result<std::vector<store::Revision>> design_revisions(store::StudyReader& reader);
+
+// Reads design revision `revision` (1-based) of the database. Excluded participants and trials
+// are dropped from `trials` and `answers` unless `with_excluded`.
+Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with_excluded);
 
 }  // namespace dtlab::report::detail

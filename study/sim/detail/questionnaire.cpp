@@ -21,13 +21,6 @@ struct Judgement {
   double margin = 0;  // |log ratio| of the two distance estimates
 };
 
-// The rendering factor's name, or "".
-std::string rendering_factor(const protocol::Protocol& p) {
-  for (const auto& f : p.factors)
-    if (f.role == protocol::FactorRole::rendering) return f.name;
-  return "";
-}
-
 bool matches(const design::PlannedTrial& t, const std::vector<std::pair<std::string, std::string>>& levels,
              const std::string& except) {
   for (const auto& [factor, level] : levels) {
@@ -105,7 +98,8 @@ Result<std::vector<session::QuestionAnswer>> SimulatedParticipant::answer_questi
     }
   }
 
-  const std::string rendering = rendering_factor(*spec.protocol);
+  const protocol::Factor* rendering_f = protocol::rendering_factor(*spec.protocol);
+  const std::string rendering = rendering_f ? rendering_f->name : std::string();
   std::vector<session::QuestionAnswer> answers;
   std::map<std::string, std::vector<double>> rating_of_level;  // level of the rendering factor -> ratings given
   for (const session::Question& q : spec.questions) {

@@ -9,11 +9,11 @@
 #include <cctype>
 #include <string_view>
 
+#include "study/store/detail/schema_sql.h"
 #include "study/store/detail/time.h"
 #include "study/store/store.h"
 
 namespace dtlab::store::detail {
-namespace {
 
 std::string iso_check(std::string_view column) {
   return std::string("CHECK (") + std::string(column) + " GLOB " + kIsoGlob + ")";
@@ -23,11 +23,12 @@ std::string iso_check_nullable(std::string_view column) {
   return std::string("CHECK (") + std::string(column) + " IS NULL OR " + std::string(column) + " GLOB " + kIsoGlob + ")";
 }
 
-// Lowercase hexadecimal of an exact length.
 std::string hex_check(std::string_view column, int length) {
   const std::string c(column);
   return "CHECK (length(" + c + ") = " + std::to_string(length) + " AND " + c + " NOT GLOB '*[^0-9a-f]*')";
 }
+
+namespace {
 
 std::string schema_v1() {
   std::string s;
@@ -277,6 +278,7 @@ const std::vector<Migration>& migrations() {
   static const std::vector<Migration> list = {
       {1, "schema v1: studies, ledger, sessions, planned trials, results, events, poses, questionnaire",
        &schema_v1},
+      {2, "schema v2: design hashes, exclusions, notes, pauses, trial attempts, session claims", &schema_v2},
   };
   return list;
 }
@@ -307,7 +309,7 @@ const std::vector<std::string>& fixed_trial_columns_after_factors() {
       "answer_count",  "answer_letter", "answer_x",     "answer_z",      "truth_count",   "truth_letter",
       "truth_x",       "truth_z",       "rel_error",    "signed_error",  "correct",       "distance",
       "completion_time_s", "started_at", "ended_at",    "frame_count",   "frame_ms_mean", "frame_ms_sd",
-      "frame_ms_p95",  "frame_ms_max",  "protocol_sha256"};
+      "frame_ms_p95",  "frame_ms_max",  "protocol_sha256", "design_revision", "excluded"};
   return c;
 }
 
@@ -344,6 +346,8 @@ Status migrate(Db& db, int from, const std::string& software_version) {
     st->bind(1, m.version).bind(2, m.description).bind(3, now_iso8601_utc()).bind(4, software_version);
     if (auto s = st->run(what); !s) return s;
   }
+  if (from < 2 && from >= 1)  // the v1 view lacks the v2 columns; a new file gets its view with the first study
+    if (auto s = create_trial_table_view(db); !s) return s;
   return db.exec("PRAGMA application_id = " + std::to_string(kApplicationId) +
                      "; PRAGMA user_version = " + std::to_string(kSchemaVersion),
                  "marking the file as a dtlab database");
@@ -377,12 +381,23 @@ Status create_trial_table_view(Db& db) {
       "  r.completion_s AS completion_time_s, r.started_at AS started_at, r.ended_at AS ended_at,\n"
       "  r.frame_count AS frame_count, r.frame_ms_mean AS frame_ms_mean, r.frame_ms_sd AS frame_ms_sd,\n"
       "  r.frame_ms_p95 AS frame_ms_p95, r.frame_ms_max AS frame_ms_max,\n"
-      "  st.protocol_sha256 AS protocol_sha256\n"
+      "  st.protocol_sha256 AS protocol_sha256,\n"
+      // Design revision: 1 + the number of distinct design hashes first recorded before this one's.
+      "  (SELECT count(*) FROM (SELECT 1 FROM study_designs d2 GROUP BY d2.design_sha256\n"
+      "     HAVING min(d2.study_id) <= (SELECT min(d3.study_id) FROM study_designs d3\n"
+      "                                 WHERE d3.design_sha256 = sd.design_sha256))) AS design_revision,\n"
+      // The latest decision about the participant wins over the trial's; an inclusion reads as NULL.
+      "  coalesce((SELECT CASE x.action WHEN 'exclude' THEN x.reason END FROM exclusions x\n"
+      "            WHERE x.participant_id = pa.id AND x.position IS NULL ORDER BY x.id DESC LIMIT 1),\n"
+      "           (SELECT CASE x.action WHEN 'exclude' THEN x.reason END FROM exclusions x\n"
+      "            WHERE x.participant_id = pa.id AND x.position = p.position ORDER BY x.id DESC LIMIT 1))\n"
+      "    AS excluded\n"
       "FROM trial_results r\n"
       "JOIN planned_trials p ON p.id = r.planned_trial_id\n"
       "JOIN sessions s ON s.id = p.session_id\n"
       "JOIN participants pa ON pa.id = s.participant_id\n"
-      "JOIN studies st ON st.id = s.study_id;";
+      "JOIN studies st ON st.id = s.study_id\n"
+      "LEFT JOIN study_designs sd ON sd.study_id = st.id;";
   return db.exec(sql, what);
 }
 

@@ -6,16 +6,30 @@
 
 namespace dtlab::store::detail {
 
+ErrorKind kind_of(int code) {
+  switch (code & 0xff) {
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED: return ErrorKind::busy;
+    case SQLITE_CONSTRAINT: return ErrorKind::conflict;  // a trigger or constraint refused the write
+    case SQLITE_NOTADB: return ErrorKind::invalid_input;
+    default: return ErrorKind::environment;
+  }
+}
+
 Error sqlite_error(sqlite3* db, const std::string& path, std::string_view what) {
   std::string msg(what);
   msg += ": ";
+  int code = SQLITE_NOMEM;
   if (db) {
+    code = sqlite3_extended_errcode(db);
     msg += sqlite3_errmsg(db);
-    msg += " (SQLite code " + std::to_string(sqlite3_extended_errcode(db)) + ")";
+    msg += " (SQLite code " + std::to_string(code) + ")";
+    if ((code & 0xff) == SQLITE_BUSY || (code & 0xff) == SQLITE_LOCKED)
+      msg += "; another process held the database past the busy timeout: try again";
   } else {
     msg += "out of memory";
   }
-  return Error{path, 0, 0, "sqlite", std::move(msg)};
+  return Error{path, 0, 0, "sqlite", std::move(msg), kind_of(code)};
 }
 
 Db& Db::operator=(Db&& o) noexcept {

@@ -15,8 +15,12 @@
 
 namespace dtlab::store::detail {
 
-// The Error for a failed SQLite call: file = path, field = "sqlite" (so
-// is_environment_error() recognises it), message = "<what>: <sqlite message>".
+// The ErrorKind of an SQLite result code: busy (BUSY, LOCKED), conflict (a
+// constraint or trigger refused the write), invalid_input (NOTADB), else environment.
+ErrorKind kind_of(int sqlite_code);
+
+// The Error for a failed SQLite call: file = path, field = "sqlite", message =
+// "<what>: <sqlite message>", kind from kind_of(the connection's last code).
 Error sqlite_error(sqlite3* db, const std::string& path, std::string_view what);
 
 // An open connection. Move-only; closes on destruction.
@@ -35,6 +39,7 @@ class Db {
 
   sqlite3* get() const { return db_; }
   const std::string& path() const { return path_; }
+  void set_path(std::string path) { path_ = std::move(path); }  // the name errors use (e.g. the file behind a URI)
   Error error(std::string_view what) const { return sqlite_error(db_, path_, what); }
 
   // Runs one or more statements that return no rows (DDL, PRAGMA setters).

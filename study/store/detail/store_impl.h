@@ -1,25 +1,47 @@
-// Store's private state, shared by store.cpp (open, ledger) and session.cpp
-// (sessions, trials). Holds the connection and the current study; nothing
-// else, so the database is the only place where study state lives.
+// Store's private state, shared by store.cpp (open, ledger), session.cpp
+// (sessions, trials), claim.cpp (who runs a session) and annotate.cpp (the
+// lab's decisions). Holds the connection, the current study, this Store's
+// identity as a claimant and the sessions it claims; nothing of the study
+// itself, so the database is the only place where study state lives.
 #pragma once
+#include <set>
 #include <string>
 #include <utility>
 
 #include "study/store/detail/sqlite.h"
+#include "study/store/read.h"
 #include "study/store/store.h"
 
 namespace dtlab::store {
 
+// Who claims a session: this process on this host, one Store of it (docs/store.md, "Claims").
+struct Claimant {
+  std::string host;
+  std::int64_t pid = 0;
+  std::string start_time;  // the process's start time (Linux: /proc/self/stat field 22); "" if unknown
+  std::string owner;       // host/pid/start_time/nonce: unique per Store object
+};
+Claimant make_claimant();
+
 struct Store::Impl {
   detail::Db db;
   std::string path;
-  StudyInfo study;           // the current protocol, as passed to open()
+  OpenOptions options;
+  StudyInfo study;           // the current protocol, as passed to open() (or read by open_existing())
   std::int64_t study_id = 0; // its row in `studies`
   bool broken = false;       // ERROR state: a ROLLBACK failed; only reopening recovers
   Error broken_error;
+  Claimant me = make_claimant();
+  std::set<std::int64_t> claimed;  // sessions this Store holds a claim on (released by the destructor)
+  StudyReader reader;
 
-  Error invalid(std::string field, std::string message) const {
-    return Error{path, 0, 0, std::move(field), std::move(message)};
+  Impl(detail::Db connection, std::string file, OpenOptions o)
+      : db(std::move(connection)), path(std::move(file)), options(std::move(o)),
+        reader(StudyReader::borrow(db, ReadOptions{options.design_hash_of, options.busy_timeout_ms})) {}
+  ~Impl();
+
+  Error invalid(std::string field, std::string message, ErrorKind kind = ErrorKind::invalid_input) const {
+    return Error{path, 0, 0, std::move(field), std::move(message), kind};
   }
 
   // Runs `body` inside BEGIN IMMEDIATE ... COMMIT; on any failure rolls back
@@ -35,10 +57,16 @@ struct Store::Impl {
       broken = true;
       broken_error = Error{path, 0, 0, "sqlite",
                            "the store is in the ERROR state: a ROLLBACK failed after \"" + st.error().message +
-                               "\"; committed trials are safe; close and reopen the database to recover"};
+                               "\"; committed trials are safe; close and reopen the database to recover",
+                           ErrorKind::environment};
     }
     return st;
   }
+
+  // Claims (claim.cpp); each runs inside the caller's write transaction.
+  Status take_claim(std::int64_t session_id, const std::string& who, bool take_over, bool* took_over);
+  Status renew_claim(std::int64_t session_id, const std::string& who);  // conflict unless ours
+  Status drop_claim(std::int64_t session_id);                           // ours only; no-op otherwise
 };
 
 }  // namespace dtlab::store

@@ -66,10 +66,13 @@ void build_study(const std::string& path, const StudySpec& spec) {
   info.protocol_id = proto->id;
   info.protocol_text = proto->source_text;
   info.protocol_sha256 = proto->sha256;
+  info.design_sha256 = protocol::design_sha256(*proto);
   info.software_version = "dtlab test";
   info.order_rows = design::order_rows(*proto);
   for (const auto& f : proto->factors) info.factors.push_back(f.name);
-  auto opened = store::Store::open(path, info);
+  store::OpenOptions options;
+  options.allow_protocol_change = spec.allow_protocol_change;
+  auto opened = store::Store::open(path, info, options);
   if (!opened) fail("opening " + path, opened.error());
   store::Store& s = *opened;
   const auto t0 = std::chrono::system_clock::now();

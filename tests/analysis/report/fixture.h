@@ -46,9 +46,11 @@ struct StudySpec {
   // The outcome of participant p's planned trial t; nullopt stops the session there (it stays running).
   std::function<std::optional<Outcome>(size_t p, const design::PlannedTrial& t)> trial;
   std::function<std::vector<store::QuestionnaireAnswer>(size_t p)> questionnaire;  // optional
+  bool allow_protocol_change = false;  // the database exists under another design: record this one beside it
 };
 
-// Writes the study into a new database at `path`; fails the test (and throws) on any store error.
+// Writes the study into the database at `path` (new, or of the same design, or any design when
+// allowed); fails the test (and throws) on any store error.
 void build_study(const std::string& path, const StudySpec& spec);
 
 // The text of a file of the repository (DTLAB_SOURCE_DIR-relative path).

@@ -202,6 +202,21 @@ per = ["month"]
   build_study(path, s);
 }
 
+void build_reference_participants(const std::string& path, const std::vector<std::string>& ids,
+                                  const std::string& protocol_text, bool allow_change) {
+  StudySpec s;
+  s.protocol_text = protocol_text;
+  s.participants = ids;
+  s.allow_protocol_change = allow_change;
+  s.trial = [](size_t p, const design::PlannedTrial& t) -> std::optional<Outcome> {
+    Outcome o;
+    o.time_s = 20.0 + t.position + static_cast<double>(p) + (level(t, "transparency") == "on" ? 0.0 : 3.0 * (p % 3));
+    reference_answers(p, t, o);
+    return o;
+  };
+  build_study(path, s);
+}
+
 void build_small_reference(const std::string& path, int n) {
   StudySpec s;
   s.protocol_text = source_file("protocols/elmqvist2008.toml");

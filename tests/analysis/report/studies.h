@@ -36,6 +36,10 @@ void build_pingouin_months(const std::string& path);
 
 // The reference protocol, `n` participants, every trial 20 + position seconds, no questionnaire.
 void build_small_reference(const std::string& path, int n);
+// The same for participants `ids` under `protocol_text` (a variant of the reference protocol), into
+// an existing database too; `allow_change` records a changed design beside the old one.
+void build_reference_participants(const std::string& path, const std::vector<std::string>& ids,
+                                  const std::string& protocol_text, bool allow_change = false);
 
 // Runs write_report into `out` (gnuplot from PATH); fails the test on error.
 nlohmann::json run_report(const std::string& db, const std::string& out);

@@ -1,0 +1,133 @@
+// design_sha256 (protocol.h): the canonical hash of everything in a protocol
+// that changes what a session runs -- factors, conditions, ordering, seeds,
+// time limits, training, every scene parameter, every rendering parameter,
+// the questionnaire's structure -- and of nothing else: comments, white
+// space, key order, the title, descriptions and prompt texts leave it
+// unchanged. The store uses it to tell a reworded protocol (sessions go on,
+// analyses pool) from a changed design. A new Protocol field that changes
+// what runs must be added here (tests/protocol/test_design_hash.cpp lists them).
+#include <cstdio>
+#include <string>
+
+#include "study/common/hash.h"
+#include "study/protocol/protocol.h"
+
+namespace dtlab::protocol {
+namespace {
+
+// key=value lines; strings length-prefixed (no escaping ambiguity), doubles in hex (exact).
+class Canon {
+ public:
+  void str(const std::string& key, const std::string& v) { line(key, std::to_string(v.size()) + ":" + v); }
+  void num(const std::string& key, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%a", v);
+    line(key, buf);
+  }
+  void integer(const std::string& key, long long v) { line(key, std::to_string(v)); }
+  void list(const std::string& key, const std::vector<std::string>& v) {
+    integer(key + ".size", static_cast<long long>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) str(key + "[" + std::to_string(i) + "]", v[i]);
+  }
+  void ints(const std::string& key, const std::vector<int>& v) {
+    integer(key + ".size", static_cast<long long>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) integer(key + "[" + std::to_string(i) + "]", v[i]);
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  void line(const std::string& key, const std::string& v) { text_ += key + "=" + v + "\n"; }
+  std::string text_;
+};
+
+void scene(Canon& c, const std::string& k, const SceneParams& s) {
+  c.str(k + ".kind", std::string(to_string(s.kind)));
+  c.integer(k + ".objects", s.objects);
+  c.num(k + ".extent", s.extent);
+  c.integer(k + ".grid_width", s.grid_width);
+  c.integer(k + ".grid_height", s.grid_height);
+  c.num(k + ".cell_size", s.cell_size);
+  c.list(k + ".object_kinds", s.object_kinds);
+  c.num(k + ".object_radius.min", s.object_radius.min);
+  c.num(k + ".object_radius.max", s.object_radius.max);
+  c.num(k + ".target_ratio.min", s.target_ratio.min);
+  c.num(k + ".target_ratio.max", s.target_ratio.max);
+  c.list(k + ".letters", s.letters);
+  c.integer(k + ".count_range.min", s.count_range.min);
+  c.integer(k + ".count_range.max", s.count_range.max);
+}
+
+}  // namespace
+
+std::string design_sha256(const Protocol& p) {
+  Canon c;
+  c.str("id", p.id);
+  c.integer("master_seed", static_cast<long long>(p.master_seed));
+  c.num("session_time_limit_s", p.session_time_limit_s);
+  c.integer("order_rows", declared_order_rows(p));
+  c.integer("factors.size", static_cast<long long>(p.factors.size()));
+  for (const Factor& f : p.factors) {
+    c.str("factor", f.name);
+    c.str("factor.role", std::string(to_string(f.role)));
+    c.list("factor.levels", f.levels);
+  }
+  for (const Condition& k : p.conditions) {
+    c.str("condition", k.name);
+    c.ints("condition.levels", k.levels);
+    c.integer("condition.scenario", k.scenario);
+    c.integer("condition.rendering", k.rendering);
+  }
+  const Ordering& o = p.order;
+  c.str("order.unit", std::string(to_string(o.unit)));
+  c.str("order.scheme", std::string(to_string(o.scheme)));
+  c.integer("order.rows", o.rows);
+  c.ints("order.fixed", o.fixed);
+  c.integer("order.block_factor", o.block_factor);
+  c.str("order.nested_scheme", std::string(to_string(o.nested_scheme)));
+  c.integer("order.nested_rows", o.nested_rows);
+  c.ints("order.nested_fixed", o.nested_fixed);
+  c.num("training.time_limit_s", p.training.time_limit_s);
+  c.integer("training.practice_trials", p.training.practice_trials);
+  for (const Scenario& s : p.scenarios) {
+    c.str("scenario", s.name);
+    scene(c, "scenario.scene", s.scene);
+    for (const Task& t : s.tasks) {
+      c.str("task", t.id);
+      c.str("task.type", std::string(to_string(t.type)));
+      c.integer("task.trials", t.trials);
+      scene(c, "task.scene", t.scene);
+    }
+  }
+  for (const Rendering& r : p.renderings) {
+    c.str("rendering", r.name);
+    c.str("rendering.method", r.method);
+    c.num("rendering.a0", r.a0);
+    c.num("rendering.aT", r.aT);
+    c.integer("rendering.gradient_width", r.gradient_width);
+    c.integer("rendering.mask_resolution", r.mask_resolution);
+    c.str("rendering.mask_shape", r.mask_shape);
+    c.str("rendering.mode", r.mode);
+    c.integer("rendering.layer_limit", r.layer_limit);
+  }
+  for (const QuestionnaireItem& q : p.questionnaire) {
+    c.str("item", q.id);
+    c.str("item.type", std::string(to_string(q.type)));
+    c.integer("item.scale_min", q.scale_min);
+    c.integer("item.scale_max", q.scale_max);
+    c.list("item.per", q.per);
+    c.str("item.factor", q.factor);
+    c.list("item.options", q.options);
+    c.str("item.scenario", q.scenario);
+    c.str("item.rendering", q.rendering);
+    c.integer("item.pairs", q.pairs);
+  }
+  return sha256_hex("dtlab design v1\n" + c.text());
+}
+
+std::optional<std::string> design_sha256_of_text(const std::string& text) {
+  auto p = load_protocol_text(text, "(recorded protocol)");
+  if (!p) return std::nullopt;
+  return design_sha256(p.value());
+}
+
+}  // namespace dtlab::protocol

@@ -1,0 +1,106 @@
+// The lab's decisions about recorded data (docs/store.md, "Exclusions and
+// notes"): excluding a participant or one trial from the analysis, taking
+// that back, and free-text notes. Each is one appended row with who, why and
+// when, in one transaction; nothing recorded is changed or deleted, so the
+// history of every decision stays in the file and the analysis applies the
+// latest one. Never: touches results, plans or sessions.
+#include <string>
+
+#include "study/store/detail/store_impl.h"
+#include "study/store/detail/time.h"
+
+namespace dtlab::store {
+
+using detail::Stmt;
+
+namespace {
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+// The participant's ledger row id; with a position, checks that their session plans it.
+Result<std::int64_t> participant_row(Store::Impl& m, const std::string& participant, std::optional<int> position) {
+  const char* what = "finding the participant";
+  auto q = Stmt::prepare(m.db, "SELECT id FROM participants WHERE participant = ?", what);
+  if (!q) return q.error();
+  q->bind(1, participant);
+  auto row = q->step(what);
+  if (!row) return row.error();
+  if (!*row) return m.invalid("participant", "unknown participant \"" + participant + "\"", ErrorKind::not_found);
+  const std::int64_t id = q->int64(0);
+  if (!position) return id;
+  auto t = Stmt::prepare(m.db,
+                         "SELECT count(*), (SELECT count(*) FROM planned_trials p2 JOIN sessions s2 ON s2.id = "
+                         "p2.session_id WHERE s2.participant_id = ?1) FROM planned_trials p JOIN sessions s ON s.id = "
+                         "p.session_id WHERE s.participant_id = ?1 AND p.position = ?2",
+                         what);
+  if (!t) return t.error();
+  t->bind(1, id).bind(2, *position);
+  if (auto r = t->step(what); !r) return r.error();
+  if (t->int64(0) == 0)
+    return m.invalid("trial", "participant \"" + participant + "\" has no planned trial " + std::to_string(*position) +
+                                  " (their session plans " + std::to_string(t->int64(1)) +
+                                  " trials, numbered from 1 as in `dtlab plan` and the export's position column)",
+                     ErrorKind::not_found);
+  return id;
+}
+
+Status decide(Store::Impl& m, const char* action, const std::string& participant, std::optional<int> position,
+              const std::string& reason, const std::string& by) {
+  const std::string why = trimmed(reason);
+  if (std::string(action) == "exclude" && why.empty())
+    return m.invalid("reason", "an exclusion needs a reason (what happened, e.g. \"misunderstood the task\")");
+  const std::string what = std::string(action) + " participant \"" + participant + "\"" +
+                           (position ? " trial " + std::to_string(*position) : std::string());
+  return m.write(what, [&]() -> Status {
+    auto id = participant_row(m, participant, position);
+    if (!id) return id.error();
+    auto ins = Stmt::prepare(m.db,
+                             "INSERT INTO exclusions (participant_id, position, action, reason, decided_by, decided_at) "
+                             "VALUES (?, ?, ?, ?, ?, ?)",
+                             what);
+    if (!ins) return ins.error();
+    ins->bind(1, *id).bind(2, position).bind(3, action).bind(4, why).bind(5, trimmed(by));
+    ins->bind(6, detail::now_iso8601_utc());
+    return ins->run(what);
+  });
+}
+
+}  // namespace
+
+Status Store::exclude(const std::string& participant_id, std::optional<int> position, const std::string& reason,
+                      const std::string& by) {
+  return decide(*impl_, "exclude", participant_id, position, reason, by);
+}
+
+Status Store::include(const std::string& participant_id, std::optional<int> position, const std::string& reason,
+                      const std::string& by) {
+  return decide(*impl_, "include", participant_id, position, reason, by);
+}
+
+Status Store::add_note(const std::string& participant_id, std::optional<int> position, const std::string& author,
+                       const std::string& text) {
+  Impl& m = *impl_;
+  const std::string body = trimmed(text);
+  if (body.empty()) return m.invalid("note", "the note is empty");
+  if (position && participant_id.empty()) return m.invalid("note", "a note about a trial needs its participant");
+  return m.write("adding a note", [&]() -> Status {
+    std::optional<std::int64_t> who;
+    if (!participant_id.empty()) {
+      auto id = participant_row(m, participant_id, position);
+      if (!id) return id.error();
+      who = *id;
+    }
+    auto ins = Stmt::prepare(m.db,
+                             "INSERT INTO notes (participant_id, position, author, text, written_at) VALUES (?, ?, ?, ?, ?)",
+                             "adding a note");
+    if (!ins) return ins.error();
+    ins->bind(1, who).bind(2, position).bind(3, trimmed(author)).bind(4, body).bind(5, detail::now_iso8601_utc());
+    return ins->run("adding a note");
+  });
+}
+
+}  // namespace dtlab::store

@@ -1,0 +1,182 @@
+// Session claims (docs/store.md, "Claims"): the one process that runs a
+// session holds its row in session_claims, taken in the same transaction that
+// begins or resumes the session and renewed by every trial it records. Any
+// other process that tries to run the session gets a busy Error naming the
+// holder, until the holder is gone (same host: its pid is dead or now another
+// process) or its claim expired (no renewal for claim_ttl_s). The claim is
+// operational state, not study data: it is the one row the store changes in
+// place and deletes (at finish, release, and when its Store is destroyed).
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "study/store/detail/store_impl.h"
+#include "study/store/detail/time.h"
+
+namespace dtlab::store {
+
+using detail::Stmt;
+
+namespace {
+
+// Fields 3 (state) and 22 (start time in clock ticks since boot) of /proc/<pid>/stat; empty where
+// there is no such process (or no /proc).
+struct ProcStat {
+  std::string state, start_time;
+};
+ProcStat proc_stat(std::int64_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto close = text.rfind(')');  // the command name may hold spaces and parentheses
+  ProcStat out;
+  if (close == std::string::npos) return out;
+  std::istringstream rest(text.substr(close + 2));
+  std::string field;
+  for (int i = 3; i <= 22 && rest >> field; ++i) {
+    if (i == 3) out.state = field;
+    if (i == 22) out.start_time = field;
+  }
+  return out;
+}
+
+std::string process_start_time(std::int64_t pid) { return proc_stat(pid).start_time; }
+
+std::string host_name() {
+  char buf[256] = {};
+  if (::gethostname(buf, sizeof buf - 1) != 0) return "localhost";
+  return buf;
+}
+
+// The start time recorded in an owner string host/pid/start/nonce.
+std::string owner_start_time(const std::string& owner) {
+  const auto a = owner.find('/', owner.find('/') + 1);
+  if (a == std::string::npos) return "";
+  const auto b = owner.find('/', a + 1);
+  return owner.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+}
+
+struct Holder {
+  std::string owner, host, claimed_at, heartbeat_at, expires_at;
+  std::int64_t pid = 0;
+};
+
+// True when the holder can no longer be running the session.
+bool gone(const Claimant& me, const Holder& h, const std::string& now) {
+  if (h.expires_at < now) return true;
+  if (h.host != me.host) return false;  // another machine: only expiry tells
+  if (::kill(static_cast<pid_t>(h.pid), 0) != 0 && errno == ESRCH) return true;
+  const ProcStat now_stat = proc_stat(h.pid);
+  if (now_stat.state == "Z" || now_stat.state == "X") return true;  // killed, not yet reaped: a zombie runs nothing
+  const std::string recorded = owner_start_time(h.owner);
+  return !recorded.empty() && !now_stat.start_time.empty() && recorded != now_stat.start_time;  // pid reused
+}
+
+std::string in_future(double seconds) {
+  return detail::iso8601_utc(std::chrono::system_clock::now() +
+                             std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000)));
+}
+
+}  // namespace
+
+Claimant make_claimant() {
+  static std::atomic<unsigned> counter{0};
+  Claimant c;
+  c.host = host_name();
+  c.pid = ::getpid();
+  c.start_time = process_start_time(c.pid);
+  std::random_device rd;
+  std::ostringstream owner;
+  owner << c.host << '/' << c.pid << '/' << c.start_time << '/' << std::hex << rd() << counter++;
+  c.owner = owner.str();
+  return c;
+}
+
+Status Store::Impl::take_claim(std::int64_t session_id, const std::string& who, bool take_over, bool* took_over) {
+  const char* what = "claiming the session";
+  auto q = Stmt::prepare(db,
+                         "SELECT owner, host, pid, claimed_at, heartbeat_at, expires_at FROM session_claims "
+                         "WHERE session_id = ?",
+                         what);
+  if (!q) return q.error();
+  q->bind(1, session_id);
+  auto row = q->step(what);
+  if (!row) return row.error();
+  const std::string now = detail::now_iso8601_utc();
+  if (*row) {
+    Holder h{q->text(0), q->text(1), q->text(3), q->text(4), q->text(5), q->int64(2)};
+    if (h.owner != me.owner && !take_over && !gone(me, h, now))
+      return invalid(kClaimField,
+                     "the session of \"" + who + "\" is being run by process " + std::to_string(h.pid) + " on host " +
+                         h.host + " (claimed " + h.claimed_at + ", last heartbeat " + h.heartbeat_at +
+                         "); wait for it to finish, or take it over once it is gone (its claim expires at " +
+                         h.expires_at + " unless renewed)",
+                     ErrorKind::busy);
+    if (took_over) *took_over = h.owner != me.owner;
+  }
+  auto up = Stmt::prepare(db,
+                          "INSERT OR REPLACE INTO session_claims (session_id, owner, host, pid, claimed_at, "
+                          "heartbeat_at, expires_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                          what);
+  if (!up) return up.error();
+  up->bind(1, session_id).bind(2, me.owner).bind(3, me.host).bind(4, me.pid).bind(5, now).bind(6, now);
+  up->bind(7, in_future(options.claim_ttl_s));
+  if (auto s = up->run(what); !s) return s;
+  claimed.insert(session_id);
+  return {};
+}
+
+Status Store::Impl::renew_claim(std::int64_t session_id, const std::string& who) {
+  const char* what = "renewing the session claim";
+  auto up = Stmt::prepare(db, "UPDATE session_claims SET heartbeat_at = ?, expires_at = ? WHERE session_id = ? AND owner = ?",
+                          what);
+  if (!up) return up.error();
+  up->bind(1, detail::now_iso8601_utc()).bind(2, in_future(options.claim_ttl_s)).bind(3, session_id).bind(4, me.owner);
+  if (auto s = up->run(what); !s) return s;
+  if (sqlite3_changes(db.get()) == 1) return {};
+  claimed.erase(session_id);
+  return invalid("session",
+                 "the session of \"" + who + "\" is no longer claimed by this process (taken over by another, or "
+                 "released); stop running it: the other process or a rerun continues it",
+                 ErrorKind::conflict);
+}
+
+Status Store::Impl::drop_claim(std::int64_t session_id) {
+  auto del = Stmt::prepare(db, "DELETE FROM session_claims WHERE session_id = ? AND owner = ?", "releasing the claim");
+  if (!del) return del.error();
+  del->bind(1, session_id).bind(2, me.owner);
+  if (auto s = del->run("releasing the claim"); !s) return s;
+  claimed.erase(session_id);
+  return {};
+}
+
+Store::Impl::~Impl() {
+  // Best effort: a claim left behind is taken over anyway once this process is gone.
+  if (claimed.empty() || broken) return;
+  sqlite3_busy_timeout(db.get(), 2000);
+  const std::set<std::int64_t> ids = claimed;
+  write("releasing the session claims", [&]() -> Status {
+    for (std::int64_t id : ids)
+      if (auto s = drop_claim(id); !s) return s;
+    return {};
+  });
+}
+
+Status Store::heartbeat(const Session& session) {
+  Impl& m = *impl_;
+  return m.write("renewing the claim on session " + std::to_string(session.id),
+                 [&]() -> Status { return m.renew_claim(session.id, session.participant_id); });
+}
+
+Status Store::release_claim(const Session& session) {
+  Impl& m = *impl_;
+  return m.write("releasing the claim on session " + std::to_string(session.id),
+                 [&]() -> Status { return m.drop_claim(session.id); });
+}
+
+}  // namespace dtlab::store

@@ -1,0 +1,618 @@
+// StudyReader (read.h): opening a study database for reading and the typed
+// reads. An owned reader holds one read transaction (its snapshot) from open
+// until refresh() or destruction; the reader a Store lends (Store::read())
+// borrows the Store's connection and wraps each call in its own short read
+// transaction, so it never holds a snapshot across the Store's writes.
+#include "study/store/read.h"
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "study/store/detail/file_check.h"
+#include "study/store/detail/reader_impl.h"
+
+namespace dtlab::store {
+
+using detail::Db;
+using detail::Stmt;
+
+namespace {
+
+std::uint64_t parse_seed(const std::string& s) {
+  std::uint64_t v = 0;
+  std::from_chars(s.data(), s.data() + s.size(), v);  // the schema guarantees 1-20 digits
+  return v;
+}
+
+SessionStatus parse_status(const std::string& s) {
+  if (s == "finished") return SessionStatus::finished;
+  if (s == "abandoned") return SessionStatus::abandoned;
+  return SessionStatus::running;
+}
+
+InputEvent::Kind parse_kind(const std::string& s) {
+  using K = InputEvent::Kind;
+  for (K k : {K::key_down, K::key_up, K::button_down, K::button_up, K::cursor, K::scroll, K::answer})
+    if (s == to_string(k)) return k;
+  return K::key_down;
+}
+
+std::optional<std::string> opt_text(const Stmt& st, int c) {
+  return st.is_null(c) ? std::nullopt : std::optional<std::string>(st.text(c));
+}
+std::optional<double> opt_real(const Stmt& st, int c) {
+  return st.is_null(c) ? std::nullopt : std::optional<double>(st.real(c));
+}
+std::optional<std::int64_t> opt_int(const Stmt& st, int c) {
+  return st.is_null(c) ? std::nullopt : std::optional<std::int64_t>(st.int64(c));
+}
+
+Demographics parse_demographics(const std::string& text) {
+  Demographics out;
+  const auto j = nlohmann::ordered_json::parse(text, nullptr, false);
+  if (!j.is_object()) return out;
+  for (const auto& [k, v] : j.items()) out.emplace_back(k, v.is_string() ? v.get<std::string>() : v.dump());
+  return out;
+}
+
+// Runs `sql` with `bind` applied, calling row(st) per result row.
+template <class Bind, class Row>
+Status each_row(Db& db, const std::string& sql, const char* what, Bind&& bind, Row&& row) {
+  auto st = Stmt::prepare(db, sql, what);
+  if (!st) return st.error();
+  bind(*st);
+  for (;;) {
+    auto r = st->step(what);
+    if (!r) return r.error();
+    if (!*r) return {};
+    row(*st);
+  }
+}
+
+auto no_bind = [](Stmt&) {};
+
+// The answer of one kind from four columns (count, letter, x, z) starting at `c`.
+std::optional<Answer> read_answer(const Stmt& st, const std::string& kind, int c) {
+  if (kind == "count") {
+    if (st.is_null(c)) return std::nullopt;
+    return Answer{Count{st.int64(c)}};
+  }
+  if (kind == "letter") {
+    if (st.is_null(c + 1)) return std::nullopt;
+    return Answer{Letter{st.text(c + 1)}};
+  }
+  if (st.is_null(c + 2) || st.is_null(c + 3)) return std::nullopt;
+  return Answer{Position{st.real(c + 2), st.real(c + 3)}};
+}
+
+std::string uri_escape(const std::string& path) {
+  std::string out = "file:";
+  for (unsigned char ch : path) {
+    if (ch == '?' || ch == '#' || ch == '%' || ch < 0x20) {
+      char buf[4];
+      std::snprintf(buf, sizeof buf, "%%%02X", ch);
+      out += buf;
+    } else {
+      out += static_cast<char>(ch);
+    }
+  }
+  return out;
+}
+
+// Opens `path` for reading only, choosing how so that nothing is left behind:
+// writable file in a writable directory -> read-write without CREATE, made
+// read-only by query_only (as the last connection it checkpoints and removes
+// -wal/-shm like any writer; a SQLITE_OPEN_READONLY connection could not);
+// otherwise (read-only media, a write-protected file) -> immutable when no
+// write-ahead log is waiting, plain read-only when one is.
+Result<Db> open_for_reading(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p(path);
+  if (!fs::exists(p, ec))
+    return Error{path, 0, 0, "", "no such file; expected an existing dtlab study database", ErrorKind::not_found};
+  if (fs::is_directory(p, ec)) return Error{path, 0, 0, "", "is a directory; expected a dtlab study database file"};
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  const bool writable = ::access(path.c_str(), W_OK) == 0 && ::access(dir.c_str(), W_OK) == 0;
+  if (writable) {
+    auto db = Db::open(path, SQLITE_OPEN_READWRITE);
+    if (!db) return db.error();
+    if (auto s = db->exec("PRAGMA query_only = ON", "making the connection read-only"); !s) return s.error();
+    return db;
+  }
+  const bool wal_waiting = fs::exists(path + "-wal", ec) && fs::file_size(path + "-wal", ec) > 0;
+  const std::string uri = uri_escape(path) + (wal_waiting ? "?mode=ro" : "?mode=ro&immutable=1");
+  auto db = Db::open(uri, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
+  if (!db) {
+    Error e = db.error();
+    e.file = path;
+    if (wal_waiting)
+      e.message += "; the file has an unfinished write-ahead log (" + path +
+                   "-wal) in a directory this process cannot write: copy the database and its -wal file to a "
+                   "writable place and read it there";
+    return e;
+  }
+  db->set_path(path);
+  return db;
+}
+
+}  // namespace
+
+bool LedgerEntry::simulated() const {
+  for (const auto& [k, v] : demographics)
+    if (k == "simulated") return v == "true" || v == "1" || v == "yes";
+  return false;
+}
+
+double SessionRecord::paused_s() const {
+  double s = 0;
+  for (const Pause& p : pauses) s += p.duration_s;
+  return s;
+}
+
+std::string TrialRow::level(const std::string& factor) const {
+  for (const auto& [f, l] : planned.levels)
+    if (f == factor) return l;
+  return "";
+}
+
+// --- Impl -----------------------------------------------------------------------------
+
+Status StudyReader::Impl::begin() {
+  if (in_snapshot || !owned) return {};
+  if (auto s = db->exec("BEGIN", "starting a read transaction"); !s) return s;
+  // The snapshot starts at the first read: take it now, so every call sees the same one.
+  if (auto s = db->query_int("SELECT count(*) FROM sqlite_schema", "starting a read transaction"); !s) {
+    db->exec("ROLLBACK", "ending the read transaction");
+    return s.error();
+  }
+  in_snapshot = true;
+  return {};
+}
+
+void StudyReader::Impl::end() {
+  if (!in_snapshot) return;
+  db->exec("COMMIT", "ending the read transaction");
+  in_snapshot = false;
+}
+
+template <class F>
+auto StudyReader::Impl::call(F&& f) -> decltype(f()) {
+  // A borrowed connection reads each outermost call in a short transaction of its own (unless its
+  // Store is inside one); an owned one reads in its snapshot.
+  const bool own_tx = !owned && depth == 0 && sqlite3_get_autocommit(db->get());
+  if (own_tx)
+    if (auto s = db->exec("BEGIN", "starting a read transaction"); !s) return s.error();
+  ++depth;
+  auto r = f();
+  --depth;
+  if (own_tx) db->exec("COMMIT", "ending the read transaction");
+  return r;
+}
+
+StudyReader::StudyReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+StudyReader::StudyReader(StudyReader&&) noexcept = default;
+StudyReader& StudyReader::operator=(StudyReader&&) noexcept = default;
+StudyReader::~StudyReader() {
+  if (impl_) impl_->end();
+}
+
+StudyReader StudyReader::borrow(detail::Db& db, ReadOptions options) {
+  auto impl = std::make_unique<Impl>();
+  impl->db = &db;
+  impl->owned = false;
+  impl->options = std::move(options);
+  return StudyReader(std::move(impl));
+}
+
+Result<StudyReader> StudyReader::open(const std::string& path, ReadOptions options) {
+  auto db = open_for_reading(path);
+  if (!db) return db.error();
+  sqlite3_busy_timeout(db->get(), options.busy_timeout_ms);
+  auto state = detail::inspect(*db);
+  if (!state) return state.error();
+  if (auto s = detail::check_dtlab(path, *state, false); !s) return s.error();
+  auto impl = std::make_unique<Impl>();
+  impl->own = std::move(*db);
+  impl->db = &impl->own;
+  impl->owned = true;
+  impl->options = std::move(options);
+  impl->schema_version = std::max(state->user_version, state->migrations);
+  if (auto s = impl->begin(); !s) return s.error();
+  return StudyReader(std::move(impl));
+}
+
+const std::string& StudyReader::path() const { return impl_->db->path(); }
+int StudyReader::schema_version() const { return impl_->schema_version; }
+
+Status StudyReader::refresh() {
+  impl_->end();
+  impl_->revisions.reset();
+  return impl_->begin();
+}
+
+Result<std::vector<Revision>> StudyReader::Impl::read_revisions() {
+  if (owned && revisions) return *revisions;
+  std::vector<Revision> out;
+  const bool v2 = schema_version >= 2;
+  const std::string sql = std::string("SELECT s.id, s.protocol_id, s.protocol_text, s.protocol_sha256, ") +
+                          (v2 ? "d.design_sha256" : "NULL") +
+                          ", s.software_version, s.order_rows, s.created_at FROM studies s " +
+                          (v2 ? "LEFT JOIN study_designs d ON d.study_id = s.id " : "") + "ORDER BY s.id";
+  Status st = each_row(*db, sql, "reading the protocol revisions", no_bind, [&](const Stmt& q) {
+    Revision r;
+    r.study_id = q.int64(0);
+    r.protocol_id = q.text(1);
+    r.protocol_text = q.text(2);
+    r.protocol_sha256 = q.text(3);
+    r.design_sha256 = q.is_null(4) ? "" : q.text(4);
+    r.software_version = q.text(5);
+    r.order_rows = static_cast<int>(q.int64(6));
+    r.created_at = q.text(7);
+    out.push_back(std::move(r));
+  });
+  if (!st) return st.error();
+  std::map<std::int64_t, std::vector<std::string>> factors;
+  st = each_row(*db, "SELECT study_id, name FROM study_factors ORDER BY study_id, position", "reading the factors",
+                no_bind, [&](const Stmt& q) { factors[q.int64(0)].push_back(q.text(1)); });
+  if (!st) return st.error();
+  std::vector<std::string> designs;  // distinct design hashes in order of first appearance
+  for (Revision& r : out) {
+    r.factors = factors[r.study_id];
+    if (r.design_sha256.empty() && options.design_hash_of)
+      r.design_sha256 = options.design_hash_of(r.protocol_text).value_or("");
+    if (r.design_sha256.empty()) continue;
+    auto it = std::find(designs.begin(), designs.end(), r.design_sha256);
+    if (it == designs.end()) it = designs.insert(designs.end(), r.design_sha256);
+    r.design_revision = static_cast<int>(it - designs.begin()) + 1;
+  }
+  if (owned) revisions = out;
+  return out;
+}
+
+Result<std::vector<Revision>> StudyReader::revisions() {
+  return impl_->call([&] { return impl_->read_revisions(); });
+}
+
+Result<std::vector<LedgerEntry>> StudyReader::ledger() {
+  return impl_->call([&]() -> Result<std::vector<LedgerEntry>> {
+    std::vector<LedgerEntry> out;
+    Status st = each_row(*impl_->db,
+                         "SELECT participant, enrollment_index, order_row, study_id, demographics, enrolled_at, "
+                         "released_at FROM participants ORDER BY enrollment_index",
+                         "reading the participant ledger", no_bind, [&](const Stmt& q) {
+                           LedgerEntry e;
+                           e.participant = q.text(0);
+                           e.index = static_cast<int>(q.int64(1));
+                           e.order_row = static_cast<int>(q.int64(2));
+                           e.study_id = q.int64(3);
+                           e.demographics = parse_demographics(q.text(4));
+                           e.enrolled_at = q.text(5);
+                           e.released_at = opt_text(q, 6);
+                           out.push_back(std::move(e));
+                         });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::vector<SessionRecord>> StudyReader::sessions() {
+  return impl_->call([&]() -> Result<std::vector<SessionRecord>> {
+    Db& db = *impl_->db;
+    std::vector<SessionRecord> out;
+    std::map<std::int64_t, std::size_t> at;
+    Status st = each_row(
+        db,
+        "SELECT s.id, pa.participant, s.study_id, s.software_version, s.status, s.started_at, s.ended_at, "
+        "(SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id), "
+        "(SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+        " WHERE p.session_id = s.id) "
+        "FROM sessions s JOIN participants pa ON pa.id = s.participant_id ORDER BY pa.enrollment_index",
+        "reading the sessions", no_bind, [&](const Stmt& q) {
+          SessionRecord r;
+          r.id = q.int64(0);
+          r.participant = q.text(1);
+          r.study_id = q.int64(2);
+          r.software_version = q.text(3);
+          r.status = parse_status(q.text(4));
+          r.started_at = q.text(5);
+          r.ended_at = opt_text(q, 6);
+          r.planned = static_cast<int>(q.int64(7));
+          r.recorded = static_cast<int>(q.int64(8));
+          at[r.id] = out.size();
+          out.push_back(std::move(r));
+        });
+    if (!st) return st.error();
+    st = each_row(db, "SELECT session_id, resumed_at, software_version, next_position FROM session_resumes "
+                      "ORDER BY rowid", "reading the resumes", no_bind, [&](const Stmt& q) {
+      if (auto it = at.find(q.int64(0)); it != at.end()) {
+        auto next = opt_int(q, 3);
+        out[it->second].resumes.push_back(
+            Resume{q.text(1), q.text(2), next ? std::optional<int>(static_cast<int>(*next)) : std::nullopt});
+      }
+    });
+    if (!st) return st.error();
+    if (impl_->schema_version < 2) return out;
+    st = each_row(db, "SELECT session_id, position, paused_at, resumed_at, duration_s FROM session_pauses "
+                      "ORDER BY rowid", "reading the pauses", no_bind, [&](const Stmt& q) {
+      if (auto it = at.find(q.int64(0)); it != at.end()) {
+        auto pos = opt_int(q, 1);
+        out[it->second].pauses.push_back(Pause{pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
+                                               q.text(2), q.text(3), q.real(4)});
+      }
+    });
+    if (!st) return st.error();
+    st = each_row(db, "SELECT session_id, owner, host, pid, claimed_at, heartbeat_at, expires_at FROM session_claims",
+                  "reading the session claims", no_bind, [&](const Stmt& q) {
+                    if (auto it = at.find(q.int64(0)); it != at.end())
+                      out[it->second].claim = Claim{q.text(1), q.text(2), q.int64(3), q.text(4), q.text(5), q.text(6)};
+                  });
+    if (!st) return st.error();
+    // An attempt ended without a result when a later attempt of the same trial exists, or when it is
+    // the last one, has no result, and nobody runs the session now (unclaimed or no longer running).
+    st = each_row(db,
+                  "SELECT a.session_id, a.position, a.attempt, a.started_at, "
+                  " EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
+                  "         AND b.position = a.position AND b.attempt > a.attempt), "
+                  " EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+                  "         WHERE p.session_id = a.session_id AND p.position = a.position) "
+                  "FROM trial_attempts a ORDER BY a.session_id, a.position, a.attempt",
+                  "reading the trial attempts", no_bind, [&](const Stmt& q) {
+                    auto it = at.find(q.int64(0));
+                    if (it == at.end()) return;
+                    SessionRecord& s = out[it->second];
+                    const bool later = q.int64(4) != 0, result = q.int64(5) != 0;
+                    const bool in_progress = s.status == SessionStatus::running && s.claim.has_value();
+                    if (later || (!result && !in_progress))
+                      s.interruptions.push_back(
+                          Interruption{static_cast<int>(q.int64(1)), static_cast<int>(q.int64(2)), q.text(3)});
+                  });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& participant) {
+  return impl_->call([&]() -> Result<std::vector<PlannedRow>> {
+    Db& db = *impl_->db;
+    std::map<std::int64_t, std::vector<std::pair<std::string, std::string>>> levels;
+    const std::string filter = participant.empty() ? "" : " AND pa.participant = ?1";
+    Status st = each_row(db,
+                         "SELECT l.planned_trial_id, l.factor, l.level FROM planned_levels l "
+                         "JOIN planned_trials p ON p.id = l.planned_trial_id JOIN sessions s ON s.id = p.session_id "
+                         "JOIN participants pa ON pa.id = s.participant_id WHERE 1" + filter +
+                             " ORDER BY l.planned_trial_id, l.factor_position",
+                         "reading the planned levels",
+                         [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+                         [&](const Stmt& q) { levels[q.int64(0)].emplace_back(q.text(1), q.text(2)); });
+    if (!st) return st.error();
+    std::vector<PlannedRow> out;
+    st = each_row(db,
+                  "SELECT p.id, p.session_id, pa.participant, p.position, p.block, p.task, p.trial, p.seed, p.method, "
+                  "p.practice FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
+                  "JOIN participants pa ON pa.id = s.participant_id WHERE 1" + filter +
+                      " ORDER BY pa.enrollment_index, p.position",
+                  "reading the planned trials", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+                  [&](const Stmt& q) {
+                    PlannedRow r;
+                    r.session_id = q.int64(1);
+                    r.participant = q.text(2);
+                    r.trial.position = static_cast<int>(q.int64(3));
+                    r.trial.block = static_cast<int>(q.int64(4));
+                    r.trial.task = q.text(5);
+                    r.trial.trial = static_cast<int>(q.int64(6));
+                    r.trial.seed = parse_seed(q.text(7));
+                    r.trial.method = q.text(8);
+                    r.trial.practice = q.int64(9) != 0;
+                    r.trial.levels = std::move(levels[q.int64(0)]);
+                    out.push_back(std::move(r));
+                  });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::vector<Exclusion>> StudyReader::Impl::read_exclusions() {
+  std::vector<Exclusion> out;
+  if (schema_version < 2) return out;
+  Status st = each_row(*db,
+                       "SELECT x.id, pa.participant, x.position, x.action, x.reason, x.decided_by, x.decided_at "
+                       "FROM exclusions x JOIN participants pa ON pa.id = x.participant_id ORDER BY x.id",
+                       "reading the exclusions", no_bind, [&](const Stmt& q) {
+                         auto pos = opt_int(q, 2);
+                         out.push_back(Exclusion{q.int64(0), q.text(1),
+                                                 pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
+                                                 q.text(3) == "exclude", q.text(4), q.text(5), q.text(6)});
+                       });
+  if (!st) return st.error();
+  return out;
+}
+
+Result<std::vector<Exclusion>> StudyReader::exclusions() {
+  return impl_->call([&] { return impl_->read_exclusions(); });
+}
+
+Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant) {
+  return impl_->call([&]() -> Result<std::vector<TrialRow>> {
+    auto revs = impl_->read_revisions();
+    if (!revs) return revs.error();
+    auto excl = impl_->read_exclusions();
+    if (!excl) return excl.error();
+    auto plan = planned(participant);  // borrowed readers nest: a read inside a read transaction is fine
+    if (!plan) return plan.error();
+    std::map<std::pair<std::int64_t, int>, const design::PlannedTrial*> by_position;
+    for (const PlannedRow& p : *plan) by_position[{p.session_id, p.trial.position}] = &p.trial;
+    std::map<std::int64_t, const Revision*> rev;
+    for (const Revision& r : *revs) rev[r.study_id] = &r;
+    // The latest decision per (participant, position); position 0 = the participant as a whole.
+    std::map<std::pair<std::string, int>, const Exclusion*> decision;
+    for (const Exclusion& x : *excl) decision[{x.participant, x.position.value_or(0)}] = &x;
+    auto excluded = [&](const std::string& who, int position) -> std::optional<std::string> {
+      for (int p : {0, position})
+        if (auto it = decision.find({who, p}); it != decision.end() && it->second->exclude) return it->second->reason;
+      return std::nullopt;
+    };
+
+    std::vector<TrialRow> out;
+    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
+    Status st = each_row(
+        *impl_->db,
+        "SELECT pa.participant, pa.enrollment_index, pa.order_row, s.id, s.status, p.position, r.scene_hash, "
+        "r.answer_kind, r.answer_count, r.answer_letter, r.answer_x, r.answer_z, r.truth_count, r.truth_letter, "
+        "r.truth_x, r.truth_z, r.completion_s, r.started_at, r.ended_at, r.frame_count, r.frame_ms_mean, "
+        "r.frame_ms_sd, r.frame_ms_p95, r.frame_ms_max, r.event_count, s.study_id, st.protocol_sha256, "
+        "r.rel_error, r.signed_error, r.correct, r.distance "
+        "FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
+        "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
+        "JOIN studies st ON st.id = s.study_id" + filter + " ORDER BY pa.enrollment_index, p.position",
+        "reading the trial results", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+        [&](const Stmt& q) {
+          TrialRow t;
+          t.participant = q.text(0);
+          t.enrollment_index = static_cast<int>(q.int64(1));
+          t.order_row = static_cast<int>(q.int64(2));
+          t.session_id = q.int64(3);
+          t.session_status = parse_status(q.text(4));
+          const int position = static_cast<int>(q.int64(5));
+          if (auto it = by_position.find({t.session_id, position}); it != by_position.end()) t.planned = *it->second;
+          t.scene_hash = q.text(6);
+          const std::string kind = q.text(7);
+          t.answer = read_answer(q, kind, 8);
+          t.truth = read_answer(q, kind, 12).value_or(Answer{Count{0}});
+          t.scores.rel_error = opt_real(q, 27);  // as stored (the schema's CHECK holds them to score())
+          t.scores.signed_error = opt_int(q, 28);
+          if (auto c = opt_int(q, 29)) t.scores.correct = *c != 0;
+          t.scores.distance = opt_real(q, 30);
+          t.completion_s = q.real(16);
+          t.started_at = q.text(17);
+          t.ended_at = q.text(18);
+          t.frames.frames = q.int64(19);
+          t.frames.mean_ms = opt_real(q, 20);
+          t.frames.sd_ms = opt_real(q, 21);
+          t.frames.p95_ms = opt_real(q, 22);
+          t.frames.max_ms = opt_real(q, 23);
+          t.event_count = q.int64(24);
+          t.study_id = q.int64(25);
+          t.protocol_sha256 = q.text(26);
+          if (auto it = rev.find(t.study_id); it != rev.end()) t.design_revision = it->second->design_revision;
+          t.excluded = excluded(t.participant, position);
+          out.push_back(std::move(t));
+        });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::vector<QuestionnaireRecord>> StudyReader::questionnaire(const std::string& participant) {
+  return impl_->call([&]() -> Result<std::vector<QuestionnaireRecord>> {
+    std::vector<QuestionnaireRecord> out;
+    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
+    Status st = each_row(*impl_->db,
+                         "SELECT pa.participant, q.session_id, q.item, q.scope, q.value_number, q.value_text, "
+                         "q.answered_at FROM questionnaire_answers q JOIN sessions s ON s.id = q.session_id "
+                         "JOIN participants pa ON pa.id = s.participant_id" + filter +
+                             " ORDER BY pa.enrollment_index, q.item, q.scope",
+                         "reading the questionnaire answers",
+                         [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+                         [&](const Stmt& q) {
+                           QuestionnaireRecord r;
+                           r.participant = q.text(0);
+                           r.session_id = q.int64(1);
+                           r.item = q.text(2);
+                           r.scope = q.text(3);
+                           if (q.is_null(4)) r.value = q.text(5);
+                           else r.value = q.real(4);
+                           r.answered_at = q.text(6);
+                           out.push_back(std::move(r));
+                         });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::vector<Note>> StudyReader::notes() {
+  return impl_->call([&]() -> Result<std::vector<Note>> {
+    std::vector<Note> out;
+    if (impl_->schema_version < 2) return out;
+    Status st = each_row(*impl_->db,
+                         "SELECT n.id, coalesce(pa.participant, ''), n.position, n.author, n.text, n.written_at "
+                         "FROM notes n LEFT JOIN participants pa ON pa.id = n.participant_id ORDER BY n.id",
+                         "reading the notes", no_bind, [&](const Stmt& q) {
+                           auto pos = opt_int(q, 2);
+                           out.push_back(Note{q.int64(0), q.text(1),
+                                              pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
+                                              q.text(3), q.text(4), q.text(5)});
+                         });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::int64_t> StudyReader::Impl::result_id(const std::string& participant, int position) {
+  auto st = Stmt::prepare(*db,
+                          "SELECT p.id FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+                          "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
+                          "WHERE pa.participant = ?1 AND p.position = ?2",
+                          "finding the trial");
+  if (!st) return st.error();
+  st->bind(1, participant).bind(2, position);
+  auto row = st->step("finding the trial");
+  if (!row) return row.error();
+  if (!*row)
+    return Error{db->path(), 0, 0, "trial",
+                 "participant \"" + participant + "\" has no recorded trial at position " + std::to_string(position),
+                 ErrorKind::not_found};
+  return st->int64(0);
+}
+
+Result<std::vector<CameraPose>> StudyReader::poses(const std::string& participant, int position) {
+  return impl_->call([&]() -> Result<std::vector<CameraPose>> {
+    auto id = impl_->result_id(participant, position);
+    if (!id) return id.error();
+    std::vector<CameraPose> out;
+    Status st = each_row(*impl_->db, "SELECT t_s, x, y, z, yaw, pitch FROM camera_poses WHERE trial_id = ? ORDER BY frame",
+                         "reading the camera poses", [&](Stmt& s) { s.bind(1, *id); }, [&](const Stmt& q) {
+                           out.push_back(CameraPose{q.real(0), q.real(1), q.real(2), q.real(3), q.real(4), q.real(5)});
+                         });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::vector<InputEvent>> StudyReader::events(const std::string& participant, int position) {
+  return impl_->call([&]() -> Result<std::vector<InputEvent>> {
+    auto id = impl_->result_id(participant, position);
+    if (!id) return id.error();
+    std::vector<InputEvent> out;
+    Status st = each_row(*impl_->db, "SELECT t_s, kind, detail, x, y FROM input_events WHERE trial_id = ? ORDER BY seq",
+                         "reading the input events", [&](Stmt& s) { s.bind(1, *id); }, [&](const Stmt& q) {
+                           out.push_back(InputEvent{q.real(0), parse_kind(q.text(1)), q.text(2), q.real(3), q.real(4)});
+                         });
+    if (!st) return st.error();
+    return out;
+  });
+}
+
+Result<std::string> StudyReader::integrity_check() {
+  return impl_->call([&]() -> Result<std::string> {
+    std::string report;
+    Status st = each_row(*impl_->db, "PRAGMA integrity_check", "checking integrity", no_bind,
+                         [&](const Stmt& q) { report += (report.empty() ? "" : "; ") + q.text(0); });
+    if (!st) return st.error();
+    std::string fk;
+    st = each_row(*impl_->db, "PRAGMA foreign_key_check", "checking foreign keys", no_bind, [&](const Stmt& q) {
+      fk += (fk.empty() ? "" : "; ") + q.text(0) + " row " + q.text(1) + " points to a missing " + q.text(2);
+    });
+    if (!st) return st.error();
+    if (report == "ok" && fk.empty()) return std::string("ok");
+    return report == "ok" ? fk : report + (fk.empty() ? "" : "; " + fk);
+  });
+}
+
+}  // namespace dtlab::store

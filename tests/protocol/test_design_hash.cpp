@@ -1,0 +1,106 @@
+// protocol::design_sha256: the hash the store uses to tell a reworded
+// protocol (sessions continue, analyses pool) from a changed design. Every
+// edit that changes what a session runs must change it; comments, white
+// space, key order, the title, the description and prompt texts must not.
+// Each case is one textual edit of the shipped pilot protocol.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "study/protocol/protocol.h"
+
+namespace dtlab::protocol {
+namespace {
+
+std::string pilot_text() {
+  std::ifstream in(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Edit {
+  const char* name;
+  const char* from;  // text to find (first occurrence)
+  const char* to;    // its replacement
+};
+
+std::string apply(const Edit& e) {
+  std::string t = pilot_text();
+  const auto at = t.find(e.from);
+  EXPECT_NE(at, std::string::npos) << e.name << ": \"" << e.from << "\" is not in pilot.toml";
+  if (at != std::string::npos) t.replace(at, std::string(e.from).size(), e.to);
+  return t;
+}
+
+std::string hash_of(const std::string& text, const char* name) {
+  auto p = load_protocol_text(text, name);
+  EXPECT_TRUE(p.ok()) << name << ": " << (p.ok() ? "" : p.error().to_string());
+  return p.ok() ? design_sha256(p.value()) : std::string();
+}
+
+class SameDesign : public ::testing::TestWithParam<Edit> {};
+class OtherDesign : public ::testing::TestWithParam<Edit> {};
+
+TEST_P(SameDesign, WordingLeavesTheHash) {
+  const std::string base = hash_of(pilot_text(), "pilot");
+  ASSERT_EQ(base.size(), 64u);
+  EXPECT_EQ(hash_of(apply(GetParam()), GetParam().name), base);
+}
+
+TEST_P(OtherDesign, WhatRunsChangesTheHash) {
+  EXPECT_NE(hash_of(apply(GetParam()), GetParam().name), hash_of(pilot_text(), "pilot"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Wording, SameDesign,
+    ::testing::Values(Edit{"comment", "# Pilot:", "# A typo fixed. Pilot:"},
+                      Edit{"trailing_comment", "master_seed = 1", "master_seed = 1  # the seed"},
+                      Edit{"whitespace", "participants = 4", "participants    =    4"},
+                      Edit{"title", "title = \"Pilot", "title = \"Pilot study"},
+                      Edit{"description", "description = \"A quick", "description = \"A very quick"},
+                      Edit{"prompt", "prompt = \"Overall", "prompt = \"All in all"},
+                      Edit{"target_participants", "participants = 4", "participants = 8"},
+                      Edit{"key_order", "a0 = 0.1\naT = 0.3", "aT = 0.3\na0 = 0.1"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+INSTANTIATE_TEST_SUITE_P(
+    Design, OtherDesign,
+    ::testing::Values(Edit{"master_seed", "master_seed = 1", "master_seed = 2"},
+                      Edit{"session_limit", "time_limit_s = 1200", "time_limit_s = 1300"},
+                      Edit{"training_limit", "time_limit_s = 60", "time_limit_s = 90"},
+                      Edit{"practice", "practice_trials = 0", "practice_trials = 1"},
+                      Edit{"levels", "levels = [\"off\", \"on\"]", "levels = [\"on\", \"off\"]"},
+                      Edit{"scheme", "scheme = \"latin-square\"", "scheme = \"williams\""},
+                      Edit{"objects", "objects = 200", "objects = 150"},
+                      Edit{"extent", "extent = 100.0", "extent = 120.0"},
+                      Edit{"object_kinds", "[\"sphere\", \"cone\", \"box\", \"torus\"]", "[\"sphere\", \"cone\", \"box\"]"},
+                      Edit{"radius", "object_radius = [3.0, 6.0]", "object_radius = [3.0, 6.5]"},
+                      Edit{"target_ratio", "target_ratio = [0.10, 0.20]", "target_ratio = [0.10, 0.25]"},
+                      Edit{"trials", "trials = 1", "trials = 2"},
+                      Edit{"letters", "[\"C\", \"K\", \"R\", \"X\", \"Y\"]", "[\"C\", \"K\", \"R\", \"X\"]"},
+                      Edit{"grid", "grid = [16, 16]", "grid = [16, 12]"},
+                      Edit{"cell_size", "cell_size = 4.0", "cell_size = 5.0"},
+                      Edit{"count_range", "count_range = [3, 8]", "count_range = [3, 7]"},
+                      Edit{"method", "method = \"dt-seed\"", "method = \"dt-fast\""},
+                      Edit{"a0", "a0 = 0.1", "a0 = 0.15"},
+                      Edit{"aT", "aT = 0.3", "aT = 0.35"},
+                      Edit{"gradient", "gradient_width = 8", "gradient_width = 9"},
+                      Edit{"mask_resolution", "mask_resolution = 128", "mask_resolution = 64"},
+                      Edit{"mask_shape", "mask_shape = \"outline\"", "mask_shape = \"circle\""},
+                      Edit{"mode", "mode = \"passive\"", "mode = \"active\""},
+                      Edit{"layer_limit", "layer_limit = 0", "layer_limit = 2"},
+                      Edit{"scale", "scale = [0, 4]", "scale = [1, 5]"},
+                      Edit{"per", "per = [\"scenario\", \"transparency\"]", "per = [\"scenario\"]"},
+                      Edit{"id", "id = \"pilot\"", "id = \"pilot2\""}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(DesignHash, OfTextEqualsOfTheParsedProtocolAndRefusesBrokenText) {
+  const std::string text = pilot_text();
+  EXPECT_EQ(design_sha256_of_text(text), std::optional<std::string>(hash_of(text, "pilot")));
+  EXPECT_EQ(design_sha256_of_text("this is not a protocol"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace dtlab::protocol
