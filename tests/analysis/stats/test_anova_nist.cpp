@@ -119,10 +119,17 @@ TEST(AnovaR, PlantGrowthMatchesAov) {
   EXPECT_NEAR(std::min(1.0, 3 * (*pc)[1].p), 0.263, 5e-4);
   EXPECT_NEAR(std::min(1.0, 3 * (*pc)[2].p), 0.013, 5e-4);
   EXPECT_EQ((*pc)[0].df, 27);
-  // Holm from the same raw p: 3 p_min, then max(running, 2 p_mid), then p_max.
-  EXPECT_DOUBLE_EQ((*pc)[2].p_holm, 3 * (*pc)[2].p);
-  EXPECT_DOUBLE_EQ((*pc)[1].p_holm, 2 * (*pc)[1].p);
-  EXPECT_DOUBLE_EQ((*pc)[0].p_holm, (*pc)[0].p);
+  // R 4.2.2: pairwise.t.test(PlantGrowth$weight, PlantGrowth$group, p.adjust.method = "holm")$p.value
+  //   trt1-ctrl 0.194387880054301, trt2-ctrl 0.175363350125367, trt2-trt1 0.0133777078146164
+  EXPECT_NEAR((*pc)[0].p_holm, 0.194387880054301, 1e-12);
+  EXPECT_NEAR((*pc)[1].p_holm, 0.175363350125367, 1e-12);
+  EXPECT_NEAR((*pc)[2].p_holm, 0.0133777078146164, 1e-12);
+  // The rows describe ctrl - trt1 with the pooled SE: 0.371, SE 0.27878160840555 (s_pooled sqrt(2/10)),
+  // CI 0.371 -+ qt(.975, 27) SE = -0.201012611559963 0.943012611559964
+  EXPECT_NEAR((*pc)[0].estimate, 0.371, 1e-13);
+  EXPECT_NEAR((*pc)[0].se, 0.27878160840555, 1e-12);
+  EXPECT_NEAR((*pc)[0].ci_low, -0.201012611559963, 1e-12);
+  EXPECT_NEAR((*pc)[0].ci_high, 0.943012611559964, 1e-12);
 }
 
 struct Degenerate {
