@@ -15,12 +15,15 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/stats/anova.h"
 #include "analysis/stats/apa.h"
+#include "analysis/stats/assumptions.h"
 #include "analysis/stats/csv.h"
+#include "analysis/stats/followup.h"
 #include "analysis/stats/friedman.h"
 #include "analysis/stats/json.h"
 #include "analysis/stats/long_data.h"
@@ -37,11 +40,19 @@ using json = nlohmann::ordered_json;
 namespace st = dtlab::stats;
 
 struct StatsOptions {
-  std::string data, dv, subject, exact = "auto", alternative = "two-sided", aggregate = "none";
+  std::string data, dv, subject, exact = "auto", alternative = "two-sided", aggregate = "none", factor;
   std::vector<std::string> within, between, observed, where;
   std::uint64_t seed = 1;
   bool wide = false, json = false, posthoc = false, no_correct = false;
   bool exclude_practice = false, include_practice = false, with_excluded = false;
+  bool simple_effects = false, within_ci = false, normality = false;
+};
+
+// The optional follow-ups of rm-anova (--simple-effects, --within-ci, --normality).
+struct Followups {
+  std::vector<st::SimpleEffects> simple;
+  std::vector<st::CellInterval> intervals;
+  std::optional<st::ShapiroWilkResult> normality;
 };
 
 // What the row selection did, for the output.
@@ -285,6 +296,91 @@ void require_subject_design(const StatsOptions& o, const char* test) {
     fail(kExitUsage, std::string(test) + " needs --subject COL and --within COL[,COL] (or --wide)");
 }
 
+Followups followups(const StatsOptions& o, const st::LongData& data, const st::RmAnovaResult& r) {
+  Followups f;
+  if (o.simple_effects)
+    for (std::size_t i = 0; i < r.within.size(); ++i)
+      for (std::size_t j = i + 1; j < r.within.size(); ++j) {
+        auto se = st::simple_effects(data, r.within[i], r.within[j]);
+        if (!se) fail(kExitInvalid, se.error().to_string());
+        f.simple.push_back(*se);
+      }
+  if (o.simple_effects && r.within.size() < 2) fail(kExitUsage, "--simple-effects needs two within factors or more");
+  if (o.within_ci) {
+    auto ci = st::within_subject_intervals(data);
+    if (!ci) fail(kExitInvalid, ci.error().to_string());
+    f.intervals = *ci;
+  }
+  if (o.normality) {
+    auto res = st::anova_residuals(data);
+    if (!res) fail(kExitInvalid, res.error().to_string());
+    std::vector<double> e;
+    for (const auto& x : res->residuals) e.push_back(x.value);
+    f.normality = st::shapiro_wilk(e);
+    warn(f.normality->warnings);
+  }
+  return f;
+}
+
+json levels_json(const std::vector<std::pair<std::string, std::string>>& levels) {
+  json lv = json::object();
+  for (const auto& [f, l] : levels) lv[f] = l;
+  return lv;
+}
+
+void followups_json(json& j, const Followups& f) {
+  if (!f.simple.empty()) {
+    json rows = json::array();
+    for (const auto& se : f.simple)
+      for (const auto& row : se.rows) {
+        json r{{"factor", row.factor}, {"at", {{row.at_factor, row.at_level}}}, {"test", row.test}, {"n", row.n},
+               {"p", st::json_number(row.p)}, {"p_holm", st::json_number(row.p_holm)}};
+        if (row.test == "paired t") r["contrast"] = st::comparison_json(row.contrast);
+        else r["anova"] = st::effect_json(row.anova);
+        rows.push_back(r);
+      }
+    j["simple_effects"] = rows;
+  }
+  if (!f.intervals.empty()) {
+    json cells = json::array();
+    for (const auto& c : f.intervals)
+      cells.push_back({{"cell", levels_json(c.levels)}, {"n", c.n}, {"mean", st::json_number(c.mean)},
+                       {"se", st::json_number(c.se)}, {"ci_low", st::json_number(c.ci_low)},
+                       {"ci_high", st::json_number(c.ci_high)}});
+    j["within_subject_ci"] = cells;
+  }
+  if (f.normality)
+    j["normality"] = {{"test", "shapiro-wilk on the ANOVA residuals"}, {"n", f.normality->n},
+                      {"W", st::json_number(f.normality->W)}, {"p", st::json_number(f.normality->p)}};
+}
+
+void print_followups(const Followups& f) {
+  for (const auto& se : f.simple) {
+    std::cout << "\nSimple effects (Holm within each family)\n";
+    for (const auto& row : se.rows) {
+      std::cout << "  " << row.factor << " at " << row.at_factor << "=" << row.at_level << ": ";
+      if (row.test == "paired t")
+        std::cout << row.contrast.a << " - " << row.contrast.b << " = " << fmt(row.contrast.estimate) << " [" << fmt(row.contrast.ci_low)
+                  << ", " << fmt(row.contrast.ci_high) << "], t(" << fmt(row.contrast.df) << ") = " << fmt(row.contrast.statistic)
+                  << ", p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ", d_z = " << fmt(row.contrast.dz) << "\n";
+      else
+        std::cout << st::apa_effect(row.anova, st::Correction::none) << " (p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ")\n";
+    }
+  }
+  if (!f.intervals.empty()) {
+    std::cout << "\nWithin-subject 95% CIs of the cell means (Cousineau-Morey)\n";
+    for (const auto& c : f.intervals) {
+      std::string label;
+      for (const auto& [name, level] : c.levels) label += (label.empty() ? "" : ", ") + name + "=" + level;
+      std::cout << "  " << label << ": mean " << fmt(c.mean) << ", se " << fmt(c.se) << ", CI [" << fmt(c.ci_low) << ", "
+                << fmt(c.ci_high) << "]\n";
+    }
+  }
+  if (f.normality)
+    std::cout << "\nShapiro-Wilk on the ANOVA residuals: W = " << fmt(f.normality->W) << ", p = " << fmt(f.normality->p)
+              << " (" << count(f.normality->n, "residual", "residuals") << ")\n";
+}
+
 void run_rm_anova(const StatsOptions& o) {
   require_subject_design(o, "rm-anova");
   const Loaded in = load(o, false);
@@ -300,6 +396,7 @@ void run_rm_anova(const StatsOptions& o) {
       post.emplace_back(f, *pc);
     }
   warn(r->warnings);
+  const Followups more = followups(o, in.data, *r);
   if (o.json) {
     json j = header_json("rm-anova", o, in.selection);
     j["within"] = r->within;
@@ -325,6 +422,7 @@ void run_rm_anova(const StatsOptions& o) {
       for (const auto& [f, cs] : post) p[f] = st::comparisons_json(cs);
       j["posthoc"] = p;
     }
+    followups_json(j, more);
     j["warnings"] = r->warnings;
     std::cout << j.dump(2) << "\n";
     return;
@@ -341,6 +439,7 @@ void run_rm_anova(const StatsOptions& o) {
     print_descriptives(label, c.d);
   }
   for (const auto& [f, cs] : post) print_comparisons(f, cs);
+  print_followups(more);
 }
 
 void run_friedman(const StatsOptions& o) {
@@ -391,7 +490,9 @@ void run_wilcoxon(const StatsOptions& o) {
   else if (o.alternative == "greater") wo.alternative = st::Alternative::greater;
   else fail(kExitUsage, "--alternative must be two-sided, less or greater");
   const Loaded in = load(o, false);
-  auto r = st::paired_tests(in.data, wo);
+  if (o.factor.empty() && in.data.within.size() > 1)
+    fail(kExitUsage, "with several --within factors, name the two-level one to test with --factor");
+  auto r = st::paired_tests(in.data, wo, o.factor);
   if (!r) fail(kExitInvalid, r.error().to_string());
   warn(r->warnings);
   const auto& w = r->wilcoxon;
@@ -464,6 +565,10 @@ void add_stats_command(CLI::App& root) {
   add_common(rm, *o);
   rm->add_option("--observed", o->observed, "Measured (not manipulated) factors, for generalized eta squared")->delimiter(',');
   rm->add_flag("--posthoc", o->posthoc, "Holm-corrected pairwise paired t tests for each within factor");
+  rm->add_flag("--simple-effects", o->simple_effects,
+               "Simple effects of every two-way within interaction (paired t or one-way ANOVA, Holm per family)");
+  rm->add_flag("--within-ci", o->within_ci, "Within-subject 95% CIs of the cell means (Cousineau-Morey)");
+  rm->add_flag("--normality", o->normality, "Shapiro-Wilk test of the ANOVA residuals");
   rm->callback([o] { run_rm_anova(*o); });
 
   auto* fr = stats->add_subcommand("friedman", "Friedman rank sum test with exact / Monte Carlo p and Kendall's W");
@@ -476,6 +581,8 @@ void add_stats_command(CLI::App& root) {
   add_common(wx, *o);
   add_exact(wx, *o);
   wx->add_flag("--no-correct", o->no_correct, "No continuity correction in the normal approximation");
+  wx->add_option("--factor", o->factor,
+                 "With several --within factors: the two-level factor to test (each subject's values averaged over the others)");
   wx->add_option("--alternative", o->alternative, "two-sided|less|greater (for first level - second level)")
       ->capture_default_str();
   wx->callback([o] { run_wilcoxon(*o); });

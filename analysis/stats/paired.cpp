@@ -292,28 +292,29 @@ PairedTResult paired_t(const std::vector<double>& x, const std::vector<double>& 
   return r;
 }
 
-Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options) {
+Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options, const std::string& factor) {
   if (!data.between.empty())
     return Error{data.source, 0, 0, data.between.front().name, "the paired tests take no between-subject factor"};
-  if (data.within.size() != 1)
-    return Error{data.source, 0, 0, "", "the paired tests need exactly one within-subject factor with two levels"};
+  if (factor.empty() && data.within.size() != 1)
+    return Error{data.source, 0, 0, "", "the paired tests need exactly one within-subject factor with two levels "
+                                        "(or the name of one two-level factor of the design)"};
   auto built = detail::build_cell_design(data);
   if (!built) return built.error();
   const detail::CellDesign& d = *built;
-  if (d.cells != 2)
-    return Error{data.source, 0, 0, data.within.front().name,
-                 "the paired tests need exactly two levels; this factor has " + std::to_string(d.cells) +
-                     " (use friedman or rm-anova for more)"};
+  const auto it = std::find(d.within_names.begin(), d.within_names.end(), factor.empty() ? d.within_names[0] : factor);
+  if (it == d.within_names.end()) return Error{data.source, 0, 0, factor, "not a within-subject factor of the design"};
+  const std::size_t f = static_cast<std::size_t>(it - d.within_names.begin());
+  if (d.within_levels[f].size() != 2)
+    return Error{data.source, 0, 0, d.within_names[f],
+                 "the paired tests need exactly two levels; this factor has " +
+                     std::to_string(d.within_levels[f].size()) + " (use friedman or rm-anova for more)"};
+  if (d.subjects.empty())
+    return Error{data.source, 0, 0, "", "no subject has every cell: nothing left after listwise deletion"};
   PairedResult r;
-  r.x_level = d.within_levels[0][0];
-  r.y_level = d.within_levels[0][1];
-  std::vector<double> x, y, dx, dy;
-  for (std::size_t s = 0; s < d.subjects.size(); ++s) {
-    x.push_back(d.value[s][0]);
-    y.push_back(d.value[s][1]);
-    dx.push_back(d.delta[s][0]);
-    dy.push_back(d.delta[s][1]);
-  }
+  r.x_level = d.within_levels[f][0];
+  r.y_level = d.within_levels[f][1];
+  const detail::FactorMarginals m = detail::factor_marginals(d, f);  // the cells themselves for a lone factor
+  const std::vector<double>&x = m.value[0], &y = m.value[1], &dx = m.delta[0], &dy = m.delta[1];
   r.wilcoxon = wilcoxon_signed_rank(x, y, options);
   r.sign = sign_test(x, y, options.alternative);
   r.t = paired_t(dx, dy, options.alternative);  // deltas: the offset cancels exactly

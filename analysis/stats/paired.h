@@ -85,8 +85,11 @@ SignTestResult sign_test(const std::vector<double>& x, const std::vector<double>
 PairedTResult paired_t(const std::vector<double>& x, const std::vector<double>& y,
                        Alternative alternative = Alternative::two_sided);
 
-// The three tests on long data with one within-subject factor of exactly two
-// levels (x = first level in order of appearance, y = second).
+// The three tests on long data for a within-subject factor of exactly two
+// levels (x = first level in order of appearance, y = second): the design's
+// only within factor, or `factor` of a larger all-within design, each
+// subject's values then averaged over the other within factors (the
+// robustness check of a two-level ANOVA effect).
 struct PairedResult {
   std::string x_level, y_level;
   WilcoxonResult wilcoxon;
@@ -95,6 +98,7 @@ struct PairedResult {
   std::vector<std::string> dropped_subjects;
   std::vector<std::string> warnings;
 };
-Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options = {});
+Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options = {},
+                                  const std::string& factor = "");
 
 }  // namespace dtlab::stats

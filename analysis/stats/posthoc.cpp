@@ -62,25 +62,10 @@ Result<std::vector<Comparison>> pairwise_within(const LongData& data, const std:
   const auto it = std::find(d.within_names.begin(), d.within_names.end(), factor);
   if (it == d.within_names.end()) return Error{data.source, 0, 0, factor, "not a within-subject factor of the design"};
   const std::size_t f = static_cast<std::size_t>(it - d.within_names.begin());
-  const std::size_t L = d.within_levels[f].size(), N = d.subjects.size();
-  // Marginal means per subject and level (values for rank tests, deltas for t).
-  std::vector<std::vector<double>> val(L, std::vector<double>(N, 0.0)), del = val;
-  std::vector<double> count(L, 0.0);
-  for (std::size_t c = 0; c < d.cells; ++c) {
-    const std::size_t l = d.cell_levels(c)[f];
-    count[l] += 1.0;
-    for (std::size_t s = 0; s < N; ++s) {
-      val[l][s] += d.value[s][c];
-      del[l][s] += d.delta[s][c];
-    }
-  }
-  for (std::size_t l = 0; l < L; ++l)
-    for (std::size_t s = 0; s < N; ++s) {
-      if (count[l] > 1) {
-        val[l][s] /= count[l];
-        del[l][s] /= count[l];
-      }
-    }
+  const std::size_t L = d.within_levels[f].size();
+  const detail::FactorMarginals m = detail::factor_marginals(d, f);
+  const std::vector<std::vector<double>>& val = m.value;
+  const std::vector<std::vector<double>>& del = m.delta;
   std::vector<Comparison> out;
   for (std::size_t i = 0; i < L; ++i)
     for (std::size_t j = i + 1; j < L; ++j) {

@@ -98,6 +98,28 @@ std::string CellDesign::cell_name(size_t cell) const {
   return s;
 }
 
+FactorMarginals factor_marginals(const CellDesign& d, size_t f) {
+  const size_t L = d.within_levels[f].size(), N = d.subjects.size();
+  FactorMarginals m{std::vector<std::vector<double>>(L, std::vector<double>(N, 0.0)),
+                    std::vector<std::vector<double>>(L, std::vector<double>(N, 0.0))};
+  std::vector<double> count(L, 0.0);
+  for (size_t c = 0; c < d.cells; ++c) {
+    const size_t l = d.cell_levels(c)[f];
+    count[l] += 1.0;
+    for (size_t s = 0; s < N; ++s) {
+      m.value[l][s] += d.value[s][c];
+      m.delta[l][s] += d.delta[s][c];
+    }
+  }
+  for (size_t l = 0; l < L; ++l)
+    if (count[l] > 1)
+      for (size_t s = 0; s < N; ++s) {
+        m.value[l][s] /= count[l];
+        m.delta[l][s] /= count[l];
+      }
+  return m;
+}
+
 std::string name_list(const std::vector<std::string>& names, size_t shown) {
   std::string s;
   for (size_t i = 0; i < names.size() && i < shown; ++i) s += (i ? "; " : "") + name_for_message(names[i]);

@@ -40,6 +40,14 @@ struct CellDesign {
 // Requires data.subject to be filled (one id per row).
 Result<CellDesign> build_cell_design(const LongData& data);
 
+// Each subject's mean over the other within factors at every level of within
+// factor f, [level][subject]: of the values (as R holds them, for rank tests)
+// and of the deltas (for t tests; the offset cancels in differences).
+struct FactorMarginals {
+  std::vector<std::vector<double>> value, delta;
+};
+FactorMarginals factor_marginals(const CellDesign& d, size_t f);
+
 // "a, b, c and 7 more": at most `shown` names of a list, each through name_for_message().
 std::string name_list(const std::vector<std::string>& names, size_t shown = 10);
 

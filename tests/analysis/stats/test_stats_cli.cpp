@@ -295,5 +295,27 @@ TEST(StatsCli, RowSelectionIsStatedAndUndoable) {
   EXPECT_EQ(dtlab(base + " --aggregate mode").rc, 2);
 }
 
+// The follow-ups of issue 13 through the command line (values: test_followup_power.cpp,
+// test_assumptions_apa.cpp, each against R).
+TEST(StatsCli, RmAnovaFollowUpsAndWilcoxonOfOneFactor) {
+  const CliRun r = dtlab("stats rm-anova --data " + data("md_12.1.csv") +
+                         " --dv rt --subject id --within noise,angle --simple-effects --within-ci --normality --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["simple_effects"].size(), 5u);
+  // R: t.test(absent, present, paired = TRUE) at angle 4 -> t = -4.44261658319319
+  EXPECT_NEAR(number(j["simple_effects"][1]["contrast"]["statistic"]), -4.44261658319319, 1e-10);
+  // R (Cousineau-Morey formula): se of absent:0 = 17.0528589978338
+  EXPECT_NEAR(number(j["within_subject_ci"][0]["se"]), 17.0528589978338, 1e-9);
+  // R: shapiro.test(residuals) -> W = 0.971873411127596
+  EXPECT_NEAR(number(j["normality"]["W"]), 0.971873411127596, 1e-9);
+  const CliRun w = dtlab("stats wilcoxon --data " + data("md_12.1.csv") +
+                         " --dv rt --subject id --within noise,angle --factor noise --json");
+  ASSERT_EQ(w.rc, 0) << w.err;
+  // R: t.test(rowMeans(absent cells), rowMeans(present cells), paired = TRUE) -> mean difference -138
+  EXPECT_NEAR(number(json::parse(w.out)["paired_t"]["mean_difference"]), -138, 1e-10);
+  EXPECT_EQ(dtlab("stats wilcoxon --data " + data("md_12.1.csv") + " --dv rt --subject id --within noise,angle").rc, 2);
+}
+
 }  // namespace
 }  // namespace dtlab::stats
