@@ -15,7 +15,8 @@
 //   P(chi2(df2) >= df2 (lambda + df1) / (df1 F)), whose error in eta_p2 is
 //   below 1e-11. F infinite or NaN, or df <= 0: both bounds NaN.
 // Validated against: R 4.2 uniroot() on pf(F, df1, df2, ncp) (an independent
-// noncentral F, AS 226 / R84) and published apaTables values (tests).
+// noncentral F, AS 226 / R84), converted as apaTables does (tests; no
+// published interval was at hand to compare with).
 #pragma once
 
 #include "analysis/stats/anova.h"
