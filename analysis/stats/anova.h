@@ -10,6 +10,9 @@
 // StRD ANOVA dataset, SmLs07-09 included, when the data come from decimal text.
 // Missing data: rows with a missing dv are left out (R's na.omit) with a
 // warning; groups with no observation are not counted in k.
+// Range: deltas are scaled by a power of two before squaring (F does not
+// depend on the scale); a sum of squares beyond the double range is an Error
+// naming the overflow (R prints NaN).
 // Defined results (also in README "Statistics"):
 //   zero within-group variance, groups differ -> F = +inf, p = 0, log10_p = -inf;
 //   zero within variance and equal means (0/0) -> F, p = NaN;
