@@ -11,14 +11,13 @@
 #include <cstdint>
 #include <limits>
 
+#include "analysis/stats/detail/policy.h"
+
 namespace dtlab::stats {
 namespace {
 
 namespace bm = boost::math;
-namespace pol = boost::math::policies;
-using Policy = pol::policy<pol::domain_error<pol::errno_on_error>, pol::pole_error<pol::errno_on_error>,
-                           pol::overflow_error<pol::errno_on_error>, pol::evaluation_error<pol::errno_on_error>,
-                           pol::rounding_error<pol::errno_on_error>>;
+using detail::Policy;  // errors become NaN/inf values, never exceptions
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kLargeLambda = 1e8;

@@ -12,13 +12,13 @@
 
 #include "analysis/stats/detail/friedman_exact.h"  // SplitMixStream
 
+#include "analysis/stats/detail/policy.h"
+
 namespace dtlab::stats {
 namespace {
 
 namespace bm = boost::math;
-namespace pol = boost::math::policies;
-using Policy = pol::policy<pol::domain_error<pol::errno_on_error>, pol::pole_error<pol::errno_on_error>,
-                           pol::overflow_error<pol::errno_on_error>, pol::evaluation_error<pol::errno_on_error>>;
+using detail::Policy;  // errors become NaN/inf values, never exceptions
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // F(1 - alpha; df1, df2) from P(F > f) = I_y(df2/2, df1/2), y = df2 / (df2 + df1 f).
