@@ -307,6 +307,57 @@ struct Pending {
   std::vector<size_t> factors_between, factors_within;
 };
 
+// What every stratum's effects share: the between design, its inverse cross
+// product, X', the error df and the power of two the deltas were scaled by.
+struct Regression {
+  const BetweenDesign& bd;
+  const Matrix& V;
+  const Matrix& Xt;
+  double dfe;
+  int exponent;
+};
+
+// The rows of within term st.S crossed with every between term (type III
+// multivariate SS). Result false: a sum of squares overflowed; Error: a
+// singular between term.
+Result<bool> stratum_effects(const Stratum& st, const Regression& reg, const CellDesign& d, size_t stratum,
+                             std::vector<Pending>& pending) {
+  const size_t p = st.M.rows;
+  const auto unscale = [&](double ss) { return std::ldexp(ss, 2 * reg.exponent); };
+  Matrix B = detail::multiply(reg.V, detail::multiply(reg.Xt, st.Z));
+  const Matrix fit = detail::multiply(reg.bd.X, B);  // one step of iterative refinement of B
+  Matrix res = st.Z;
+  for (size_t i = 0; i < res.a.size(); ++i) res.a[i] -= fit.a[i];
+  const Matrix dB = detail::multiply(reg.V, detail::multiply(reg.Xt, res));
+  for (size_t i = 0; i < B.a.size(); ++i) B.a[i] += dB.a[i];
+  for (size_t ti = 0; ti < reg.bd.terms.size(); ++ti) {
+    const auto& T = reg.bd.terms[ti];
+    if ((st.S.empty() && T.empty()) || reg.bd.df[ti] == 0) continue;  // no intercept row (afex intercept = FALSE)
+    Effect e;
+    e.name = term_name(T, st.S, d);
+    e.within = !st.S.empty();
+    const Matrix Bt = submatrix(B, reg.bd.columns[ti], all_indices(p));
+    const auto Vinv = detail::spd_inverse(submatrix(reg.V, reg.bd.columns[ti], reg.bd.columns[ti]));
+    if (!Vinv) return Error{"", 0, 0, "", "singular between-subjects term " + e.name};
+    e.ss = unscale(detail::trace(detail::multiply(detail::transpose(Bt), detail::multiply(*Vinv, Bt))));
+    e.ss_error = unscale(st.ss_error);
+    if (!std::isfinite(e.ss) || !std::isfinite(e.ss_error)) return false;
+    e.df1 = static_cast<double>(reg.bd.df[ti] * p);
+    e.df2 = std::max(0.0, reg.dfe) * static_cast<double>(p);
+    set_test(e, st.zero_error);
+    e.eta_p2 = (e.ss + e.ss_error) > 0 ? e.ss / (e.ss + e.ss_error) : kNaN;
+    if (e.within) {
+      set_sphericity(e, st);
+    } else {
+      e.gg_epsilon = e.hf_epsilon = e.mauchly_W = e.mauchly_p = kNaN;
+      e.p_gg = e.log10_p_gg = e.p_hf = e.log10_p_hf = kNaN;
+    }
+    complete_effect(e);
+    pending.push_back({e, stratum, T, st.S});
+  }
+  return true;
+}
+
 // Generalized eta squared (afex): distinct error SS of all strata, plus observed effects.
 Status generalized_eta(std::vector<Pending>& pending, const std::vector<double>& stratum_error, const CellDesign& d,
                        const std::vector<std::string>& observed, const std::string& source) {
@@ -426,38 +477,9 @@ Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& optio
     if (st.zero_error)
       r.warnings.push_back(std::string("zero error variance in stratum ") + (S.empty() ? "between subjects" : "of the within term") +
                            ": F is infinite (or 0/0) there");
-    Matrix B = detail::multiply(*V, detail::multiply(Xt, st.Z));
-    const Matrix fit = detail::multiply(bd.X, B);  // one step of iterative refinement of B
-    Matrix res = st.Z;
-    for (size_t i = 0; i < res.a.size(); ++i) res.a[i] -= fit.a[i];
-    const Matrix dB = detail::multiply(*V, detail::multiply(Xt, res));
-    for (size_t i = 0; i < B.a.size(); ++i) B.a[i] += dB.a[i];
-    for (size_t ti = 0; ti < bd.terms.size(); ++ti) {
-      const auto& T = bd.terms[ti];
-      if ((S.empty() && T.empty()) || bd.df[ti] == 0) continue;  // no intercept row (afex intercept = FALSE)
-      Effect e;
-      e.name = term_name(T, S, d);
-      e.within = !S.empty();
-      const Matrix Bt = submatrix(B, bd.columns[ti], all_indices(p));
-      const auto Vinv = detail::spd_inverse(submatrix(*V, bd.columns[ti], bd.columns[ti]));
-      if (!Vinv) return Error{data.source, 0, 0, "", "singular between-subjects term " + e.name};
-      e.ss = unscale(detail::trace(detail::multiply(detail::transpose(Bt), detail::multiply(*Vinv, Bt))));
-      e.ss_error = stratum_error.back();
-      if (!std::isfinite(e.ss) || !std::isfinite(e.ss_error))
-        return overflow_error(data.source, data.dv_name, "the sums of squares");
-      e.df1 = static_cast<double>(bd.df[ti] * p);
-      e.df2 = std::max(0.0, dfe) * static_cast<double>(p);
-      set_test(e, st.zero_error);
-      e.eta_p2 = (e.ss + e.ss_error) > 0 ? e.ss / (e.ss + e.ss_error) : kNaN;
-      if (e.within) {
-        set_sphericity(e, st);
-      } else {
-        e.gg_epsilon = e.hf_epsilon = e.mauchly_W = e.mauchly_p = kNaN;
-        e.p_gg = e.log10_p_gg = e.p_hf = e.log10_p_hf = kNaN;
-      }
-      complete_effect(e);
-      pending.push_back({e, stratum_error.size() - 1, T, S});
-    }
+    auto added = stratum_effects(st, {bd, *V, Xt, dfe, exponent}, d, stratum_error.size() - 1, pending);
+    if (!added) return Error{data.source, 0, 0, "", added.error().message};
+    if (!*added) return overflow_error(data.source, data.dv_name, "the sums of squares");
   }
   if (auto s = generalized_eta(pending, stratum_error, d, options.observed, data.source); !s) return s.error();
   for (const auto& pe : pending) r.effects.push_back(pe.e);

@@ -31,8 +31,10 @@ struct Index {
 
 // One slot per subject x cell: the rows that fell into it.
 struct Slots {
-  std::vector<size_t> count, first;
-  std::vector<char> missing;
+  std::vector<size_t> count, first;          // rows in the slot, the first of them
+  std::vector<char> missing;                 // a row of the slot has a missing dv
+  std::vector<size_t> group_row;             // per subject: the row that set its between levels
+  std::vector<std::vector<size_t>> rows_of;  // per slot, filled only when some slot has several rows
 };
 
 double row_noise(const Measurements& dv, size_t r) {
@@ -127,55 +129,62 @@ std::string name_list(const std::vector<std::string>& names, size_t shown) {
   return s;
 }
 
-Result<CellDesign> build_cell_design(const LongData& data) {
-  const size_t n = data.rows();
-  if (data.subject.size() != n) throw std::invalid_argument("build_cell_design: one subject id per row is required");
-  for (const auto& f : data.within)
-    if (f.level.size() != n) throw std::invalid_argument("build_cell_design: factor '" + f.name + "' needs one level per row");
-  for (const auto& f : data.between)
-    if (f.level.size() != n) throw std::invalid_argument("build_cell_design: factor '" + f.name + "' needs one level per row");
+namespace {
 
-  CellDesign d;
-  d.offset = data.dv.offset;
-  const size_t nw = data.within.size(), nb = data.between.size();
-  for (const auto& f : data.within) d.within_names.push_back(f.name);
-  for (const auto& f : data.between) d.between_names.push_back(f.name);
+// Every row's subject, within levels and between levels, as indices in first-appearance order.
+struct Rows {
   Index subjects;
+  std::vector<size_t> subject, within, group;  // within: n x nw, group: n x nb
+};
+
+Rows index_rows(const LongData& data, CellDesign& d) {
+  const size_t n = data.rows(), nw = data.within.size(), nb = data.between.size();
+  Rows rows;
+  rows.subject.resize(n);
+  rows.within.resize(n * nw);
+  rows.group.resize(n * nb);
   std::vector<Index> wl(nw), bl(nb);
-  std::vector<size_t> row_subject(n), row_within(n * nw), row_group(n * nb);
   for (size_t r = 0; r < n; ++r) {
-    row_subject[r] = subjects.of(data.subject[r]);
-    for (size_t f = 0; f < nw; ++f) row_within[r * nw + f] = wl[f].of(data.within[f].level[r]);
-    for (size_t f = 0; f < nb; ++f) row_group[r * nb + f] = bl[f].of(data.between[f].level[r]);
+    rows.subject[r] = rows.subjects.of(data.subject[r]);
+    for (size_t f = 0; f < nw; ++f) rows.within[r * nw + f] = wl[f].of(data.within[f].level[r]);
+    for (size_t f = 0; f < nb; ++f) rows.group[r * nb + f] = bl[f].of(data.between[f].level[r]);
   }
   for (size_t f = 0; f < nw; ++f) d.within_levels.push_back(wl[f].names);
   for (size_t f = 0; f < nb; ++f) d.between_levels.push_back(bl[f].names);
   for (const auto& lv : d.within_levels) d.cells *= lv.size();
-  const size_t C = d.cells, ns = subjects.names.size();
+  return rows;
+}
 
-  Slots slots{std::vector<size_t>(ns * C, 0), std::vector<size_t>(ns * C, kNone), std::vector<char>(ns * C, 0)};
-  std::vector<size_t> group_row(ns, kNone), row_slot(n);
+// Which rows fall into each subject x cell slot; Errors for a between level
+// changing within a subject and for a repeated slot without an aggregation.
+Result<Slots> fill_slots(const LongData& data, const CellDesign& d, const Rows& rows) {
+  const size_t n = data.rows(), nw = data.within.size(), nb = data.between.size();
+  const size_t C = d.cells, ns = rows.subjects.names.size();
+  Slots slots{std::vector<size_t>(ns * C, 0), std::vector<size_t>(ns * C, kNone), std::vector<char>(ns * C, 0),
+              std::vector<size_t>(ns, kNone), {}};
+  std::vector<size_t> row_slot(n);
   bool repeated = false;
   for (size_t r = 0; r < n; ++r) {
-    const size_t s = row_subject[r];
+    const size_t s = rows.subject[r];
     size_t c = 0;
-    for (size_t f = 0; f < nw; ++f) c = c * d.within_levels[f].size() + row_within[r * nw + f];
+    for (size_t f = 0; f < nw; ++f) c = c * d.within_levels[f].size() + rows.within[r * nw + f];
     const size_t k = s * C + c;
     row_slot[r] = k;
-    if (group_row[s] == kNone) {
-      group_row[s] = r;
+    const int line = r < data.line.size() ? data.line[r] : 0;
+    if (slots.group_row[s] == kNone) {
+      slots.group_row[s] = r;
     } else {
-      const size_t r0 = group_row[s];
+      const size_t r0 = slots.group_row[s];
       for (size_t f = 0; f < nb; ++f)
-        if (row_group[r * nb + f] != row_group[r0 * nb + f])
-          return Error{data.source, r < data.line.size() ? data.line[r] : 0, 0, name_for_message(data.between[f].name),
-                       "subject " + quote_text(subjects.names[s]) + " has level " + quote_text(data.between[f].level[r]) +
-                           " here but " + quote_text(data.between[f].level[r0]) + " at " + data.where(r0) +
-                           "; a between-subject factor must be constant within a subject"};
+        if (rows.group[r * nb + f] != rows.group[r0 * nb + f])
+          return Error{data.source, line, 0, name_for_message(data.between[f].name),
+                       "subject " + quote_text(rows.subjects.names[s]) + " has level " +
+                           quote_text(data.between[f].level[r]) + " here but " + quote_text(data.between[f].level[r0]) +
+                           " at " + data.where(r0) + "; a between-subject factor must be constant within a subject"};
     }
     if (slots.count[k] > 0 && data.aggregate == Aggregate::none)
-      return Error{data.source, r < data.line.size() ? data.line[r] : 0, 0, "",
-                   "subject " + quote_text(subjects.names[s]) + " has a second row for the cell " + d.cell_label(c) +
+      return Error{data.source, line, 0, "",
+                   "subject " + quote_text(rows.subjects.names[s]) + " has a second row for the cell " + d.cell_label(c) +
                        " (the first is at " + data.where(slots.first[k]) +
                        "): expected one value per subject and cell; filter the rows or choose an aggregation "
                        "(mean or median of the rows)"};
@@ -184,22 +193,26 @@ Result<CellDesign> build_cell_design(const LongData& data) {
     repeated = repeated || slots.count[k] > 1;
     if (data.dv.missing(r)) slots.missing[k] = 1;
   }
-  std::vector<std::vector<size_t>> rows_of;  // per slot, only when rows repeat
   if (repeated) {
-    rows_of.resize(ns * C);
-    for (size_t r = 0; r < n; ++r) rows_of[row_slot[r]].push_back(r);
+    slots.rows_of.resize(ns * C);
+    for (size_t r = 0; r < n; ++r) slots.rows_of[row_slot[r]].push_back(r);
   }
+  return slots;
+}
 
+// The subjects with every cell, their cell values, and the warnings naming the others.
+void keep_complete(const LongData& data, CellDesign& d, const Rows& rows, const Slots& slots) {
+  const size_t C = d.cells, nb = data.between.size();
   size_t aggregated = 0;
   std::vector<std::string> dropped_text;
-  for (size_t s = 0; s < ns; ++s) {
+  for (size_t s = 0; s < rows.subjects.names.size(); ++s) {
     size_t first_missing = C;
     for (size_t c = 0; c < C && first_missing == C; ++c)
       if (slots.count[s * C + c] == 0 || slots.missing[s * C + c]) first_missing = c;
     if (first_missing < C) {
-      d.dropped.push_back(subjects.names[s]);
+      d.dropped.push_back(rows.subjects.names[s]);
       if (dropped_text.size() < 10)
-        dropped_text.push_back(name_for_message(subjects.names[s]) + " (" + d.cell_label(first_missing) + ")");
+        dropped_text.push_back(name_for_message(rows.subjects.names[s]) + " (" + d.cell_label(first_missing) + ")");
       continue;
     }
     std::vector<double> dl(C), vl(C), nl(C);
@@ -207,7 +220,7 @@ Result<CellDesign> build_cell_design(const LongData& data) {
       const size_t k = s * C + c;
       if (slots.count[k] > 1) {
         ++aggregated;
-        reduce(data, rows_of[k], dl[c], vl[c], nl[c]);
+        reduce(data, slots.rows_of[k], dl[c], vl[c], nl[c]);
       } else {
         const size_t r = slots.first[k];
         dl[c] = data.dv.delta[r];
@@ -215,12 +228,12 @@ Result<CellDesign> build_cell_design(const LongData& data) {
         nl[c] = row_noise(data.dv, r);
       }
     }
-    d.subjects.push_back(subjects.names[s]);
+    d.subjects.push_back(rows.subjects.names[s]);
     d.delta.push_back(std::move(dl));
     d.value.push_back(std::move(vl));
     d.noise.push_back(std::move(nl));
     std::vector<size_t> g(nb);
-    for (size_t f = 0; f < nb; ++f) g[f] = row_group[group_row[s] * nb + f];
+    for (size_t f = 0; f < nb; ++f) g[f] = rows.group[slots.group_row[s] * nb + f];
     d.group.push_back(std::move(g));
   }
   if (!d.dropped.empty()) {
@@ -236,6 +249,25 @@ Result<CellDesign> build_cell_design(const LongData& data) {
     d.warnings.push_back(std::to_string(aggregated) + " subject x cell combination" + (aggregated == 1 ? "" : "s") +
                          " had more than one row; each was replaced by the " +
                          (data.aggregate == Aggregate::median ? "median" : "mean") + " of its rows (as requested)");
+}
+
+}  // namespace
+
+Result<CellDesign> build_cell_design(const LongData& data) {
+  const size_t n = data.rows();
+  if (data.subject.size() != n) throw std::invalid_argument("build_cell_design: one subject id per row is required");
+  for (const auto& f : data.within)
+    if (f.level.size() != n) throw std::invalid_argument("build_cell_design: factor '" + f.name + "' needs one level per row");
+  for (const auto& f : data.between)
+    if (f.level.size() != n) throw std::invalid_argument("build_cell_design: factor '" + f.name + "' needs one level per row");
+  CellDesign d;
+  d.offset = data.dv.offset;
+  for (const auto& f : data.within) d.within_names.push_back(f.name);
+  for (const auto& f : data.between) d.between_names.push_back(f.name);
+  const Rows rows = index_rows(data, d);
+  auto slots = fill_slots(data, d, rows);
+  if (!slots) return slots.error();
+  keep_complete(data, d, rows, *slots);
   return d;
 }
 
