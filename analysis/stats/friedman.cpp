@@ -21,6 +21,40 @@ void set_undefined(FriedmanResult& r) {
   r.iman_davenport_F = r.p_iman_davenport = r.log10_p_iman_davenport = kNaN;
 }
 
+// p_exact by the exact permutation distribution or by Monte Carlo, as `exact` asks.
+void permutation_p(FriedmanResult& r, const std::vector<std::vector<int>>& doubled, const ExactOptions& exact) {
+  const std::int64_t s_obs = detail::friedman_s(doubled);
+  r.p_exact = kNaN;
+  auto run_monte_carlo = [&](std::size_t samples) {
+    r.p_exact = detail::friedman_monte_carlo_tail(doubled, s_obs, samples, exact.seed, exact.progress);
+    r.exact_method = "monte-carlo";
+    r.monte_carlo_samples = samples;
+    r.seed = exact.seed;
+  };
+  switch (exact.mode) {
+    case ExactMode::never:
+      break;
+    case ExactMode::monte_carlo:
+      run_monte_carlo(exact.monte_carlo_samples);
+      break;
+    case ExactMode::automatic:
+    case ExactMode::always: {
+      const double budget = exact.mode == ExactMode::always ? 50 * kExactBudget : kExactBudget;
+      if (auto p = detail::friedman_exact_tail(doubled, s_obs, budget)) {
+        r.p_exact = *p;
+        r.exact_method = "exact";
+      } else if (exact.mode == ExactMode::automatic) {
+        r.exact_note = "the exact permutation distribution is too large to enumerate for n = " + std::to_string(r.n) +
+                       ", k = " + std::to_string(r.k) + "; the chi-square p applies (a Monte Carlo estimate on request)";
+      } else {
+        r.warnings.push_back("exact enumeration too large for n = " + std::to_string(r.n) + ", k = " +
+                             std::to_string(r.k) + ": p_exact not computed (use monte-carlo=N)");
+      }
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 FriedmanResult friedman_blocks(const std::vector<std::vector<double>>& y, const ExactOptions& exact) {
@@ -82,37 +116,7 @@ FriedmanResult friedman_blocks(const std::vector<std::vector<double>>& y, const 
     r.log10_p_iman_davenport = f.log10_p;
   }
 
-  // Permutation p-value.
-  const std::int64_t s_obs = detail::friedman_s(doubled);
-  r.p_exact = kNaN;
-  auto run_monte_carlo = [&](std::size_t samples) {
-    r.p_exact = detail::friedman_monte_carlo_tail(doubled, s_obs, samples, exact.seed, exact.progress);
-    r.exact_method = "monte-carlo";
-    r.monte_carlo_samples = samples;
-    r.seed = exact.seed;
-  };
-  switch (exact.mode) {
-    case ExactMode::never:
-      break;
-    case ExactMode::monte_carlo:
-      run_monte_carlo(exact.monte_carlo_samples);
-      break;
-    case ExactMode::automatic:
-    case ExactMode::always: {
-      const double budget = exact.mode == ExactMode::always ? 50 * kExactBudget : kExactBudget;
-      if (auto p = detail::friedman_exact_tail(doubled, s_obs, budget)) {
-        r.p_exact = *p;
-        r.exact_method = "exact";
-      } else if (exact.mode == ExactMode::automatic) {
-        r.exact_note = "the exact permutation distribution is too large to enumerate for n = " + std::to_string(r.n) +
-                       ", k = " + std::to_string(r.k) + "; the chi-square p applies (a Monte Carlo estimate on request)";
-      } else {
-        r.warnings.push_back("exact enumeration too large for n = " + std::to_string(r.n) + ", k = " +
-                             std::to_string(r.k) + ": p_exact not computed (use monte-carlo=N)");
-      }
-      break;
-    }
-  }
+  permutation_p(r, doubled, exact);
   return r;
 }
 
