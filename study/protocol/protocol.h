@@ -98,6 +98,7 @@ struct Task {
   TaskType type = TaskType::count_targets;
   int trials = 0;  // recorded trials per condition
   SceneParams scene;
+  std::string instructions;  // shown to the participant before each task set; "" = the default of its type
 };
 
 struct Scenario {
@@ -144,6 +145,18 @@ struct QuestionnaireItem {
   std::string scenario;              // depth_test: scenario shown
   std::string rendering;             // depth_test: rendering used
   int pairs = 3;                     // depth_test
+  std::string neutral;               // choice: an extra option meaning "no preference" ("" = none); last of options
+};
+
+// One thing the experimenter records about a participant at enrollment (age, handedness, ...).
+struct DemographicField {
+  enum class Type { text, integer, choice };
+  std::string id;                    // identifier, the key stored in the ledger
+  std::string prompt;                // what the start screen asks
+  Type type = Type::text;
+  bool required = false;             // enrollment refuses an empty value
+  int min = 0, max = 150;            // integer: the accepted range
+  std::vector<std::string> options;  // choice: the accepted answers
 };
 
 struct Protocol {
@@ -166,7 +179,13 @@ struct Protocol {
   std::vector<Scenario> scenarios;    // in file order
   std::vector<Rendering> renderings;  // in file order
   std::vector<QuestionnaireItem> questionnaire;  // in file order
+  std::vector<DemographicField> demographics;    // in file order; asked at enrollment
 };
+
+// Checks a participant's demographic answers against the protocol's fields (required ones
+// present, integers in range, choices among the options, no unknown field); the Error names
+// the field. Values are text as entered.
+Status check_demographics(const Protocol& p, const std::vector<std::pair<std::string, std::string>>& values);
 
 // --- loading and validation -------------------------------------------------------------
 
@@ -190,6 +209,7 @@ std::string_view to_string(OrderUnit unit);
 std::string_view to_string(ScenarioKind kind);   // "abstract" | "walkthrough"
 std::string_view to_string(TaskType type);       // "count-targets", ...
 std::string_view to_string(ItemType type);
+std::string_view to_string(DemographicField::Type type);  // "text", "integer", "choice"
 
 // The number of rows the declared scheme yields for n items (n >= 1):
 // latin-square n, williams n (even n) or 2n (odd n), full-permutation n!,

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "study/design/design.h"
+#include "study/render/gl_info.h"
 #include "study/session/session.h"
 
 namespace dtlab::session {
@@ -39,7 +40,7 @@ Result<store::TrialRecord> make_record(const TrialSpec& spec, TrialOutcome&& out
   r.completion_s = out.completion_s;
   r.started_at = out.started_at;
   r.ended_at = out.ended_at;
-  r.frames = store::frame_stats(out.frame_ms);
+  r.frames = store::frame_stats(out.frame_ms, out.refresh_hz);
   r.events = std::move(out.events);
   r.poses = std::move(out.poses);
   return r;
@@ -94,6 +95,11 @@ Result<std::vector<store::QuestionnaireAnswer>> score_questionnaire(const std::v
 
 }  // namespace
 
+store::DisplayInfo Responder::display() const {
+  const Viewport vp = viewport();
+  return store::DisplayInfo{"headless", vp.width, vp.height, std::nullopt, render::current_gl_description(), ""};
+}
+
 Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol& p, const std::string& participant_id,
                                    Responder& responder, const Hooks& hooks) {
   SessionSummary sum;
@@ -117,6 +123,7 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   if (!begun) return begun.error();
   const store::Session session = begun.value();
   sum.resumed = session.resumed;
+  if (Status st = store.record_display(session, responder.display()); !st) return st.error();
   if (hooks.on_session_start) hooks.on_session_start(session, sum.plan);
 
   auto history = recorded_trials(store, participant_id);

@@ -106,6 +106,10 @@ Result<ExportSummary> export_trials_csv(StudyReader& reader, std::ostream& out) 
     row.push_back(opt(t.frames.sd_ms));
     row.push_back(opt(t.frames.p95_ms));
     row.push_back(opt(t.frames.max_ms));
+    row.push_back(opt(t.frames.first_ms));
+    row.push_back(opt(t.frames.steady_median_ms));
+    row.push_back(opt(t.frames.late));
+    row.push_back(opt(t.frames.refresh_hz));
     row.push_back(t.protocol_sha256);
     row.push_back(t.design_revision > 0 ? std::to_string(t.design_revision) : "NA");
     row.push_back(t.excluded ? csv_field(*t.excluded) : "NA");

@@ -148,6 +148,7 @@ void parse_task(const toml::key& k, const toml::node& n, const std::string& task
                 : *type == "find-unique"     ? TaskType::find_unique
                                              : TaskType::count_kind;
   if (auto v = tr.integer("trials", true, 1, 100)) task.trials = static_cast<int>(*v);
+  if (auto v = tr.string("instructions", false)) task.instructions = *v;
   read_scene_keys(tr, task.scene, s);
   tr.finish();
   if (!type) return;
@@ -281,6 +282,7 @@ void parse_questionnaire(TableReader& root, ParseState& s) {
     const auto per = qr.strings("per", false, 0, 8);
     const auto factor = qr.string("factor", false);
     const auto options = qr.strings("options", false, 2, 32);
+    const auto neutral = qr.string("neutral", false);
     const auto scenario = qr.string("scenario", false);
     const auto rendering = qr.string("rendering", false);
     const auto pairs = qr.integer("pairs", false, 1, 20);
@@ -294,7 +296,7 @@ void parse_questionnaire(TableReader& root, ParseState& s) {
                       "\"");
     };
     for (const char* key : {"scale", "per"}) only(key, ItemType::rating);
-    for (const char* key : {"factor", "options"}) only(key, ItemType::choice);
+    for (const char* key : {"factor", "options", "neutral"}) only(key, ItemType::choice);
     for (const char* key : {"scenario", "rendering", "pairs"}) only(key, ItemType::depth_test);
     const auto known = [&](const char* key, const std::string& name, const std::vector<std::string>& names,
                            const char* what) {
@@ -327,6 +329,15 @@ void parse_questionnaire(TableReader& root, ParseState& s) {
         if (factor && known("factor", *factor, factor_names(p), "factor")) item.factor = *factor;
         if (options) item.options = *options;
         if (!item.factor.empty()) item.options = p.factors[find_index(factor_names(p), item.factor)].levels;
+        if (neutral) {
+          if (find_index(item.options, *neutral) >= 0)
+            s.d.error(qr.pos("neutral"), qr.field("neutral"),
+                      "\"" + *neutral + "\" is already one of the options; the neutral option must differ");
+          else {
+            item.neutral = *neutral;
+            item.options.push_back(*neutral);
+          }
+        }
         break;
       case ItemType::depth_test:
         if (!qr.has("scenario"))

@@ -245,6 +245,7 @@ void parse_document(const toml::table& root, ParseState& s) {
   build_conditions(s);
   parse_order(r, s);
   parse_questionnaire(r, s);
+  parse_demographics(r, s);
   r.finish();
 
   if (!p.conditions.empty() && s.scenarios_ok) {

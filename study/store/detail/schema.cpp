@@ -279,6 +279,7 @@ const std::vector<Migration>& migrations() {
       {1, "schema v1: studies, ledger, sessions, planned trials, results, events, poses, questionnaire",
        &schema_v1},
       {2, "schema v2: design hashes, exclusions, notes, pauses, trial attempts, session claims", &schema_v2},
+      {3, "schema v3: warm-up and late frames per trial, the display of each session", &schema_v3},
   };
   return list;
 }
@@ -309,7 +310,8 @@ const std::vector<std::string>& fixed_trial_columns_after_factors() {
       "answer_count",  "answer_letter", "answer_x",     "answer_z",      "truth_count",   "truth_letter",
       "truth_x",       "truth_z",       "rel_error",    "signed_error",  "correct",       "distance",
       "completion_time_s", "started_at", "ended_at",    "frame_count",   "frame_ms_mean", "frame_ms_sd",
-      "frame_ms_p95",  "frame_ms_max",  "protocol_sha256", "design_revision", "excluded"};
+      "frame_ms_p95",  "frame_ms_max",  "frame_first_ms", "frame_ms_median", "late_frames", "refresh_hz",
+      "protocol_sha256", "design_revision", "excluded"};
   return c;
 }
 
@@ -346,7 +348,7 @@ Status migrate(Db& db, int from, const std::string& software_version) {
     st->bind(1, m.version).bind(2, m.description).bind(3, now_iso8601_utc()).bind(4, software_version);
     if (auto s = st->run(what); !s) return s;
   }
-  if (from < 2 && from >= 1)  // the v1 view lacks the v2 columns; a new file gets its view with the first study
+  if (from >= 1)  // an older view lacks the newer columns; a new file gets its view with the first study
     if (auto s = create_trial_table_view(db); !s) return s;
   return db.exec("PRAGMA application_id = " + std::to_string(kApplicationId) +
                      "; PRAGMA user_version = " + std::to_string(kSchemaVersion),
@@ -381,6 +383,8 @@ Status create_trial_table_view(Db& db) {
       "  r.completion_s AS completion_time_s, r.started_at AS started_at, r.ended_at AS ended_at,\n"
       "  r.frame_count AS frame_count, r.frame_ms_mean AS frame_ms_mean, r.frame_ms_sd AS frame_ms_sd,\n"
       "  r.frame_ms_p95 AS frame_ms_p95, r.frame_ms_max AS frame_ms_max,\n"
+      "  r.frame_first_ms AS frame_first_ms, r.frame_ms_median AS frame_ms_median,\n"
+      "  r.late_frames AS late_frames, r.refresh_hz AS refresh_hz,\n"
       "  st.protocol_sha256 AS protocol_sha256,\n"
       // Design revision: 1 + the number of distinct design hashes first recorded before this one's.
       "  (SELECT count(*) FROM (SELECT 1 FROM study_designs d2 GROUP BY d2.design_sha256\n"

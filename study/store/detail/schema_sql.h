@@ -13,5 +13,6 @@ std::string iso_check_nullable(std::string_view column);  // the same, NULL allo
 std::string hex_check(std::string_view column, int length);  // lowercase hex of exactly `length` digits
 
 std::string schema_v2();  // design hashes, exclusions, notes, pauses, trial attempts, session claims
+std::string schema_v3();  // warm-up and late frames per trial, the display of each session start
 
 }  // namespace dtlab::store::detail
