@@ -11,6 +11,7 @@
 
 #include "analysis/report/report.h"
 #include "app/commands.h"
+#include "study/common/text.h"
 
 namespace dtlab::app {
 
@@ -43,8 +44,8 @@ void run_analyze(const AnalyzeArgs& a) {
                      {"simulated", sum->simulated}, {"warnings", sum->warnings}};
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cerr << "dtlab analyze: wrote " << a.out << "/index.html and report.md (" << sum->participants
-              << " participants, " << sum->trials << " trials, " << sum->tests << " tests"
+    std::cerr << "dtlab analyze: wrote " << a.out << "/index.html and report.md (" << count(sum->participants, "participant")
+              << ", " << count(sum->trials, "trial") << ", " << count(sum->tests, "test")
               << (sum->simulated ? ", simulated participants" : "") << ")\n";
     for (const auto& w : sum->warnings) std::cerr << "dtlab analyze: warning: " << w << "\n";
   }

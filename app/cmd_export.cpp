@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "app/commands.h"
+#include "study/common/text.h"
 #include "study/store/export.h"
 #include "study/store/store.h"
 
@@ -56,7 +57,7 @@ void run_export(const ExportArgs& a) {
     nlohmann::json j{{"database", a.db}, {"csv", a.csv}, {"rows", sum->rows}, {"columns", sum->columns}};
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cerr << "dtlab export: wrote " << sum->rows << " trials (" << sum->columns.size() << " columns) to "
+    std::cerr << "dtlab export: wrote " << count(sum->rows, "trial") << " (" << count(static_cast<long long>(sum->columns.size()), "column") << ") to "
               << a.csv << "\n";
   }
 }

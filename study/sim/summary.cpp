@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "analysis/stats/csv.h"
+#include "study/common/text.h"
 #include "study/store/export.h"
 
 namespace dtlab::sim {
@@ -75,7 +76,7 @@ Result<Summary> summarize(const std::string& db_path, const std::string& renderi
 
 std::string format_summary(const Summary& s) {
   std::ostringstream out;
-  out << s.participants << " participants, " << s.trials << " trials\n";
+  out << count(s.participants, "participant") << ", " << count(s.trials, "trial") << "\n";
   char line[160];
   std::snprintf(line, sizeof line, "  %-5s %-12s %6s %10s %8s   %s\n", "task", "rendering", "trials", "time mean", "sd",
                 "accuracy (mean)");
