@@ -66,6 +66,7 @@ struct RunResult {
   int finished = 0;     // sessions finished by this run
   int trials_run = 0;   // trials recorded by this run
   int failed = 0;       // participants whose session stopped with an error (messages in `errors`)
+  int invalid = 0;      // of those, errors in the protocol (the Error names the protocol file), not the environment
   bool stopped = false; // *stop ended the run early
   std::vector<std::string> errors;
 };

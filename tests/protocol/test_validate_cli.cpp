@@ -119,6 +119,65 @@ TEST(ValidateCli, WarningsKeepExitZero) {
   fs::remove(p);
 }
 
+// Issue 12: protocols `dtlab validate` called valid and `dtlab simulate` then failed on (exit 3
+// "environment failure") or never finished. Each is now refused by both commands with exit 1 and
+// FILE:LINE:COLUMN: error: FIELD at the key at fault, before simulate creates its database.
+TEST(ValidateCli, WhatASessionWouldRefuseIsInvalid) {
+  struct Case {
+    const char* name;
+    const char* from;
+    const char* to;
+    const char* field;
+  };
+  const Case cases[] = {
+      {"radius", "object_radius = [3.0, 6.0]", "object_radius = [3.0, 60.0]",
+       "scenarios.abstract.tasks.T1.object_radius"},
+      {"ratio", "target_ratio = [0.10, 0.20]", "target_ratio = [0.001, 0.001]",
+       "scenarios.abstract.tasks.T1.target_ratio"},
+      {"cell", "cell_size = 4.0", "cell_size = 3.0", "scenarios.walkthrough.tasks.T3.cell_size"},
+      {"mask", "mask_resolution = 128", "mask_resolution = 4096", "rendering.on.mask_resolution"},
+      {"depth", "scenario = \"walkthrough\"     # one", "scenario = \"abstract\"     # one",
+       "questionnaire.depth_test.scenario"},
+      {"pairs", "pairs = 3", "pairs = 20", "questionnaire.depth_test.pairs"},
+  };
+  const std::string reference = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/elmqvist2008.toml");
+  for (const Case& c : cases) {
+    std::string text = reference;
+    const auto at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    text.replace(at, std::string(c.from).size(), c.to);
+    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+    const fs::path p = write_temp(std::string(c.name) + ".toml", text);
+    const std::string where = p.string() + ":" + std::to_string(line) + ":";
+    const Outcome v = dtlab("validate '" + p.string() + "'");
+    EXPECT_EQ(v.rc, 1) << c.name << "\n" << v.err;
+    EXPECT_NE(v.err.find(where), std::string::npos) << c.name << ": expected " << where << "\n" << v.err;
+    EXPECT_NE(v.err.find(std::string("error: ") + c.field + ":"), std::string::npos) << c.name << "\n" << v.err;
+    const fs::path db = fs::temp_directory_path() / ("dtlab_validate_cli_" + std::to_string(getpid()) + ".sqlite");
+    const Outcome s = dtlab("simulate '" + p.string() + "' --participants 1 --db '" + db.string() + "'");
+    EXPECT_EQ(s.rc, 1) << c.name << "\n" << s.err;
+    EXPECT_NE(s.err.find(where), std::string::npos) << c.name << "\n" << s.err;
+    EXPECT_FALSE(fs::exists(db)) << c.name << ": nothing may be created for a protocol that cannot run";
+    fs::remove(db);
+    fs::remove(p);
+  }
+}
+
+// Issue 12: "1 participants". Counts agree with their noun in the summary line.
+TEST(ValidateCli, SummaryCountsAgreeWithTheirNoun) {
+  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/pilot.toml");
+  const std::string from = "participants = 4 ";
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), "participants = 1 ");
+  const fs::path p = write_temp("one.toml", text);
+  const Outcome r = dtlab("validate '" + p.string() + "'");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("8 trials per participant, 1 participant\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("valid with 1 warning;"), std::string::npos) << r.out;
+  fs::remove(p);
+}
+
 TEST(ValidateCli, MissingArgumentIsAUsageError) {
   const Outcome r = dtlab("validate");
   EXPECT_EQ(r.rc, 2);
