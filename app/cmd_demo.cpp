@@ -121,7 +121,8 @@ void run_demo(DemoArgs a) {
 #else
   const bool have_report = false;
 #endif
-  auto summary = sim::summarize(a.run.db, "transparency");
+  const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
+  auto summary = sim::summarize(a.run.db, rendering ? rendering->name : "");
   std::cout << "dtlab demo: " << r.finished_total << " of " << count(a.run.participants, "simulated participant")
             << " finished (" << count(r.trials_run, "trial") << " run now, in " << std::lround(r.wall_s) << " s)\n";
   if (summary) std::cout << sim::format_summary(summary.value());

@@ -95,12 +95,6 @@ struct SimulateArgs {
   bool json = false;
 };
 
-std::string rendering_factor(const protocol::Protocol& p) {
-  for (const auto& f : p.factors)
-    if (f.role == protocol::FactorRole::rendering) return f.name;
-  return "";
-}
-
 void run_simulate(const SimulateArgs& a) {
   auto p = protocol::load_protocol(a.protocol);
   if (!p) {
@@ -112,7 +106,8 @@ void run_simulate(const SimulateArgs& a) {
   run.db = a.db;
   const int rc = run_simulation(p.value(), run, "dtlab simulate", r);
   if (rc != kExitOk && rc != kExitInterrupted && rc != kExitFailure) throw CLI::RuntimeError(rc);
-  auto summary = sim::summarize(a.db, rendering_factor(p.value()));
+  const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
+  auto summary = sim::summarize(a.db, rendering ? rendering->name : "");
   if (a.json) {
     nlohmann::json j{{"protocol", p->id},          {"database", a.db},
                      {"participants", run.participants}, {"finished", r.finished_total},

@@ -349,4 +349,10 @@ const Factor* find_factor(const Protocol& p, std::string_view name) { return by_
 const Scenario* find_scenario(const Protocol& p, std::string_view name) { return by_name(p.scenarios, name); }
 const Rendering* find_rendering(const Protocol& p, std::string_view name) { return by_name(p.renderings, name); }
 
+const Factor* factor_with_role(const Protocol& p, FactorRole role) {
+  for (const Factor& f : p.factors)
+    if (f.role == role) return &f;
+  return nullptr;
+}
+
 }  // namespace dtlab::protocol

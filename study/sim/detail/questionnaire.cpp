@@ -23,9 +23,8 @@ struct Judgement {
 
 // The rendering factor's name, or "".
 std::string rendering_factor(const protocol::Protocol& p) {
-  for (const auto& f : p.factors)
-    if (f.role == protocol::FactorRole::rendering) return f.name;
-  return "";
+  const protocol::Factor* f = protocol::factor_with_role(p, protocol::FactorRole::rendering);
+  return f ? f->name : "";
 }
 
 bool matches(const design::PlannedTrial& t, const std::vector<std::pair<std::string, std::string>>& levels,
