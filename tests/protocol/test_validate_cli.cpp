@@ -29,6 +29,18 @@ fs::path write_temp(const std::string& name, const std::string& text) {
   return p;
 }
 
+// protocols/<shipped> with `from` replaced by `to`, written to a temporary file; *line = the line of the edit.
+fs::path edited(const std::string& shipped, const std::string& name, const std::string& from, const std::string& to,
+                int* line = nullptr) {
+  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols" / shipped);
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at == std::string::npos) return write_temp(name, text);
+  text.replace(at, from.size(), to);
+  if (line) *line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  return write_temp(name, text);
+}
+
 TEST(ValidateCli, ShippedProtocolsExitZero) {
   for (const char* name : {"elmqvist2008.toml", "pilot.toml"}) {
     const Outcome r = dtlab(std::string("validate '") + DTLAB_SOURCE_DIR + "/protocols/" + name + "'");
@@ -41,13 +53,8 @@ TEST(ValidateCli, ShippedProtocolsExitZero) {
 }
 
 TEST(ValidateCli, BrokenProtocolExitsOneNamingLineAndField) {
-  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/pilot.toml");
-  const std::string from = "trials = 1\ncount_range";
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, from.size(), "trails = 1\ncount_range");
-  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-  const fs::path p = write_temp("typo.toml", text);
+  int line = 0;
+  const fs::path p = edited("pilot.toml", "typo.toml", "trials = 1\ncount_range", "trails = 1\ncount_range", &line);
   const Outcome r = dtlab("validate '" + p.string() + "'");
   EXPECT_EQ(r.rc, 1);
   const std::string expected =
@@ -105,12 +112,7 @@ TEST(ValidateCli, BadFilesExitOneWithoutCrashing) {
 }
 
 TEST(ValidateCli, WarningsKeepExitZero) {
-  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/elmqvist2008.toml");
-  const std::string from = "participants = 16";
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, from.size(), "participants = 10");
-  const fs::path p = write_temp("ten.toml", text);
+  const fs::path p = edited("elmqvist2008.toml", "ten.toml", "participants = 16", "participants = 10");
   const Outcome r = dtlab("validate '" + p.string() + "'");
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("warning: participants: participants = 10 is not a multiple of the 4 order rows"),
@@ -140,14 +142,9 @@ TEST(ValidateCli, WhatASessionWouldRefuseIsInvalid) {
        "questionnaire.depth_test.scenario"},
       {"pairs", "pairs = 3", "pairs = 20", "questionnaire.depth_test.pairs"},
   };
-  const std::string reference = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/elmqvist2008.toml");
   for (const Case& c : cases) {
-    std::string text = reference;
-    const auto at = text.find(c.from);
-    ASSERT_NE(at, std::string::npos) << c.from;
-    text.replace(at, std::string(c.from).size(), c.to);
-    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-    const fs::path p = write_temp(std::string(c.name) + ".toml", text);
+    int line = 0;
+    const fs::path p = edited("elmqvist2008.toml", std::string(c.name) + ".toml", c.from, c.to, &line);
     const std::string where = p.string() + ":" + std::to_string(line) + ":";
     const Outcome v = dtlab("validate '" + p.string() + "'");
     EXPECT_EQ(v.rc, 1) << c.name << "\n" << v.err;
@@ -165,12 +162,7 @@ TEST(ValidateCli, WhatASessionWouldRefuseIsInvalid) {
 
 // Issue 12: "1 participants". Counts agree with their noun in the summary line.
 TEST(ValidateCli, SummaryCountsAgreeWithTheirNoun) {
-  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/pilot.toml");
-  const std::string from = "participants = 4 ";
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, from.size(), "participants = 1 ");
-  const fs::path p = write_temp("one.toml", text);
+  const fs::path p = edited("pilot.toml", "one.toml", "participants = 4 ", "participants = 1 ");
   const Outcome r = dtlab("validate '" + p.string() + "'");
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.out.find("8 trials per participant, 1 participant\n"), std::string::npos) << r.out;
