@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "study/common/text.h"
 #include "study/protocol/detail/parser.h"
 
 namespace dtlab::protocol::detail {
@@ -189,6 +190,50 @@ std::optional<std::vector<int>> parse_fixed(ParseState& s, const toml::node& n, 
   }
   if (!ok) return std::nullopt;
   return order;
+}
+
+// Counted exactly (a random nested scheme can ask for 100000 x 100000 rows), refused before
+// anything is built from it: the store keeps a count per row, and rows beyond the most
+// participants a protocol can have are never used. False (with an error) if there are too many.
+bool check_row_count(ParseState& s, TableReader& r, const Items& outer, const Items& nested) {
+  const Ordering& o = s.p.order;
+  const bool blocks = o.unit == OrderUnit::blocks;
+  const std::int64_t total_rows = declared_order_rows(s.p);
+  if (total_rows <= limits::kOrderRows.max) return true;
+  const char* key = blocks && o.nested_scheme == Scheme::random && r.has("nested_rows") ? "nested_rows"
+                    : o.scheme == Scheme::random && r.has("rows")                       ? "rows"
+                                                                                        : "scheme";
+  std::string how;
+  if (blocks)
+    how = " (" + std::to_string(scheme_rows(o.scheme, outer.count, o.rows)) + " outer x " +
+          std::to_string(scheme_rows(o.nested_scheme, nested.count, o.nested_rows)) + " nested)";
+  s.d.error(r.pos(key), r.field(key),
+            "the ordering has " + std::to_string(total_rows) + " order rows" + how + "; at most " +
+                std::to_string(limits::kOrderRows.max) + " (the most participants a protocol can have)");
+  return false;
+}
+
+// Balance warnings: they do not make the protocol invalid.
+void warn_balance(ParseState& s, TableReader& r) {
+  const Protocol& p = s.p;
+  const Ordering& o = p.order;
+  if (!s.participants_ok) return;
+  const std::int64_t total_rows = declared_order_rows(p);
+  const std::int64_t n = p.participants;
+  const std::string rows_text = count(total_rows, "order row");
+  if (o.scheme == Scheme::fixed && (o.unit != OrderUnit::blocks || o.nested_scheme == Scheme::fixed) && n > 1) {
+    s.d.warning(r.pos("scheme"), "order.scheme",
+                "every participant gets the same order, so order effects are confounded with conditions");
+  } else if (total_rows > n) {
+    s.d.warning(s.participants_pos, "participants",
+                "participants = " + std::to_string(n) + " is fewer than the " + rows_text + " of the ordering; " +
+                    std::to_string(total_rows - n) + " rows are never used and positions are not balanced");
+  } else if (n % total_rows != 0) {
+    s.d.warning(s.participants_pos, "participants",
+                "participants = " + std::to_string(n) + " is not a multiple of the " + rows_text +
+                    " of the ordering; the first " + std::to_string(n % total_rows) +
+                    " rows get one participant more and positions are not balanced");
+  }
 }
 
 }  // namespace
@@ -457,42 +502,7 @@ void parse_order(TableReader& root, ParseState& s) {
   }
   if (!ok) return;
 
-  // Counted exactly (a random nested scheme can ask for 100000 x 100000 rows), refused before
-  // anything is built from it: the store keeps a count per row, and rows beyond the most
-  // participants a protocol can have are never used.
-  const std::int64_t total_rows = declared_order_rows(p);
-  if (total_rows > limits::kOrderRows.max) {
-    const bool nested_random = blocks && o.nested_scheme == Scheme::random;
-    const char* key = nested_random && r.has("nested_rows") ? "nested_rows"
-                      : o.scheme == Scheme::random && r.has("rows") ? "rows"
-                                                                     : "scheme";
-    std::string how;
-    if (blocks)
-      how = " (" + std::to_string(scheme_rows(o.scheme, outer.count, o.rows)) + " outer x " +
-            std::to_string(scheme_rows(o.nested_scheme, nested.count, o.nested_rows)) + " nested)";
-    s.d.error(r.pos(key), r.field(key),
-              "the ordering has " + std::to_string(total_rows) + " order rows" + how + "; at most " +
-                  std::to_string(limits::kOrderRows.max) + " (the most participants a protocol can have)");
-    return;
-  }
-
-  // Balance warnings: they do not make the protocol invalid.
-  if (!s.participants_ok) return;
-  const std::int64_t n = p.participants;
-  const std::string rows_text = std::to_string(total_rows) + (total_rows == 1 ? " order row" : " order rows");
-  if (o.scheme == Scheme::fixed && (!blocks || o.nested_scheme == Scheme::fixed) && n > 1) {
-    s.d.warning(r.pos("scheme"), "order.scheme",
-                "every participant gets the same order, so order effects are confounded with conditions");
-  } else if (total_rows > n) {
-    s.d.warning(s.participants_pos, "participants",
-                "participants = " + std::to_string(n) + " is fewer than the " + rows_text + " of the ordering; " +
-                    std::to_string(total_rows - n) + " rows are never used and positions are not balanced");
-  } else if (n % total_rows != 0) {
-    s.d.warning(s.participants_pos, "participants",
-                "participants = " + std::to_string(n) + " is not a multiple of the " + rows_text +
-                    " of the ordering; the first " + std::to_string(n % total_rows) +
-                    " rows get one participant more and positions are not balanced");
-  }
+  if (check_row_count(s, r, outer, nested)) warn_balance(s, r);
 }
 
 }  // namespace dtlab::protocol::detail
