@@ -1,5 +1,6 @@
 // The experimenter console (console.h).
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <cstdio>
 
@@ -70,6 +71,10 @@ void Console::draw() {
   ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x * 0.7f, io.DisplaySize.y * 0.8f), ImGuiCond_Appearing);
   ImGui::SetNextWindowBgAlpha(0.96f);
   ImGui::Begin("Experimenter console (Ctrl+Shift+E hides it)", nullptr, ImGuiWindowFlags_NoCollapse);
+  // Above every participant panel, also one that appears later (the pause message does, and
+  // ImGui puts an appearing window in front): the experimenter's clicks must reach the console.
+  ImGui::BringWindowToDisplayFront(ImGui::GetCurrentWindow());
+  ImGui::PushFont(ui_.small_font());
   ImGui::Text("Participant %s", participant_.c_str());
   if (session_) {
     auto now = store_.session(participant_);
@@ -150,6 +155,7 @@ void Console::draw() {
     if (ui_.button("Keep going")) confirm_abort_ = false;
   }
   if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+  ImGui::PopFont();
   ImGui::End();
 }
 

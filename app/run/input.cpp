@@ -82,10 +82,21 @@ int Input::key_code(const std::string& name) {
   return -1;
 }
 
-void Input::log(store::InputEvent::Kind kind, std::string detail, double x, double y) {
-  if (!logging_) return;
+void EventLog::start(Clock::time_point origin) {
+  origin_ = origin;
+  events_.clear();
+  active_ = true;
+}
+
+void EventLog::add(store::InputEvent::Kind kind, std::string detail, double x, double y) {
+  if (!active_) return;
   const double t = std::chrono::duration<double>(Clock::now() - origin_).count();
-  log_.push_back(store::InputEvent{t < 0 ? 0.0 : t, kind, std::move(detail), x, y});
+  events_.push_back(store::InputEvent{t < 0 ? 0.0 : t, kind, std::move(detail), x, y});
+}
+
+std::vector<store::InputEvent> EventLog::take() {
+  active_ = false;
+  return std::exchange(events_, {});
 }
 
 void Input::on_key(int key, int action, int) {
@@ -94,10 +105,10 @@ void Input::on_key(int key, int action, int) {
   if (action == GLFW_PRESS) {
     keys_[k] = true;
     pressed_[k] = true;
-    log(store::InputEvent::Kind::key_down, key_name(key), cursor_.x, cursor_.y);
+    log_.add(store::InputEvent::Kind::key_down, key_name(key), cursor_.x, cursor_.y);
   } else if (action == GLFW_RELEASE) {
     keys_[k] = false;
-    log(store::InputEvent::Kind::key_up, key_name(key), cursor_.x, cursor_.y);
+    log_.add(store::InputEvent::Kind::key_up, key_name(key), cursor_.x, cursor_.y);
   }
 }
 
@@ -110,11 +121,11 @@ void Input::on_mouse_button(int button, int action, int) {
   if (action == GLFW_PRESS) {
     buttons_[b] = true;
     button_pressed_[b] = true;
-    log(store::InputEvent::Kind::button_down, names[b], cursor_.x, cursor_.y);
+    log_.add(store::InputEvent::Kind::button_down, names[b], cursor_.x, cursor_.y);
   } else if (action == GLFW_RELEASE) {
     buttons_[b] = false;
     button_released_[b] = true;
-    log(store::InputEvent::Kind::button_up, names[b], cursor_.x, cursor_.y);
+    log_.add(store::InputEvent::Kind::button_up, names[b], cursor_.x, cursor_.y);
   }
 }
 
@@ -122,12 +133,12 @@ void Input::on_cursor(double x, double y) {
   if (have_cursor_) delta_ += glm::dvec2(x, y) - cursor_;
   cursor_ = {x, y};
   have_cursor_ = true;
-  log(store::InputEvent::Kind::cursor, "", x, y);
+  log_.add(store::InputEvent::Kind::cursor, "", x, y);
 }
 
 void Input::on_scroll(double dx, double dy) {
   scroll_ += glm::dvec2(dx, dy);
-  log(store::InputEvent::Kind::scroll, "", dx, dy);
+  log_.add(store::InputEvent::Kind::scroll, "", dx, dy);
 }
 
 void Input::new_frame() {
@@ -182,17 +193,8 @@ void Input::capture_cursor(bool on) {
   if (on && glfwRawMouseMotionSupported()) glfwSetInputMode(window_, GLFW_RAW_MOUSE_MOTION, GLFW_TRUE);
 }
 
-void Input::start_log(Clock::time_point origin) {
-  origin_ = origin;
-  log_.clear();
-  logging_ = true;
-}
-
-std::vector<store::InputEvent> Input::take_log() {
-  logging_ = false;
-  return std::exchange(log_, {});
-}
-
-void Input::log_answer(const std::string& detail) { log(store::InputEvent::Kind::answer, detail, cursor_.x, cursor_.y); }
+void Input::start_log(Clock::time_point origin) { log_.start(origin); }
+std::vector<store::InputEvent> Input::take_log() { return log_.take(); }
+void Input::log_answer(const std::string& detail) { log_.add(store::InputEvent::Kind::answer, detail, cursor_.x, cursor_.y); }
 
 }  // namespace dtlab::run

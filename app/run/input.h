@@ -22,6 +22,21 @@ namespace dtlab::run {
 
 using Clock = std::chrono::steady_clock;
 
+// The input events of one trial, kept in memory: appending is all a frame pays for logging;
+// the store writes the whole log with the trial's result in one transaction when it ends.
+class EventLog {
+ public:
+  void start(Clock::time_point origin);  // a new log; times are seconds since `origin` (>= 0)
+  void add(store::InputEvent::Kind kind, std::string detail, double x, double y);  // no-op unless started
+  std::vector<store::InputEvent> take();  // hands the events over and stops logging
+  bool active() const { return active_; }
+
+ private:
+  bool active_ = false;
+  Clock::time_point origin_{};
+  std::vector<store::InputEvent> events_;
+};
+
 class Input {
  public:
   // Installs GLFW callbacks on `window` that forward here; `window` outlives this object.
@@ -70,7 +85,6 @@ class Input {
   static int key_code(const std::string& name);
 
  private:
-  void log(store::InputEvent::Kind kind, std::string detail, double x, double y);
 
   GLFWwindow* window_;
   std::array<bool, 512> keys_{}, pressed_{};
@@ -79,9 +93,7 @@ class Input {
   glm::dvec2 cursor_{0.0}, delta_{0.0}, scroll_{0.0};
   bool have_cursor_ = false;
   bool captured_ = false;
-  bool logging_ = false;
-  Clock::time_point origin_;
-  std::vector<store::InputEvent> log_;
+  EventLog log_;
 };
 
 }  // namespace dtlab::run

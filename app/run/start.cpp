@@ -95,11 +95,15 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
       ImGui::SetNextWindowPos(ImVec2(0, 0));
       ImGui::SetNextWindowSize(io.DisplaySize);
       ImGui::Begin("##start", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
+      ImGui::PushFont(ui.small_font());
       ImGui::PushFont(ui.heading_font());
       ImGui::TextWrapped("%s", p.title.c_str());
       ImGui::PopFont();
       ImGui::TextDisabled("Protocol %s (SHA-256 %.12s...), database %s", p.id.c_str(), p.sha256.c_str(),
                           store.path().c_str());
+      // Two columns: the study on the left, the participant on the right (fits a small window).
+      ImGui::BeginTable("layout", 2, ImGuiTableFlags_SizingStretchSame);
+      ImGui::TableNextColumn();
       ImGui::TextWrapped("%s", design.c_str());
       if (ImGui::BeginTable("progress", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
         for (const char* h : {"Order row", "Enrolled", "Finished", "Running", "Abandoned"}) ImGui::TableSetupColumn(h);
@@ -114,11 +118,11 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
         }
         ImGui::EndTable();
       }
-      ImGui::Separator();
+      ImGui::TableNextColumn();
       ImGui::PushFont(ui.heading_font());
       ImGui::TextUnformatted("Participant");
       ImGui::PopFont();
-      const float field = ui.text_px() * 12;
+      const float field = ImGui::GetContentRegionAvail().x * 0.55f;
       ImGui::SetNextItemWidth(field);
       ImGui::InputText("Participant ID", id, sizeof id);
       ui.name_item("Participant ID");
@@ -169,7 +173,11 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
           }
         }
       }
-      if (!message.empty()) ImGui::TextColored(ImVec4(0.75f, 0.1f, 0.1f, 1), "%s", message.c_str());
+      if (!message.empty()) {
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextColored(ImVec4(0.75f, 0.1f, 0.1f, 1), "%s", message.c_str());
+        ImGui::PopTextWrapPos();
+      }
       if (!progress.running.empty()) {
         ImGui::Separator();
         ImGui::TextUnformatted("Running sessions (interrupted, or running at another station):");
@@ -193,6 +201,8 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
       }
       ImGui::Separator();
       if (ui.button("Quit")) result = std::optional<std::string>();
+      ImGui::EndTable();
+      ImGui::PopFont();
       ImGui::End();
     });
     if (!st) return st.error();

@@ -86,11 +86,14 @@ Result<std::unique_ptr<Ui>> Ui::create(platform::Window& window, const UiOptions
   if (std::filesystem::exists(kFontFile)) {
     io.Fonts->AddFontFromFileTTF(kFontFile, ui->text_px_, &cfg);
     ui->heading_ = io.Fonts->AddFontFromFileTTF(kFontFile, ui->text_px_ * 1.5f, &cfg);
+    ui->small_ = io.Fonts->AddFontFromFileTTF(kFontFile, std::max(14.0f, ui->text_px_ * 0.7f), &cfg);
   } else {  // ImGui's own font, scaled (pixel-like but legible)
     cfg.SizePixels = ui->text_px_;
     io.Fonts->AddFontDefault(&cfg);
     cfg.SizePixels = ui->text_px_ * 1.5f;
     ui->heading_ = io.Fonts->AddFontDefault(&cfg);
+    cfg.SizePixels = std::max(14.0f, ui->text_px_ * 0.7f);
+    ui->small_ = io.Fonts->AddFontDefault(&cfg);
   }
   ImGui::StyleColorsLight();
   ImGuiStyle& style = ImGui::GetStyle();
@@ -141,11 +144,11 @@ Status Ui::frame(const std::string& screen, const std::function<void()>& draw3d,
     return Error{"", 0, 0, "window",
                  "the window was closed; every finished trial is saved and running dtlab run again resumes the session",
                  ErrorKind::conflict};
-  if (input_->ctrl() && input_->shift() && input_->key_pressed(GLFW_KEY_E)) console_shown_ = !console_shown_;
   // A screen's script section starts once the screen has been presented twice: its layout has
   // settled and its focus requests have taken effect, as when a person starts to act on it.
   if (player_ && frames_in_screen_ >= 2)
     if (Status s = player_->tick(screen_, instance_, items_, start); !s) return s;
+  if (input_->ctrl() && input_->shift() && input_->key_pressed(GLFW_KEY_E)) console_shown_ = !console_shown_;
 
   ImGuiIO& io = ImGui::GetIO();
   int ww = 0, wh = 0;

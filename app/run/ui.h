@@ -56,6 +56,7 @@ class Ui {
   void name_item(const std::string& name);
   bool button(const std::string& label, ImVec2 size = ImVec2(0, 0));  // ImGui::Button, named by its label
   ImFont* heading_font() const { return heading_; }
+  ImFont* small_font() const { return small_; }  // the experimenter's screens (start, console): read at a desk
   float text_px() const { return text_px_; }
 
   // The experimenter console: drawn over every screen while shown (toggled by Ctrl+Shift+E).
@@ -74,6 +75,7 @@ class Ui {
   std::unique_ptr<ScriptPlayer> player_;
   ImGuiContext* imgui_ = nullptr;
   ImFont* heading_ = nullptr;
+  ImFont* small_ = nullptr;
   float text_px_ = 24;
   std::optional<double> refresh_hz_;
   std::string screen_;

@@ -92,6 +92,24 @@ Result<std::vector<store::QuestionnaireAnswer>> score_questionnaire(const std::v
   return out;
 }
 
+// The questions and depth-test views of participant `index`, made before the session begins so
+// that a questionnaire that cannot be shown stops the session before its first trial.
+struct PreparedQuestionnaire {
+  std::vector<Question> questions;
+  std::vector<DepthTestKey> keys;  // one per depth-test item
+};
+Result<PreparedQuestionnaire> prepare_questionnaire(const protocol::Protocol& p, int index, const Viewport& vp) {
+  PreparedQuestionnaire q;
+  q.questions = expand_questionnaire(p);
+  for (const protocol::QuestionnaireItem& item : p.questionnaire) {
+    if (item.type != protocol::ItemType::depth_test) continue;
+    auto key = depth_test_view(p, item, index, vp, q.questions);
+    if (!key) return key.error();
+    q.keys.push_back(std::move(key.value()));
+  }
+  return q;
+}
+
 
 }  // namespace
 
@@ -118,6 +136,9 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
     }
     if (!existing && existing.error().kind != ErrorKind::not_found) return existing.error();
   }
+
+  auto prepared = prepare_questionnaire(p, sum.enrollment.index, responder.viewport());
+  if (!prepared) return prepared.error();
 
   auto begun = store.begin_session(participant_id, sum.plan);
   if (!begun) return begun.error();
@@ -196,16 +217,10 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   q.protocol = &p;
   q.participant_id = participant_id;
   q.enrollment_index = sum.enrollment.index;
-  q.questions = expand_questionnaire(p);
+  q.questions = std::move(prepared->questions);
   q.history = history.value();
-  std::vector<DepthTestKey> keys;
-  for (const protocol::QuestionnaireItem& item : p.questionnaire) {
-    if (item.type != protocol::ItemType::depth_test) continue;
-    auto key = depth_test_view(p, item, sum.enrollment.index, vp, q.questions);
-    if (!key) return key.error();
-    q.depth_tests.push_back(key->view);
-    keys.push_back(std::move(key.value()));
-  }
+  const std::vector<DepthTestKey>& keys = prepared->keys;
+  for (const DepthTestKey& key : keys) q.depth_tests.push_back(key.view);
   if (!q.questions.empty() && answered->empty()) {
     auto answers = responder.answer_questionnaire(q);
     if (!answers) return answers.error();

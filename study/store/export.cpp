@@ -53,6 +53,13 @@ void answer_fields(const std::optional<Answer>& a, std::vector<std::string>& row
 
 }  // namespace
 
+const std::vector<std::string>& measured_columns() {
+  static const std::vector<std::string> c = {"session",        "started_at",    "ended_at",        "frame_ms_mean",
+                                             "frame_ms_sd",    "frame_ms_p95",  "frame_ms_max",    "frame_first_ms",
+                                             "frame_ms_median", "late_frames",  "refresh_hz"};
+  return c;
+}
+
 std::vector<std::string> export_columns(const std::vector<Revision>& revisions) {
   std::vector<std::string> c = detail::fixed_trial_columns_before_factors();
   for (const std::string& f : factor_names(revisions)) c.push_back(f);

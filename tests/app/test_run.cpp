@@ -34,7 +34,7 @@ using Clock = std::chrono::steady_clock;
 
 const std::string kPilot = std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml";
 const std::string kScript = std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot-session.script";
-constexpr const char* kSize = "480x360";  // small: llvmpipe renders every frame of the session
+constexpr const char* kSize = "640x480";  // small: llvmpipe renders every frame of the session
 
 fs::path temp_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("dtlab_run_" + std::to_string(::getpid()) + "_" + name);
@@ -150,8 +150,8 @@ TEST_F(RunPilot, TheScriptedSessionFinishesWithEveryTrialAndTheQuestionnaire) {
   EXPECT_EQ(s.recorded, 8);
   ASSERT_EQ(s.displays.size(), 1u);
   EXPECT_EQ(s.displays[0].info.kind, "window");
-  EXPECT_EQ(s.displays[0].info.width, 480);
-  EXPECT_EQ(s.displays[0].info.height, 360);
+  EXPECT_EQ(s.displays[0].info.width, 640);
+  EXPECT_EQ(s.displays[0].info.height, 480);
   // Demographics as the script entered them on the start screen.
   const auto ledger = r.ledger();
   EXPECT_EQ((*ledger)[0].demographics,
@@ -226,8 +226,8 @@ TEST_F(RunPilot, EveryScreenHasANonBlankScreenshotDistinctFromTheOthers) {
   for (const auto& p : shots) {
     images.push_back(decode(p));
     const render::Image& img = images.back();
-    ASSERT_EQ(img.width, 480) << p;
-    ASSERT_EQ(img.height, 360) << p;
+    ASSERT_EQ(img.width, 640) << p;
+    ASSERT_EQ(img.height, 480) << p;
     std::set<std::uint32_t> colours;
     for (std::size_t i = 0; i < img.rgba.size(); i += 4 * 7)
       colours.insert(img.rgba[i] | img.rgba[i + 1] << 8 | img.rgba[i + 2] << 16);
@@ -266,7 +266,7 @@ TEST_F(RunPilot, ReplayReproducesTheLoggedPosesAndRendersWhatDtlabRenderDraws) {
   const fs::path rendered = *dir / "render.png";
   const auto ren = dtlab::test::run_dtlab("render --protocol '" + kPilot + "' --db '" + db->string() +
                                           "' --participant pilot-01 --trial " + std::to_string(position) +
-                                          " --width 480 --height 360 --camera " + camera + " --out '" +
+                                          " --width 640 --height 480 --camera " + camera + " --out '" +
                                           rendered.string() + "'");
   ASSERT_EQ(ren.rc, 0) << ren.err;
   const auto diff = render::compare(decode(out / "frame-00001.png"), decode(rendered));
@@ -340,7 +340,7 @@ TEST(RunWindow, RealXEventsReachTheAppLikeAPersons) {
     const auto& b = start["items"][item];
     char cmd[256];
     std::snprintf(cmd, sizeof cmd,
-                  "xdotool search --sync --name 'dtlab - Pilot' windowactivate --sync mousemove --window %%1 %d %d "
+                  "xdotool search --sync --name 'dtlab - Pilot' mousemove --window %%1 %d %d "
                   "click 1",
                   static_cast<int>(b[0].get<double>() + b[2].get<double>() / 2),
                   static_cast<int>(b[1].get<double>() + b[3].get<double>() / 2));

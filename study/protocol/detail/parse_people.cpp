@@ -35,8 +35,8 @@ void parse_demographics(TableReader& root, ParseState& s) {
       if (auto b = r->value<bool>()) f.required = *b;
       else s.d.error(fr.pos("required"), fr.field("required"), "expected true or false, got " + type_name(*r));
     }
-    const auto range = fr.int_range("range", false, 0, 1000000);
-    const auto options = fr.strings("options", false, 2, 64);
+    const auto range = fr.int_range("range", false, limits::kDemographicRange, /*strictly_increasing=*/true);
+    const auto options = fr.strings("options", false, limits::kDemographicOptions);
     fr.finish();
     if (!type) continue;
     f.type = *type == "text" ? DemographicField::Type::text
