@@ -11,6 +11,7 @@
 
 #include "app/platform/detail/loader.h"
 #include "app/platform/gl_context.h"
+#include "app/platform/malloc_tuning.h"
 
 namespace dtlab::platform {
 
@@ -50,6 +51,7 @@ Error gl_error(std::string message) {
 }  // namespace
 
 Result<std::unique_ptr<GlContext>> create_headless(int width, int height) {
+  tune_malloc_for_software_gl();
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
     return gl_error("headless context size must be 1..16384 pixels per side, got " +
                     std::to_string(width) + "x" + std::to_string(height));
