@@ -1,5 +1,5 @@
 // The dtlab renderer: draws a scene::Scene with one of four methods through
-// a frame graph (frame_graph.h), into a caller-owned target (a window's
+// a frame graph (detail/frame_graph.h), into a caller-owned target (a window's
 // default framebuffer or an offscreen framebuffer), in any GL 3.3 core
 // context (the platform layer makes one). Methods (docs/render.md):
 //   standard   opaque z-buffered rendering with a headlight;
@@ -25,7 +25,7 @@
 
 #include "study/common/error.h"
 #include "study/render/camera.h"
-#include "study/render/frame_graph.h"
+#include "study/render/frame_report.h"
 #include "study/render/image.h"
 #include "study/scene/scene.h"
 

@@ -316,7 +316,7 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
   return {comp.color, comp.depth};
 }
 
-Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
+FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
   auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
   auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
   const MaskHandles masks = add_masks_pass(fg, fc, atlas, Handle{});
@@ -403,7 +403,7 @@ Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
         }
         glDisable(GL_SCISSOR_TEST);
       });
-  return fb.color;
+  return {fb.color, query};
 }
 
 }  // namespace dtlab::render::detail

@@ -11,7 +11,7 @@
 #include "study/render/detail/frame_view.h"
 #include "study/render/detail/programs.h"
 #include "study/render/detail/scene_gpu.h"
-#include "study/render/frame_graph.h"
+#include "study/render/detail/frame_graph.h"
 #include "study/render/render.h"
 
 namespace dtlab::render::detail {
@@ -77,7 +77,11 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
 // dt-fast when the previous frame needed the effect: the effect drawn directly (no standard frame
 // first), then the target query on its depth; if no target turns out occluded, the regions the
 // masks touched are re-rendered the standard way (conditional on the inverted query).
-Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
+struct FastDirect {
+  Handle color;     // the final colour
+  Handle occluded;  // the target query ("some target is occluded")
+};
+FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
 // Whether add_fast_direct_passes can serve this frame (no layer limit, at most 63 targets in view).
 bool fast_direct_possible(const FrameContext& fc);
 // reference: per-object layers rendered on the GPU, composited exactly on the CPU.

@@ -104,49 +104,41 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   const bool transparency = uses_transparency(settings.method);
   const bool targets = !view.targets.empty();
   Handle color;
+  Handle occluded;  // "some target is occluded": the effect was called for (none: no query this frame)
   const bool direct = settings.method == Method::dt_fast && targets && impl_->fast_effect_hint &&
                       detail::fast_direct_possible(fc);
   if (settings.method == Method::reference) {
     color = detail::add_reference_pass(fg, fc);
   } else if (direct) {
-    color = detail::add_fast_direct_passes(fg, fc);
+    const detail::FastDirect d = detail::add_fast_direct_passes(fg, fc);
+    color = d.color;
+    occluded = d.occluded;
   } else {
     detail::MainTargets main = detail::add_opaque_pass(fg, fc, transparency && targets);
     // Declared whenever a target is in view; only the effect's passes read it, so for
     // `standard` compile() culls it.
-    Handle query;
-    if (targets) query = detail::add_target_query_pass(fg, fc, main.depth);
+    if (targets) occluded = detail::add_target_query_pass(fg, fc, main.depth);
     if (transparency && targets) {
-      main = settings.method == Method::dt_seed ? detail::add_seed_passes(fg, fc, main, query)
-                                                : detail::add_fast_passes(fg, fc, main, query);
+      main = settings.method == Method::dt_seed ? detail::add_seed_passes(fg, fc, main, occluded)
+                                                : detail::add_fast_passes(fg, fc, main, occluded);
     }
     color = main.color;
   }
   detail::add_present_pass(fg, fc, color, output);
   fg.compile();
-  // A known baseline for state no pass sets explicitly (the caller's is restored by the guard).
-  glBindVertexArray(impl_->gpu->vao());
-  glBlendEquation(GL_FUNC_ADD);
-  glDisable(GL_CULL_FACE);
-  glFrontFace(GL_CCW);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  glDisable(GL_MULTISAMPLE);
+  detail::set_frame_baseline(impl_->gpu->vao());
   fg.execute(impl_->backend, settings.profile_passes);
   if (settings.timed) glFinish();
   const auto t1 = Clock::now();
+  // dt-fast picks the next frame's plan from whether this one needed the effect (frame coherence);
+  // an answer not ready yet (untimed frame) leaves the guess as it was.
+  if (settings.method == Method::dt_fast) {
+    if (!targets) impl_->fast_effect_hint = false;
+    else if (const auto a = fg.answer(occluded, impl_->backend, settings.timed)) impl_->fast_effect_hint = *a;
+  }
   FrameReport report = fg.report(impl_->backend, settings.timed);
   if (settings.timed) report.frame_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   impl_->backend.end_frame();
-  if (settings.method == Method::dt_fast) {
-    // Remember whether the effect was needed, for the next frame's plan.
-    for (const PassRecord& p : report.passes) {
-      if (!p.ran.has_value() || p.culled) continue;
-      if (p.name == "dt-composite") impl_->fast_effect_hint = *p.ran;
-      if (p.name == "standard-fallback") impl_->fast_effect_hint = !*p.ran;
-    }
-    if (!targets) impl_->fast_effect_hint = false;
-  }
   impl_->graphviz = fg.graphviz();
   impl_->last_target = target;
   impl_->last_float = settings.float_color;
@@ -161,6 +153,36 @@ FrameReport Renderer::render_offscreen(const Camera& camera, const FrameSettings
   return render(camera, settings, ImportedTarget{impl_->out_fbo, width, height});
 }
 
+namespace {
+// glReadPixels of the whole of `t` into `out`, leaving the read framebuffer, its read buffer,
+// the pixel pack buffer and the pack parameters as the caller had them.
+void read_target(const ImportedTarget& t, GLenum type, void* out) {
+  GLint fbo = 0, buffer = 0, pack_buffer = 0, alignment = 4, row_length = 0, skip_rows = 0, skip_pixels = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+  glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+  glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
+  glGetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows);
+  glGetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
+  glGetIntegerv(GL_READ_BUFFER, &buffer);
+  if (t.framebuffer == 0) glReadBuffer(GL_BACK);  // where present blitted the frame
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+  glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+  glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+  glReadPixels(0, 0, t.width, t.height, GL_RGBA, type, out);
+  glReadBuffer(static_cast<GLenum>(buffer));
+  glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+  glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
+  glPixelStorei(GL_PACK_SKIP_ROWS, skip_rows);
+  glPixelStorei(GL_PACK_SKIP_PIXELS, skip_pixels);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack_buffer));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(fbo));
+}
+}  // namespace
+
 Image Renderer::read_color() const {
   const ImportedTarget& t = impl_->last_target;
   Image img;
@@ -168,15 +190,7 @@ Image Renderer::read_color() const {
   img.width = t.width;
   img.height = t.height;
   std::vector<std::uint8_t> rows(static_cast<std::size_t>(t.width) * t.height * 4);
-  GLint prev = 0, pack = 4;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
-  glGetIntegerv(GL_PACK_ALIGNMENT, &pack);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
-  if (t.framebuffer == 0) glReadBuffer(GL_BACK);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-  glPixelStorei(GL_PACK_ALIGNMENT, pack);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(prev));
+  read_target(t, GL_UNSIGNED_BYTE, rows.data());
   img.rgba.resize(rows.size());
   const std::size_t stride = static_cast<std::size_t>(t.width) * 4;
   for (int y = 0; y < t.height; ++y)  // GL rows are bottom-up
@@ -189,11 +203,7 @@ std::vector<float> Renderer::read_color_float() const {
   std::vector<float> out;
   if (t.width <= 0) return out;
   out.resize(static_cast<std::size_t>(t.width) * t.height * 4);
-  GLint prev = 0;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
-  glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_FLOAT, out.data());
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(prev));
+  read_target(t, GL_FLOAT, out.data());
   return out;
 }
 
