@@ -111,6 +111,11 @@ class Renderer {
   // method's own passes (flat weight colours, 3 targets per frame). Targets in scene order.
   std::vector<TargetVisibility> visibility(const Camera& camera, FrameSettings settings, int width, int height);
 
+  // The effect region: pixels where some target in view has an exact mask below 1 (its
+  // silhouette or shape grown by the gradient, at full resolution as `reference` draws it; in
+  // active mode cut to the searchlight), one byte per pixel (1 = in), top row first as Image.
+  std::vector<std::uint8_t> effect_region(const Camera& camera, const DtSettings& dt, int width, int height);
+
   // The last frame's graph in Graphviz dot syntax (culled passes grey).
   const std::string& last_graphviz() const;
   const scene::Scene& scene() const;
