@@ -53,13 +53,13 @@ struct DtSettings {
   glm::vec2 searchlight_center{0.0f};  // active mode: output pixels, origin top-left (a cursor position)
   float searchlight_radius = 120.0f;   // active mode: output pixels
   int layer_limit = 0;          // at most this many transparent surfaces in front of a target; 0 = no limit (max 60)
-  // R1 guard (docs/render.md, "Departures"): (1) a target is never blended with less than aT
-  // weight (the alpha at its own frontmost pixels is raised to at least aT before it is
-  // drawn); (2) where an object the back-to-front sort drew too early hides a target, the
-  // target is blended over it with weight 1 - aT (never behind impenetrable surfaces). Off:
-  // the article's algorithm as printed, where a target standing in the gradient of a farther
-  // target fades to a0 or below and a sort error hides a target completely (both measured).
-  bool r1_guard = true;
+  // R1 guard, off by default (the article's algorithm as printed; docs/render.md, "R1 guard"): on,
+  // (1) a target is never blended with less than aT weight (the alpha at its own frontmost pixels
+  // is raised to at least aT before it is drawn); (2) where an object the back-to-front sort drew
+  // too early hides a target, the target is blended over it with weight 1 - aT (never behind
+  // impenetrable surfaces). Off, a target standing in the gradient of a farther target fades to
+  // a0 or below, and a sort error hides a target completely (both measured).
+  bool r1_guard = false;
 };
 // Throws std::invalid_argument naming the field if a value is out of range.
 void validate(const DtSettings& s);

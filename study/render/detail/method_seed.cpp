@@ -25,23 +25,6 @@ namespace dtlab::render::detail {
 
 namespace {
 
-struct SeedMask {
-  int width, height, layers;
-};
-
-SeedMask seed_mask(const FrameContext& fc) {
-  const DtSettings& dt = fc.settings.dt;
-  SeedMask m{dt.mask_resolution, dt.mask_resolution, 0};
-  if (dt.mask_resolution <= 0) {
-    m.width = fc.width();
-    m.height = fc.height();
-  }
-  // One border pass adds one mask texel; a texel spans sqrt(sx * sy) output pixels.
-  const double texel = std::sqrt(static_cast<double>(fc.width()) / m.width * fc.height() / m.height);
-  if (dt.gradient_px > 0.0f) m.layers = std::max(1, static_cast<int>(std::lround(dt.gradient_px / texel)));
-  return m;
-}
-
 void bind_main(const FrameContext& fc, PassResources& r, Handle color, Handle depth) {
   glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({color}, depth));
   glViewport(0, 0, fc.width(), fc.height());
@@ -57,7 +40,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
   const auto& cleared = fg.add_pass<DtClearPassData>(
       "dt-clear",
       [&](FrameGraph::Builder& b, DtClearPassData& d) {
-        b.condition(query);
+        if (query.valid()) b.condition(query);
         d.color = b.write(main.color);
         d.depth = b.write(main.depth);
       },
@@ -74,7 +57,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
     const auto& d = fg.add_pass<DrawPassData>(
         "impenetrable",
         [&](FrameGraph::Builder& b, DrawPassData& d) {
-          b.condition(query);
+          if (query.valid()) b.condition(query);
           d.color = b.write(b.read(cur.color));
           d.depth = b.write(b.read(cur.depth));
         },
@@ -85,7 +68,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
     cur = {d.color, d.depth};
   }
 
-  const SeedMask mask = seed_mask(fc);
+  const MaskGrid& mask = fc.view.grid;
   const auto& order = fc.view.sorted;
   std::size_t start = 0;
   for (std::size_t k = 0; k <= order.size(); ++k) {
@@ -100,7 +83,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
       const auto& d = fg.add_pass<DrawPassData>(
           name,
           [&](FrameGraph::Builder& b, DrawPassData& d) {
-            b.condition(query);
+            if (query.valid()) b.condition(query);
             d.color = b.write(b.read(cur.color));
             d.depth = b.write(b.read(cur.depth));
           },
@@ -126,13 +109,13 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
     const auto& m = fg.add_pass<MaskPassData>(
         "mask " + std::to_string(fc.gpu.objects()[order[k]].id),
         [&](FrameGraph::Builder& b, MaskPassData& d) {
-          b.condition(query);
+          if (query.valid()) b.condition(query);
           d.ping = b.write(b.create("mask-ping", mdesc));
           d.pong = b.write(b.create("mask-pong", mdesc));
           d.color = b.write(b.read(cur.color));
           d.depth = b.write(b.read(cur.depth));
         },
-        [&fc, slot, mask](const MaskPassData& d, PassResources& r) {
+        [&fc, slot, &mask](const MaskPassData& d, PassResources& r) {
           const DtSettings& dt = fc.settings.dt;
           // Algorithm 2, lines 1-2: the target at aT into B1 (everything else 1).
           glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.ping}));

@@ -116,8 +116,9 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   } else {
     detail::MainTargets main = detail::add_opaque_pass(fg, fc, transparency && targets);
     // Declared whenever a target is in view; only the effect's passes read it, so for
-    // `standard` compile() culls it.
-    if (targets) occluded = detail::add_target_query_pass(fg, fc, main.depth);
+    // `standard` compile() culls it. Without exact codes (more than 255 targets overlapping one
+    // another) there is no query and the effect runs unconditionally.
+    if (targets && !view.codes_exhausted) occluded = detail::add_target_query_pass(fg, fc, main.depth, 0xFF);
     if (transparency && targets) {
       main = settings.method == Method::dt_seed ? detail::add_seed_passes(fg, fc, main, occluded)
                                                 : detail::add_fast_passes(fg, fc, main, occluded);
@@ -134,6 +135,7 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   // an answer not ready yet (untimed frame) leaves the guess as it was.
   if (settings.method == Method::dt_fast) {
     if (!targets) impl_->fast_effect_hint = false;
+    else if (!occluded.valid()) impl_->fast_effect_hint = true;
     else if (const auto a = fg.answer(occluded, impl_->backend, settings.timed)) impl_->fast_effect_hint = *a;
   }
   FrameReport report = fg.report(impl_->backend, settings.timed);
