@@ -372,7 +372,7 @@ void add_bench_command(CLI::App& root) {
                 "\"frame_ms_median\", \"ratio_to_standard\", \"mae\", \"mae_effect\", \"vs_dt_seed_mae_effect\", "
                 "\"passes\", ...}]}");
   cmd->add_option("--frames", o->frames, "Timed frames per configuration (interleaved)")->check(CLI::Range(1, 1000));
-  cmd->add_option("--seed", o->seed, "Scene seed (ABSTRACT T1 and WALKTHROUGH T3)");
+  cmd->add_option("--seed", o->seed, "Scene seed (ABSTRACT T1 and WALKTHROUGH T3)")->check(unsigned_integer());
   cmd->add_option("--sizes", o->sizes, "Viewport sizes WxH")->delimiter(',');
   cmd->add_option("--scenes", o->scenes, "Scene kinds")->delimiter(',')->check(CLI::IsMember({"abstract", "walkthrough"}));
   cmd->add_flag("!--no-sweep", o->sweep, "Skip the mask-resolution and gradient-width sweeps");

@@ -9,6 +9,7 @@
 
 namespace CLI {
 class App;
+class Validator;
 }
 namespace dtlab::protocol {
 struct Protocol;
@@ -35,6 +36,10 @@ void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one t
 void add_analyze_command(CLI::App& root);  // `dtlab analyze DB --out DIR`: study report (report.md, index.html, JSON, CSV)
 void add_simulate_command(CLI::App& root);  // `dtlab simulate PROTOCOL --participants N --db FILE`: simulated participants, headless
 void add_demo_command(CLI::App& root);  // `dtlab demo [--out DIR]`: the reference study simulated end to end, then its report
+
+// A CLI11 check for an unsigned 64-bit integer written as digits only (cmd_render.cpp): CLI11
+// itself turns "-1" into 2^64 - 1. Used by `render --seed` and `bench --seed`.
+CLI::Validator unsigned_integer();
 
 // Shared by `dtlab simulate` and `dtlab demo` (cmd_simulate.cpp): enrolls sim-001 .. sim-N into
 // run.db and runs their sessions with progress on stderr (lines start with `prefix`); returns an exit code.

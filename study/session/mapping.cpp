@@ -161,12 +161,19 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
     return bad(p, field + ".mode", "unknown mode '" + r.mode + "' (passive, active)");
   }
   dt.layer_limit = r.layer_limit;
-  try {
-    render::validate(dt);
-  } catch (const std::invalid_argument& e) {
-    // The renderer names its own field (alpha_target, ...); say which protocol keys feed it.
-    return bad(p, field, std::string("the renderer refuses these settings (a0, aT, gradient_width, mask_resolution, "
-                                     "layer_limit): ") + e.what());
+  // The renderer's checks (ranges, and a mask no finer than this viewport can use), each named by
+  // the protocol key the author wrote.
+  if (const auto problem = render::check(dt, width, height)) {
+    const char* key = "";
+    switch (problem->field) {
+      case render::DtField::alpha_target: key = "aT"; break;
+      case render::DtField::alpha_start: key = "a0"; break;
+      case render::DtField::gradient: key = "gradient_width"; break;
+      case render::DtField::mask_resolution: key = "mask_resolution"; break;
+      case render::DtField::layer_limit: key = "layer_limit"; break;
+      case render::DtField::searchlight: key = "mode"; break;
+    }
+    return bad(p, field + "." + key, problem->message);
   }
   return f;
 }

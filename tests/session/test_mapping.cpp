@@ -146,7 +146,16 @@ TEST(Mapping, UnsupportedValuesNameTheField) {
       {"unknown method", [](protocol::Protocol& p) { p.renderings[1].method = "x-ray"; }, "", "rendering.on.method"},
       {"unknown mask shape", [](protocol::Protocol& p) { p.renderings[1].mask_shape = "star"; }, "", "rendering.on.mask_shape"},
       {"unknown mode", [](protocol::Protocol& p) { p.renderings[1].mode = "sometimes"; }, "", "rendering.on.mode"},
-      {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].aT = 1.5; }, "", "rendering.on"},
+      {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].aT = 1.5; }, "", "rendering.on.aT"},
+      // Regression: aT = 1 passed the reader (0..1) and failed mid-session naming DtSettings.alpha_target;
+      // the article needs aT below 1 (Algorithm 3 finds the target by alpha != 1).
+      {"aT = 1", [](protocol::Protocol& p) { p.renderings[1].aT = 1.0; }, "", "rendering.on.aT"},
+      {"a0 = 1", [](protocol::Protocol& p) { p.renderings[1].a0 = 1.0; }, "", "rendering.on.a0"},
+      // Regression: a 4096 mask at 800 x 600 was accepted and took minutes a frame under dt-seed.
+      {"mask finer than the view", [](protocol::Protocol& p) { p.renderings[1].mask_resolution = 4096; }, "",
+       "rendering.on.mask_resolution"},
+      {"layer limit the renderer cannot count", [](protocol::Protocol& p) { p.renderings[1].layer_limit = 64; }, "",
+       "rendering.on.layer_limit"},
   };
   for (const Case& c : cases) {
     protocol::Protocol p = ref;
@@ -166,6 +175,7 @@ TEST(Mapping, UnsupportedValuesNameTheField) {
     EXPECT_EQ(e.field, c.field) << c.what << ": " << e.to_string();
     EXPECT_EQ(e.file, p.source_path) << c.what;
     EXPECT_FALSE(e.message.empty()) << c.what;
+    EXPECT_EQ(e.message.find("DtSettings"), std::string::npos) << c.what << ": names an internal field: " << e.message;
   }
 }
 

@@ -15,9 +15,9 @@
 namespace dtlab::render {
 
 std::vector<std::uint8_t> Renderer::effect_region(const Camera& camera, const DtSettings& dt, int width, int height) {
-  validate(dt);
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
     throw std::invalid_argument("Renderer::effect_region: size must be 1..16384");
+  validate(dt, width, height);
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   const detail::FrameView view =
       detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, width, height, dt, *impl_->sorter);

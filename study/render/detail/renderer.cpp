@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "study/render/detail/gl_state.h"
@@ -48,17 +49,51 @@ std::optional<MaskShape> parse_mask_shape(std::string_view s) {
   return std::nullopt;
 }
 
-void validate(const DtSettings& s) {
-  auto bad = [](const std::string& field, const std::string& what) {
-    throw std::invalid_argument("DtSettings." + field + ": " + what);
+std::string_view to_string(DtField f) {
+  switch (f) {
+    case DtField::alpha_target: return "alpha_target";
+    case DtField::alpha_start: return "alpha_start";
+    case DtField::gradient: return "gradient_px";
+    case DtField::mask_resolution: return "mask_resolution";
+    case DtField::layer_limit: return "layer_limit";
+    case DtField::searchlight: return "searchlight";
+  }
+  return "?";
+}
+
+int max_mask_resolution(int width, int height) { return std::max({128, width, height}); }
+
+std::optional<SettingsProblem> check(const DtSettings& s, int width, int height) {
+  auto got = [](double v) {
+    std::ostringstream o;
+    o << " (got " << v << ")";
+    return o.str();
   };
-  if (!(s.alpha_target >= 0.0f && s.alpha_target < 1.0f)) bad("alpha_target", "must be in [0, 1)");
-  if (!(s.alpha_start >= 0.0f && s.alpha_start < 1.0f)) bad("alpha_start", "must be in [0, 1)");
-  if (!(s.gradient_px >= 0.0f && s.gradient_px <= 4096.0f)) bad("gradient_px", "must be in [0, 4096]");
-  if (s.mask_resolution < 0 || s.mask_resolution > 8192) bad("mask_resolution", "must be 0 (full) or 1..8192");
-  if (s.layer_limit < 0 || s.layer_limit > 60) bad("layer_limit", "must be 0 (no limit) or 1..60");
-  if (!(s.searchlight_radius >= 0.0f) || !std::isfinite(s.searchlight_center.x) || !std::isfinite(s.searchlight_center.y))
-    bad("searchlight", "radius must be >= 0 and the centre finite");
+  if (!(s.alpha_target >= 0.0f && s.alpha_target < 1.0f))
+    return SettingsProblem{DtField::alpha_target, "must be at least 0 and below 1" + got(s.alpha_target)};
+  if (!(s.alpha_start >= 0.0f && s.alpha_start < 1.0f))
+    return SettingsProblem{DtField::alpha_start, "must be at least 0 and below 1" + got(s.alpha_start)};
+  if (!(s.gradient_px >= 0.0f && s.gradient_px <= 4096.0f))
+    return SettingsProblem{DtField::gradient, "must be 0..4096 output pixels" + got(s.gradient_px)};
+  if (s.mask_resolution < 0)
+    return SettingsProblem{DtField::mask_resolution, "must be 0 (full resolution) or positive" + got(s.mask_resolution)};
+  if (width > 0 && height > 0 && s.mask_resolution > max_mask_resolution(width, height))
+    return SettingsProblem{DtField::mask_resolution,
+                           "must be at most " + std::to_string(max_mask_resolution(width, height)) + " for a " +
+                               std::to_string(width) + " x " + std::to_string(height) +
+                               " view (a mask finer than the view changes nothing but the cost; 0 = full "
+                               "resolution)" + got(s.mask_resolution)};
+  if (s.layer_limit < 0 || s.layer_limit > 60)
+    return SettingsProblem{DtField::layer_limit, "must be 0 (no limit) or 1..60" + got(s.layer_limit)};
+  if (!(s.searchlight_radius >= 0.0f) || !std::isfinite(s.searchlight_radius) || !std::isfinite(s.searchlight_center.x) ||
+      !std::isfinite(s.searchlight_center.y))
+    return SettingsProblem{DtField::searchlight, "radius must be finite and >= 0 and the centre finite"};
+  return std::nullopt;
+}
+
+void validate(const DtSettings& s, int width, int height) {
+  if (const auto p = check(s, width, height))
+    throw std::invalid_argument("DtSettings." + std::string(to_string(p->field)) + ": " + p->message);
 }
 
 float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int width, int height) {
@@ -86,10 +121,10 @@ const scene::Scene& Renderer::scene() const { return impl_->scene; }
 const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
 
 FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {
-  validate(settings.dt);
   if (target.width <= 0 || target.height <= 0)
     throw std::invalid_argument("Renderer::render: target size must be positive, got " + std::to_string(target.width) +
                                 "x" + std::to_string(target.height));
+  validate(settings.dt, target.width, target.height);
   if (settings.flat_colors.size() > impl_->gpu->objects().size())
     throw std::invalid_argument("Renderer::render: more flat colours than objects");
   using Clock = std::chrono::steady_clock;
