@@ -117,9 +117,11 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
         },
         [&fc, slot, &mask](const MaskPassData& d, PassResources& r) {
           const DtSettings& dt = fc.settings.dt;
-          // Algorithm 2, lines 1-2: the target at aT into B1 (everything else 1).
-          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.ping}));
-          glViewport(0, 0, mask.width, mask.height);
+          const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
+          // Every pass below changes only texels within n' + 1 of the texels the target covers, so
+          // each runs over that tile of the buffer (the scissor); the rest of both buffers stays 1,
+          // as the article's buffer-sized passes leave it.
+          const PixelRect tile = t.cover.expand(mask.layers + 1).intersect({0, 0, mask.width, mask.height});
           glDisable(GL_SCISSOR_TEST);
           glDisable(GL_DEPTH_TEST);
           glDisable(GL_STENCIL_TEST);
@@ -127,6 +129,13 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           glDisable(GL_CULL_FACE);
           glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
           glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+          glViewport(0, 0, mask.width, mask.height);
+          if (mask.layers > 1) {
+            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.pong}));
+            glClear(GL_COLOR_BUFFER_BIT);
+          }
+          // Algorithm 2, lines 1-2: the target at aT into B1 (everything else 1).
+          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.ping}));
           glClear(GL_COLOR_BUFFER_BIT);
           draw_target_seed(fc, slot, dt.alpha_target, fc.view.view_proj,
                            glm::vec4(static_cast<float>(mask.width) / static_cast<float>(fc.width()),
@@ -138,6 +147,8 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           fc.use_program(border);
           glUniform1i(border.loc("u_source"), 0);
           glActiveTexture(GL_TEXTURE0);
+          glEnable(GL_SCISSOR_TEST);
+          glScissor(tile.x0, tile.y0, tile.x1 - tile.x0, tile.y1 - tile.y0);
           for (int k = 1; k <= mask.layers; ++k) {
             glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
             glBindTexture(GL_TEXTURE_2D, r.texture(src));
@@ -148,6 +159,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
                     mask.height);
             std::swap(src, dst);
           }
+          glDisable(GL_SCISSOR_TEST);
           // Lines 9-11 on the framebuffer: mark the full-resolution silhouette, multiply the
           // upsampled mask elsewhere, then aT over the silhouette itself.
           bind_main(fc, r, d.color, d.depth);
@@ -159,8 +171,9 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           glUniform1i(apply.loc("u_mask"), 0);
           glUniform2f(apply.loc("u_screen"), static_cast<float>(fc.width()), static_cast<float>(fc.height()));
           glUniform3fv(apply.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
-          fc.quad(apply, 0.0f, 0.0f, static_cast<float>(fc.width()), static_cast<float>(fc.height()), fc.width(),
-                  fc.height());
+          // Outside the target's support the upsampled mask is 1 (the shader would discard it).
+          fc.quad(apply, static_cast<float>(t.support.x0), static_cast<float>(t.support.y0),
+                  static_cast<float>(t.support.x1), static_cast<float>(t.support.y1), fc.width(), fc.height());
           finish_target(fc, slot);
           glBindTexture(GL_TEXTURE_2D, 0);
         });
