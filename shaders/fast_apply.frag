@@ -1,12 +1,13 @@
-// dt-fast: multiplies one target's mask into the framebuffer alpha (blend:
-// dst.a *= src.a) over rectangles of its support. The target's atlas tile
-// holds the texels of dt-seed's R x R grid (cheb_cols.frag), so one bilinear
-// fetch at the same grid coordinates gives dt-seed's upsampled mask (samples
-// are clamped to the tile's texels inside the grid: its border texels are 1,
-// as beyond them, and at the grid's edge the clamp is dt-seed's). The
-// silhouette itself is the stencil's business. Outside the searchlight the
-// factor is 1. Compiled with COUNTER (layer limit): discards where the factor
-// is 1 instead, so the stencil counter restarts only where alpha drops.
+// Algorithm 2, line 10 (dt-seed and dt-fast): multiplies one target's upsampled
+// mask into the framebuffer alpha (blend: dst.a *= src.a) over rectangles of
+// its support. The target's atlas tile (mask_atlas.h) holds the texels of the
+// R x R grid, so one bilinear fetch at the same grid coordinates gives the
+// article's upsampled mask (samples are clamped to the tile's texels inside
+// the grid: its border texels are 1, as beyond them, and at the grid's edge
+// the clamp is a whole-grid buffer's). The silhouette itself is the stencil's
+// business. Outside the searchlight the factor is 1. Compiled with COUNTER
+// (layer limit): discards where the factor is 1 instead, so the stencil
+// counter restarts only where alpha drops.
 #version 330 core
 uniform sampler2D u_mask;
 uniform vec2 u_atlas_size;   // texels of the atlas page

@@ -34,84 +34,12 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "study/render/detail/mask_atlas.h"
 #include "study/render/detail/passes.h"
 
 namespace dtlab::render::detail {
 
 namespace {
-
-struct Tile {
-  int page = 0;
-  int x = 0, y = 0, w = 0, h = 0;  // atlas texels; w = 0: the target covers no texel
-  PixelRect texels;  // the grid texels it holds: cover + n' + 1 rings each side (beyond the grid: 0)
-  PixelRect inside;  // those inside the grid (samples are clamped to them, as dt-seed's to the grid)
-};
-
-struct Atlas {
-  struct Page {
-    int width = 1, height = 1;
-  };
-  std::vector<Page> pages;
-  std::vector<Tile> tiles;  // by target slot
-};
-
-int pow2_at_least(int v) {
-  int p = 16;
-  while (p < v) p *= 2;
-  return p;
-}
-
-// Tiles are packed on shelves, tallest first, into pages of at most 4096 x 4096 texels (or the
-// largest tile); the distance passes run one quad per tile (cheaper on llvmpipe than one quad
-// over a whole page with gutters between tiles).
-Atlas plan_atlas(const FrameContext& fc) {
-  const MaskGrid& g = fc.view.grid;
-  Atlas a;
-  long area = 0;
-  int widest = 1, tallest = 1;
-  for (const TargetView& t : fc.view.targets) {
-    Tile tile;
-    if (!t.cover.empty()) {
-      // Full padding even at the grid's edge, so no tile's coverage is within n' texels of
-      // another tile's texels: the distance passes can run over a whole page.
-      tile.texels = t.cover.expand(g.layers + 1);
-      tile.inside = tile.texels.intersect({0, 0, g.width, g.height});
-      tile.w = tile.texels.x1 - tile.texels.x0;
-      tile.h = tile.texels.y1 - tile.texels.y0;
-    }
-    area += static_cast<long>(tile.w) * tile.h;
-    widest = std::max(widest, tile.w);
-    tallest = std::max(tallest, tile.h);
-    a.tiles.push_back(tile);
-  }
-  const int side = std::max({4096, widest, tallest});
-  const int width = std::min(side, pow2_at_least(std::max(widest, static_cast<int>(std::sqrt(static_cast<double>(area)) * 1.25))));
-  std::vector<Tile*> order;
-  for (auto& t : a.tiles)
-    if (t.w > 0) order.push_back(&t);
-  std::stable_sort(order.begin(), order.end(), [](const Tile* p, const Tile* q) { return p->h > q->h; });
-  int x = 0, y = 0, shelf = 0, page = 0;
-  auto close_page = [&] { a.pages.push_back({width, pow2_at_least(y + shelf)}); };
-  for (Tile* t : order) {
-    if (x + t->w > width) {  // next shelf
-      y += shelf;
-      x = 0;
-      shelf = 0;
-    }
-    if (y + t->h > side) {  // next page
-      close_page();
-      ++page;
-      x = y = shelf = 0;
-    }
-    t->page = page;
-    t->x = x;
-    t->y = y;
-    x += t->w;
-    shelf = std::max(shelf, t->h);
-  }
-  close_page();
-  return a;
-}
 
 // Disjoint rectangles covering every pixel some target's mask can change. Supports are merged
 // when they overlap, or when their bounding box is not much larger than the two (one region
@@ -201,7 +129,7 @@ struct MaskHandles {
   std::vector<Handle> alpha;
 };
 
-MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::shared_ptr<const Atlas>& atlas,
+MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::shared_ptr<const MaskAtlas>& atlas,
                            Handle query) {
   struct DtMasksPassData {
     std::vector<Handle> coverage, rows, alpha;
@@ -210,7 +138,7 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
       "dt-masks",
       [&](FrameGraph::Builder& b, DtMasksPassData& d) {
         if (query.valid()) b.condition(query);
-        for (const Atlas::Page& p : atlas->pages) {
+        for (const MaskAtlas::Page& p : atlas->pages) {
           d.coverage.push_back(b.write(b.create("mask-coverage", {p.width, p.height, TextureFormat::r8, false})));
           d.rows.push_back(b.write(b.create("mask-rows", {p.width, p.height, TextureFormat::r16f, false})));
           d.alpha.push_back(b.write(b.create("mask-alpha", {p.width, p.height, TextureFormat::r16f, true})));
@@ -225,28 +153,13 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
         glDisable(GL_CULL_FACE);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         for (std::size_t page = 0; page < atlas->pages.size(); ++page) {
-          const Atlas::Page& pg = atlas->pages[page];
-          // Coverage: each silhouette (or shape) rasterized into its tile at the grid's texel
-          // centres: the viewport is the whole grid moved by a whole number of texels, so the
-          // rasterizer sees exactly what dt-seed's R x R buffer sees. One unscissored clear (a
-          // scissored clear per tile is a draw in Mesa, and costs more).
+          const MaskAtlas::Page& pg = atlas->pages[page];
+          // Coverage (one unscissored clear: a scissored clear per tile is a draw in Mesa).
           glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.coverage[page]}));
           glDisable(GL_SCISSOR_TEST);
           glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
           glClear(GL_COLOR_BUFFER_BIT);
-          glEnable(GL_SCISSOR_TEST);
-          for (std::size_t slot = 0; slot < atlas->tiles.size(); ++slot) {
-            const Tile& t = atlas->tiles[slot];
-            if (t.w == 0 || t.page != static_cast<int>(page)) continue;
-            const int ox = t.x - t.texels.x0, oy = t.y - t.texels.y0;
-            glViewport(ox, oy, g.width, g.height);
-            glScissor(t.x, t.y, t.w, t.h);
-            draw_target_seed(fc, static_cast<int>(slot), 1.0f, fc.view.view_proj,
-                             glm::vec4(1.0f / g.texel_x, 1.0f / g.texel_y, static_cast<float>(ox), static_cast<float>(oy)),
-                             false);
-          }
-          glDisable(GL_SCISSOR_TEST);
-          glViewport(0, 0, pg.width, pg.height);
+          draw_tile_coverage(fc, *atlas, static_cast<int>(page), 1.0f);
           // Two separable passes over the whole page, one quad each: nearest covered texel per row,
           // then Chebyshev per column (as the texel's mask value). A tile's padding of n' + 1
           // texels keeps every other tile's coverage more than n' texels from its texels, so
@@ -271,28 +184,6 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
   return {masks.alpha};
 }
 
-// Binds fast_apply (or its counting variant) for target `slot`'s tile.
-const Program& use_apply(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, int slot) {
-  const Tile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
-  const Atlas::Page& pg = atlas.pages[static_cast<std::size_t>(tile.page)];
-  const MaskGrid& g = fc.view.grid;
-  const Program& p = fc.settings.dt.layer_limit > 0 ? fc.programs.fast_apply_counter : fc.programs.fast_apply;
-  fc.use_program(p);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, alpha_texture);
-  glUniform1i(p.loc("u_mask"), 0);
-  glUniform2f(p.loc("u_atlas_size"), static_cast<float>(pg.width), static_cast<float>(pg.height));
-  glUniform2f(p.loc("u_tile_origin"), static_cast<float>(tile.x), static_cast<float>(tile.y));
-  glUniform4f(p.loc("u_clamp"), static_cast<float>(tile.x + tile.inside.x0 - tile.texels.x0) + 0.5f,
-              static_cast<float>(tile.y + tile.inside.y0 - tile.texels.y0) + 0.5f,
-              static_cast<float>(tile.x + tile.inside.x1 - tile.texels.x0) - 0.5f,
-              static_cast<float>(tile.y + tile.inside.y1 - tile.texels.y0) - 0.5f);
-  glUniform2f(p.loc("u_tile_texel0"), static_cast<float>(tile.texels.x0), static_cast<float>(tile.texels.y0));
-  glUniform2f(p.loc("u_texel_px"), g.texel_x, g.texel_y);
-  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
-  return p;
-}
-
 void quads(const FrameContext& fc, const Program& p, const std::vector<PixelRect>& rects, const PixelRect& within) {
   for (const PixelRect& r : rects) {
     const PixelRect q = r.intersect(within);
@@ -305,7 +196,7 @@ void quads(const FrameContext& fc, const Program& p, const std::vector<PixelRect
 // Target `slot`'s mask over `rects`, its silhouette already marked (bit 7) by its own depth pass:
 // the gradient multiplied into alpha outside the mark, then aT inside it (inside the searchlight),
 // clearing the mark. Quads only: the target's mesh is not drawn again.
-void apply_marked(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, int slot,
+void apply_marked(const FrameContext& fc, const MaskAtlas& atlas, unsigned alpha_texture, int slot,
                   const std::vector<PixelRect>& rects) {
   glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
@@ -317,7 +208,7 @@ void apply_marked(const FrameContext& fc, const Atlas& atlas, unsigned alpha_tex
   glStencilFunc(GL_EQUAL, 0x00, 0x80);  // outside the silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glStencilMask(0x00);
-  quads(fc, use_apply(fc, atlas, alpha_texture, slot), rects, fc.view.viewport());
+  quads(fc, use_mask_apply(fc, atlas, alpha_texture, slot), rects, fc.view.viewport());
   const Program& p = fc.programs.quad_alpha;
   fc.use_program(p);
   glUniform1f(p.loc("u_alpha"), fc.settings.dt.alpha_target);
@@ -334,7 +225,7 @@ void apply_marked(const FrameContext& fc, const Atlas& atlas, unsigned alpha_tex
 // Target `slot`'s mask over `rects` the general way (layer limit, circle / ellipse, or a target
 // a sort error may hide): mark its whole silhouette or shape, multiply the gradient outside, aT
 // inside (the target drawn again for both).
-void apply_unmarked(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, int slot,
+void apply_unmarked(const FrameContext& fc, const MaskAtlas& atlas, unsigned alpha_texture, int slot,
                     const std::vector<PixelRect>& rects, bool keep_codes) {
   PixelRect box = rects.front();
   for (const PixelRect& r : rects)
@@ -342,7 +233,7 @@ void apply_unmarked(const FrameContext& fc, const Atlas& atlas, unsigned alpha_t
   scissor(box);
   mark_target(fc, slot, keep_codes);
   begin_apply(fc, keep_codes);
-  quads(fc, use_apply(fc, atlas, alpha_texture, slot), rects, box);
+  quads(fc, use_mask_apply(fc, atlas, alpha_texture, slot), rects, box);
   finish_target(fc, slot);
   glBindTexture(GL_TEXTURE_2D, 0);
 }
@@ -362,7 +253,7 @@ bool marks_in_own_pass(const FrameContext& fc, int slot) {
 // or once with a z-buffer depends only on the whole frame's supports, never on the region, so
 // both frame plans draw every region the same way; the z-buffer draws give depth ties to the
 // later object, as a depth-EQUAL pass does.
-void draw_effect(const FrameContext& fc, const Atlas& atlas, const std::vector<unsigned>& alpha_textures,
+void draw_effect(const FrameContext& fc, const MaskAtlas& atlas, const std::vector<unsigned>& alpha_textures,
                  const PixelRect& region, bool codes) {
   scissor(region);
   for (auto i : fc.view.impenetrable)
@@ -386,7 +277,7 @@ void draw_effect(const FrameContext& fc, const Atlas& atlas, const std::vector<u
     const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
     supports.push_back(t.support);
     const PixelRect area = t.support.intersect(region);
-    const Tile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
+    const MaskTile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
     if (area.empty() || tile.w == 0) continue;
     const std::vector<PixelRect> rects = later_cover(fc, k, area);
     if (!rects.empty()) {
@@ -415,7 +306,7 @@ bool fast_direct_possible(const FrameContext& fc) {
 }
 
 MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
-  auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
+  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
   auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
   const MaskHandles masks = add_masks_pass(fg, fc, atlas, query);
 
@@ -446,7 +337,7 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
 }
 
 FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
-  auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
+  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
   auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
   const MaskHandles masks = add_masks_pass(fg, fc, atlas, Handle{});
 

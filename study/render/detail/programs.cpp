@@ -100,7 +100,7 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 }
 
 void Programs::destroy() {
-  for (Program* p : {&object, &object_sl, &object_alpha, &object_alpha_sl, &quad_alpha, &border, &mask_apply, &shape,
+  for (Program* p : {&object, &object_sl, &object_alpha, &object_alpha_sl, &quad_alpha, &border, &shape,
                      &cheb_rows, &cheb_cols, &fast_apply, &fast_apply_counter}) {
     if (p->id != 0) glDeleteProgram(p->id);
     p->id = 0;
@@ -122,7 +122,6 @@ Result<Programs> compile_programs() {
       {&ps.object_alpha_sl, "object.vert", "flat_alpha.frag", "SEARCHLIGHT"},
       {&ps.quad_alpha, "fullscreen.vert", "flat_alpha.frag", "SEARCHLIGHT"},
       {&ps.border, "fullscreen.vert", "border.frag", ""},
-      {&ps.mask_apply, "fullscreen.vert", "mask_apply.frag", ""},
       {&ps.shape, "fullscreen.vert", "shape.frag", ""},
       {&ps.cheb_rows, "fullscreen.vert", "cheb_rows.frag", ""},
       {&ps.cheb_cols, "fullscreen.vert", "cheb_cols.frag", ""},

@@ -31,11 +31,10 @@ struct Programs {
   Program object_alpha_sl;  // the same, cut to the searchlight (or alpha 1 outside it)
   Program quad_alpha;   // fullscreen.vert + flat_alpha.frag (SEARCHLIGHT)
   Program border;       // fullscreen.vert + border.frag (Algorithm 3)
-  Program mask_apply;   // fullscreen.vert + mask_apply.frag (Algorithm 2, line 10)
   Program shape;        // fullscreen.vert + shape.frag (circle / ellipse masks)
   Program cheb_rows;    // fullscreen.vert + cheb_rows.frag (dt-fast distances)
   Program cheb_cols;    // fullscreen.vert + cheb_cols.frag
-  Program fast_apply;   // fullscreen.vert + fast_apply.frag
+  Program fast_apply;   // fullscreen.vert + fast_apply.frag (Algorithm 2, line 10, from an atlas tile)
   Program fast_apply_counter;  // the same with COUNTER (layer limit: discards where the mask is 1)
   void destroy();       // deletes every program (needs the context current)
 };
