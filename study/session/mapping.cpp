@@ -161,6 +161,10 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
     return bad(p, field + ".mode", "unknown mode '" + r.mode + "' (passive, active)");
   }
   dt.layer_limit = r.layer_limit;
+  // The renderer's default is the article's algorithm as printed (R1 guard off), under which a
+  // target in a farther target's gradient fades to a0 and a sort error hides a target; sessions
+  // keep the guard on, as before that default changed, until the protocol has a key for it.
+  dt.r1_guard = true;
   // The renderer's checks (ranges, and a mask no finer than this viewport can use), each named by
   // the protocol key the author wrote.
   if (const auto problem = render::check(dt, width, height)) {

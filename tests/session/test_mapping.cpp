@@ -112,6 +112,7 @@ TEST(Mapping, ReferenceRenderings) {
     EXPECT_EQ(f->dt.shape, render::MaskShape::outline) << c.name;
     EXPECT_EQ(f->dt.mode, render::DtMode::passive) << c.name;
     EXPECT_EQ(f->dt.layer_limit, 0) << c.name;
+    EXPECT_TRUE(f->dt.r1_guard) << c.name << ": sessions keep the R1 guard on (the renderer's default is off)";
     // n = 8 mask pixels of a 128-pixel mask over 800 x 600, as the renderer converts it.
     EXPECT_FLOAT_EQ(f->dt.gradient_px, render::gradient_px_from_mask_pixels(8.0f, 128, 800, 600)) << c.name;
     auto small = frame_settings(p, *it, 160, 120);
