@@ -55,6 +55,7 @@ struct RenderOptions {
   std::optional<float> gradient_px;
   int mask_res = 128, layer_limit = 0;
   std::string shape = "outline", searchlight, graphviz;
+  bool r1_guard = false;
   bool profile = false;
 };
 
@@ -139,6 +140,7 @@ render::DtSettings dt_settings(const RenderOptions& o) {
                                  : render::gradient_px_from_mask_pixels(o.gradient, o.mask_res, o.width, o.height);
   dt.shape = *render::parse_mask_shape(o.shape);
   dt.layer_limit = o.layer_limit;
+  dt.r1_guard = o.r1_guard;
   if (!o.searchlight.empty()) {
     float x = 0, y = 0, r = 0;
     char c1 = 0, c2 = 0;
@@ -392,6 +394,9 @@ void add_render_command(CLI::App& root) {
   auto* layer_limit_opt = cmd->add_option("--layer-limit", o->layer_limit, "At most this many transparent surfaces in front of a target "
                                                    "(0 = no limit)")
       ->check(CLI::Range(0, 100));
+  auto* guard_opt = cmd->add_flag("--r1-guard", o->r1_guard,
+                                  "R1 guard on (docs/render.md): targets never blended below aT, sort errors repaired; "
+                                  "off: the article's algorithm as printed");
   cmd->add_option("--graphviz", o->graphviz, "Write the last frame's frame graph (dot) to FILE");
   cmd->add_flag("--profile", o->profile, "glFinish after every pass and print per-pass times of the last frame");
   cmd->add_flag("--json", o->json,
@@ -413,7 +418,8 @@ void add_render_command(CLI::App& root) {
       "Exit status: 0 ok, 1 bad scene input, 2 bad command line, 3 no GL context or file not written.");
   const std::vector<CLI::Option*> scene_form{scene_opt, task_opt, seed_opt, method_opt};
   const std::vector<CLI::Option*> dt_options{alpha_target_opt, alpha_start_opt, gradient_opt, gradient_px_opt,
-                                             mask_res_opt,     shape_opt,       searchlight_opt, layer_limit_opt};
+                                             mask_res_opt,     shape_opt,       searchlight_opt, layer_limit_opt,
+                                             guard_opt};
   const std::vector<CLI::Option*> protocol_form{protocol_opt, index_opt, db_opt, participant_opt, trial_opt};
   cmd->callback([o, scene_form, dt_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
                  trial_opt] {

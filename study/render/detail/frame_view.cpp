@@ -1,5 +1,6 @@
 // Per-frame CPU geometry (see frame_view.h).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -73,6 +74,46 @@ void assign_codes(FrameView& v) {
       v.max_code = std::max(v.max_code, code);
     }
   }
+}
+
+// The 8 corners of an object's own box, transformed to the world (a parallelepiped around it).
+std::array<glm::vec3, 8> box_corners(const ObjectRecord& o) {
+  std::array<glm::vec3, 8> c;
+  for (int k = 0; k < 8; ++k)
+    c[static_cast<std::size_t>(k)] = glm::vec3(o.model * glm::vec4((k & 1) ? o.mesh_max.x : o.mesh_min.x,
+                                                                   (k & 2) ? o.mesh_max.y : o.mesh_min.y,
+                                                                   (k & 4) ? o.mesh_max.z : o.mesh_min.z, 1.0f));
+  return c;
+}
+
+// True if one face plane of the box `o` has the eye and every point of `t` strictly on its
+// outer side: `o` (inside its box) then lies wholly beyond that plane and cannot come between
+// the eye and any point of `t`.
+bool separated(const std::array<glm::vec3, 8>& o, glm::vec3 eye, const std::array<glm::vec3, 8>& t) {
+  // Faces by corner index bits: for axis a, the corners with bit a clear (side 0) or set (side 1).
+  glm::vec3 centre(0.0f);
+  for (const auto& c : o) centre += c * 0.125f;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = 1 << ((axis + 1) % 3), w = 1 << ((axis + 2) % 3);
+    for (int side = 0; side < 2; ++side) {
+      const int base = side ? (1 << axis) : 0;
+      const glm::vec3 p0 = o[static_cast<std::size_t>(base)];
+      glm::vec3 n = glm::cross(o[static_cast<std::size_t>(base | u)] - p0, o[static_cast<std::size_t>(base | w)] - p0);
+      if (glm::dot(n, n) < 1e-20f) continue;  // a flat box: this face says nothing
+      if (glm::dot(n, centre - p0) > 0.0f) n = -n;  // outward
+      const float d = glm::dot(n, p0);
+      const float margin = 1e-4f * std::sqrt(glm::dot(n, n));
+      if (glm::dot(n, eye) - d <= margin) continue;
+      bool all = true;
+      for (const auto& c : t)
+        if (glm::dot(n, c) - d <= margin) {
+          all = false;
+          break;
+        }
+      if (all) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -187,9 +228,11 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
     const int slot = v.target_slot[v.sorted[k]];
     if (slot < 0) continue;
     TargetView& t = v.targets[static_cast<std::size_t>(slot)];
+    const auto target_box = box_corners(objects[t.object]);
     for (std::size_t j = 0; j < k && !t.may_be_drawn_late; ++j) {
       const auto o = v.sorted[j];
-      t.may_be_drawn_late = v.rects[o].overlaps(t.rect) && range[o].x < range[t.object].y;
+      t.may_be_drawn_late = v.rects[o].overlaps(t.rect) && range[o].x < range[t.object].y &&
+                            !separated(box_corners(objects[o]), camera.eye, target_box);
     }
   }
   if (dt.mode == DtMode::active)

@@ -56,8 +56,9 @@ struct TargetView {
   PixelRect cover;                // mask texels its silhouette (or shape) can cover, grid units
   glm::vec2 shape_center{0.0f};   // circle / ellipse centre, window pixels
   glm::vec2 shape_radii{0.0f};    // semi-axes, window pixels (equal for a circle)
-  // Some object sorted before it overlaps it on screen and reaches nearer than its farthest
-  // point: a sort error could hide it (the R1 guard's repair is needed only then).
+  // Some object sorted before it overlaps it on screen, reaches nearer than its farthest point,
+  // and no face plane of that object's box has the eye and the target's box on its outer side: a
+  // sort error could hide it (the R1 guard's repair is needed only then).
   bool may_be_drawn_late = false;
 };
 
