@@ -147,11 +147,7 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
       [&fc, atlas](const DtMasksPassData& d, PassResources& r) {
         const MaskGrid& g = fc.view.grid;
         const DtSettings& dt = fc.settings.dt;
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_STENCIL_TEST);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        buffer_state();
         for (std::size_t page = 0; page < atlas->pages.size(); ++page) {
           const MaskAtlas::Page& pg = atlas->pages[page];
           // Coverage (one unscissored clear: a scissored clear per tile is a draw in Mesa).
@@ -198,13 +194,7 @@ void quads(const FrameContext& fc, const Program& p, const std::vector<PixelRect
 // clearing the mark. Quads only: the target's mesh is not drawn again.
 void apply_marked(const FrameContext& fc, const MaskAtlas& atlas, unsigned alpha_texture, int slot,
                   const std::vector<PixelRect>& rects) {
-  glDisable(GL_CULL_FACE);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);  // dst.a *= src.a
-  glEnable(GL_STENCIL_TEST);
+  alpha_multiply_state();
   glStencilFunc(GL_EQUAL, 0x00, 0x80);  // outside the silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glStencilMask(0x00);

@@ -57,11 +57,7 @@ std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
         const DtSettings& dt = fc.settings.dt;
         const int layers = fc.view.grid.layers;
         glDisable(GL_SCISSOR_TEST);
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_STENCIL_TEST);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        buffer_state();
         glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
         for (std::size_t page = 0; page < atlas->pages.size(); ++page) {
           const MaskAtlas::Page& pg = atlas->pages[page];

@@ -146,6 +146,12 @@ void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::
 // silhouette (inside the searchlight) and clears the mark. With `keep_codes` bits 0-5 are left
 // alone; otherwise they are the layer-limit counter, restarted at 1 where alpha drops.
 void mark_target(const FrameContext& fc, int slot, bool keep_codes);
+// State for drawing into a plain buffer (a mask page): no depth, stencil, blending or culling,
+// every colour channel written.
+void buffer_state();
+// State for multiplying into the framebuffer's alpha only (blend dst.a *= src.a): no depth test or
+// writes, no culling, the stencil test on (the caller sets its function and operations).
+void alpha_multiply_state();
 void begin_apply(const FrameContext& fc, bool keep_codes);
 void finish_target(const FrameContext& fc, int slot);
 

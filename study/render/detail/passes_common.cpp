@@ -296,6 +296,24 @@ void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
+void buffer_state() {
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void alpha_multiply_state() {
+  glDisable(GL_CULL_FACE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);  // dst.a *= src.a
+  glEnable(GL_STENCIL_TEST);
+}
+
 void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
   glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -311,26 +329,14 @@ void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
 }
 
 void begin_apply(const FrameContext&, bool keep_codes) {
-  glDisable(GL_CULL_FACE);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);  // dst.a *= src.a
-  glEnable(GL_STENCIL_TEST);
+  alpha_multiply_state();
   glStencilFunc(GL_EQUAL, 0x01, 0x80);  // outside the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
   glStencilMask(keep_codes ? 0x00 : 0x3F);  // the counter restarts at 1 where the mask is below 1
 }
 
 void finish_target(const FrameContext& fc, int slot) {
-  glDisable(GL_CULL_FACE);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);
-  glEnable(GL_STENCIL_TEST);
+  alpha_multiply_state();
   glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
   glStencilMask(0x80);                  // clears the mark, keeps the rest
