@@ -3,8 +3,9 @@
 // [--width W --height H] [--frames K] [--camera ...] [--json]`: renders one
 // trial scene headless (OSMesa) with one rendering method and writes the PNG;
 // --json prints the passes that ran, the median frame time, per-target
-// visible pixel counts and GL errors. The protocol form renders trial N of the
-// participant's plan (design::make_plan) exactly as a session would: the
+// visible pixel counts and GL errors. The protocol form renders the trial at
+// position N (1-based, as `dtlab plan`) of the participant's plan
+// (design::make_plan) exactly as a session would: the
 // plan's seed, the task's scene parameters and the condition's [rendering]
 // table (session/mapping.h); it never takes a method or mask parameter from
 // the command line. Exit 1 bad scene/protocol/database input, 2 bad command
@@ -39,7 +40,8 @@ namespace {
 struct RenderOptions {
   std::string kind, task;
   std::uint64_t seed = 0;
-  // Protocol form: trial `trial` (0-based) of enrollment index `index`, or of `participant` in `db`.
+  // Protocol form: trial `trial` (1-based position, as `dtlab plan`) of enrollment index `index`, or
+  // of `participant` in `db`.
   std::string protocol, db, participant;
   std::optional<int> index;
   std::optional<int> trial;
@@ -53,6 +55,7 @@ struct RenderOptions {
   std::optional<float> gradient_px;
   int mask_res = 128, layer_limit = 0;
   std::string shape = "outline", searchlight, graphviz;
+  bool r1_guard = false;
   bool profile = false;
 };
 
@@ -62,13 +65,24 @@ struct RenderOptions {
 }
 
 // "yaw=30,pitch=-10,distance=150,x=1,y=2,z=3,fov=60" (degrees) over the scene's start camera.
-scene::CameraStart apply_camera(scene::CameraStart c, const std::string& spec) {
-  std::stringstream ss(spec);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
+// Each key at most once; every value a finite number in the range where the view shows the
+// scene: yaw -360..360, pitch -90..90, fov 1..170 degrees; distance (orbit cameras) between the
+// near and far planes; x, y, z (walk cameras) within the far plane's reach of the scene's box.
+scene::CameraStart apply_camera(scene::CameraStart c, const std::string& spec, const scene::Scene& sc) {
+  const bool orbit = c.mode == scene::CameraStart::Mode::orbit;
+  std::vector<std::string> seen;
+  std::size_t begin = 0;
+  while (!spec.empty() && begin <= spec.size()) {
+    const std::size_t comma = spec.find(',', begin);
+    const std::string item = spec.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    begin = comma == std::string::npos ? spec.size() + 1 : comma + 1;
+    if (item.empty()) fail(kExitUsage, "--camera: empty item in '" + spec + "' (a doubled or trailing comma?)");
     const auto eq = item.find('=');
     if (eq == std::string::npos) fail(kExitUsage, "--camera: '" + item + "' is not key=value");
     const std::string key = item.substr(0, eq);
+    if (std::find(seen.begin(), seen.end(), key) != seen.end())
+      fail(kExitUsage, "--camera: '" + key + "' given twice");
+    seen.push_back(key);
     float v = 0.0f;
     try {
       std::size_t used = 0;
@@ -77,17 +91,43 @@ scene::CameraStart apply_camera(scene::CameraStart c, const std::string& spec) {
     } catch (const std::exception&) {
       fail(kExitUsage, "--camera: value of '" + key + "' is not a finite number");
     }
+    auto in_range = [&](float lo, float hi, const std::string& unit) {
+      if (!(v >= lo && v <= hi)) {
+        std::ostringstream m;
+        m << "--camera: " << key << " must be " << lo << ".." << hi << unit << ", got " << v;
+        fail(kExitUsage, m.str());
+      }
+    };
     const float rad = v * 3.14159265358979f / 180.0f;
-    if (key == "yaw") c.yaw = rad;
-    else if (key == "pitch") c.pitch = rad;
-    else if (key == "fov") c.fov_y = rad;
-    else if (key == "distance") c.distance = v;
-    else if (key == "x") c.position.x = v;
-    else if (key == "y") c.position.y = v;
-    else if (key == "z") c.position.z = v;
-    else fail(kExitUsage, "--camera: unknown key '" + key + "' (yaw, pitch, fov, distance, x, y, z)");
+    const glm::vec3 reach = sc.bounds_max - sc.bounds_min + glm::vec3(c.far_plane);
+    if (key == "yaw") {
+      in_range(-360.0f, 360.0f, " degrees");
+      c.yaw = rad;
+    } else if (key == "pitch") {
+      in_range(-90.0f, 90.0f, " degrees");
+      c.pitch = rad;
+    } else if (key == "fov") {
+      in_range(1.0f, 170.0f, " degrees");
+      c.fov_y = rad;
+    } else if (key == "distance" || key == "x" || key == "y" || key == "z") {
+      if (orbit != (key == "distance"))
+        fail(kExitUsage, "--camera: '" + key + "' applies to " + (orbit ? "walk cameras (WALKTHROUGH)" : "orbit cameras (ABSTRACT)") +
+                             "; this scene's camera " + (orbit ? "orbits: use yaw, pitch, fov, distance" :
+                                                                  "walks: use yaw, pitch, fov, x, y, z"));
+      if (key == "distance") {
+        in_range(c.near_plane * 2.0f, c.far_plane * 0.5f, " (scene units, between the near and far planes)");
+        c.distance = v;
+      } else {
+        const int axis = key == "x" ? 0 : key == "y" ? 1 : 2;
+        in_range(sc.bounds_min[axis] - reach[axis], sc.bounds_max[axis] + reach[axis],
+                 " (scene units, within sight of the scene)");
+        c.position[axis] = v;
+      }
+    } else {
+      fail(kExitUsage, "--camera: unknown key '" + key + "' (yaw, pitch, fov, " +
+                           (orbit ? "distance" : "x, y, z") + ")");
+    }
   }
-  if (c.fov_y <= 0.0f || c.fov_y >= 3.1f) fail(kExitUsage, "--camera: fov must be in (0, 178) degrees");
   return c;
 }
 
@@ -100,20 +140,34 @@ render::DtSettings dt_settings(const RenderOptions& o) {
                                  : render::gradient_px_from_mask_pixels(o.gradient, o.mask_res, o.width, o.height);
   dt.shape = *render::parse_mask_shape(o.shape);
   dt.layer_limit = o.layer_limit;
+  dt.r1_guard = o.r1_guard;
   if (!o.searchlight.empty()) {
     float x = 0, y = 0, r = 0;
     char c1 = 0, c2 = 0;
     std::stringstream ss(o.searchlight);
-    if (!(ss >> x >> c1 >> y >> c2 >> r) || c1 != ',' || c2 != ',' || r < 0.0f)
-      fail(kExitUsage, "--searchlight: expected X,Y,R in pixels (origin top-left, R >= 0)");
+    if (!(ss >> x >> c1 >> y >> c2 >> r) || c1 != ',' || c2 != ',' || !(ss >> std::ws).eof() || !(r >= 0.0f) ||
+        !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(r))
+      fail(kExitUsage, "--searchlight: expected X,Y,R in pixels (origin top-left, R >= 0), got '" + o.searchlight + "'");
     dt.mode = render::DtMode::active;
     dt.searchlight_center = {x, y};
     dt.searchlight_radius = r;
   }
-  try {
-    render::validate(dt);
-  } catch (const std::invalid_argument& e) {
-    fail(kExitUsage, e.what());
+  // The renderer's checks (ranges; a mask no finer than the image can use), named by the option.
+  if (const auto problem = render::check(dt, o.width, o.height)) {
+    const char* option = "";
+    switch (problem->field) {
+      case render::DtField::alpha_target: option = "--alpha-target"; break;
+      case render::DtField::alpha_start: option = "--alpha-start"; break;
+      case render::DtField::gradient: option = o.gradient_px ? "--gradient-px" : "--gradient"; break;
+      case render::DtField::mask_resolution: option = "--mask-res"; break;
+      case render::DtField::layer_limit: option = "--layer-limit"; break;
+      case render::DtField::searchlight: option = "--searchlight"; break;
+    }
+    std::string message = problem->message;
+    if (problem->field == render::DtField::gradient && !o.gradient_px)
+      message += " (--gradient is in mask pixels: " + std::to_string(o.gradient) + " of a " + std::to_string(o.mask_res) +
+                 " mask over " + std::to_string(o.width) + " x " + std::to_string(o.height) + ")";
+    fail(kExitUsage, std::string(option) + ": " + message);
   }
   return dt;
 }
@@ -151,12 +205,12 @@ Job protocol_job(const RenderOptions& o) {
   } else {
     plan = design::make_plan(*p, index);
   }
-  const int n = *o.trial;
-  if (n < 0 || static_cast<std::size_t>(n) >= plan.trials.size())
+  const int n = *o.trial;  // 1-based, as `dtlab plan` numbers positions
+  if (n < 1 || static_cast<std::size_t>(n) > plan.trials.size())
     fail(kExitUsage, "--trial " + std::to_string(n) + ": participant " + std::to_string(index) + "'s plan has " +
-                         std::to_string(plan.trials.size()) + " trials (0-based: 0.." +
-                         std::to_string(plan.trials.size() - 1) + ")");
-  const design::PlannedTrial& t = plan.trials[static_cast<std::size_t>(n)];
+                         std::to_string(plan.trials.size()) + " trials, positions 1.." +
+                         std::to_string(plan.trials.size()) + " (as `dtlab plan` numbers them)");
+  const design::PlannedTrial& t = plan.trials[static_cast<std::size_t>(n - 1)];
   const auto setup = session::trial_setup(*p, t);
   if (!setup.ok()) fail_diagnostic(kExitInvalid, setup.error());
   auto sc = session::trial_scene(setup.value(), t);
@@ -208,7 +262,7 @@ void run(const RenderOptions& o) {
   render::FrameSettings& settings = job.settings;
   settings.timed = true;
   settings.profile_passes = o.profile;
-  const scene::CameraStart start = apply_camera(sc.camera, o.camera);
+  const scene::CameraStart start = apply_camera(sc.camera, o.camera, sc);
   const render::Camera camera =
       render::camera_from_start(start, static_cast<float>(o.width) / static_cast<float>(o.height));
 
@@ -284,6 +338,16 @@ void run(const RenderOptions& o) {
 
 }  // namespace
 
+CLI::Validator unsigned_integer() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        const bool digits = !v.empty() && v.size() <= 20 && v.find_first_not_of("0123456789") == std::string::npos;
+        if (digits && (v.size() < 20 || v <= "18446744073709551615")) return {};
+        return "'" + v + "' is not an unsigned 64-bit integer (0..18446744073709551615, no sign)";
+      },
+      "UINT64");
+}
+
 void add_render_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("render", "Render one trial scene headless with one method; write a PNG");
   auto o = std::make_shared<RenderOptions>();
@@ -291,7 +355,7 @@ void add_render_command(CLI::App& root) {
                         ->check(CLI::IsMember({"abstract", "walkthrough"}));
   auto* task_opt = cmd->add_option("--task", o->task, "Task: T1, T2 (abstract), T3, T4 (walkthrough)")
                        ->check(CLI::IsMember({"T1", "T2", "T3", "T4"}));
-  auto* seed_opt = cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)");
+  auto* seed_opt = cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)")->check(unsigned_integer());
   auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference")
                          ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference"}));
   auto* protocol_opt = cmd->add_option("--protocol", o->protocol,
@@ -302,8 +366,8 @@ void add_render_command(CLI::App& root) {
   auto* db_opt = cmd->add_option("--db", o->db, "Study database: K and the order row from its participant ledger")
                      ->check(CLI::ExistingFile);
   auto* participant_opt = cmd->add_option("--participant", o->participant, "Participant id enrolled in --db");
-  auto* trial_opt = cmd->add_option("--trial", o->trial, "0-based position N in the participant's plan (dtlab plan)")
-                        ->check(CLI::NonNegativeNumber);
+  auto* trial_opt = cmd->add_option("--trial", o->trial,
+                                    "Position N in the participant's plan, 1-based as `dtlab plan` numbers it");
   cmd->add_option("--out", o->out, "PNG file to write")->required();
   cmd->add_option("--width", o->width, "Image width in pixels")->check(CLI::Range(1, 8192));
   cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 8192));
@@ -327,6 +391,9 @@ void add_render_command(CLI::App& root) {
   auto* layer_limit_opt = cmd->add_option("--layer-limit", o->layer_limit, "At most this many transparent surfaces in front of a target "
                                                    "(0 = no limit)")
       ->check(CLI::Range(0, 100));
+  auto* guard_opt = cmd->add_flag("--r1-guard", o->r1_guard,
+                                  "R1 guard on (docs/render.md): targets never blended below aT, sort errors repaired; "
+                                  "off: the article's algorithm as printed");
   cmd->add_option("--graphviz", o->graphviz, "Write the last frame's frame graph (dot) to FILE");
   cmd->add_flag("--profile", o->profile, "glFinish after every pass and print per-pass times of the last frame");
   cmd->add_flag("--json", o->json,
@@ -334,9 +401,13 @@ void add_render_command(CLI::App& root) {
                 "\"silhouette_pixels\", \"in_view\"}], \"gl_errors\", ...} as JSON");
   cmd->footer(
       "Two forms: --scene KIND --task T --seed S --method M [mask options] renders a generated scene;\n"
-      "--protocol P (--index K | --db FILE --participant ID) --trial N renders trial N (0-based) of that\n"
-      "participant's plan (`dtlab plan`) as a session would: the plan's seed, the task's scene parameters,\n"
-      "the method and mask parameters of the condition's [rendering] table. The forms do not mix.\n"
+      "--protocol P (--index K | --db FILE --participant ID) --trial N renders the trial at position N of that\n"
+      "participant's plan (1-based, the position `dtlab plan` lists) as a session would: the plan's seed, the\n"
+      "task's scene parameters, the method and mask parameters of the condition's [rendering] table. The\n"
+      "forms do not mix. --seed is an unsigned 64-bit integer (no sign). --camera keys: yaw -360..360,\n"
+      "pitch -90..90, fov 1..170 (degrees); distance (orbit cameras) between the scene's near and far\n"
+      "planes; x, y, z (walk cameras) within sight of the scene; each key once. --mask-res: at most the\n"
+      "image's longer side (or 128). --alpha-target, --alpha-start: at least 0 and below 1.\n"
       "Visible pixels (docs/render.md): pixels where the target's own surface makes up at least 10% of\n"
       "the final colour as the method composited it, counted with the method's own passes (weight\n"
       "frames: the target flat white, everything else black). silhouette_pixels: pixels the target\n"
@@ -344,7 +415,8 @@ void add_render_command(CLI::App& root) {
       "Exit status: 0 ok, 1 bad scene input, 2 bad command line, 3 no GL context or file not written.");
   const std::vector<CLI::Option*> scene_form{scene_opt, task_opt, seed_opt, method_opt};
   const std::vector<CLI::Option*> dt_options{alpha_target_opt, alpha_start_opt, gradient_opt, gradient_px_opt,
-                                             mask_res_opt,     shape_opt,       searchlight_opt, layer_limit_opt};
+                                             mask_res_opt,     shape_opt,       searchlight_opt, layer_limit_opt,
+                                             guard_opt};
   const std::vector<CLI::Option*> protocol_form{protocol_opt, index_opt, db_opt, participant_opt, trial_opt};
   cmd->callback([o, scene_form, dt_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
                  trial_opt] {
@@ -361,7 +433,7 @@ void add_render_command(CLI::App& root) {
       if ((index_opt->count() > 0) == (db_opt->count() > 0 || participant_opt->count() > 0) ||
           (db_opt->count() > 0) != (participant_opt->count() > 0))
         fail(kExitUsage, "--protocol needs either --index K or --db FILE --participant ID");
-      if (trial_opt->count() == 0) fail(kExitUsage, "--protocol needs --trial N (0-based position in the plan)");
+      if (trial_opt->count() == 0) fail(kExitUsage, "--protocol needs --trial N (1-based position in the plan)");
     } else {
       if (const std::string bad = given(protocol_form); !bad.empty())
         fail(kExitUsage, bad + " belong(s) to the protocol form: give --protocol P too");

@@ -11,6 +11,7 @@
 
 namespace CLI {
 class App;
+class Validator;
 }
 namespace dtlab::protocol {
 struct Protocol;
@@ -55,6 +56,10 @@ void add_simulate_command(CLI::App& root);  // `dtlab simulate PROTOCOL --partic
 void add_demo_command(CLI::App& root);  // `dtlab demo [--out DIR]`: the reference study simulated end to end, then its report
 void add_run_command(CLI::App& root);  // `dtlab run PROTOCOL --db FILE`: a person's session in a window (app/run)
 void add_replay_command(CLI::App& root);  // `dtlab replay DB --participant ID --trial N --out DIR`: what they saw
+
+// A CLI11 check for an unsigned 64-bit integer written as digits only (cmd_render.cpp): CLI11
+// itself turns "-1" into 2^64 - 1. Used by `render --seed` and `bench --seed`.
+CLI::Validator unsigned_integer();
 
 // Shared by `dtlab simulate` and `dtlab demo` (cmd_simulate.cpp): enrolls sim-001 .. sim-N into
 // run.db and runs their sessions with progress on stderr (lines start with `prefix`); returns an exit code.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/platform/malloc_tuning.h"
 #include "study/common/text.h"
 #include "study/common/version.h"
 
@@ -32,6 +33,8 @@ bool unknown_command(const CLI::App& root, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before anything allocates: frame times must not depend on the heap's history (malloc_tuning.cpp).
+  dtlab::platform::tune_malloc_for_software_gl();
   CLI::App root{
       "dtlab: run, author and analyse user studies of occlusion management in 3D.\n"
       "The reference study is Elmqvist, Assarsson & Tsigas (2008), protocols/elmqvist2008.toml."};

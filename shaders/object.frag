@@ -2,7 +2,10 @@
 // the eye), two-sided, colour = vertex colour x tint x (ambient + diffuse).
 // Flat mode (u_flat.a > 0.5) outputs u_flat.rgb unlit: the weight renders
 // that count visible pixels. Alpha is always 1; blending decides what it does.
-// u_searchlight (off for every draw but the R1 guard's repair) limits it to a circle.
+// Compiled twice: with SEARCHLIGHT defined (only for the R1 guard's repair in active
+// mode), u_searchlight limits it to a circle; without, it has no discard, so the
+// driver can test depth before shading (llvmpipe tests late in any shader that
+// may discard, which cost standard frames 25%).
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -12,12 +15,16 @@ in vec3 v_color;
 uniform vec3 u_tint;
 uniform vec3 u_eye;
 uniform vec4 u_flat;
+#ifdef SEARCHLIGHT
 uniform vec3 u_searchlight;  // (x, y, radius) window pixels; radius < 0: off (fragments outside are discarded)
+#endif
 
 out vec4 frag_color;
 
 void main() {
+#ifdef SEARCHLIGHT
   if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
+#endif
   if (u_flat.a > 0.5) {
     frag_color = vec4(u_flat.rgb, 1.0);
     return;

@@ -35,8 +35,11 @@ class GlContext {
 };
 
 // Creates an OSMesa context (core profile 3.3) whose default framebuffer is
-// width x height RGBA8 with depth and stencil; current on return.
-Result<std::unique_ptr<GlContext>> create_headless(int width, int height);
+// width x height RGBA8 with depth and stencil; current on return. `raster_threads` >= 0 asks the
+// software rasterizer (llvmpipe's LP_NUM_THREADS) for that many threads, 0 = rasterize in the
+// calling thread; it takes effect only for the process's first context and never overrides
+// LP_NUM_THREADS set in the environment. -1: the driver's default (one thread per core).
+Result<std::unique_ptr<GlContext>> create_headless(int width, int height, int raster_threads = -1);
 
 struct WindowOptions {
   std::string title = "dtlab";

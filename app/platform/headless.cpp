@@ -5,12 +5,14 @@
 #include <glad/gl.h>
 #include <GL/osmesa.h>
 
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "app/platform/detail/loader.h"
 #include "app/platform/gl_context.h"
+#include "app/platform/malloc_tuning.h"
 
 namespace dtlab::platform {
 
@@ -49,7 +51,9 @@ Error gl_error(std::string message) {
 
 }  // namespace
 
-Result<std::unique_ptr<GlContext>> create_headless(int width, int height) {
+Result<std::unique_ptr<GlContext>> create_headless(int width, int height, int raster_threads) {
+  tune_malloc_for_software_gl();
+  if (raster_threads >= 0) ::setenv("LP_NUM_THREADS", std::to_string(raster_threads).c_str(), 0);
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
     return gl_error("headless context size must be 1..16384 pixels per side, got " +
                     std::to_string(width) + "x" + std::to_string(height));

@@ -11,6 +11,7 @@
 
 #include "app/platform/detail/loader.h"
 #include "app/platform/gl_context.h"
+#include "app/platform/malloc_tuning.h"
 
 namespace dtlab::platform {
 
@@ -62,6 +63,7 @@ void Window::swap_buffers() { glfwSwapBuffers(window_); }
 void Window::poll_events() { glfwPollEvents(); }
 
 Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
+  tune_malloc_for_software_gl();
   if (options.width <= 0 || options.height <= 0)
     return window_error("window size must be positive, got " + std::to_string(options.width) + "x" +
                         std::to_string(options.height));

@@ -242,6 +242,7 @@ Status ScriptPlayer::tick(const std::string& screen, std::uint64_t instance, con
     phase_ = 0;
     step_start_ = now;
     moved_ = 0;
+    seen_.reset();
   }
   if (!section_) return {};
   Status error;
@@ -251,6 +252,7 @@ Status ScriptPlayer::tick(const std::string& screen, std::uint64_t instance, con
     phase_ = 0;
     step_start_ = now;
     moved_ = 0;
+    seen_.reset();
   }
   return {};
 }
@@ -342,7 +344,12 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
         return false;
       }
       if (phase_ == 0) {
+        // A new popup's items are laid out on its first frame and placed on its second: click
+        // only a box that held still for one frame, as a person's eye would wait for it.
         const ItemBox& b = it->second;
+        const bool still = seen_ && seen_->x == b.x && seen_->y == b.y && seen_->w == b.w && seen_->h == b.h;
+        seen_ = b;
+        if (!still) return false;
         return press_release(0, b.x + b.w * s.x0, b.y + b.h * s.y0);
       }
       return press_release(0, 0, 0);  // later phases ignore the position

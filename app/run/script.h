@@ -12,6 +12,7 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,7 @@ class ScriptPlayer {
   int phase_ = 0;
   Clock::time_point step_start_{};
   double moved_ = 0;  // turn/drag: the share of the motion already fed
+  std::optional<ItemBox> seen_;  // click_item: its item's box last frame (clicked once it holds still)
   std::vector<int> held_keys_, held_buttons_;
 };
 

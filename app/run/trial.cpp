@@ -15,6 +15,7 @@
 #include "app/run/responder.h"
 #include "app/run/screens.h"
 #include "app/run/view.h"
+#include "study/scene/models.h"
 
 namespace dtlab::run {
 
@@ -28,6 +29,19 @@ AnswerKind kind_of(scene::Task t) {
     case scene::Task::T3: return AnswerKind::position;
     default: return AnswerKind::count;
   }
+}
+
+// The answer screen's question, naming what was to be counted or found.
+std::string question(const scene::Answer& a) {
+  const scene::ModelInfo* m = a.target_kind.empty() ? nullptr : scene::find_model(a.target_kind);
+  const std::string kind = m ? std::string(m->label) : a.target_kind;
+  switch (a.task) {
+    case scene::Task::T1: return "How many red objects?";
+    case scene::Task::T2: return "Which letter do the red cones form?";
+    case scene::Task::T3: return "Where is the " + kind + "? Click its place on the floor plan.";
+    case scene::Task::T4: return "How many of this kind (" + kind + ") in the building?";
+  }
+  return "";
 }
 
 // The answer widgets; sets `answer` (and a log text) when the participant submits.
@@ -44,9 +58,7 @@ struct AnswerInput {
     begin_panel("##answer", kind == AnswerKind::position ? 0.62f : 0.55f);
     ImGui::PushFont(ui.heading_font());
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextUnformatted(kind == AnswerKind::count    ? "How many?"
-                           : kind == AnswerKind::letter ? "Which letter?"
-                                                        : "Where is it? Click its place on the floor plan.");
+    ImGui::TextUnformatted(question(s.answer).c_str());
     ImGui::PopTextWrapPos();
     ImGui::PopFont();
     bool submit = false;

@@ -22,9 +22,13 @@ struct ImageDiff {
   double mae = 0.0;             // mean absolute difference per channel, 0..255
   double pixels_off_pct = 0.0;  // share of pixels (percent) where some channel differs by more than 4
   int max_abs = 0;              // largest channel difference
+  long pixels = 0;              // pixels compared
 };
-// Throws std::invalid_argument if the sizes differ.
+// Over every pixel. Throws std::invalid_argument if the sizes differ.
 ImageDiff compare(const Image& a, const Image& b);
+// Over the pixels whose byte in `region` (one per pixel, top row first, as Image) is non-zero;
+// all zero if none is. Throws std::invalid_argument if the sizes differ.
+ImageDiff compare_in(const Image& a, const Image& b, const std::vector<std::uint8_t>& region);
 
 // Writes `image` as PNG. With `keep_alpha` false the alpha channel is written as 255
 // (the renderer's alpha is its cumulative alpha buffer, not coverage).

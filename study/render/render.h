@@ -1,5 +1,5 @@
 // The dtlab renderer: draws a scene::Scene with one of four methods through
-// a frame graph (frame_graph.h), into a caller-owned target (a window's
+// a frame graph (detail/frame_graph.h), into a caller-owned target (a window's
 // default framebuffer or an offscreen framebuffer), in any GL 3.3 core
 // context (the platform layer makes one). Methods (docs/render.md):
 //   standard   opaque z-buffered rendering with a headlight;
@@ -25,7 +25,7 @@
 
 #include "study/common/error.h"
 #include "study/render/camera.h"
-#include "study/render/frame_graph.h"
+#include "study/render/frame_report.h"
 #include "study/render/image.h"
 #include "study/scene/scene.h"
 
@@ -44,25 +44,42 @@ enum class DtMode { passive, active };  // passive: whole view; active: searchli
 
 // Parameters of dynamic transparency (docs/render.md, "The visual model").
 struct DtSettings {
-  float alpha_target = 0.3f;    // aT in [0,1): weight of a surface in front of a target
+  float alpha_target = 0.3f;    // aT in [0, 1): weight of a surface in front of a target
   float alpha_start = 0.1f;     // a0 in [0,1): weight of a surface next to the target's outline
   float gradient_px = 24.0f;    // n >= 0: the weight rises from a0 to 1 over n output pixels (Chebyshev)
-  int mask_resolution = 128;    // mask buffer side (dt-seed: R x R as in the article); 0 = full resolution
+  int mask_resolution = 128;    // mask buffer side R (R x R as in the article); 0 = full resolution;
+                                // at most max_mask_resolution() of the view
   MaskShape shape = MaskShape::outline;
   DtMode mode = DtMode::passive;
   glm::vec2 searchlight_center{0.0f};  // active mode: output pixels, origin top-left (a cursor position)
   float searchlight_radius = 120.0f;   // active mode: output pixels
   int layer_limit = 0;          // at most this many transparent surfaces in front of a target; 0 = no limit (max 60)
-  // R1 guard (docs/render.md, "Departures"): (1) a target is never blended with less than aT
-  // weight (the alpha at its own frontmost pixels is raised to at least aT before it is
-  // drawn); (2) where an object the back-to-front sort drew too early hides a target, the
-  // target is blended over it with weight 1 - aT (never behind impenetrable surfaces). Off:
-  // the article's algorithm as printed, where a target standing in the gradient of a farther
-  // target fades to a0 or below and a sort error hides a target completely (both measured).
-  bool r1_guard = true;
+  // R1 guard, off by default (the article's algorithm as printed; docs/render.md, "R1 guard"): on,
+  // (1) a target is never blended with less than aT weight (the alpha at its own frontmost pixels
+  // is raised to at least aT before it is drawn); (2) where an object the back-to-front sort drew
+  // too early hides a target, the target is blended over it with weight 1 - aT (never behind
+  // impenetrable surfaces). Off, a target standing in the gradient of a farther target fades to
+  // a0 or below, and a sort error hides a target completely (both measured).
+  bool r1_guard = false;
 };
-// Throws std::invalid_argument naming the field if a value is out of range.
-void validate(const DtSettings& s);
+// The settings a DtSettings value is checked on; callers map them to what their user wrote (a
+// command-line option, a protocol key).
+enum class DtField { alpha_target, alpha_start, gradient, mask_resolution, layer_limit, searchlight };
+std::string_view to_string(DtField f);  // the DtSettings member: "alpha_target", ...
+struct SettingsProblem {
+  DtField field;
+  std::string message;  // what was expected, e.g. "must be below 1 (got 1)"
+};
+// The finest mask a width x height view can use: its longer side (a finer buffer than the view
+// changes nothing but the cost: dt-seed draws R x R n' times per target), or the article's 128.
+int max_mask_resolution(int width, int height);
+// Checks every range, and with a view (width, height > 0) that mask_resolution is at most
+// max_mask_resolution(width, height). nullopt when the settings are fine. aT and a0 must be below
+// 1: Algorithm 3 finds the target by its alpha differing from 1, and rule R2 makes occluders
+// transparent (aT = 1 would leave them opaque).
+std::optional<SettingsProblem> check(const DtSettings& s, int width = 0, int height = 0);
+// Throws std::invalid_argument "DtSettings.<field>: <message>" if check() finds a problem.
+void validate(const DtSettings& s, int width = 0, int height = 0);
 // The article's unit: `mask_pixels` of a `mask_resolution`-square mask over a width x height
 // view, in output pixels (the protocol's gradient_width is in mask pixels).
 float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int width, int height);
@@ -110,6 +127,11 @@ class Renderer {
   // Per-target silhouette and visible pixel counts under `settings.method`, computed with the
   // method's own passes (flat weight colours, 3 targets per frame). Targets in scene order.
   std::vector<TargetVisibility> visibility(const Camera& camera, FrameSettings settings, int width, int height);
+
+  // The effect region: pixels where some target in view has an exact mask below 1 (its
+  // silhouette or shape grown by the gradient, at full resolution as `reference` draws it; in
+  // active mode cut to the searchlight), one byte per pixel (1 = in), top row first as Image.
+  std::vector<std::uint8_t> effect_region(const Camera& camera, const DtSettings& dt, int width, int height);
 
   // The last frame's graph in Graphviz dot syntax (culled passes grey).
   const std::string& last_graphviz() const;

@@ -96,50 +96,6 @@ Result<std::vector<std::string>> model_kinds(const protocol::Protocol& p, const 
 // render::validate(dt), with a refusal named by the protocol key behind it: each key's value is
 // tried alone on otherwise default settings, so the error names the key the author wrote
 // whatever the renderer calls its field.
-Status check_renderer(const protocol::Protocol& p, const protocol::Rendering& r, const render::DtSettings& dt,
-                      int width, int height) {
-  const std::string viewport = std::to_string(width) + "x" + std::to_string(height);
-  std::string refusal;
-  try {
-    render::validate(dt);
-    return {};
-  } catch (const std::invalid_argument& e) {
-    refusal = e.what();
-  }
-  struct Key {
-    const char* name;
-    std::string value;
-    std::function<void(render::DtSettings&)> take;
-  };
-  const Key keys[] = {
-      {"a0", num(r.a0), [&](render::DtSettings& s) { s.alpha_start = dt.alpha_start; }},
-      {"aT", num(r.aT), [&](render::DtSettings& s) { s.alpha_target = dt.alpha_target; }},
-      {"gradient_width",
-       std::to_string(r.gradient_width) + " (mask pixels of a " + std::to_string(r.mask_resolution) +
-           "-pixel mask, " + std::to_string(static_cast<long>(std::lround(dt.gradient_px))) + " output pixels)",
-       [&](render::DtSettings& s) {
-         s.gradient_px = dt.gradient_px;
-         s.mask_resolution = dt.mask_resolution;
-       }},
-      {"mask_resolution", std::to_string(r.mask_resolution),
-       [&](render::DtSettings& s) { s.mask_resolution = dt.mask_resolution; }},
-      {"layer_limit", std::to_string(r.layer_limit), [&](render::DtSettings& s) { s.layer_limit = dt.layer_limit; }},
-  };
-  for (const Key& k : keys) {
-    render::DtSettings probe;
-    k.take(probe);
-    try {
-      render::validate(probe);
-    } catch (const std::invalid_argument& e) {
-      return bad(p, "rendering." + r.name + "." + k.name,
-                 std::string(k.name) + " = " + k.value + " at a " + viewport + " viewport: the renderer refuses it (" +
-                     e.what() + ")");
-    }
-  }
-  return bad(p, "rendering." + r.name, "the renderer refuses these settings at a " + viewport + " viewport (" +
-                                           refusal + ")");
-}
-
 }  // namespace
 
 scene::Kind scene_kind(protocol::ScenarioKind kind) {
@@ -221,7 +177,9 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
   render::DtSettings& dt = f.dt;
   dt.alpha_start = static_cast<float>(r.a0);
   dt.alpha_target = static_cast<float>(r.aT);
-  dt.mask_resolution = r.mask_resolution;
+  // A mask finer than this view can show is the view's own resolution (0: one texel per pixel):
+  // the same picture, at less cost. The gradient keeps the width the protocol's mask gives it.
+  dt.mask_resolution = r.mask_resolution > render::max_mask_resolution(width, height) ? 0 : r.mask_resolution;
   dt.gradient_px = render::gradient_px_from_mask_pixels(static_cast<float>(r.gradient_width), r.mask_resolution,
                                                          width, height);
   dt.shape = *shape;
@@ -234,7 +192,24 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
     return bad(p, field + ".mode", "unknown mode '" + r.mode + "' (passive, active)");
   }
   dt.layer_limit = r.layer_limit;
-  if (Status st = check_renderer(p, r, dt, width, height); !st) return st.error();
+  // The renderer's default is the article's algorithm as printed (R1 guard off), under which a
+  // target in a farther target's gradient fades to a0 and a sort error hides a target; sessions
+  // keep the guard on, as before that default changed, until the protocol has a key for it.
+  dt.r1_guard = true;
+  // The renderer's checks (ranges), each named by the protocol key the author wrote.
+  if (const auto problem = render::check(dt, width, height)) {
+    const char* key = "";
+    switch (problem->field) {
+      case render::DtField::alpha_target: key = "aT"; break;
+      case render::DtField::alpha_start: key = "a0"; break;
+      case render::DtField::gradient: key = "gradient_width"; break;
+      case render::DtField::mask_resolution: key = "mask_resolution"; break;
+      case render::DtField::layer_limit: key = "layer_limit"; break;
+      case render::DtField::searchlight: key = "mode"; break;
+    }
+    return bad(p, field + "." + key,
+               problem->message + " (at a " + std::to_string(width) + "x" + std::to_string(height) + " viewport)");
+  }
   return f;
 }
 

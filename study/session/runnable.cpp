@@ -55,7 +55,7 @@ std::string sci(double v) {
   return buf;
 }
 
-// Methods whose frame runs passes per target (docs/render.md: dt-seed's mask passes).
+// Methods whose frame dilates a mask per target (docs/render.md: dt-seed's mask passes).
 bool passes_per_target(const std::string& method) { return render::parse_method(method) == render::Method::dt_seed; }
 
 // A task a rendering meets: in a condition, or as the depth test's scene.
@@ -73,21 +73,14 @@ void check_work(const Protocol& p, const protocol::Rendering& r, const std::vect
     if (max_targets(*m.task) > max_targets(*worst->task)) worst = &m;
   const long long targets = max_targets(*worst->task);
   const long long n = r.gradient_width;
-  const long long passes = targets * (n + 3);
   const double texels = static_cast<double>(targets) * static_cast<double>(n + 2) *
                         static_cast<double>(r.mask_resolution) * static_cast<double>(r.mask_resolution);
   const std::string what = "method = \"" + r.method + "\" on task " + worst->task->id + " of scenario '" +
                            worst->scenario->name + "' (up to " + count(targets, "target") + ")";
-  if (passes > kMaxPassesPerFrame)
-    report.add(protocol::error_at(
-        p, "rendering." + r.name + ".gradient_width",
-        what + " runs " + std::to_string(passes) + " passes per frame (targets x (gradient_width + 3)); at most " +
-            std::to_string(kMaxPassesPerFrame) +
-            ": lower gradient_width or the number of targets (objects, target_ratio), or use method = \"dt-fast\""));
   if (texels > static_cast<double>(kMaxMaskTexelsPerFrame))
     report.add(protocol::error_at(
         p, "rendering." + r.name + ".mask_resolution",
-        what + " needs " + sci(texels) + " mask texels per frame (targets x (gradient_width + 2) x mask_resolution^2); at most " +
+        what + " needs " + sci(texels) + " mask texel writes per frame (targets x (gradient_width + 2) x mask_resolution^2); at most " +
             sci(static_cast<double>(kMaxMaskTexelsPerFrame)) +
             ": lower mask_resolution or gradient_width, or use method = \"dt-fast\""));
 }

@@ -36,12 +36,11 @@ inline constexpr int kDepthTestIndexesChecked = 8;
 // trial takes some ten seconds on a software renderer (the reference has up to 50).
 inline constexpr int kMaxTargets = 250;
 
-// Work bounds for one frame of a method that runs passes per target (dt-seed): passes are
-// targets x (gradient_width + 3), mask work is targets x (gradient_width + 2) x mask_resolution^2
-// texels, with targets the most one trial of the task can have. The reference protocol needs
-// 550 passes and 8.2e6 texels; at these bounds a simulated trial takes about half a minute on a
+// Work bound for one frame of dt-seed, whose mask passes (Algorithm 2's dilation) write up to
+// targets x (gradient_width + 2) x mask_resolution^2 texels (each target's tile is at most the
+// whole mask grid), with targets the most one trial of the task can have. The reference
+// protocol needs 8.2e6; far beyond the bound a simulated trial does not finish in minutes on a
 // software renderer (docs/protocol.md, "[rendering.<name>]").
-inline constexpr long long kMaxPassesPerFrame = 2048;
 inline constexpr long long kMaxMaskTexelsPerFrame = 1LL << 27;
 
 // Every reason the protocol cannot run, as errors (file:line:column, field, message); empty if

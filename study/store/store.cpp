@@ -330,7 +330,7 @@ StudyReader& Store::read() { return impl_->reader; }
 Result<Enrollment> Store::enroll(const std::string& participant_id, const Demographics& demographics) {
   Impl& m = *impl_;
   if (auto s = validate_participant_id(m.path, participant_id); !s) return s.error();
-  nlohmann::json demo = nlohmann::json::object();
+  nlohmann::ordered_json demo = nlohmann::ordered_json::object();  // kept in the order given (the protocol's)
   for (const auto& [k, v] : demographics) {
     if (k.empty()) return m.invalid("demographics", "a demographic field name is empty");
     if (demo.contains(k)) return m.invalid("demographics." + k, "appears twice");

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "study/render/frame_graph.h"
+#include "study/render/detail/frame_graph.h"
 
 namespace dtlab::render {
 namespace {
@@ -264,6 +264,47 @@ TEST(FrameGraph, ConditionalPassRunsInsideTheConditionAndReportsTheAnswer) {
     const std::vector<std::string> run = rep.passes_run();
     EXPECT_EQ(std::count(run.begin(), run.end(), "effect"), answer ? 1 : 0);
   }
+}
+
+// Regression (the dt-seed graph): `dt-clear`, conditional on the target query, overwrites the
+// opaque pass's colour without reading it. When the query says no, `present` shows the opaque
+// colour, so the opaque pass must survive on that dependency alone (it used to survive only
+// because the query pass read its depth). Here nothing else reads the opaque pass's output.
+TEST(FrameGraph, AConditionalWriteKeepsThePreviousWriterAlive) {
+  FrameGraph fg;
+  RecordingBackend be;
+  be.query_answer = false;
+  const Handle out = fg.import_target("output", {0, 16, 16});
+  const Handle q = fg.add_pass<One>(
+                        "query", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create_query("occluded")); },
+                        [](const One&, PassResources&) {})
+                       .h;
+  const Handle color = fg.add_pass<One>(
+                            "opaque", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create("color", kDesc)); },
+                            [&](const One&, PassResources&) { be.log.push_back("opaque body"); })
+                           .h;
+  const Handle cleared = fg.add_pass<One>(
+                              "clear",
+                              [&](FrameGraph::Builder& b, One& d) {
+                                b.condition(q);
+                                d.h = b.write(color);  // no read: it overwrites everything
+                              },
+                              [](const One&, PassResources&) {})
+                             .h;
+  fg.add_pass<Two>(
+      "present",
+      [&](FrameGraph::Builder& b, Two& d) {
+        d.a = b.read(cleared);
+        d.b = b.write(out);
+      },
+      [](const Two&, PassResources&) {});
+  fg.compile();
+  fg.execute(be);
+  EXPECT_NE(std::find(be.log.begin(), be.log.end(), "opaque body"), be.log.end());
+  EXPECT_EQ(fg.answer(q, be, true), false);
+  const FrameReport rep = fg.report(be, true);
+  EXPECT_FALSE(rep.passes[1].culled) << "opaque";
+  EXPECT_EQ(rep.passes_run(), (std::vector<std::string>{"query", "opaque", "present"}));
 }
 
 TEST(FrameGraph, GraphvizNamesPassesAndResourcesAndGreysCulledOnes) {

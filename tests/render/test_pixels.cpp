@@ -3,9 +3,9 @@
 // (weight mode: unlit, exact) make every expected value a closed formula:
 //   one wall w in front of target t:  c = w aT + t (1 - aT)
 //   two walls w1 (far), w2 (near):    c = w2 aT + (w1 aT + t (1 - aT)) (1 - aT)
-//   a target standing in a farther target's gradient (R1 guard):  weight >= aT
-//   a target drawn after an object in front of it (sort error, R1 guard):
-//                                     c = o aT + t (1 - aT)
+//   a target standing in a farther target's gradient (R1 guard on):  weight >= aT
+//   a target drawn after an object in front of it (sort error, R1 guard on):
+//                                     c = o aT + t (1 - aT); guard off (the article): c = o
 // Each case runs under dt-seed (128 and full-resolution masks), dt-fast (both)
 // and reference; tolerance 2/255 unless a mask edge is involved.
 #include <gtest/gtest.h>
@@ -253,6 +253,7 @@ TEST_P(BlendTest, TargetInAFartherTargetsGradientKeepsAtLeastATWeight) {
   add_object(b.scene, testing::box_mesh({-1.6f, -0.5f, -9.0f}, {-0.6f, 0.5f, -8.5f}), kTarget, true);
   b.flat = {glm::vec3(0.0f), glm::vec3(0.0f), kTarget};
   DtSettings dt;
+  dt.r1_guard = true;
   const Image img = render(b, dt);
   const glm::vec2 p = project(front_camera(kW, kH), {-1.1f, 0.0f, -8.5f}, kW, kH);
   // Weight mode: B's red channel is its weight. A's gradient (a0 = 0.1) would leave it 0.1 or less.
@@ -267,6 +268,7 @@ TEST_P(BlendTest, SortErrorDoesNotHideATarget) {
   add_object(b.scene, testing::box_mesh({-1.0f, -1.0f, -13.0f}, {1.0f, 1.0f, -11.0f}), kTarget, true);
   b.flat = {kWall, kTarget};
   DtSettings dt;
+  dt.r1_guard = true;
   const Image img = render(b, dt);
   const glm::vec2 c = target_centre();
   const float aT = dt.alpha_target;

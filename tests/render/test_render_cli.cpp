@@ -1,8 +1,10 @@
 // `dtlab render` run as a separate process (DTLAB_BINARY), protocol form:
-// trial N of participant K's plan renders the scene `dtlab scene` gives for
+// trial N (1-based, the position `dtlab plan` lists) of participant K's plan
+// renders the scene `dtlab scene` gives for
 // the plan's seed (same content hash) with the method of the trial's
 // transparency level, and writes a PNG. The two forms do not mix; a wrong
-// combination or a trial past the plan's end exits 2 with a message.
+// combination, a trial past the plan's end, and every out-of-range value
+// (camera, seed, mask parameters) exits 2 with a message naming the option.
 // --db/--participant takes K from the study database's ledger.
 // Small images (64 x 48) keep each run well under a second of rendering.
 #include <gtest/gtest.h>
@@ -25,6 +27,7 @@ using dtlab::test::CliOutcome;
 using dtlab::test::run_dtlab;
 
 const std::string kReference = std::string("'") + DTLAB_SOURCE_DIR + "/protocols/elmqvist2008.toml'";
+const std::string kAbstract = "--scene abstract --task T1 --seed 1 --method dt-fast";
 
 fs::path png_path(const std::string& tag) {
   return fs::temp_directory_path() / ("dtlab_render_cli_" + std::to_string(getpid()) + "_" + tag + ".png");
@@ -57,7 +60,7 @@ TEST(RenderCli, PlanTrialRendersThePlannedSceneWithTheLevelsMethod) {
     const std::string scenario = t["levels"]["scenario"];
     const fs::path out = png_path(std::to_string(n));
     const CliOutcome r = run_dtlab("render --protocol " + kReference + " --index " + std::to_string(index) +
-                                   " --trial " + std::to_string(n) + " --width 64 --height 48 --out '" +
+                                   " --trial " + std::to_string(n + 1) + " --width 64 --height 48 --out '" +
                                    out.string() + "' --json");
     ASSERT_EQ(r.rc, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -68,6 +71,7 @@ TEST(RenderCli, PlanTrialRendersThePlannedSceneWithTheLevelsMethod) {
     EXPECT_EQ(j["seed"], t["seed"]);
     EXPECT_EQ(j["scene_hash"], scene_hash(scenario, t["task"], t["seed"].get<std::uint64_t>()));
     EXPECT_EQ(j["trial"]["position"], t["position"]);
+    EXPECT_EQ(j["trial"]["trial"], n + 1) << "--trial is the plan's 1-based position";
     EXPECT_EQ(j["trial"]["index"], index);
     EXPECT_TRUE(j["gl_errors"].empty());
     EXPECT_GT(fs::file_size(out), 8u);
@@ -93,7 +97,7 @@ TEST(RenderCli, DbParticipantTakesTheEnrollmentIndexFromTheLedger) {
   const int n = 7;
   const fs::path out = png_path("db");
   const CliOutcome r = run_dtlab("render --protocol " + kReference + " --db '" + db.string() +
-                                 "' --participant second --trial " + std::to_string(n) +
+                                 "' --participant second --trial " + std::to_string(n + 1) +
                                  " --width 64 --height 48 --out '" + out.string() + "' --json");
   ASSERT_EQ(r.rc, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -102,7 +106,7 @@ TEST(RenderCli, DbParticipantTakesTheEnrollmentIndexFromTheLedger) {
   EXPECT_EQ(j["seed"], plan["trials"][n]["seed"]);
   EXPECT_EQ(j["method"], plan["trials"][n]["method"]);
   const CliOutcome unknown = run_dtlab("render --protocol " + kReference + " --db '" + db.string() +
-                                       "' --participant nobody --trial 0 --out '" + out.string() + "'");
+                                       "' --participant nobody --trial 1 --out '" + out.string() + "'");
   EXPECT_EQ(unknown.rc, 1) << unknown.err;
   EXPECT_NE(unknown.err.find("nobody"), std::string::npos) << unknown.err;
   fs::remove(out);
@@ -125,20 +129,39 @@ TEST_P(RenderCliBad, ExitsTwoWithAMessageAndWritesNothing) {
   const CliOutcome r = run_dtlab("render " + GetParam().args + " --out '" + out.string() + "'");
   EXPECT_EQ(r.rc, 2) << r.err;
   EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("DtSettings"), std::string::npos) << "names an internal field: " << r.err;
   EXPECT_FALSE(fs::exists(out));
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Forms, RenderCliBad,
     ::testing::Values(
-        BadCase{"protocol_and_scene", "--protocol " + kReference + " --index 0 --trial 0 --scene abstract",
+        BadCase{"protocol_and_scene", "--protocol " + kReference + " --index 0 --trial 1 --scene abstract",
                 "drop --scene"},
-        BadCase{"protocol_and_method", "--protocol " + kReference + " --index 0 --trial 0 --method dt-fast",
+        BadCase{"protocol_and_method", "--protocol " + kReference + " --index 0 --trial 1 --method dt-fast",
                 "drop --method"},
-        BadCase{"protocol_and_seed", "--protocol " + kReference + " --index 0 --trial 0 --seed 5", "drop --seed"},
+        BadCase{"protocol_and_seed", "--protocol " + kReference + " --index 0 --trial 1 --seed 5", "drop --seed"},
         BadCase{"protocol_without_trial", "--protocol " + kReference + " --index 0", "--trial"},
-        BadCase{"protocol_without_index", "--protocol " + kReference + " --trial 0", "--index K"},
-        BadCase{"trial_past_the_plan", "--protocol " + kReference + " --index 0 --trial 24", "24 trials"},
+        BadCase{"protocol_without_index", "--protocol " + kReference + " --trial 1", "--index K"},
+        BadCase{"trial_past_the_plan", "--protocol " + kReference + " --index 0 --trial 25", "positions 1..24"},
+        // Regression: --trial was 0-based while `dtlab plan` positions are 1-based.
+        BadCase{"trial_zero", "--protocol " + kReference + " --index 0 --trial 0", "positions 1..24"},
+        // Regressions (each used to render a flat or empty image without a word):
+        BadCase{"camera_distance_zero", kAbstract + " --camera distance=0", "distance must be"},
+        BadCase{"camera_distance_negative", kAbstract + " --camera distance=-5", "distance must be"},
+        BadCase{"camera_distance_huge", kAbstract + " --camera distance=1e30", "distance must be"},
+        BadCase{"camera_fov_tiny", kAbstract + " --camera fov=1e-9", "fov must be 1..170"},
+        BadCase{"camera_pitch_1000", kAbstract + " --camera pitch=1000", "pitch must be -90..90"},
+        BadCase{"camera_duplicate_key", kAbstract + " --camera yaw=10,yaw=20", "'yaw' given twice"},
+        BadCase{"camera_trailing_comma", kAbstract + " --camera yaw=10,", "trailing comma"},
+        BadCase{"camera_walk_key_on_orbit", kAbstract + " --camera x=3", "applies to walk cameras"},
+        BadCase{"seed_negative", "--scene abstract --task T1 --seed -1 --method standard", "no sign"},
+        // Errors name the option the user wrote, not DtSettings' fields.
+        BadCase{"alpha_target_one", kAbstract + " --alpha-target 1", "--alpha-target: must be at least 0 and below 1"},
+        BadCase{"gradient_px_huge", kAbstract + " --gradient-px 5000", "--gradient-px: must be 0..4096"},
+        // Regression: --mask-res 8192 ran for minutes; a mask finer than the image has no use.
+        BadCase{"mask_finer_than_the_image", "--scene abstract --task T1 --seed 1 --method dt-seed --mask-res 8192 --width 200 --height 150",
+                "--mask-res: must be at most 200"},
         BadCase{"index_without_protocol", "--scene abstract --task T1 --seed 1 --method standard --index 0",
                 "give --protocol"},
         BadCase{"scene_form_without_method", "--scene abstract --task T1 --seed 1", "missing --method"}),

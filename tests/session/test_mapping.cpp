@@ -112,6 +112,7 @@ TEST(Mapping, ReferenceRenderings) {
     EXPECT_EQ(f->dt.shape, render::MaskShape::outline) << c.name;
     EXPECT_EQ(f->dt.mode, render::DtMode::passive) << c.name;
     EXPECT_EQ(f->dt.layer_limit, 0) << c.name;
+    EXPECT_TRUE(f->dt.r1_guard) << c.name << ": sessions keep the R1 guard on (the renderer's default is off)";
     // n = 8 mask pixels of a 128-pixel mask over 800 x 600, as the renderer converts it.
     EXPECT_FLOAT_EQ(f->dt.gradient_px, render::gradient_px_from_mask_pixels(8.0f, 128, 800, 600)) << c.name;
     auto small = frame_settings(p, *it, 160, 120);
@@ -122,6 +123,23 @@ TEST(Mapping, ReferenceRenderings) {
 }
 
 // Values a stage cannot take: each an Error naming the protocol field.
+// A mask finer than the view can show is drawn at the view's full resolution (the same picture at
+// less cost; regression: a 4096 mask at 800 x 600 ran at 4096 x 4096 and took minutes a frame under
+// dt-seed); the gradient keeps the width the protocol's mask gives it. 128 is always kept.
+TEST(Mapping, AMaskFinerThanTheViewIsTheViewsOwnResolution) {
+  protocol::Protocol p = reference();
+  protocol::Rendering r = p.renderings[1];
+  r.mask_resolution = 4096;
+  auto fine = frame_settings(p, r, 800, 600);
+  ASSERT_TRUE(fine.ok()) << fine.error().to_string();
+  EXPECT_EQ(fine->dt.mask_resolution, 0);
+  EXPECT_NEAR(fine->dt.gradient_px, 8.0f * std::sqrt(800.0f * 600.0f) / 4096.0f, 1e-3f);
+  r.mask_resolution = 800;  // the longer side: kept
+  EXPECT_EQ(frame_settings(p, r, 800, 600)->dt.mask_resolution, 800);
+  r.mask_resolution = 128;  // finer than a 16 x 16 view, but always kept
+  EXPECT_EQ(frame_settings(p, r, 16, 16)->dt.mask_resolution, 128);
+}
+
 TEST(Mapping, UnsupportedValuesNameTheField) {
   const protocol::Protocol ref = reference();
   struct Case {
@@ -147,7 +165,11 @@ TEST(Mapping, UnsupportedValuesNameTheField) {
       {"unknown mask shape", [](protocol::Protocol& p) { p.renderings[1].mask_shape = "star"; }, "", "rendering.on.mask_shape"},
       {"unknown mode", [](protocol::Protocol& p) { p.renderings[1].mode = "sometimes"; }, "", "rendering.on.mode"},
       {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].aT = 1.5; }, "", "rendering.on.aT"},
-      {"layer_limit beyond the renderer's", [](protocol::Protocol& p) { p.renderings[1].layer_limit = 64; }, "",
+      // Regression: aT = 1 passed the reader (0..1) and failed mid-session naming DtSettings.alpha_target;
+      // the article needs aT below 1 (Algorithm 3 finds the target by alpha != 1).
+      {"aT = 1", [](protocol::Protocol& p) { p.renderings[1].aT = 1.0; }, "", "rendering.on.aT"},
+      {"a0 = 1", [](protocol::Protocol& p) { p.renderings[1].a0 = 1.0; }, "", "rendering.on.a0"},
+      {"layer limit the renderer cannot count", [](protocol::Protocol& p) { p.renderings[1].layer_limit = 64; }, "",
        "rendering.on.layer_limit"},
   };
   // Line of the first "key =" after the header of the field's scenario or rendering table in the
@@ -183,6 +205,7 @@ TEST(Mapping, UnsupportedValuesNameTheField) {
     EXPECT_GE(e.column, 1) << c.what << ": " << e.to_string();
     EXPECT_EQ(e.line, line_of(c.field)) << c.what << ": " << e.to_string();
     EXPECT_FALSE(e.message.empty()) << c.what;
+    EXPECT_EQ(e.message.find("DtSettings"), std::string::npos) << c.what << ": names an internal field: " << e.message;
   }
 }
 

@@ -54,6 +54,9 @@ TrialRow to_report_row(const store::TrialRow& t, const protocol::Protocol& p) {
   r.frame_sd = t.frames.sd_ms;
   r.frame_p95 = t.frames.p95_ms;
   r.frame_max = t.frames.max_ms;
+  r.frame_median = t.frames.steady_median_ms;
+  r.late_frames = t.frames.late;
+  r.refresh_hz = t.frames.refresh_hz;
   r.protocol_sha256 = t.protocol_sha256;
   r.excluded = t.excluded;
   return r;

@@ -37,6 +37,9 @@ struct TrialRow {
   double time_s = 0;
   std::int64_t frame_count = 0;
   std::optional<double> frame_mean, frame_sd, frame_p95, frame_max;
+  std::optional<double> frame_median;       // steady frames (2..n), schema v3; nullopt in older files
+  std::optional<std::int64_t> late_frames;  // steady frames later than 1.5 display intervals
+  std::optional<double> refresh_hz;         // the display's rate; nullopt: unknown (headless)
   std::string protocol_sha256;
   std::optional<std::string> excluded;  // the reason, when the trial or its participant is excluded (with_excluded)
 };

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "study/render/frame_graph.h"
+#include "study/render/detail/frame_graph.h"
 
 namespace dtlab::render {
 
@@ -31,8 +31,8 @@ std::uint32_t FrameGraph::push_pass(std::string name, std::unique_ptr<PassNode> 
   return static_cast<std::uint32_t>(passes_.size() - 1);
 }
 
-std::uint32_t FrameGraph::new_node(std::uint32_t resource, int writer) {
-  nodes_.push_back(Node{resource, resources_[resource].version, writer, 0});
+std::uint32_t FrameGraph::new_node(std::uint32_t resource, int writer, int previous) {
+  nodes_.push_back(Node{resource, resources_[resource].version, writer, 0, previous});
   return static_cast<std::uint32_t>(nodes_.size() - 1);
 }
 
@@ -108,7 +108,7 @@ Handle FrameGraph::Builder::write(Handle h) {
   Resource& r = graph_.resources_[resource];
   ++r.version;
   if (r.kind == Resource::Kind::imported) graph_.passes_[pass_]->side_effect = true;  // a root
-  const std::uint32_t node = graph_.new_node(resource, static_cast<int>(pass_));
+  const std::uint32_t node = graph_.new_node(resource, static_cast<int>(pass_), static_cast<int>(h.node_));
   graph_.passes_[pass_]->writes.push_back(node);
   return Handle(node);
 }
@@ -130,6 +130,16 @@ void FrameGraph::Builder::side_effect() { graph_.passes_[pass_]->side_effect = t
 void FrameGraph::compile() {
   if (compiled_) fail("compile() called twice");
   compiled_ = true;
+  // A conditional pass that does not run leaves what it writes as it was, so whoever reads its
+  // output may see the previous version: each of its writes also reads the version it replaces.
+  for (auto& p : passes_) {
+    if (!p->condition) continue;
+    for (auto w : p->writes) {
+      const int prev = nodes_[w].previous;
+      if (prev >= 0 && std::find(p->reads.begin(), p->reads.end(), static_cast<std::uint32_t>(prev)) == p->reads.end())
+        p->reads.push_back(static_cast<std::uint32_t>(prev));
+    }
+  }
   for (auto& n : nodes_) n.refcount = 0;
   for (auto& p : passes_) {
     p->refcount = static_cast<int>(p->writes.size()) + (p->side_effect ? 1 : 0);
@@ -212,6 +222,13 @@ void FrameGraph::execute(FrameGraphBackend& backend, bool profile) {
       r.gl_name = 0;
     }
   }
+}
+
+std::optional<bool> FrameGraph::answer(Handle query, FrameGraphBackend& backend, bool wait) const {
+  if (!executed_ || !query.valid() || query.node_ >= nodes_.size()) return std::nullopt;
+  const Resource& r = resources_[nodes_[query.node_].resource];
+  if (r.kind != Resource::Kind::query || r.gl_name == 0) return std::nullopt;  // culled, or after report()
+  return backend.query_any(r.gl_name, wait);
 }
 
 FrameReport FrameGraph::report(FrameGraphBackend& backend, bool wait_for_queries) {

@@ -1,4 +1,6 @@
 // Per-frame CPU geometry (see frame_view.h).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -54,7 +56,79 @@ PixelRect to_pixels(const glm::vec4& b, int w, int h) {
   return r.intersect({0, 0, w, h});
 }
 
+// Greedy colouring: each target the smallest code no earlier target with an overlapping
+// rectangle has. A target fragment can only be hidden, at a pixel, by an object whose rectangle
+// holds that pixel; so equal codes never meet. 0 when all 255 codes are taken around it.
+void assign_codes(FrameView& v) {
+  for (std::size_t k = 0; k < v.targets.size(); ++k) {
+    std::vector<bool> taken(256, false);
+    for (std::size_t j = 0; j < k; ++j)
+      if (v.targets[j].rect.overlaps(v.targets[k].rect)) taken[static_cast<std::size_t>(v.targets[j].code)] = true;
+    int code = 1;
+    while (code < 256 && taken[static_cast<std::size_t>(code)]) ++code;
+    if (code == 256) {
+      v.targets[k].code = 0;
+      v.codes_exhausted = true;
+    } else {
+      v.targets[k].code = code;
+      v.max_code = std::max(v.max_code, code);
+    }
+  }
+}
+
+// The 8 corners of an object's own box, transformed to the world (a parallelepiped around it).
+std::array<glm::vec3, 8> box_corners(const ObjectRecord& o) {
+  std::array<glm::vec3, 8> c;
+  for (int k = 0; k < 8; ++k)
+    c[static_cast<std::size_t>(k)] = glm::vec3(o.model * glm::vec4((k & 1) ? o.mesh_max.x : o.mesh_min.x,
+                                                                   (k & 2) ? o.mesh_max.y : o.mesh_min.y,
+                                                                   (k & 4) ? o.mesh_max.z : o.mesh_min.z, 1.0f));
+  return c;
+}
+
+// True if one face plane of the box `o` has the eye and every point of `t` strictly on its
+// outer side: `o` (inside its box) then lies wholly beyond that plane and cannot come between
+// the eye and any point of `t`.
+bool separated(const std::array<glm::vec3, 8>& o, glm::vec3 eye, const std::array<glm::vec3, 8>& t) {
+  // Faces by corner index bits: for axis a, the corners with bit a clear (side 0) or set (side 1).
+  glm::vec3 centre(0.0f);
+  for (const auto& c : o) centre += c * 0.125f;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = 1 << ((axis + 1) % 3), w = 1 << ((axis + 2) % 3);
+    for (int side = 0; side < 2; ++side) {
+      const int base = side ? (1 << axis) : 0;
+      const glm::vec3 p0 = o[static_cast<std::size_t>(base)];
+      glm::vec3 n = glm::cross(o[static_cast<std::size_t>(base | u)] - p0, o[static_cast<std::size_t>(base | w)] - p0);
+      if (glm::dot(n, n) < 1e-20f) continue;  // a flat box: this face says nothing
+      if (glm::dot(n, centre - p0) > 0.0f) n = -n;  // outward
+      const float d = glm::dot(n, p0);
+      const float margin = 1e-4f * std::sqrt(glm::dot(n, n));
+      if (glm::dot(n, eye) - d <= margin) continue;
+      bool all = true;
+      for (const auto& c : t)
+        if (glm::dot(n, c) - d <= margin) {
+          all = false;
+          break;
+        }
+      if (all) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
+
+MaskGrid mask_grid(const DtSettings& dt, int width, int height) {
+  MaskGrid g;
+  g.width = dt.mask_resolution > 0 ? dt.mask_resolution : width;
+  g.height = dt.mask_resolution > 0 ? dt.mask_resolution : height;
+  g.texel_x = static_cast<float>(width) / static_cast<float>(g.width);
+  g.texel_y = static_cast<float>(height) / static_cast<float>(g.height);
+  // One border pass adds one texel; a texel spans sqrt(tx ty) output pixels.
+  const double texel = std::sqrt(static_cast<double>(g.texel_x) * g.texel_y);
+  if (dt.gradient_px > 0.0f) g.layers = std::max(1, static_cast<int>(std::lround(dt.gradient_px / texel)));
+  return g;
+}
 
 FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene::Scene& scene,
                           const Camera& camera, int width, int height, const DtSettings& dt, GroupSorter& sorter) {
@@ -63,6 +137,8 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
   v.height = height;
   v.camera = camera;
   v.view_proj = camera.view_proj();
+  v.grid = mask_grid(dt, width, height);
+  const MaskGrid& g = v.grid;
   const PixelRect viewport{0, 0, width, height};
   v.rects.resize(objects.size());
   v.target_slot.assign(objects.size(), -1);
@@ -71,13 +147,15 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
   for (std::uint32_t i = 0; i < objects.size(); ++i) {
     const ObjectRecord& o = objects[i];
     if (!o.drawable()) continue;
+    // The corners of the object's own box, transformed: tighter on screen than its world AABB.
+    const glm::mat4 box_mvp = v.view_proj * o.model;
     const Projected box = project(
         8,
         [&](std::size_t c) {
-          return glm::vec3((c & 1) ? o.world_max.x : o.world_min.x, (c & 2) ? o.world_max.y : o.world_min.y,
-                           (c & 4) ? o.world_max.z : o.world_min.z);
+          return glm::vec3((c & 1) ? o.mesh_max.x : o.mesh_min.x, (c & 2) ? o.mesh_max.y : o.mesh_min.y,
+                           (c & 4) ? o.mesh_max.z : o.mesh_min.z);
         },
-        v.view_proj, width, height);
+        box_mvp, width, height);
     if (box.outside) continue;
     v.rects[i] = box.unbounded ? viewport : to_pixels(box.bounds, width, height);
     // One culled pass is exact only for a convex object seen from outside, not cut by the near plane.
@@ -95,7 +173,6 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
     if (tight.outside) continue;
     TargetView t;
     t.object = i;
-    t.code = static_cast<std::uint8_t>(v.targets.size() % 63 + 1);
     t.bounds = tight.unbounded ? glm::vec4(0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height))
                                : tight.bounds;
     t.rect = tight.unbounded ? viewport : to_pixels(t.bounds, width, height);
@@ -111,10 +188,26 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
     PixelRect extent = t.rect;
     if (dt.shape != MaskShape::outline)
       extent = to_pixels(glm::vec4(t.shape_center - t.shape_radii, t.shape_center + t.shape_radii), width, height);
-    t.support = extent.expand(margin).intersect(viewport);
+    // Texels whose centres can lie in the extent, and the pixels whose bilinear sample can read a
+    // texel up to n' texels from those (a sample reads the texels around it: one more each side).
+    t.cover = {static_cast<int>(std::floor(static_cast<float>(extent.x0) / g.texel_x)),
+               static_cast<int>(std::floor(static_cast<float>(extent.y0) / g.texel_y)),
+               static_cast<int>(std::floor(static_cast<float>(extent.x1) / g.texel_x)) + 1,
+               static_cast<int>(std::floor(static_cast<float>(extent.y1) / g.texel_y)) + 1};
+    t.cover = t.cover.intersect({0, 0, g.width, g.height});
+    const PixelRect grid_support{
+        static_cast<int>(std::floor(static_cast<float>(t.cover.x0 - g.layers - 1) * g.texel_x)),
+        static_cast<int>(std::floor(static_cast<float>(t.cover.y0 - g.layers - 1) * g.texel_y)),
+        static_cast<int>(std::ceil(static_cast<float>(t.cover.x1 + g.layers + 1) * g.texel_x)),
+        static_cast<int>(std::ceil(static_cast<float>(t.cover.y1 + g.layers + 1) * g.texel_y))};
+    const PixelRect exact_support = extent.expand(margin);  // the reference's exact mask
+    t.support = PixelRect{std::min(grid_support.x0, exact_support.x0), std::min(grid_support.y0, exact_support.y0),
+                          std::max(grid_support.x1, exact_support.x1), std::max(grid_support.y1, exact_support.y1)}
+                    .intersect(viewport);
     v.target_slot[i] = static_cast<int>(v.targets.size());
     v.targets.push_back(t);
   }
+  assign_codes(v);
   for (auto i : sorter.sort(camera.eye, camera.forward))
     if (!v.rects[i].empty()) v.sorted.push_back(i);
   // Depth ranges along the view direction (from the world boxes) for the sort-error test.
@@ -135,9 +228,11 @@ FrameView make_frame_view(const std::vector<ObjectRecord>& objects, const scene:
     const int slot = v.target_slot[v.sorted[k]];
     if (slot < 0) continue;
     TargetView& t = v.targets[static_cast<std::size_t>(slot)];
+    const auto target_box = box_corners(objects[t.object]);
     for (std::size_t j = 0; j < k && !t.may_be_drawn_late; ++j) {
       const auto o = v.sorted[j];
-      t.may_be_drawn_late = v.rects[o].overlaps(t.rect) && range[o].x < range[t.object].y;
+      t.may_be_drawn_late = v.rects[o].overlaps(t.rect) && range[o].x < range[t.object].y &&
+                            !separated(box_corners(objects[o]), camera.eye, target_box);
     }
   }
   if (dt.mode == DtMode::active)

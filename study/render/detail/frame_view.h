@@ -1,10 +1,12 @@
 // Internal: what the CPU knows about one frame before any GL call: each
 // object's conservative screen rectangle (empty when outside the view
-// frustum), the targets in view with their stencil codes, mask supports and
-// circle/ellipse parameters, and the draw order (impenetrable first, then
-// the sorted groups). Pure maths; no GL.
+// frustum), the mask texel grid, the targets in view with their stencil
+// codes, mask supports and circle/ellipse parameters, and the draw order
+// (impenetrable first, then the sorted groups). Pure maths; no GL.
 // Guarantees: a rectangle never misses a pixel the object covers (geometry
-// crossing the near plane gets the whole viewport). Never: reads GL state.
+// crossing the near plane gets the whole viewport); a support never misses a
+// pixel whose alpha the target's mask (grid or exact) can lower; two targets
+// whose rectangles overlap never share a code. Never: reads GL state.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -35,21 +37,38 @@ struct PixelRect {
   bool operator==(const PixelRect&) const = default;
 };
 
+// The texel grid of the masks (docs/render.md, "Mask"), the same for dt-seed and dt-fast: R x R
+// texels over the whole view (the article's 128 x 128: texels of W/R x H/R pixels), or one
+// texel per pixel for R = 0; the gradient is `layers` texels wide (Algorithm 2's n).
+struct MaskGrid {
+  int width = 1, height = 1;             // texels
+  float texel_x = 1.0f, texel_y = 1.0f;  // output pixels per texel
+  int layers = 0;                        // n' = round(n / sqrt(texel_x texel_y)), at least 1 if n > 0
+};
+MaskGrid mask_grid(const DtSettings& dt, int width, int height);
+
 struct TargetView {
   std::uint32_t object = 0;       // index into the scene's objects
-  std::uint8_t code = 1;          // stencil code (bits 0-5) of the frontmost-object test, 1..63
+  int code = 1;                   // stencil code of the frontmost-object test, 1..255 (0: none left)
   glm::vec4 bounds{0.0f};         // tight bounds of the projected vertices (x0, y0, x1, y1), window pixels, unclipped
   PixelRect rect;                 // silhouette bounds, clipped to the viewport
   PixelRect support;              // pixels whose alpha its mask can change, clipped to the viewport
+  PixelRect cover;                // mask texels its silhouette (or shape) can cover, grid units
   glm::vec2 shape_center{0.0f};   // circle / ellipse centre, window pixels
   glm::vec2 shape_radii{0.0f};    // semi-axes, window pixels (equal for a circle)
-  // Some object sorted before it overlaps it on screen and reaches nearer than its farthest
-  // point: a sort error could hide it (the R1 guard's repair is needed only then).
+  // Some object sorted before it overlaps it on screen, reaches nearer than its farthest point,
+  // and no face plane of that object's box has the eye and the target's box on its outer side: a
+  // sort error could hide it (the R1 guard's repair is needed only then).
   bool may_be_drawn_late = false;
 };
 
 struct FrameView {
   int width = 0, height = 0;
+  MaskGrid grid;
+  int max_code = 0;                         // largest target code; 0: no targets
+  // More than 255 targets overlap one another's rectangles: some target has code 0, so the target
+  // query cannot decide and the effect runs unconditionally (the article's behaviour).
+  bool codes_exhausted = false;
   Camera camera;
   glm::mat4 view_proj{1.0f};
   std::vector<PixelRect> rects;             // per object

@@ -90,27 +90,31 @@ unsigned GlBackend::framebuffer(const std::vector<unsigned>& color, unsigned dep
   std::vector<unsigned> key = color;
   key.push_back(depth);
   if (auto it = fbos_.find(key); it != fbos_.end()) return it->second;
-  GLint previous = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
+  GLint previous_draw = 0, previous_read = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_draw);
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous_read);
   GLuint fbo = 0;
   glGenFramebuffers(1, &fbo);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);  // draw and read: glReadBuffer sets the read framebuffer's
   std::vector<GLenum> buffers;
   for (std::size_t i = 0; i < color.size(); ++i) {
-    glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), GL_TEXTURE_2D, color[i], 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), GL_TEXTURE_2D, color[i], 0);
     buffers.push_back(static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i));
   }
   if (depth != 0) {
     const GLenum point = depth_format == TextureFormat::depth24_stencil8 ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
-    glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, point, GL_TEXTURE_2D, depth, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, point, GL_TEXTURE_2D, depth, 0);
   }
   if (buffers.empty()) {
+    // Depth only: no colour to draw or read (strict GL 3.3 drivers call it incomplete otherwise).
     glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
   } else {
     glDrawBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
   }
-  const GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous));
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_draw));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     glDeleteFramebuffers(1, &fbo);
     throw std::runtime_error("framebuffer incomplete (status 0x" + std::to_string(status) + ")");

@@ -9,7 +9,7 @@
 #include <map>
 #include <vector>
 
-#include "study/render/frame_graph.h"
+#include "study/render/detail/frame_graph.h"
 
 namespace dtlab::render::detail {
 

@@ -10,15 +10,19 @@
 
 namespace dtlab::render {
 
-ImageDiff compare(const Image& a, const Image& b) {
+
+static ImageDiff compare_over(const Image& a, const Image& b, const std::vector<std::uint8_t>* region) {
   if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
     throw std::invalid_argument("compare: images differ in size");
-  ImageDiff d;
   const std::size_t pixels = a.rgba.size() / 4;
-  if (pixels == 0) return d;
+  if (region != nullptr && region->size() != pixels)
+    throw std::invalid_argument("compare: the region is not one byte per pixel of the images");
+  ImageDiff d;
   double sum = 0.0;
-  std::size_t off = 0;
+  std::size_t off = 0, counted = 0;
   for (std::size_t p = 0; p < pixels; ++p) {
+    if (region != nullptr && (*region)[p] == 0) continue;
+    ++counted;
     int worst = 0;
     for (int c = 0; c < 3; ++c) {
       const int diff = std::abs(static_cast<int>(a.rgba[p * 4 + c]) - static_cast<int>(b.rgba[p * 4 + c]));
@@ -28,9 +32,17 @@ ImageDiff compare(const Image& a, const Image& b) {
     d.max_abs = std::max(d.max_abs, worst);
     if (worst > 4) ++off;
   }
-  d.mae = sum / static_cast<double>(pixels * 3);
-  d.pixels_off_pct = 100.0 * static_cast<double>(off) / static_cast<double>(pixels);
+  d.pixels = static_cast<long>(counted);
+  if (counted == 0) return d;
+  d.mae = sum / static_cast<double>(counted * 3);
+  d.pixels_off_pct = 100.0 * static_cast<double>(off) / static_cast<double>(counted);
   return d;
+}
+
+ImageDiff compare(const Image& a, const Image& b) { return compare_over(a, b, nullptr); }
+
+ImageDiff compare_in(const Image& a, const Image& b, const std::vector<std::uint8_t>& region) {
+  return compare_over(a, b, &region);
 }
 
 Status write_png(const Image& image, const std::string& path, bool keep_alpha) {

@@ -1,15 +1,19 @@
-// dt-fast: the visual model of dt-seed at a cost close to standard's.
-// Differences in method, not in model (docs/render.md, "dt-fast"):
-//  * every target's mask is computed at once, in one atlas of per-target
-//    tiles at reduced resolution (texel = max(W, H) / R output pixels): the
-//    silhouette is rasterized into its tile, then two separable passes give
-//    the exact Chebyshev distance per tile (no ping-pong, no per-target
-//    full-screen pass); the apply step reads the tile bilinearly and is
-//    scissored to the target's support (silhouette bounds + n + 1 pixels);
+// dt-fast: dt-seed's picture at a cost close to standard's. The same masks
+// (dt-seed's R x R texel grid, its rings of a0 + (1 - a0)(d - 1)/n', aT
+// where covered, bilinear upsampling, the full-resolution silhouette at aT),
+// the same order and alpha rule; different algorithms (docs/render.md,
+// "dt-fast"):
+//  * every target's mask at once, in atlas pages of per-target tiles of that
+//    grid: the silhouette rasterized into its tile at the grid's own texel
+//    positions, then two separable passes give the exact Chebyshev distance
+//    (the rings Algorithm 3's ping-pong passes grow) and write the texel's
+//    value; no ping-pong, no per-target full-screen pass;
 //  * objects that no earlier-drawn target's support touches are drawn once
 //    with a plain z-buffer (alpha is 1 there, blending would be a copy);
-//    convex objects seen from outside are drawn in one back-face-culled
-//    pass instead of depth pass + depth-EQUAL colour pass (same surfaces);
+//    convex objects seen from outside in one back-face-culled pass;
+//  * a target's silhouette is marked in the stencil by its own depth pass,
+//    and its mask multiplied into alpha only over the parts of its support
+//    that a later-drawn object covers (nothing else ever reads that alpha);
 //  * two frame plans, chosen by what the previous frame needed (frame
 //    coherence, as the article's bubble sort):
 //    standard-first  opaque, target-query, then (conditional) dt-masks and
@@ -19,6 +23,8 @@
 //                    query-invert + standard-fallback restore the standard
 //                    image in those regions (conditional on the inverted query).
 //    Both give the same image; each is cheapest when its guess is right.
+// Never: writes alpha where no later object can read it (the final alpha is
+// the cumulative alpha only under later objects).
 #include <glad/gl.h>
 
 #include <algorithm>
@@ -28,81 +34,12 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "study/render/detail/mask_atlas.h"
 #include "study/render/detail/passes.h"
 
 namespace dtlab::render::detail {
 
 namespace {
-
-struct Tile {
-  int slot = 0;
-  int x = 0, y = 0, w = 0, h = 0;  // atlas texels
-  PixelRect screen;                // the target's support (window pixels)
-};
-
-struct Atlas {
-  float texel_px = 1.0f;  // output pixels per texel
-  int reach = 1;          // distance (texels) past which alpha is 1 anyway
-  int width = 1, height = 1;
-  std::vector<Tile> tiles;  // by slot
-};
-
-int pow2_at_least(int v) {
-  int p = 16;
-  while (p < v) p *= 2;
-  return p;
-}
-
-// Tiles are packed on shelves, tallest first; the distance passes run one quad per tile
-// (cheaper on llvmpipe than one quad over the whole atlas with gutters between tiles).
-Atlas plan_atlas(const FrameContext& fc) {
-  const DtSettings& dt = fc.settings.dt;
-  Atlas a;
-  a.texel_px = dt.mask_resolution > 0
-                   ? std::max(1.0f, static_cast<float>(std::max(fc.width(), fc.height())) / dt.mask_resolution)
-                   : 1.0f;
-  for (int attempt = 0; attempt < 12; ++attempt) {
-    a.reach = static_cast<int>(std::ceil((dt.gradient_px + 1.0f) / a.texel_px)) + 1;
-    a.tiles.clear();
-    long area = 0;
-    int widest = 1;
-    for (std::size_t s = 0; s < fc.view.targets.size(); ++s) {
-      const PixelRect& sup = fc.view.targets[s].support;
-      Tile t;
-      t.slot = static_cast<int>(s);
-      t.screen = sup;
-      t.w = std::max(1, static_cast<int>(std::ceil(static_cast<float>(sup.x1 - sup.x0) / a.texel_px)));
-      t.h = std::max(1, static_cast<int>(std::ceil(static_cast<float>(sup.y1 - sup.y0) / a.texel_px)));
-      if (sup.empty()) t.w = t.h = 0;
-      area += static_cast<long>(t.w) * t.h;
-      widest = std::max(widest, t.w);
-      a.tiles.push_back(t);
-    }
-    a.width = std::min(4096, pow2_at_least(std::max(widest, static_cast<int>(std::sqrt(static_cast<double>(area)) * 1.25))));
-    // Shelf packing, tallest first.
-    std::vector<Tile*> order;
-    for (auto& t : a.tiles) order.push_back(&t);
-    std::stable_sort(order.begin(), order.end(), [](const Tile* p, const Tile* q) { return p->h > q->h; });
-    int x = 0, y = 0, shelf = 0;
-    const bool fits = widest <= a.width;
-    for (Tile* t : order) {
-      if (t->w == 0) continue;
-      if (x + t->w > a.width) {
-        y += shelf;
-        x = 0;
-        shelf = 0;
-      }
-      t->x = x;
-      t->y = y;
-      x += t->w;
-      shelf = std::max(shelf, t->h);
-    }
-    a.height = pow2_at_least(y + shelf);
-    if (fits && a.height <= 4096) return a;
-    a.texel_px *= 1.5f;  // too many large targets for one atlas: coarser masks this frame
-  }
-  return a;
-}
 
 // Disjoint rectangles covering every pixel some target's mask can change. Supports are merged
 // when they overlap, or when their bounding box is not much larger than the two (one region
@@ -137,141 +74,206 @@ std::vector<PixelRect> plan_regions(const FrameContext& fc) {
   return rs;
 }
 
+// The parts of `area` that an object drawn after position k of the sorted order covers (its
+// screen rectangle), as disjoint rectangles on a 32-pixel cell grid: the only pixels where the
+// alpha that target k's mask leaves is ever read (by a later object's blend or mask).
+std::vector<PixelRect> later_cover(const FrameContext& fc, std::size_t k, const PixelRect& area) {
+  constexpr int kCell = 16;
+  const int cw = (area.x1 - area.x0 + kCell - 1) / kCell, ch = (area.y1 - area.y0 + kCell - 1) / kCell;
+  std::vector<char> cell(static_cast<std::size_t>(cw) * static_cast<std::size_t>(ch), 0);
+  bool any = false;
+  const auto& order = fc.view.sorted;
+  for (std::size_t j = k + 1; j < order.size(); ++j) {
+    const PixelRect r = fc.view.rects[order[j]].intersect(area);
+    if (r.empty()) continue;
+    if (r == area) return {area};
+    any = true;
+    for (int cy = (r.y0 - area.y0) / kCell; cy <= (r.y1 - 1 - area.y0) / kCell; ++cy)
+      for (int cx = (r.x0 - area.x0) / kCell; cx <= (r.x1 - 1 - area.x0) / kCell; ++cx)
+        cell[static_cast<std::size_t>(cy) * static_cast<std::size_t>(cw) + static_cast<std::size_t>(cx)] = 1;
+  }
+  if (!any) return {};
+  // Runs of covered cells per row; a run equal to one of the row below extends that rectangle.
+  std::vector<PixelRect> out;
+  std::vector<std::size_t> open, next;  // indices into `out` ending at the current row
+  for (int cy = 0; cy < ch; ++cy) {
+    next.clear();
+    const int y0 = area.y0 + cy * kCell, y1 = std::min(area.y1, y0 + kCell);
+    for (int cx = 0; cx < cw;) {
+      if (!cell[static_cast<std::size_t>(cy) * static_cast<std::size_t>(cw) + static_cast<std::size_t>(cx)]) {
+        ++cx;
+        continue;
+      }
+      int end = cx;
+      while (end < cw && cell[static_cast<std::size_t>(cy) * static_cast<std::size_t>(cw) + static_cast<std::size_t>(end)]) ++end;
+      const int x0 = area.x0 + cx * kCell, x1 = std::min(area.x1, area.x0 + end * kCell);
+      auto it = std::find_if(open.begin(), open.end(), [&](std::size_t o) { return out[o].x0 == x0 && out[o].x1 == x1; });
+      if (it != open.end()) {
+        out[*it].y1 = y1;
+        next.push_back(*it);
+      } else {
+        out.push_back({x0, y0, x1, y1});
+        next.push_back(out.size() - 1);
+      }
+      cx = end;
+    }
+    open.swap(next);
+  }
+  return out;
+}
+
 void scissor(const PixelRect& r) { glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0); }
 
+// One alpha texture per atlas page.
 struct MaskHandles {
-  Handle alpha;
+  std::vector<Handle> alpha;
 };
 
-MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::shared_ptr<const Atlas>& atlas,
+MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::shared_ptr<const MaskAtlas>& atlas,
                            Handle query) {
   struct DtMasksPassData {
-    Handle coverage, rows, alpha;
+    std::vector<Handle> coverage, rows, alpha;
   };
   const auto& masks = fg.add_pass<DtMasksPassData>(
       "dt-masks",
       [&](FrameGraph::Builder& b, DtMasksPassData& d) {
         if (query.valid()) b.condition(query);
-        d.coverage = b.write(b.create("mask-coverage", {atlas->width, atlas->height, TextureFormat::r8, false}));
-        d.rows = b.write(b.create("mask-rows", {atlas->width, atlas->height, TextureFormat::r16f, false}));
-        d.alpha = b.write(b.create("mask-alpha", {atlas->width, atlas->height, TextureFormat::r8, true}));
+        for (const MaskAtlas::Page& p : atlas->pages) {
+          d.coverage.push_back(b.write(b.create("mask-coverage", {p.width, p.height, TextureFormat::r8, false})));
+          d.rows.push_back(b.write(b.create("mask-rows", {p.width, p.height, TextureFormat::r16f, false})));
+          d.alpha.push_back(b.write(b.create("mask-alpha", {p.width, p.height, TextureFormat::r16f, true})));
+        }
       },
       [&fc, atlas](const DtMasksPassData& d, PassResources& r) {
-        const float W = static_cast<float>(fc.width()), H = static_cast<float>(fc.height());
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_STENCIL_TEST);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        // Coverage: each target's silhouette (or shape) rasterized into its tile. One unscissored
-        // clear (a scissored clear per tile is a draw in Mesa, and costs more).
-        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.coverage}));
-        glDisable(GL_SCISSOR_TEST);
-        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        glEnable(GL_SCISSOR_TEST);
-        for (const Tile& t : atlas->tiles) {
-          if (t.w == 0) continue;
-          glViewport(t.x, t.y, t.w, t.h);
-          glScissor(t.x, t.y, t.w, t.h);
-          const float span_x = static_cast<float>(t.w) * atlas->texel_px, span_y = static_cast<float>(t.h) * atlas->texel_px;
-          glm::mat4 crop(1.0f);  // window pixels [screen.x0, screen.x0 + span) -> NDC [-1, 1]
-          crop[0][0] = W / span_x;
-          crop[3][0] = (W - 2.0f * static_cast<float>(t.screen.x0)) / span_x - 1.0f;
-          crop[1][1] = H / span_y;
-          crop[3][1] = (H - 2.0f * static_cast<float>(t.screen.y0)) / span_y - 1.0f;
-          const glm::vec4 px_map(1.0f / atlas->texel_px, 1.0f / atlas->texel_px,
-                                 static_cast<float>(t.x) - static_cast<float>(t.screen.x0) / atlas->texel_px,
-                                 static_cast<float>(t.y) - static_cast<float>(t.screen.y0) / atlas->texel_px);
-          draw_target_seed(fc, t.slot, 1.0f, crop * fc.view.view_proj, px_map, false);
+        const MaskGrid& g = fc.view.grid;
+        const DtSettings& dt = fc.settings.dt;
+        buffer_state();
+        for (std::size_t page = 0; page < atlas->pages.size(); ++page) {
+          const MaskAtlas::Page& pg = atlas->pages[page];
+          // Coverage (one unscissored clear: a scissored clear per tile is a draw in Mesa).
+          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.coverage[page]}));
+          glDisable(GL_SCISSOR_TEST);
+          glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+          glClear(GL_COLOR_BUFFER_BIT);
+          draw_tile_coverage(fc, *atlas, static_cast<int>(page), 1.0f);
+          // Two separable passes over the whole page, one quad each: nearest covered texel per row,
+          // then Chebyshev per column (as the texel's mask value). A tile's padding of n' + 1
+          // texels keeps every other tile's coverage more than n' texels from its texels, so
+          // the passes need no tile bounds.
+          auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler) {
+            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
+            fc.use_program(p);
+            glActiveTexture(GL_TEXTURE0);
+            glBindTexture(GL_TEXTURE_2D, r.texture(src));
+            glUniform1i(p.loc(sampler), 0);
+            glUniform1i(p.loc("u_reach"), g.layers);
+            glUniform1i(p.loc("u_layers"), g.layers);
+            glUniform1f(p.loc("u_alpha_target"), dt.alpha_target);
+            glUniform1f(p.loc("u_alpha_start"), dt.alpha_start);
+            fc.quad(p, 0.0f, 0.0f, static_cast<float>(pg.width), static_cast<float>(pg.height), pg.width, pg.height);
+          };
+          distance_pass(fc.programs.cheb_rows, d.coverage[page], d.rows[page], "u_coverage");
+          distance_pass(fc.programs.cheb_cols, d.rows[page], d.alpha[page], "u_rows");
         }
-        glDisable(GL_SCISSOR_TEST);
-        glViewport(0, 0, atlas->width, atlas->height);
-        // Two separable passes: nearest covered texel per row, then Chebyshev per column (as alpha).
-        auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler) {
-          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
-          fc.use_program(p);
-          glActiveTexture(GL_TEXTURE0);
-          glBindTexture(GL_TEXTURE_2D, r.texture(src));
-          glUniform1i(p.loc(sampler), 0);
-          glUniform1i(p.loc("u_reach"), atlas->reach);
-          glUniform1f(p.loc("u_texel_px"), atlas->texel_px);
-          glUniform1f(p.loc("u_alpha_start"), fc.settings.dt.alpha_start);
-          glUniform1f(p.loc("u_gradient_px"), fc.settings.dt.gradient_px);
-          for (const Tile& t : atlas->tiles) {
-            if (t.w == 0) continue;
-            glUniform4i(p.loc("u_tile"), t.x, t.y, t.x + t.w, t.y + t.h);
-            fc.quad(p, static_cast<float>(t.x), static_cast<float>(t.y), static_cast<float>(t.x + t.w),
-                    static_cast<float>(t.y + t.h), atlas->width, atlas->height);
-          }
-        };
-        distance_pass(fc.programs.cheb_rows, d.coverage, d.rows, "u_coverage");
-        distance_pass(fc.programs.cheb_cols, d.rows, d.alpha, "u_rows");
         glBindTexture(GL_TEXTURE_2D, 0);
       });
   return {masks.alpha};
 }
 
-// Target `slot`'s mask, restricted to `area`: mark, multiply the atlas tile's gradient, aT inside.
-void apply_target_mask(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, int slot,
-                       const PixelRect& area, bool keep_codes, bool marked) {
-  const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
-  const Tile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
-  if (area.empty() || tile.w == 0) return;
-  scissor(area);
-  if (!marked) mark_target(fc, slot, keep_codes);
-  begin_apply(fc, keep_codes);
-  const Program& p = fc.programs.fast_apply;
+void quads(const FrameContext& fc, const Program& p, const std::vector<PixelRect>& rects, const PixelRect& within) {
+  for (const PixelRect& r : rects) {
+    const PixelRect q = r.intersect(within);
+    if (!q.empty())
+      fc.quad(p, static_cast<float>(q.x0), static_cast<float>(q.y0), static_cast<float>(q.x1), static_cast<float>(q.y1),
+              fc.width(), fc.height());
+  }
+}
+
+// Target `slot`'s mask over `rects`, its silhouette already marked (bit 7) by its own depth pass:
+// the gradient multiplied into alpha outside the mark, then aT inside it (inside the searchlight),
+// clearing the mark. Quads only: the target's mesh is not drawn again.
+void apply_marked(const FrameContext& fc, const MaskAtlas& atlas, unsigned alpha_texture, int slot,
+                  const std::vector<PixelRect>& rects) {
+  alpha_multiply_state();
+  glStencilFunc(GL_EQUAL, 0x00, 0x80);  // outside the silhouette
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glStencilMask(0x00);
+  quads(fc, use_mask_apply(fc, atlas, alpha_texture, slot), rects, fc.view.viewport());
+  const Program& p = fc.programs.quad_alpha;
   fc.use_program(p);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, alpha_texture);
-  glUniform1i(p.loc("u_mask"), 0);
-  glUniform2f(p.loc("u_atlas_size"), static_cast<float>(atlas.width), static_cast<float>(atlas.height));
-  glUniform2f(p.loc("u_tile_origin"), static_cast<float>(tile.x), static_cast<float>(tile.y));
-  glUniform2f(p.loc("u_tile_size"), static_cast<float>(tile.w), static_cast<float>(tile.h));
-  glUniform2f(p.loc("u_screen_origin"), static_cast<float>(t.support.x0), static_cast<float>(t.support.y0));
-  glUniform1f(p.loc("u_texel_px"), atlas.texel_px);
+  glUniform1f(p.loc("u_alpha"), fc.settings.dt.alpha_target);
   glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
-  fc.quad(p, static_cast<float>(area.x0), static_cast<float>(area.y0), static_cast<float>(area.x1),
-          static_cast<float>(area.y1), fc.width(), fc.height());
+  glUniform1i(p.loc("u_outside_one"), 1);
+  glUniform1f(p.loc("u_z"), 0.0f);
+  glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the silhouette
+  glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
+  glStencilMask(0x80);                  // clears the mark
+  quads(fc, p, rects, fc.view.targets[static_cast<std::size_t>(slot)].rect);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+// Target `slot`'s mask over `rects` the general way (layer limit, circle / ellipse, or a target
+// a sort error may hide): mark its whole silhouette or shape, multiply the gradient outside, aT
+// inside (the target drawn again for both).
+void apply_unmarked(const FrameContext& fc, const MaskAtlas& atlas, unsigned alpha_texture, int slot,
+                    const std::vector<PixelRect>& rects, bool keep_codes) {
+  PixelRect box = rects.front();
+  for (const PixelRect& r : rects)
+    box = {std::min(box.x0, r.x0), std::min(box.y0, r.y0), std::max(box.x1, r.x1), std::max(box.y1, r.y1)};
+  scissor(box);
+  mark_target(fc, slot, keep_codes);
+  begin_apply(fc, keep_codes);
+  quads(fc, use_mask_apply(fc, atlas, alpha_texture, slot), rects, box);
   finish_target(fc, slot);
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-// The effect over `region` (already cleared): impenetrable objects, then back to front.
-void draw_effect(const FrameContext& fc, const Atlas& atlas, unsigned alpha_texture, const PixelRect& region,
-                 bool codes) {
+// Whether target `slot`'s own draw marks its silhouette (the pixels where it is frontmost when
+// drawn; where an object drawn before it hides it, the mask's bilinear sample applies instead of
+// exactly aT, which inside the silhouette is aT too): outline masks without a layer counter, and
+// not when the R1 guard repairs the target (the repair needs the mark bit first).
+bool marks_in_own_pass(const FrameContext& fc, int slot) {
+  const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
+  return fc.settings.dt.shape == MaskShape::outline && fc.settings.dt.layer_limit == 0 &&
+         !(fc.guard() && t.may_be_drawn_late);
+}
+
+// The effect over `region` (already cleared): impenetrable objects, then back to front. Whether
+// an object is drawn as the article draws it (depth pass, then a blended depth-EQUAL colour pass)
+// or once with a z-buffer depends only on the whole frame's supports, never on the region, so
+// both frame plans draw every region the same way; the z-buffer draws give depth ties to the
+// later object, as a depth-EQUAL pass does.
+void draw_effect(const FrameContext& fc, const MaskAtlas& atlas, const std::vector<unsigned>& alpha_textures,
+                 const PixelRect& region, bool codes) {
   scissor(region);
   for (auto i : fc.view.impenetrable)
     if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i, object_stencil(fc, i, codes));
-  std::vector<PixelRect> applied;  // supports of the targets already drawn
-  for (auto i : fc.view.sorted) {
-    const PixelRect part = fc.view.rects[i].intersect(region);
+  std::vector<PixelRect> supports;  // of the targets already drawn
+  const auto& order = fc.view.sorted;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::uint32_t i = order[k];
     const int slot = fc.view.target_slot[i];
-    // Layer-limit counters and the shapes need the separate mark (mark_target resets the counter);
-    // a target nothing sorted earlier can hide needs no repair (FrameView::may_be_drawn_late).
-    const bool fused = slot >= 0 && fc.guard() && fc.view.single_pass[i] && fc.settings.dt.layer_limit == 0 &&
-                       fc.settings.dt.shape == MaskShape::outline;
-    bool marked = false;
-    if (!part.empty()) {
-      const bool masked =
-          std::any_of(applied.begin(), applied.end(), [&](const PixelRect& s) { return s.overlaps(part); });
-      const StencilWrite sw = object_stencil(fc, i, codes);
-      masked ? draw_transparent_object(fc, i, true, sw) : draw_opaque_object(fc, i, sw);
-      const bool late = slot >= 0 && fc.view.targets[static_cast<std::size_t>(slot)].may_be_drawn_late;
-      if (fused && late) {
-        scissor(fc.view.targets[static_cast<std::size_t>(slot)].support.intersect(region));
-        repair_and_mark_target(fc, i);
-        marked = true;
-      } else if (slot >= 0 && fc.guard() && late) {
+    const bool marked = slot >= 0 && marks_in_own_pass(fc, slot);
+    if (fc.view.rects[i].overlaps(region)) {
+      const bool masked = std::any_of(supports.begin(), supports.end(),
+                                      [&](const PixelRect& s) { return s.overlaps(fc.view.rects[i]); });
+      StencilWrite sw = object_stencil(fc, i, codes);
+      sw.mark = marked;
+      masked ? draw_transparent_object(fc, i, true, sw) : draw_opaque_object(fc, i, sw, GL_LEQUAL);
+      if (slot >= 0 && fc.guard() && fc.view.targets[static_cast<std::size_t>(slot)].may_be_drawn_late)
         repair_target(fc, i);
-      }
     }
     if (slot < 0) continue;
-    const PixelRect area = fc.view.targets[static_cast<std::size_t>(slot)].support.intersect(region);
-    if (area.empty()) continue;
-    applied.push_back(area);
-    apply_target_mask(fc, atlas, alpha_texture, slot, area, codes, marked);
+    const TargetView& t = fc.view.targets[static_cast<std::size_t>(slot)];
+    supports.push_back(t.support);
+    const PixelRect area = t.support.intersect(region);
+    const MaskTile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
+    if (area.empty() || tile.w == 0) continue;
+    const std::vector<PixelRect> rects = later_cover(fc, k, area);
+    if (!rects.empty()) {
+      const unsigned texture = alpha_textures[static_cast<std::size_t>(tile.page)];
+      marked ? apply_marked(fc, atlas, texture, slot, rects) : apply_unmarked(fc, atlas, texture, slot, rects, codes);
+    }
     scissor(region);
   }
 }
@@ -281,25 +283,32 @@ void clear_region(const FrameContext& fc, const PixelRect& region) {
   clear_to_background(fc);
 }
 
+std::vector<unsigned> textures(PassResources& r, const std::vector<Handle>& hs) {
+  std::vector<unsigned> out;
+  for (Handle h : hs) out.push_back(r.texture(h));
+  return out;
+}
+
 }  // namespace
 
 bool fast_direct_possible(const FrameContext& fc) {
-  return fc.settings.dt.layer_limit == 0 && fc.view.targets.size() <= 63;
+  return fc.settings.dt.layer_limit == 0 && !fc.view.codes_exhausted && fc.view.max_code <= 0x3F;
 }
 
 MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
-  auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
+  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
   auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
   const MaskHandles masks = add_masks_pass(fg, fc, atlas, query);
 
   struct DtCompositePassData {
-    Handle color, depth, alpha;
+    Handle color, depth;
+    std::vector<Handle> alpha;
   };
   const auto& comp = fg.add_pass<DtCompositePassData>(
       "dt-composite",
       [&](FrameGraph::Builder& b, DtCompositePassData& d) {
-        b.condition(query);
-        d.alpha = b.read(masks.alpha);
+        if (query.valid()) b.condition(query);
+        for (Handle h : masks.alpha) d.alpha.push_back(b.read(h));
         d.color = b.write(b.read(main.color));
         d.depth = b.write(b.read(main.depth));
       },
@@ -307,39 +316,65 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
         glViewport(0, 0, fc.width(), fc.height());
         glEnable(GL_SCISSOR_TEST);
+        const std::vector<unsigned> alpha = textures(r, d.alpha);
         for (const PixelRect& region : *regions) {
           clear_region(fc, region);
-          draw_effect(fc, *atlas, r.texture(d.alpha), region, false);
+          draw_effect(fc, *atlas, alpha, region, false);
         }
         glDisable(GL_SCISSOR_TEST);
       });
   return {comp.color, comp.depth};
 }
 
-Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
-  auto atlas = std::make_shared<const Atlas>(plan_atlas(fc));
+FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
+  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
   auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
   const MaskHandles masks = add_masks_pass(fg, fc, atlas, Handle{});
 
   struct DtDirectPassData {
-    Handle color, depth, alpha;
+    Handle color, depth;
+    std::vector<Handle> alpha;
   };
   const auto& direct = fg.add_pass<DtDirectPassData>(
       "dt-direct",
       [&](FrameGraph::Builder& b, DtDirectPassData& d) {
-        d.alpha = b.read(masks.alpha);
+        for (Handle h : masks.alpha) d.alpha.push_back(b.read(h));
         d.color = b.write(b.create("color", {fc.width(), fc.height(), fc.color_format, false}));
         d.depth = b.write(b.create("depth", {fc.width(), fc.height(), TextureFormat::depth24_stencil8, false}));
       },
-      [&fc, atlas](const DtDirectPassData& d, PassResources& r) {
+      [&fc, atlas, regions](const DtDirectPassData& d, PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
         glViewport(0, 0, fc.width(), fc.height());
         glEnable(GL_SCISSOR_TEST);
+        // The standard frame outside the regions: the regions' depth at 0 first, so no fragment
+        // lands in them, then every object (but those wholly inside a region) in scene order,
+        // exactly as the `opaque` pass draws them; then the effect in each region, exactly as
+        // `dt-composite` draws it. So both plans give the same image, tie for tie.
         clear_region(fc, fc.view.viewport());
-        draw_effect(fc, *atlas, r.texture(d.alpha), fc.view.viewport(), true);
+        glDepthMask(GL_TRUE);
+        glClearDepth(0.0);
+        for (const PixelRect& region : *regions) {
+          scissor(region);
+          glClear(GL_DEPTH_BUFFER_BIT);
+        }
+        glDisable(GL_SCISSOR_TEST);
+        for (std::uint32_t i = 0; i < fc.view.rects.size(); ++i) {
+          const PixelRect& rect = fc.view.rects[i];
+          if (rect.empty() || std::any_of(regions->begin(), regions->end(), [&](const PixelRect& g) {
+                return g.intersect(rect) == rect;
+              }))
+            continue;
+          draw_opaque_object(fc, i, object_stencil(fc, i, true));
+        }
+        glEnable(GL_SCISSOR_TEST);
+        const std::vector<unsigned> alpha = textures(r, d.alpha);
+        for (const PixelRect& region : *regions) {
+          clear_region(fc, region);
+          draw_effect(fc, *atlas, alpha, region, true);
+        }
         glDisable(GL_SCISSOR_TEST);
       });
-  const Handle query = add_target_query_pass(fg, fc, direct.depth);
+  const Handle query = add_target_query_pass(fg, fc, direct.depth, 0x3F);
 
   // Q_not = "no target occluded", computed on the GPU: a conditional write to a 1x1 depth
   // buffer, then a query that passes only where that write did not happen.
@@ -403,7 +438,7 @@ Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
         }
         glDisable(GL_SCISSOR_TEST);
       });
-  return fb.color;
+  return {fb.color, query};
 }
 
 }  // namespace dtlab::render::detail

@@ -50,8 +50,6 @@ Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc) {
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
         glClearDepth(1.0);
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
         fc.use_lit(fc.view.view_proj);
         for (std::uint32_t i = 0; i < fc.view.rects.size(); ++i) {
           const PixelRect& rect = fc.view.rects[i];
@@ -71,13 +69,9 @@ Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc) {
         }
         glDisable(GL_SCISSOR_TEST);
         const CompositeOutput out = composite(in);
-        GLint unpack = 4;
-        glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpack);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
         glBindTexture(GL_TEXTURE_2D, r.texture(d.color));
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, fc.width(), fc.height(), GL_RGBA, GL_FLOAT, out.rgba.data());
         glBindTexture(GL_TEXTURE_2D, 0);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, unpack);
       });
   return data.color;
 }

@@ -1,46 +1,35 @@
 // dt-seed: the article's image-space dynamic transparency, faithfully
 // (Elmqvist, Assarsson & Tsigas 2008, section V; tech report 2006, 4.1-4.3).
 // Passes, all conditional on the target-query (no target occluded: none run):
+//   seed-masks    Algorithm 2, lines 1-8, for every target: its silhouette (or
+//                 circle / ellipse) at aT into a buffer of 1s, then n'
+//                 ping-pong passes of Algorithm 3; each target in its own tile
+//                 of the R x R grid (mask_atlas.h), all targets' tiles in one
+//                 atlas, so the n' passes run once per frame, not per target
+//                 (the same texels, fewer buffer switches);
 //   dt-clear      colour = background with alpha 1, depth 1, stencil 0;
 //   impenetrable  impenetrable objects first, opaque (V.2);
 //   objects a-b   each object in back-to-front order: depth pass, then colour
 //                 pass with depth EQUAL blended with the destination alpha;
-//   mask <id>     after each target (Algorithm 2): its silhouette (or circle /
-//                 ellipse) at aT into an R x R buffer, n' ping-pong border
-//                 passes (Algorithm 3), the upsampled mask multiplied into the
-//                 framebuffer alpha, the silhouette re-rendered at full
-//                 resolution with aT (line 11).
+//   mask <id>     after each target (Algorithm 2, lines 9-11): its upsampled
+//                 mask multiplied into the framebuffer alpha, the silhouette
+//                 re-rendered at full resolution with aT (line 11).
 // Never: a per-target pass outside the target's own mask pass.
 #include <glad/gl.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "study/render/detail/mask_atlas.h"
 #include "study/render/detail/passes.h"
 
 namespace dtlab::render::detail {
 
 namespace {
-
-struct SeedMask {
-  int width, height, layers;
-};
-
-SeedMask seed_mask(const FrameContext& fc) {
-  const DtSettings& dt = fc.settings.dt;
-  SeedMask m{dt.mask_resolution, dt.mask_resolution, 0};
-  if (dt.mask_resolution <= 0) {
-    m.width = fc.width();
-    m.height = fc.height();
-  }
-  // One border pass adds one mask texel; a texel spans sqrt(sx * sy) output pixels.
-  const double texel = std::sqrt(static_cast<double>(fc.width()) / m.width * fc.height() / m.height);
-  if (dt.gradient_px > 0.0f) m.layers = std::max(1, static_cast<int>(std::lround(dt.gradient_px / texel)));
-  return m;
-}
 
 void bind_main(const FrameContext& fc, PassResources& r, Handle color, Handle depth) {
   glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({color}, depth));
@@ -48,16 +37,74 @@ void bind_main(const FrameContext& fc, PassResources& r, Handle color, Handle de
   glDisable(GL_SCISSOR_TEST);
 }
 
+// Algorithm 2, lines 1-8, for every target at once; per atlas page, the buffer the last of the n'
+// passes wrote.
+std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
+                                        const std::shared_ptr<const MaskAtlas>& atlas, Handle query) {
+  struct SeedMasksPassData {
+    std::vector<Handle> ping, pong;
+  };
+  const auto& masks = fg.add_pass<SeedMasksPassData>(
+      "seed-masks",
+      [&](FrameGraph::Builder& b, SeedMasksPassData& d) {
+        if (query.valid()) b.condition(query);
+        for (const MaskAtlas::Page& p : atlas->pages) {
+          d.ping.push_back(b.write(b.create("mask-ping", {p.width, p.height, TextureFormat::r16f, true})));
+          d.pong.push_back(b.write(b.create("mask-pong", {p.width, p.height, TextureFormat::r16f, true})));
+        }
+      },
+      [&fc, atlas](const SeedMasksPassData& d, PassResources& r) {
+        const DtSettings& dt = fc.settings.dt;
+        const int layers = fc.view.grid.layers;
+        glDisable(GL_SCISSOR_TEST);
+        buffer_state();
+        glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+        for (std::size_t page = 0; page < atlas->pages.size(); ++page) {
+          const MaskAtlas::Page& pg = atlas->pages[page];
+          if (layers > 0) {
+            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.pong[page]}));
+            glClear(GL_COLOR_BUFFER_BIT);
+          }
+          // Lines 1-2: each target at aT into B1 (everything else 1).
+          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.ping[page]}));
+          glClear(GL_COLOR_BUFFER_BIT);
+          draw_tile_coverage(fc, *atlas, static_cast<int>(page), dt.alpha_target);
+          // Lines 3-8: n' ping-pong passes, each adding one layer of the gradient (Algorithm 3).
+          Handle src = d.ping[page], dst = d.pong[page];
+          const Program& border = fc.programs.border;
+          fc.use_program(border);
+          glUniform1i(border.loc("u_source"), 0);
+          glActiveTexture(GL_TEXTURE0);
+          for (int k = 1; k <= layers; ++k) {
+            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
+            glBindTexture(GL_TEXTURE_2D, r.texture(src));
+            glUniform1f(border.loc("u_border_alpha"),
+                        dt.alpha_start + (1.0f - dt.alpha_start) * static_cast<float>(k - 1) / static_cast<float>(layers));
+            fc.quad(border, 0.0f, 0.0f, static_cast<float>(pg.width), static_cast<float>(pg.height), pg.width, pg.height);
+            std::swap(src, dst);
+          }
+        }
+        glBindTexture(GL_TEXTURE_2D, 0);
+      });
+  std::vector<Handle> out;
+  for (std::size_t page = 0; page < atlas->pages.size(); ++page)
+    out.push_back(fc.view.grid.layers % 2 == 1 ? masks.pong[page] : masks.ping[page]);
+  return out;
+}
+
 }  // namespace
 
 MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
+  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
+  const std::vector<Handle> mask_pages = add_seed_masks_pass(fg, fc, atlas, query);
+
   struct DtClearPassData {
     Handle color, depth;
   };
   const auto& cleared = fg.add_pass<DtClearPassData>(
       "dt-clear",
       [&](FrameGraph::Builder& b, DtClearPassData& d) {
-        b.condition(query);
+        if (query.valid()) b.condition(query);
         d.color = b.write(main.color);
         d.depth = b.write(main.depth);
       },
@@ -74,7 +121,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
     const auto& d = fg.add_pass<DrawPassData>(
         "impenetrable",
         [&](FrameGraph::Builder& b, DrawPassData& d) {
-          b.condition(query);
+          if (query.valid()) b.condition(query);
           d.color = b.write(b.read(cur.color));
           d.depth = b.write(b.read(cur.depth));
         },
@@ -85,7 +132,6 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
     cur = {d.color, d.depth};
   }
 
-  const SeedMask mask = seed_mask(fc);
   const auto& order = fc.view.sorted;
   std::size_t start = 0;
   for (std::size_t k = 0; k <= order.size(); ++k) {
@@ -100,7 +146,7 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
       const auto& d = fg.add_pass<DrawPassData>(
           name,
           [&](FrameGraph::Builder& b, DrawPassData& d) {
-            b.condition(query);
+            if (query.valid()) b.condition(query);
             d.color = b.write(b.read(cur.color));
             d.depth = b.write(b.read(cur.depth));
           },
@@ -119,65 +165,31 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
     if (end) break;
 
     struct MaskPassData {
-      Handle color, depth, ping, pong;
+      Handle color, depth, mask;
     };
     const int slot = fc.view.target_slot[order[k]];
-    const TextureDesc mdesc{mask.width, mask.height, TextureFormat::r16f, true};
+    const MaskTile& tile = atlas->tiles[static_cast<std::size_t>(slot)];
     const auto& m = fg.add_pass<MaskPassData>(
         "mask " + std::to_string(fc.gpu.objects()[order[k]].id),
         [&](FrameGraph::Builder& b, MaskPassData& d) {
-          b.condition(query);
-          d.ping = b.write(b.create("mask-ping", mdesc));
-          d.pong = b.write(b.create("mask-pong", mdesc));
+          if (query.valid()) b.condition(query);
+          if (tile.w > 0) d.mask = b.read(mask_pages[static_cast<std::size_t>(tile.page)]);
           d.color = b.write(b.read(cur.color));
           d.depth = b.write(b.read(cur.depth));
         },
-        [&fc, slot, mask](const MaskPassData& d, PassResources& r) {
-          const DtSettings& dt = fc.settings.dt;
-          // Algorithm 2, lines 1-2: the target at aT into B1 (everything else 1).
-          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.ping}));
-          glViewport(0, 0, mask.width, mask.height);
-          glDisable(GL_SCISSOR_TEST);
-          glDisable(GL_DEPTH_TEST);
-          glDisable(GL_STENCIL_TEST);
-          glDisable(GL_BLEND);
-          glDisable(GL_CULL_FACE);
-          glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-          glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
-          glClear(GL_COLOR_BUFFER_BIT);
-          draw_target_seed(fc, slot, dt.alpha_target, fc.view.view_proj,
-                           glm::vec4(static_cast<float>(mask.width) / static_cast<float>(fc.width()),
-                                     static_cast<float>(mask.height) / static_cast<float>(fc.height()), 0.0f, 0.0f),
-                           false);
-          // Lines 3-8: n ping-pong passes, each adding one layer of the gradient.
-          Handle src = d.ping, dst = d.pong;
-          const Program& border = fc.programs.border;
-          fc.use_program(border);
-          glUniform1i(border.loc("u_source"), 0);
-          glActiveTexture(GL_TEXTURE0);
-          for (int k = 1; k <= mask.layers; ++k) {
-            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
-            glBindTexture(GL_TEXTURE_2D, r.texture(src));
-            const float alpha_b = dt.alpha_start + (1.0f - dt.alpha_start) * static_cast<float>(k - 1) /
-                                                       static_cast<float>(mask.layers);
-            glUniform1f(border.loc("u_border_alpha"), alpha_b);
-            fc.quad(border, 0.0f, 0.0f, static_cast<float>(mask.width), static_cast<float>(mask.height), mask.width,
-                    mask.height);
-            std::swap(src, dst);
-          }
+        [&fc, slot, atlas](const MaskPassData& d, PassResources& r) {
           // Lines 9-11 on the framebuffer: mark the full-resolution silhouette, multiply the
           // upsampled mask elsewhere, then aT over the silhouette itself.
           bind_main(fc, r, d.color, d.depth);
           mark_target(fc, slot, false);
-          begin_apply(fc, false);
-          const Program& apply = fc.programs.mask_apply;
-          fc.use_program(apply);
-          glBindTexture(GL_TEXTURE_2D, r.texture(src));
-          glUniform1i(apply.loc("u_mask"), 0);
-          glUniform2f(apply.loc("u_screen"), static_cast<float>(fc.width()), static_cast<float>(fc.height()));
-          glUniform3fv(apply.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
-          fc.quad(apply, 0.0f, 0.0f, static_cast<float>(fc.width()), static_cast<float>(fc.height()), fc.width(),
-                  fc.height());
+          if (d.mask.valid()) {
+            begin_apply(fc, false);
+            const Program& apply = use_mask_apply(fc, *atlas, r.texture(d.mask), slot);
+            // Outside the target's support the upsampled mask is 1.
+            const PixelRect& s = fc.view.targets[static_cast<std::size_t>(slot)].support;
+            fc.quad(apply, static_cast<float>(s.x0), static_cast<float>(s.y0), static_cast<float>(s.x1),
+                    static_cast<float>(s.y1), fc.width(), fc.height());
+          }
           finish_target(fc, slot);
           glBindTexture(GL_TEXTURE_2D, 0);
         });

@@ -11,7 +11,7 @@
 #include "study/render/detail/frame_view.h"
 #include "study/render/detail/programs.h"
 #include "study/render/detail/scene_gpu.h"
-#include "study/render/frame_graph.h"
+#include "study/render/detail/frame_graph.h"
 #include "study/render/render.h"
 
 namespace dtlab::render::detail {
@@ -29,11 +29,12 @@ struct FrameContext {
   glm::vec4 flat_color(std::uint32_t object) const;  // a > 0.5: flat colour in use
   glm::vec3 background() const;                     // black in weight mode
 
-  // Scene geometry, lit (or flat in weight mode); with `searchlight` fragments outside the
-  // circle are discarded (the R1 guard's repair only).
+  // Scene geometry, lit (or flat in weight mode). With `searchlight` in active mode, fragments
+  // outside the circle are discarded (the R1 guard's repair only; that variant may discard).
   void use_lit(const glm::mat4& view_proj, bool searchlight = false) const;
   void draw_lit(std::uint32_t object) const;
   // Scene geometry writing `alpha` to every channel (depth-only passes, silhouettes, queries).
+  // With `searchlight` in active mode it is cut to the circle (`outside_one`: alpha 1 outside).
   void use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight, bool outside_one = false) const;
   void draw_alpha(std::uint32_t object) const;
   // Binds `p` unless it is bound (every program change in a frame goes through here).
@@ -41,20 +42,27 @@ struct FrameContext {
   // A screen-aligned rectangle in window pixels of a w x h target, with `p` already in use.
   void quad(const Program& p, float x0, float y0, float x1, float y1, int w, int h) const;
   glm::vec3 searchlight_uniform(bool on) const;  // (x, y, r) or r = -1
+  bool active() const { return view.searchlight.z >= 0.0f; }  // active mode (a searchlight)
   bool guard() const { return settings.dt.r1_guard; }
 
-  // What this frame last set (state changes cost llvmpipe far more than draws; redundant
-  // glUniform calls are not filtered by Mesa). Reset per frame: a FrameContext lives one frame.
-  struct Bound {
-    unsigned program = 0;
-    const Program* lit_for = nullptr;  // object program's view uniforms valid
-    glm::mat4 lit_vp{0.0f}, alpha_vp{0.0f};
-    bool lit_valid = false, alpha_valid = false;
-    glm::vec3 lit_searchlight{0.0f}, alpha_searchlight{0.0f};
+  // What this frame last set, per program (state changes cost llvmpipe far more than draws;
+  // redundant glUniform calls are not filtered by Mesa). A FrameContext lives one frame.
+  struct Uniforms {
+    const Program* program = nullptr;
+    glm::mat4 vp{0.0f};
+    glm::vec3 searchlight{0.0f};
     float alpha = -1.0f;
     int outside_one = -1;
+    bool valid = false;
+  };
+  struct Bound {
+    unsigned program = 0;
+    const Program* lit = nullptr;    // the lit program in use (object or object_sl)
+    const Program* alpha = nullptr;  // the alpha program in use
+    Uniforms uniforms[4];            // object, object_sl, object_alpha, object_alpha_sl
   };
   mutable Bound bound;
+  Uniforms& uniforms_of(const Program& p) const;
   bool track_impenetrable() const { return settings.dt.r1_guard && !view.impenetrable.empty(); }
 };
 
@@ -67,18 +75,25 @@ struct MainTargets {
 // With `stencil_codes`, each target writes its code into the stencil (for the target query).
 MainTargets add_opaque_pass(FrameGraph& fg, const FrameContext& fc, bool stencil_codes);
 // `target-query`: one occlusion query counting target fragments hidden behind another object.
-Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle depth);
+// `code_bits`: the stencil bits that hold the frontmost object's code (0xFF after `opaque`, 0x3F
+// after dt-fast's `dt-direct`).
+Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle depth, int code_bits);
 // `present`: blits the final colour into the imported output.
 void add_present_pass(FrameGraph& fg, const FrameContext& fc, Handle color, Handle output);
 
-// dt-seed, dt-fast: the effect's passes, all conditional on `query`.
+// dt-seed, dt-fast: the effect's passes, all conditional on `query` (unconditional if it is not
+// valid: more than 255 targets overlap one another, so no query can decide).
 MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
 MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
 // dt-fast when the previous frame needed the effect: the effect drawn directly (no standard frame
 // first), then the target query on its depth; if no target turns out occluded, the regions the
 // masks touched are re-rendered the standard way (conditional on the inverted query).
-Handle add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
-// Whether add_fast_direct_passes can serve this frame (no layer limit, at most 63 targets in view).
+struct FastDirect {
+  Handle color;     // the final colour
+  Handle occluded;  // the target query ("some target is occluded")
+};
+FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
+// Whether add_fast_direct_passes can serve this frame (no layer limit, target codes fit in 6 bits).
 bool fast_direct_possible(const FrameContext& fc);
 // reference: per-object layers rendered on the GPU, composited exactly on the CPU.
 Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
@@ -93,7 +108,8 @@ Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
 //   bits 0-5  the frontmost object's code (target query), or the layer-limit counter.
 struct StencilWrite {  // written where an object's draw passes the depth test
   int ref = 0;
-  int mask = 0;  // 0: no stencil writes
+  int mask = 0;       // 0: no stencil writes
+  bool mark = false;  // also set bit 7 (a target's mark: where it is frontmost when drawn)
 };
 // What object `i`'s draw writes: with `codes`, its code (0 for non-targets); bit 6 when tracked;
 // bit 7 for a target under the R1 guard.
@@ -109,7 +125,8 @@ void clear_to_background(const FrameContext& fc);
 // surfaces). Applies the layer limit's stencil logic and, for a target, the R1 guard's floor.
 void draw_transparent_object(const FrameContext& fc, std::uint32_t i, bool single_pass, StencilWrite sw);
 // Draws object `i` with a plain z-buffer and no blending: where no mask can apply (alpha is 1).
-void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw = {});
+// `depth_func` GL_LEQUAL gives ties to the later object, as a depth-EQUAL colour pass does.
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw = {}, unsigned depth_func = 0x0201);
 // R1 guard, step 2: target `i`'s fragments hidden by something drawn before it (a sort error),
 // except behind impenetrable surfaces, blended once per pixel as c (1 - aT) + C aT.
 void repair_target(const FrameContext& fc, std::uint32_t i);
@@ -129,6 +146,12 @@ void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::
 // silhouette (inside the searchlight) and clears the mark. With `keep_codes` bits 0-5 are left
 // alone; otherwise they are the layer-limit counter, restarted at 1 where alpha drops.
 void mark_target(const FrameContext& fc, int slot, bool keep_codes);
+// State for drawing into a plain buffer (a mask page): no depth, stencil, blending or culling,
+// every colour channel written.
+void buffer_state();
+// State for multiplying into the framebuffer's alpha only (blend dst.a *= src.a): no depth test or
+// writes, no culling, the stencil test on (the caller sets its function and operations).
+void alpha_multiply_state();
 void begin_apply(const FrameContext& fc, bool keep_codes);
 void finish_target(const FrameContext& fc, int slot);
 

@@ -2,6 +2,8 @@
 // and the GL sequences of dynamic transparency both GPU methods use (see passes.h).
 #include <glad/gl.h>
 
+#include <stdexcept>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "study/render/detail/passes.h"
@@ -30,24 +32,37 @@ void FrameContext::use_program(const Program& p) const {
   bound.program = p.id;
 }
 
+FrameContext::Uniforms& FrameContext::uniforms_of(const Program& p) const {
+  for (Uniforms& u : bound.uniforms) {
+    if (u.program == &p) return u;
+    if (u.program == nullptr) {
+      u.program = &p;
+      return u;
+    }
+  }
+  throw std::logic_error("FrameContext: more scene programs than uniform caches");
+}
+
 void FrameContext::use_lit(const glm::mat4& view_proj, bool searchlight) const {
-  const Program& p = programs.object;
+  const bool cut = searchlight && active();
+  const Program& p = cut ? programs.object_sl : programs.object;
   use_program(p);
-  if (!bound.lit_valid || bound.lit_vp != view_proj) {
+  bound.lit = &p;
+  Uniforms& u = uniforms_of(p);
+  if (!u.valid || u.vp != view_proj) {
     glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform3fv(p.loc("u_eye"), 1, glm::value_ptr(view.camera.eye));
-    bound.lit_vp = view_proj;
+    u.vp = view_proj;
   }
-  const glm::vec3 sl = searchlight_uniform(searchlight);
-  if (!bound.lit_valid || bound.lit_searchlight != sl) {
-    glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(sl));
-    bound.lit_searchlight = sl;
+  if (cut && (!u.valid || u.searchlight != view.searchlight)) {
+    glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(view.searchlight));
+    u.searchlight = view.searchlight;
   }
-  bound.lit_valid = true;
+  u.valid = true;
 }
 
 void FrameContext::draw_lit(std::uint32_t object) const {
-  const Program& p = programs.object;
+  const Program& p = *bound.lit;
   const ObjectRecord& o = gpu.objects()[object];
   glUniformMatrix4fv(p.loc("u_model"), 1, GL_FALSE, glm::value_ptr(o.model));
   glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(o.normal_matrix));
@@ -57,31 +72,33 @@ void FrameContext::draw_lit(std::uint32_t object) const {
 }
 
 void FrameContext::use_alpha(const glm::mat4& view_proj, float alpha, bool searchlight, bool outside_one) const {
-  const Program& p = programs.object_alpha;
+  const bool cut = searchlight && active();
+  const Program& p = cut ? programs.object_alpha_sl : programs.object_alpha;
   use_program(p);
-  if (!bound.alpha_valid || bound.alpha_vp != view_proj) {
+  bound.alpha = &p;
+  Uniforms& u = uniforms_of(p);
+  if (!u.valid || u.vp != view_proj) {
     glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-    bound.alpha_vp = view_proj;
+    u.vp = view_proj;
   }
-  if (!bound.alpha_valid || bound.alpha != alpha) {
+  if (!u.valid || u.alpha != alpha) {
     glUniform1f(p.loc("u_alpha"), alpha);
-    bound.alpha = alpha;
+    u.alpha = alpha;
   }
-  const glm::vec3 sl = searchlight_uniform(searchlight);
-  if (!bound.alpha_valid || bound.alpha_searchlight != sl) {
-    glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(sl));
-    bound.alpha_searchlight = sl;
+  if (cut && (!u.valid || u.searchlight != view.searchlight)) {
+    glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(view.searchlight));
+    u.searchlight = view.searchlight;
   }
-  if (!bound.alpha_valid || bound.outside_one != static_cast<int>(outside_one)) {
+  if (cut && (!u.valid || u.outside_one != static_cast<int>(outside_one))) {
     glUniform1i(p.loc("u_outside_one"), outside_one ? 1 : 0);
-    bound.outside_one = outside_one ? 1 : 0;
+    u.outside_one = outside_one ? 1 : 0;
   }
-  bound.alpha_valid = true;
+  u.valid = true;
 }
 
 void FrameContext::draw_alpha(std::uint32_t object) const {
   const ObjectRecord& o = gpu.objects()[object];
-  glUniformMatrix4fv(programs.object_alpha.loc("u_model"), 1, GL_FALSE, glm::value_ptr(o.model));
+  glUniformMatrix4fv(bound.alpha->loc("u_model"), 1, GL_FALSE, glm::value_ptr(o.model));
   gpu.draw(o);
 }
 
@@ -126,22 +143,23 @@ StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes)
 
 namespace {
 void stencil_writes(const StencilWrite& w) {
-  if (w.mask == 0) {
+  if (w.mask == 0 && !w.mark) {
     glDisable(GL_STENCIL_TEST);
     return;
   }
   glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_ALWAYS, w.ref, 0xFF);
+  glStencilFunc(GL_ALWAYS, w.mark ? w.ref | 0x80 : w.ref, 0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glStencilMask(static_cast<GLuint>(w.mask));
+  glStencilMask(static_cast<GLuint>(w.mark ? w.mask | 0x80 : w.mask));
 }
 }  // namespace
 
-void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw) {
+void draw_opaque_object(const FrameContext& fc, std::uint32_t i, StencilWrite sw, unsigned depth_func) {
+  static_assert(GL_LESS == 0x0201, "passes.h spells GL_LESS as its value");
   fc.use_lit(fc.view.view_proj);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
+  glDepthFunc(static_cast<GLenum>(depth_func));
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
@@ -278,6 +296,24 @@ void draw_target_seed(const FrameContext& fc, int slot, float alpha, const glm::
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
+void buffer_state() {
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void alpha_multiply_state() {
+  glDisable(GL_CULL_FACE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);  // dst.a *= src.a
+  glEnable(GL_STENCIL_TEST);
+}
+
 void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
   glDisable(GL_CULL_FACE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -293,26 +329,14 @@ void mark_target(const FrameContext& fc, int slot, bool keep_codes) {
 }
 
 void begin_apply(const FrameContext&, bool keep_codes) {
-  glDisable(GL_CULL_FACE);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);  // dst.a *= src.a
-  glEnable(GL_STENCIL_TEST);
+  alpha_multiply_state();
   glStencilFunc(GL_EQUAL, 0x01, 0x80);  // outside the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
   glStencilMask(keep_codes ? 0x00 : 0x3F);  // the counter restarts at 1 where the mask is below 1
 }
 
 void finish_target(const FrameContext& fc, int slot) {
-  glDisable(GL_CULL_FACE);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_ZERO, GL_ONE, GL_ZERO, GL_SRC_ALPHA);
-  glEnable(GL_STENCIL_TEST);
+  alpha_multiply_state();
   glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
   glStencilMask(0x80);                  // clears the mark, keeps the rest
@@ -363,7 +387,7 @@ MainTargets add_opaque_pass(FrameGraph& fg, const FrameContext& fc, bool stencil
   return {data.color, data.depth};
 }
 
-Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle depth) {
+Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle depth, int code_bits) {
   struct TargetQueryPassData {
     Handle depth, query;
   };
@@ -373,7 +397,7 @@ Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle dept
         d.depth = b.read(depth);
         d.query = b.write(b.create_query("any-target-occluded"));
       },
-      [&fc](const TargetQueryPassData& d, PassResources& r) {
+      [&fc, code_bits](const TargetQueryPassData& d, PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.depth));
         glViewport(0, 0, fc.width(), fc.height());
         glDisable(GL_SCISSOR_TEST);
@@ -389,7 +413,7 @@ Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle dept
         glBeginQuery(GL_ANY_SAMPLES_PASSED, r.query(d.query));
         fc.use_alpha(fc.view.view_proj, 0.0f, true);
         for (const TargetView& t : fc.view.targets) {
-          glStencilFunc(GL_NOTEQUAL, t.code, 0x3F);
+          glStencilFunc(GL_NOTEQUAL, t.code, static_cast<GLuint>(code_bits));
           fc.draw_alpha(t.object);
         }
         glEndQuery(GL_ANY_SAMPLES_PASSED);

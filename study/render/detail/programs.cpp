@@ -22,9 +22,23 @@ Error shader_error(const char* file, std::string message) {
   return e;
 }
 
-Result<GLuint> compile(GLenum type, const char* file) {
-  const std::string_view src = embedded::shaders(file);
-  if (src.empty()) return shader_error(file, "shader is not embedded in this build");
+Result<GLuint> compile(GLenum type, const char* file, const char* defines) {
+  const std::string_view embedded_src = embedded::shaders(file);
+  if (embedded_src.empty()) return shader_error(file, "shader is not embedded in this build");
+  std::string src(embedded_src);
+  if (defines != nullptr && *defines != '\0') {
+    const auto version = src.find("#version");
+    const auto line_end = version == std::string::npos ? std::string::npos : src.find('\n', version);
+    if (line_end == std::string::npos) return shader_error(file, "has no #version line to put defines after");
+    std::string block;
+    std::string_view rest(defines);
+    while (!rest.empty()) {
+      const auto space = rest.find(' ');
+      block += "#define " + std::string(rest.substr(0, space)) + "\n";
+      rest = space == std::string_view::npos ? std::string_view{} : rest.substr(space + 1);
+    }
+    src.insert(line_end + 1, block);
+  }
   GLuint s = glCreateShader(type);
   const char* text = src.data();
   const GLint len = static_cast<GLint>(src.size());
@@ -53,10 +67,10 @@ int Program::loc(const char* name) const {
   return l;
 }
 
-Result<Program> link_program(const char* vertex_file, const char* fragment_file) {
-  auto vs = compile(GL_VERTEX_SHADER, vertex_file);
+Result<Program> link_program(const char* vertex_file, const char* fragment_file, const char* defines) {
+  auto vs = compile(GL_VERTEX_SHADER, vertex_file, "");
   if (!vs) return vs.error();
-  auto fs = compile(GL_FRAGMENT_SHADER, fragment_file);
+  auto fs = compile(GL_FRAGMENT_SHADER, fragment_file, defines);
   if (!fs) {
     glDeleteShader(*vs);
     return fs.error();
@@ -86,8 +100,8 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file)
 }
 
 void Programs::destroy() {
-  for (Program* p : {&object, &object_alpha, &quad_alpha, &border, &mask_apply, &shape, &cheb_rows, &cheb_cols,
-                     &fast_apply}) {
+  for (Program* p : {&object, &object_sl, &object_alpha, &object_alpha_sl, &quad_alpha, &border, &shape,
+                     &cheb_rows, &cheb_cols, &fast_apply, &fast_apply_counter}) {
     if (p->id != 0) glDeleteProgram(p->id);
     p->id = 0;
   }
@@ -99,16 +113,23 @@ Result<Programs> compile_programs() {
     Program* p;
     const char* vs;
     const char* fs;
+    const char* defines;
   };
   const Entry entries[] = {
-      {&ps.object, "object.vert", "object.frag"},         {&ps.object_alpha, "object.vert", "flat_alpha.frag"},
-      {&ps.quad_alpha, "fullscreen.vert", "flat_alpha.frag"}, {&ps.border, "fullscreen.vert", "border.frag"},
-      {&ps.mask_apply, "fullscreen.vert", "mask_apply.frag"}, {&ps.shape, "fullscreen.vert", "shape.frag"},
-      {&ps.cheb_rows, "fullscreen.vert", "cheb_rows.frag"},   {&ps.cheb_cols, "fullscreen.vert", "cheb_cols.frag"},
-      {&ps.fast_apply, "fullscreen.vert", "fast_apply.frag"},
+      {&ps.object, "object.vert", "object.frag", ""},
+      {&ps.object_sl, "object.vert", "object.frag", "SEARCHLIGHT"},
+      {&ps.object_alpha, "object.vert", "flat_alpha.frag", ""},
+      {&ps.object_alpha_sl, "object.vert", "flat_alpha.frag", "SEARCHLIGHT"},
+      {&ps.quad_alpha, "fullscreen.vert", "flat_alpha.frag", "SEARCHLIGHT"},
+      {&ps.border, "fullscreen.vert", "border.frag", ""},
+      {&ps.shape, "fullscreen.vert", "shape.frag", ""},
+      {&ps.cheb_rows, "fullscreen.vert", "cheb_rows.frag", ""},
+      {&ps.cheb_cols, "fullscreen.vert", "cheb_cols.frag", ""},
+      {&ps.fast_apply, "fullscreen.vert", "fast_apply.frag", ""},
+      {&ps.fast_apply_counter, "fullscreen.vert", "fast_apply.frag", "COUNTER"},
   };
   for (const Entry& e : entries) {
-    auto p = link_program(e.vs, e.fs);
+    auto p = link_program(e.vs, e.fs, e.defines);
     if (!p) {
       ps.destroy();
       return p.error();

@@ -18,19 +18,24 @@ class Program {
   mutable std::map<std::string, int, std::less<>> locations_;
 };
 
-// Compiles and links the embedded `vertex_file` and `fragment_file`.
-Result<Program> link_program(const char* vertex_file, const char* fragment_file);
+// Compiles and links the embedded `vertex_file` and `fragment_file`; `defines` (e.g. "SEARCHLIGHT")
+// are #defined in the fragment shader, after its #version line.
+Result<Program> link_program(const char* vertex_file, const char* fragment_file, const char* defines = "");
 
+// Variants with SEARCHLIGHT may discard; the others never do (a shader that may discard makes
+// llvmpipe test depth after shading).
 struct Programs {
   Program object;       // object.vert + object.frag: lit or flat colour
+  Program object_sl;    // the same, cut to the searchlight (the R1 guard's repair in active mode)
   Program object_alpha; // object.vert + flat_alpha.frag: depth-only, queries, silhouettes
-  Program quad_alpha;   // fullscreen.vert + flat_alpha.frag
+  Program object_alpha_sl;  // the same, cut to the searchlight (or alpha 1 outside it)
+  Program quad_alpha;   // fullscreen.vert + flat_alpha.frag (SEARCHLIGHT)
   Program border;       // fullscreen.vert + border.frag (Algorithm 3)
-  Program mask_apply;   // fullscreen.vert + mask_apply.frag (Algorithm 2, line 10)
   Program shape;        // fullscreen.vert + shape.frag (circle / ellipse masks)
   Program cheb_rows;    // fullscreen.vert + cheb_rows.frag (dt-fast distances)
   Program cheb_cols;    // fullscreen.vert + cheb_cols.frag
-  Program fast_apply;   // fullscreen.vert + fast_apply.frag
+  Program fast_apply;   // fullscreen.vert + fast_apply.frag (Algorithm 2, line 10, from an atlas tile)
+  Program fast_apply_counter;  // the same with COUNTER (layer limit: discards where the mask is 1)
   void destroy();       // deletes every program (needs the context current)
 };
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "study/render/detail/gl_state.h"
@@ -48,17 +49,51 @@ std::optional<MaskShape> parse_mask_shape(std::string_view s) {
   return std::nullopt;
 }
 
-void validate(const DtSettings& s) {
-  auto bad = [](const std::string& field, const std::string& what) {
-    throw std::invalid_argument("DtSettings." + field + ": " + what);
+std::string_view to_string(DtField f) {
+  switch (f) {
+    case DtField::alpha_target: return "alpha_target";
+    case DtField::alpha_start: return "alpha_start";
+    case DtField::gradient: return "gradient_px";
+    case DtField::mask_resolution: return "mask_resolution";
+    case DtField::layer_limit: return "layer_limit";
+    case DtField::searchlight: return "searchlight";
+  }
+  return "?";
+}
+
+int max_mask_resolution(int width, int height) { return std::max({128, width, height}); }
+
+std::optional<SettingsProblem> check(const DtSettings& s, int width, int height) {
+  auto got = [](double v) {
+    std::ostringstream o;
+    o << " (got " << v << ")";
+    return o.str();
   };
-  if (!(s.alpha_target >= 0.0f && s.alpha_target < 1.0f)) bad("alpha_target", "must be in [0, 1)");
-  if (!(s.alpha_start >= 0.0f && s.alpha_start < 1.0f)) bad("alpha_start", "must be in [0, 1)");
-  if (!(s.gradient_px >= 0.0f && s.gradient_px <= 4096.0f)) bad("gradient_px", "must be in [0, 4096]");
-  if (s.mask_resolution < 0 || s.mask_resolution > 8192) bad("mask_resolution", "must be 0 (full) or 1..8192");
-  if (s.layer_limit < 0 || s.layer_limit > 60) bad("layer_limit", "must be 0 (no limit) or 1..60");
-  if (!(s.searchlight_radius >= 0.0f) || !std::isfinite(s.searchlight_center.x) || !std::isfinite(s.searchlight_center.y))
-    bad("searchlight", "radius must be >= 0 and the centre finite");
+  if (!(s.alpha_target >= 0.0f && s.alpha_target < 1.0f))
+    return SettingsProblem{DtField::alpha_target, "must be at least 0 and below 1" + got(s.alpha_target)};
+  if (!(s.alpha_start >= 0.0f && s.alpha_start < 1.0f))
+    return SettingsProblem{DtField::alpha_start, "must be at least 0 and below 1" + got(s.alpha_start)};
+  if (!(s.gradient_px >= 0.0f && s.gradient_px <= 4096.0f))
+    return SettingsProblem{DtField::gradient, "must be 0..4096 output pixels" + got(s.gradient_px)};
+  if (s.mask_resolution < 0)
+    return SettingsProblem{DtField::mask_resolution, "must be 0 (full resolution) or positive" + got(s.mask_resolution)};
+  if (width > 0 && height > 0 && s.mask_resolution > max_mask_resolution(width, height))
+    return SettingsProblem{DtField::mask_resolution,
+                           "must be at most " + std::to_string(max_mask_resolution(width, height)) + " for a " +
+                               std::to_string(width) + " x " + std::to_string(height) +
+                               " view (a mask finer than the view changes nothing but the cost; 0 = full "
+                               "resolution)" + got(s.mask_resolution)};
+  if (s.layer_limit < 0 || s.layer_limit > 60)
+    return SettingsProblem{DtField::layer_limit, "must be 0 (no limit) or 1..60" + got(s.layer_limit)};
+  if (!(s.searchlight_radius >= 0.0f) || !std::isfinite(s.searchlight_radius) || !std::isfinite(s.searchlight_center.x) ||
+      !std::isfinite(s.searchlight_center.y))
+    return SettingsProblem{DtField::searchlight, "radius must be finite and >= 0 and the centre finite"};
+  return std::nullopt;
+}
+
+void validate(const DtSettings& s, int width, int height) {
+  if (const auto p = check(s, width, height))
+    throw std::invalid_argument("DtSettings." + std::string(to_string(p->field)) + ": " + p->message);
 }
 
 float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int width, int height) {
@@ -86,10 +121,10 @@ const scene::Scene& Renderer::scene() const { return impl_->scene; }
 const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
 
 FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {
-  validate(settings.dt);
   if (target.width <= 0 || target.height <= 0)
     throw std::invalid_argument("Renderer::render: target size must be positive, got " + std::to_string(target.width) +
                                 "x" + std::to_string(target.height));
+  validate(settings.dt, target.width, target.height);
   if (settings.flat_colors.size() > impl_->gpu->objects().size())
     throw std::invalid_argument("Renderer::render: more flat colours than objects");
   using Clock = std::chrono::steady_clock;
@@ -104,49 +139,43 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   const bool transparency = uses_transparency(settings.method);
   const bool targets = !view.targets.empty();
   Handle color;
+  Handle occluded;  // "some target is occluded": the effect was called for (none: no query this frame)
   const bool direct = settings.method == Method::dt_fast && targets && impl_->fast_effect_hint &&
                       detail::fast_direct_possible(fc);
   if (settings.method == Method::reference) {
     color = detail::add_reference_pass(fg, fc);
   } else if (direct) {
-    color = detail::add_fast_direct_passes(fg, fc);
+    const detail::FastDirect d = detail::add_fast_direct_passes(fg, fc);
+    color = d.color;
+    occluded = d.occluded;
   } else {
     detail::MainTargets main = detail::add_opaque_pass(fg, fc, transparency && targets);
     // Declared whenever a target is in view; only the effect's passes read it, so for
-    // `standard` compile() culls it.
-    Handle query;
-    if (targets) query = detail::add_target_query_pass(fg, fc, main.depth);
+    // `standard` compile() culls it. Without exact codes (more than 255 targets overlapping one
+    // another) there is no query and the effect runs unconditionally.
+    if (targets && !view.codes_exhausted) occluded = detail::add_target_query_pass(fg, fc, main.depth, 0xFF);
     if (transparency && targets) {
-      main = settings.method == Method::dt_seed ? detail::add_seed_passes(fg, fc, main, query)
-                                                : detail::add_fast_passes(fg, fc, main, query);
+      main = settings.method == Method::dt_seed ? detail::add_seed_passes(fg, fc, main, occluded)
+                                                : detail::add_fast_passes(fg, fc, main, occluded);
     }
     color = main.color;
   }
   detail::add_present_pass(fg, fc, color, output);
   fg.compile();
-  // A known baseline for state no pass sets explicitly (the caller's is restored by the guard).
-  glBindVertexArray(impl_->gpu->vao());
-  glBlendEquation(GL_FUNC_ADD);
-  glDisable(GL_CULL_FACE);
-  glFrontFace(GL_CCW);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  glDisable(GL_MULTISAMPLE);
+  detail::set_frame_baseline(impl_->gpu->vao());
   fg.execute(impl_->backend, settings.profile_passes);
   if (settings.timed) glFinish();
   const auto t1 = Clock::now();
+  // dt-fast picks the next frame's plan from whether this one needed the effect (frame coherence);
+  // an answer not ready yet (untimed frame) leaves the guess as it was.
+  if (settings.method == Method::dt_fast) {
+    if (!targets) impl_->fast_effect_hint = false;
+    else if (!occluded.valid()) impl_->fast_effect_hint = true;
+    else if (const auto a = fg.answer(occluded, impl_->backend, settings.timed)) impl_->fast_effect_hint = *a;
+  }
   FrameReport report = fg.report(impl_->backend, settings.timed);
   if (settings.timed) report.frame_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   impl_->backend.end_frame();
-  if (settings.method == Method::dt_fast) {
-    // Remember whether the effect was needed, for the next frame's plan.
-    for (const PassRecord& p : report.passes) {
-      if (!p.ran.has_value() || p.culled) continue;
-      if (p.name == "dt-composite") impl_->fast_effect_hint = *p.ran;
-      if (p.name == "standard-fallback") impl_->fast_effect_hint = !*p.ran;
-    }
-    if (!targets) impl_->fast_effect_hint = false;
-  }
   impl_->graphviz = fg.graphviz();
   impl_->last_target = target;
   impl_->last_float = settings.float_color;
@@ -161,6 +190,36 @@ FrameReport Renderer::render_offscreen(const Camera& camera, const FrameSettings
   return render(camera, settings, ImportedTarget{impl_->out_fbo, width, height});
 }
 
+namespace {
+// glReadPixels of the whole of `t` into `out`, leaving the read framebuffer, its read buffer,
+// the pixel pack buffer and the pack parameters as the caller had them.
+void read_target(const ImportedTarget& t, GLenum type, void* out) {
+  GLint fbo = 0, buffer = 0, pack_buffer = 0, alignment = 4, row_length = 0, skip_rows = 0, skip_pixels = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+  glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+  glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
+  glGetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows);
+  glGetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
+  glGetIntegerv(GL_READ_BUFFER, &buffer);
+  if (t.framebuffer == 0) glReadBuffer(GL_BACK);  // where present blitted the frame
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+  glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+  glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+  glReadPixels(0, 0, t.width, t.height, GL_RGBA, type, out);
+  glReadBuffer(static_cast<GLenum>(buffer));
+  glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+  glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
+  glPixelStorei(GL_PACK_SKIP_ROWS, skip_rows);
+  glPixelStorei(GL_PACK_SKIP_PIXELS, skip_pixels);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack_buffer));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(fbo));
+}
+}  // namespace
+
 Image Renderer::read_color() const {
   const ImportedTarget& t = impl_->last_target;
   Image img;
@@ -168,15 +227,7 @@ Image Renderer::read_color() const {
   img.width = t.width;
   img.height = t.height;
   std::vector<std::uint8_t> rows(static_cast<std::size_t>(t.width) * t.height * 4);
-  GLint prev = 0, pack = 4;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
-  glGetIntegerv(GL_PACK_ALIGNMENT, &pack);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
-  if (t.framebuffer == 0) glReadBuffer(GL_BACK);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-  glPixelStorei(GL_PACK_ALIGNMENT, pack);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(prev));
+  read_target(t, GL_UNSIGNED_BYTE, rows.data());
   img.rgba.resize(rows.size());
   const std::size_t stride = static_cast<std::size_t>(t.width) * 4;
   for (int y = 0; y < t.height; ++y)  // GL rows are bottom-up
@@ -189,11 +240,7 @@ std::vector<float> Renderer::read_color_float() const {
   std::vector<float> out;
   if (t.width <= 0) return out;
   out.resize(static_cast<std::size_t>(t.width) * t.height * 4);
-  GLint prev = 0;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
-  glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_FLOAT, out.data());
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(prev));
+  read_target(t, GL_FLOAT, out.data());
   return out;
 }
 

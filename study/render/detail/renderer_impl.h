@@ -44,9 +44,11 @@ struct Renderer::Impl {
     if (out_fbo != 0 && out_w == w && out_h == h && out_float == fp) return;
     if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
     if (out_tex != 0) glDeleteTextures(1, &out_tex);
-    GLint prev_tex = 0, prev_fbo = 0;
+    GLint prev_tex = 0, prev_fbo = 0, prev_unpack = 0;
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_fbo);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &prev_unpack);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);  // else the null data pointer is an offset into it
     glGenTextures(1, &out_tex);
     glBindTexture(GL_TEXTURE_2D, out_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, fp ? GL_RGBA16F : GL_RGBA8, w, h, 0, GL_RGBA, fp ? GL_FLOAT : GL_UNSIGNED_BYTE,
@@ -58,6 +60,7 @@ struct Renderer::Impl {
     glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, out_tex, 0);
     glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(prev_tex));
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(prev_unpack));
     out_w = w;
     out_h = h;
     out_float = fp;

@@ -117,6 +117,8 @@ Result<std::unique_ptr<SceneGpu>> SceneGpu::create(const scene::Scene& scene) {
     }
     r.world_min = lo;
     r.world_max = hi;
+    r.mesh_min = mesh_min[o.mesh];
+    r.mesh_max = mesh_max[o.mesh];
     gpu->objects_.push_back(r);
   }
 

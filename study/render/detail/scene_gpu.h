@@ -29,6 +29,8 @@ struct ObjectRecord {
   std::int32_t base_vertex = 0;
   std::uint32_t mesh = 0;
   glm::vec3 world_min{0.0f}, world_max{0.0f};  // world-space AABB of the transformed mesh
+  glm::vec3 mesh_min{0.0f}, mesh_max{0.0f};    // the mesh's own box (model space): `model` maps it to a
+                                               // box around the object tighter than the world AABB
   bool convex = false;    // every vertex lies behind every triangle's plane: seen from outside, at most one
                           // front-facing fragment per pixel (so one culled pass selects the frontmost surface)
   bool mirrored = false;  // det(model) < 0: the winding of front faces flips

@@ -76,7 +76,7 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
           glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         });
     fg.compile();
-    glBindVertexArray(impl_->gpu->vao());
+    detail::set_frame_baseline(impl_->gpu->vao());
     fg.execute(impl_->backend);
     fg.report(impl_->backend, true);
     for (std::size_t k = 0; k < out.size(); ++k) {

@@ -97,7 +97,7 @@ void build_study(const std::string& path, const StudySpec& spec) {
       r.completion_s = o->time_s;
       r.started_at = t0 + std::chrono::seconds(100 * t.position);
       r.ended_at = r.started_at + std::chrono::milliseconds(static_cast<long long>(o->time_s * 1000));
-      r.frames = store::frame_stats(o->frame_ms);
+      r.frames = store::frame_stats(o->frame_ms, 60.0);  // shown on a 60 Hz display
       for (size_t f = 0; f < o->frame_ms.size(); ++f) {
         store::CameraPose pose;
         pose.t_s = 0.01 * static_cast<double>(f);

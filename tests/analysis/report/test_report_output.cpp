@@ -140,7 +140,7 @@ TEST_F(ReportOutput, TidyCsvHoldsEveryRecordedTrialWithItsTime) {
   EXPECT_NE(tests.find("time,completion time,s,overall,rm-anova,transparency,8,1,7,"), std::string::npos);
 }
 
-TEST_F(ReportOutput, FrameAuditCountsSlowTrials) {
+TEST_F(ReportOutput, FrameAuditCountsSlowTrialsAndFlagsConditionsBelowTheDisplayRate) {
   const auto j = nlohmann::json::parse(read_text(dir->file("out/report.json")));
   // Fixture frames: off {10, 12, 11} ms (p95 12), on {25, 30, 40} ms (p95 40 > 33.3): every "on" trial is slow.
   for (const auto& c : j.at("frames").at("conditions")) {
@@ -148,7 +148,16 @@ TEST_F(ReportOutput, FrameAuditCountsSlowTrials) {
     EXPECT_EQ(c.at("trials"), 48);
     EXPECT_EQ(c.at("slow_trials"), on ? 48 : 0);
     EXPECT_DOUBLE_EQ(c.at("median_p95_ms").get<double>(), on ? 40.0 : 12.0);
+    // On a 60 Hz display (16.7 ms a frame): off's steady frames {12, 11} keep up, on's {30, 40}
+    // (median 35 ms) do not, and both are later than 1.5 intervals (25 ms) in each of 48 trials.
+    EXPECT_DOUBLE_EQ(c.at("display_hz").get<double>(), 60.0);
+    EXPECT_DOUBLE_EQ(c.at("median_steady_ms").get<double>(), on ? 35.0 : 11.5);
+    EXPECT_EQ(c.at("late_frames"), on ? 96 : 0);
+    EXPECT_EQ(c.at("below_display"), on);
   }
+  EXPECT_EQ(j.at("frames").at("below_display").size(), 2u);  // the two "on" conditions
+  const std::string md = read_text(dir->file("out/report.md"));
+  EXPECT_NE(md.find("Warning: rendering fell below the display's refresh rate in on/"), std::string::npos);
 }
 
 TEST(ReportEdge, SingleParticipantGetsDescriptivesAndNoTest) {

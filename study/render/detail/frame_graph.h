@@ -1,4 +1,4 @@
-// A frame graph in the manner of Filament's (filament/src/fg): each pass is a
+// Internal: a frame graph in the manner of Filament's (filament/src/fg): each pass is a
 // data struct of resource handles, a setup function that only declares what
 // the pass creates, reads and writes, and an execute function that only uses
 // what was declared. compile() culls, by reference count, every pass whose
@@ -9,7 +9,8 @@
 // to their last user and come from a pool, so a frame allocates nothing once
 // warm. A pass may be conditional on an occlusion query another pass wrote;
 // it then runs inside GL conditional rendering and the report says whether it
-// ran. Guarantees: a stale handle (one that a later write() superseded) or an
+// ran; each of its writes counts as a read of the version it replaces (when it
+// does not run, readers see that version). Guarantees: a stale handle (one that a later write() superseded) or an
 // undeclared access fails loudly with the pass's and the resource's names.
 // Never: touches GL itself (the FrameGraphBackend does), or runs a culled pass.
 #pragma once
@@ -22,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include "study/render/frame_report.h"
+
 namespace dtlab::render {
 
 enum class TextureFormat { rgba8, rgba16f, rgba32f, r8, r16f, r32f, depth24_stencil8, depth32f };
@@ -32,13 +35,6 @@ struct TextureDesc {
   TextureFormat format = TextureFormat::rgba8;
   bool linear = false;  // bilinear sampling (else nearest); clamp to edge either way
   bool operator==(const TextureDesc&) const = default;
-};
-
-// A framebuffer the caller owns (a window's default framebuffer, an output FBO).
-struct ImportedTarget {
-  unsigned framebuffer = 0;
-  int width = 0;
-  int height = 0;
 };
 
 // A versioned reference to a resource of one FrameGraph. Copyable; becomes
@@ -97,22 +93,6 @@ class PassResources {
   FrameGraphBackend& backend_;
 };
 
-// One record per declared pass, in declaration order.
-struct PassRecord {
-  std::string name;
-  bool culled = false;       // removed by compile(): nothing read its outputs
-  bool conditional = false;  // ran under conditional rendering
-  std::optional<bool> ran;   // executed (for conditional passes: the query said yes); nullopt: unknown yet
-  double ms = 0.0;           // CPU time (all threads) of the pass when profiled (glFinish around it)
-};
-
-struct FrameReport {
-  std::vector<PassRecord> passes;
-  std::vector<std::string> gl_errors;  // "pass 'name': GL_INVALID_OPERATION", in order
-  double frame_ms = 0.0;               // CPU wall time from graph build to glFinish (0 if not timed)
-  std::vector<std::string> passes_run() const;  // names of passes that ran (unknown counts as ran)
-};
-
 class FrameGraph {
  public:
   class Builder {
@@ -156,6 +136,9 @@ class FrameGraph {
   // Runs the surviving passes, then frees transients. With `profile`, a glFinish after each
   // pass gives per-pass process CPU times (llvmpipe renders on CPU threads; debugging only).
   void execute(FrameGraphBackend& backend, bool profile = false);
+  // After execute() and before report(): did `query` see samples? nullopt if the query was culled
+  // or (without `wait`) its answer is not ready.
+  std::optional<bool> answer(Handle query, FrameGraphBackend& backend, bool wait) const;
   // After execute() (and, to get every answer, after glFinish): who ran, GL errors.
   FrameReport report(FrameGraphBackend& backend, bool wait_for_queries);
   std::string graphviz() const;                // the graph in dot syntax; culled passes grey
@@ -189,10 +172,11 @@ class FrameGraph {
     int version = 0;
     int writer = -1;  // pass that produced this version (-1: created or imported)
     int refcount = 0;
+    int previous = -1;  // the version this one replaced (-1: the first)
   };
 
   std::uint32_t push_pass(std::string name, std::unique_ptr<PassNode> node);
-  std::uint32_t new_node(std::uint32_t resource, int writer);
+  std::uint32_t new_node(std::uint32_t resource, int writer, int previous = -1);
   const Node& checked(Handle h, std::uint32_t pass, const char* action) const;
   bool declares(std::uint32_t pass, std::uint32_t node) const;
 
