@@ -24,6 +24,7 @@
 #include "app/run/ui.h"
 #include "study/protocol/protocol.h"
 #include "study/session/mapping.h"
+#include "study/session/runnable.h"
 #include "study/session/session.h"
 
 namespace dtlab::app {
@@ -63,8 +64,10 @@ void run_person(const RunArgs& a) {
     fail(kExitUsage, "--size " + a.size + ": expected WIDTHxHEIGHT, e.g. 1280x800");
   width = std::stoi(m[1]);
   height = std::stoi(m[2]);
-  if (width < 320 || height < 240 || width > 16384 || height > 16384)
-    fail(kExitUsage, "--size " + a.size + ": expected 320x240 up to 16384x16384");
+  // Up to the largest view `dtlab validate` checks a protocol at (session::kMaxViewportSide).
+  if (width < 320 || height < 240 || width > session::kMaxViewportSide || height > session::kMaxViewportSide)
+    fail(kExitUsage, "--size " + a.size + ": expected 320x240 up to " + std::to_string(session::kMaxViewportSide) + "x" +
+                         std::to_string(session::kMaxViewportSide));
 
   auto store = store::Store::open(a.db, session::study_info(p.value()), session::open_options(a.allow_protocol_change));
   if (!store) fail(exit_code(store.error()), store.error().to_string());
