@@ -1,11 +1,11 @@
-// `dtlab simulate PROTOCOL --participants N --db FILE [--seed S] [--width W
+// `dtlab simulate PROTOCOL --participants N --db DB [--seed S] [--width W
 // --height H] [--jobs J] [--allow-protocol-change] [--json]`: simulated
 // participants (study/sim) run the protocol headless (OSMesa) into a study
 // database; progress on stderr, a summary on stdout. Into an existing database it continues: running sessions
 // resume, finished ones are skipped, ids up to sim-N are added. Ctrl-C stops
 // after the trials in progress (a second Ctrl-C at once); SIGKILL loses at
 // most the trials in progress. Exit 0 all finished, 1 bad protocol/database,
-// 2 bad command line, 3 environment (GL, SQLite, fork), 130 interrupted.
+// 2 bad command line, 3 environment (GL, database, fork), 130 interrupted.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "app/platform/gl_context.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
@@ -110,7 +111,7 @@ void run_simulate(const SimulateArgs& a) {
   const protocol::Factor* rendering = protocol::rendering_factor(p.value());
   auto summary = reader ? sim::summarize(*reader, rendering ? rendering->name : "") : Result<sim::Summary>(reader.error());
   if (a.json) {
-    nlohmann::json j{{"protocol", p->id},          {"database", a.db},
+    nlohmann::json j{{"protocol", p->id},          {"database", store::display_name(a.db)},
                      {"participants", run.participants}, {"finished", r.finished_total},
                      {"skipped_finished", r.already_finished}, {"resumed", r.resumed},
                      {"run_elsewhere", r.elsewhere},
@@ -126,7 +127,7 @@ void run_simulate(const SimulateArgs& a) {
     }
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cout << "dtlab simulate: " << p->id << " -> " << a.db << ": " << r.finished_total << " of "
+    std::cout << "dtlab simulate: " << p->id << " -> " << store::display_name(a.db) << ": " << r.finished_total << " of "
               << run.participants << " participants finished (" << r.already_finished << " before this run, "
               << r.resumed << " resumed";
     if (r.elsewhere > 0) std::cout << ", " << r.elsewhere << " run by another process";
@@ -198,7 +199,7 @@ int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const 
   result.stopped = ran->stopped;
   for (const std::string& e : ran->errors) std::cerr << prefix << ": " << e << "\n";
   if (ran->stopped) {
-    std::cerr << prefix << ": interrupted; every recorded trial is saved in " << run.db
+    std::cerr << prefix << ": interrupted; every recorded trial is saved in " << store::display_name(run.db)
               << ". Run the same command again to resume.\n";
     return kExitInterrupted;
   }
@@ -216,13 +217,13 @@ void add_simulate_command(CLI::App& root) {
       "in progress; rerun to resume");
   cmd->footer(
       "Progress on stderr (one line per recorded trial, with an ETA); a per-task summary on stdout.\n"
-      "Exit status: 0 all finished, 1 invalid protocol or database, 2 bad command line, 3 environment (GL, SQLite, "
+      "Exit status: 0 all finished, 1 invalid protocol or database, 2 bad command line, 3 environment (GL, database, "
       "fork) or a participant failed, 130 interrupted (rerun to resume).");
   cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--participants", a->run.participants, "Simulated participants sim-001 .. sim-N")
       ->required()
       ->check(CLI::Range(1, 9999));
-  cmd->add_option("--db", a->db, "Study database (SQLite; created if missing)")->required();
+  cmd->add_option("--db", a->db, std::string(kDatabaseHelp) + "; created if missing")->required();
   cmd->add_option("--seed", a->run.seed, "Seed of the simulated participants' traits and choices (plans and scenes "
                                          "come from the protocol's master seed)")
       ->capture_default_str();
