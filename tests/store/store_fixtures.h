@@ -1,11 +1,11 @@
 // Shared fixtures of the store tests: a 2 x 2 study, a synthetic plan (the
 // design stage is tested on its own; the store must not depend on it), a
 // deterministic trial record per (seed, participant, position), a fresh
-// temporary directory per test, and independent SQL reads through the raw
-// SQLite API (the checks never go through the code under test).
+// temporary directory per test, a fixture that runs a test on both engines
+// (backends.h), and independent SQL reads through the engines' own C APIs
+// (the checks never go through the code under test).
 #pragma once
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <unistd.h>
 
@@ -20,6 +20,7 @@
 #include "study/common/hash.h"
 #include "study/design/plan.h"
 #include "study/store/store.h"
+#include "tests/store/backends.h"
 
 namespace dtlab::store::testing {
 
@@ -113,68 +114,36 @@ class TempDir {
   TempDir() {
     static int counter = 0;
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info ? info->name() : "x";
+    for (char& c : name)
+      if (c == '/') c = '-';  // a parameterized test's name: RoundTrip/SQLite
     dir_ = std::filesystem::temp_directory_path() /
-           ("dtlab-store-" + std::string(info ? info->name() : "x") + "-" + std::to_string(::getpid()) + "-" +
-            std::to_string(counter++));
+           ("dtlab-store-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
   ~TempDir() { std::filesystem::remove_all(dir_); }
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path() const { return dir_.string(); }
 
  private:
   std::filesystem::path dir_;
 };
 
-// Independent raw-SQLite reader for assertions.
-class RawDb {
- public:
-  explicit RawDb(const std::string& path, int flags = SQLITE_OPEN_READWRITE) {
-    if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) ADD_FAILURE() << "cannot open " << path;
-    sqlite3_busy_timeout(db_, 10000);
-  }
-  ~RawDb() { sqlite3_close_v2(db_); }
-  RawDb(const RawDb&) = delete;
-  RawDb& operator=(const RawDb&) = delete;
-
-  // All rows of a query, every value as text: "NULL" for NULL, reals with
-  // 17 significant digits (exact round trip), integers and text as they are.
-  std::vector<std::vector<std::string>> rows(const std::string& sql) {
-    std::vector<std::vector<std::string>> out;
-    sqlite3_stmt* st = nullptr;
-    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, &st, nullptr) != SQLITE_OK) {
-      ADD_FAILURE() << sql << ": " << sqlite3_errmsg(db_);
-      return out;
-    }
-    int rc;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-      std::vector<std::string> row;
-      for (int c = 0; c < sqlite3_column_count(st); ++c) {
-        if (sqlite3_column_type(st, c) == SQLITE_FLOAT) {
-          char buf[40];
-          std::snprintf(buf, sizeof buf, "%.17g", sqlite3_column_double(st, c));
-          row.emplace_back(buf);
-          continue;
-        }
-        const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(st, c));
-        row.emplace_back(t ? t : "NULL");
-      }
-      out.push_back(std::move(row));
-    }
-    if (rc != SQLITE_DONE) ADD_FAILURE() << sql << ": " << sqlite3_errmsg(db_);
-    sqlite3_finalize(st);
-    return out;
-  }
-  std::string one(const std::string& sql) {
-    auto r = rows(sql);
-    return r.empty() || r[0].empty() ? std::string("<no row>") : r[0][0];
-  }
-  std::int64_t count(const std::string& sql) { return std::stoll(one(sql)); }
-  int exec(const std::string& sql) { return sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr); }
-  const char* errmsg() const { return sqlite3_errmsg(db_); }
-
- private:
-  sqlite3* db_ = nullptr;
+// A test that runs on both engines: study() is a new file (SQLite) or a new schema on the
+// test server (PostgreSQL). Instantiate with DTLAB_ON_BOTH_BACKENDS(Suite).
+class OnBothBackends : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override { DTLAB_SKIP_WITHOUT_SERVER(GetParam()); }
+  std::string study(const std::string& name = "s") const { return new_study(GetParam(), dir_.path(), name); }
+  bool pg() const { return GetParam() == Backend::postgresql; }
+  TempDir dir_;
 };
+
+#define DTLAB_ON_BOTH_BACKENDS(Suite)                                                                         \
+  INSTANTIATE_TEST_SUITE_P(, Suite,                                                                           \
+                           ::testing::Values(::dtlab::store::testing::Backend::sqlite,                        \
+                                             ::dtlab::store::testing::Backend::postgresql),                   \
+                           ::dtlab::store::testing::backend_param_name)
 
 }  // namespace dtlab::store::testing
