@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A throwaway PostgreSQL server for the store tests: `pg_server.sh start STATE`
 # runs initdb and pg_ctl in a new directory under /tmp (Unix socket only, no
-# TCP, trust authentication, fsync off: a test server, never a lab's) and
+# TCP, trust authentication, fsync off: a test server, never a lab's; with a
+# third argument `durable`, fsync stays on, as the benchmarks need) and
 # writes STATE/status: "uri postgresql:///dtlab_test?host=DIR&user=dtlab", or
 # "unavailable WHY" where the server binaries are missing (the tests then skip
 # their PostgreSQL half, saying so). `pg_server.sh stop STATE` stops it and
@@ -9,8 +10,10 @@
 # they run as the `postgres` system user (or `nobody`). Safe to run twice.
 set -euo pipefail
 
-action=${1:?usage: pg_server.sh start|stop STATE_DIR}
-state=${2:?usage: pg_server.sh start|stop STATE_DIR}
+action=${1:?usage: pg_server.sh start|stop STATE_DIR [durable]}
+state=${2:?usage: pg_server.sh start|stop STATE_DIR [durable]}
+durability="-c fsync=off -c full_page_writes=off"
+[ "${3:-}" = durable ] && durability=""
 mkdir -p "$state"
 status="$state/status"
 
@@ -65,7 +68,7 @@ echo "$bin" >"$state/bin"
 as_user "$bin/initdb" -D "$dir/data" -U dtlab --auth=trust -E UTF8 --no-locale --no-sync >"$dir/initdb.log" 2>&1 ||
   { cat "$dir/initdb.log" >&2; exit 1; }
 as_user "$bin/pg_ctl" -D "$dir/data" -l "$dir/server.log" -w -t 60 \
-  -o "-c listen_addresses='' -c unix_socket_directories=$dir -c fsync=off -c full_page_writes=off -c max_connections=200" \
+  -o "-c listen_addresses='' -c unix_socket_directories=$dir $durability -c max_connections=200" \
   start >/dev/null || { cat "$dir/server.log" >&2; exit 1; }
 as_user "$bin/psql" -q -h "$dir" -U dtlab -d postgres -c "CREATE DATABASE dtlab_test" >/dev/null
 echo "uri postgresql:///dtlab_test?host=$dir&user=dtlab" >"$status"

@@ -219,15 +219,15 @@ std::vector<std::vector<std::vector<std::string>>> dump(const std::string& where
   return out;
 }
 
-// The lab's server before a station goes offline: P1..P3 finished, rows 0..2.
-std::string lab_with_three(const std::string& where) {
+// The lab's server before a station goes offline: `n` participants P1.. finished, rows 0..n-1.
+std::string lab_with(const std::string& where, int n = 3) {
   Store s = open_ok(where);
-  for (const char* id : {"P1", "P2", "P3"}) run_participant(s, id, 4);
+  for (int i = 1; i <= n; ++i) run_participant(s, "P" + std::to_string(i), 4);
   return where;
 }
 
 TEST_P(Merge, AStationsOfflineParticipantsJoinTheLab) {
-  const std::string lab = lab_with_three(study("lab"));
+  const std::string lab = lab_with(study("lab"));
   const std::string station = dir_.file("station.sqlite");
   ASSERT_TRUE(copy_study(lab, station));  // the station takes the study with it
   {
@@ -350,7 +350,7 @@ TEST_P(Merge, RefusesWhatWouldChangeDataAndWritesNothing) {
   };
   int n = 0;
   for (const Case& c : cases) {
-    const std::string lab = lab_with_three(study("lab" + std::to_string(n)));
+    const std::string lab = lab_with(study("lab" + std::to_string(n)), 1);
     const std::string station = dir_.file("station" + std::to_string(n++) + ".sqlite");
     ASSERT_TRUE(copy_study(lab, station));
     c.station(station);
@@ -366,7 +366,7 @@ TEST_P(Merge, RefusesWhatWouldChangeDataAndWritesNothing) {
 
 // The command line: JSON summary, exit codes.
 TEST_P(Merge, CommandLineCopiesAndReportsRefusals) {
-  const std::string lab = lab_with_three(study("lab"));
+  const std::string lab = lab_with(study("lab"));
   const std::string archive = dir_.file("archive.sqlite");
   auto ok = dtlab::test::run_dtlab("copy '" + lab + "' '" + archive + "' --json");
   ASSERT_EQ(ok.rc, 0) << ok.err;

@@ -223,8 +223,13 @@ class Merger {
   Status run();
 
  private:
+  using Slots = std::map<std::int64_t, const Person*>;  // DST ledger slots after the merge
   Status map_studies();
   Status plan_ledger();
+  Status plan_present(const Person& p, const Person& q);
+  void plan_free_slots(const std::vector<const Person*>& renumber, Slots& used);
+  Status check_no_gaps(const Slots& used) const;
+  Status append_revisions();
   Status write_participants();
   Status import_session(std::int64_t src_session, std::int64_t dst_participant);
   Status merge_decisions(const char* table, std::optional<std::int64_t> src_pid, std::optional<std::int64_t> dst_pid);
@@ -312,49 +317,15 @@ Status Merger::plan_ledger() {
   src_ledger_ = std::move(*s);
   dst_ledger_ = std::move(*d);
   std::map<std::string, const Person*> dst_by_name;
-  std::map<std::int64_t, const Person*> used;  // DST ledger slots after the merge
+  Slots used;
   for (const Person& q : dst_ledger_) {
     dst_by_name[q.name()] = &q;
     used[q.index()] = &q;
   }
   std::vector<const Person*> renumber;
   for (const Person& p : src_ledger_) {
-    const std::string who = "participant \"" + p.name() + "\"";
     if (auto it = dst_by_name.find(p.name()); it != dst_by_name.end()) {
-      const Person& q = *it->second;
-      Row a = p.row, b = q.row;
-      a[0] = b[0] = std::int64_t{0};
-      a[4] = src_sha_[num(a[4])];
-      b[4] = dst_sha_[num(b[4])];
-      if (!p.session) {  // no plan yet: an earlier merge may have given them DST's next slot and row
-        a[2] = b[2] = a[3] = b[3] = std::int64_t{0};
-      }
-      if (a != b)
-        return refuse(dst_, "participants",
-                      who + " is in both with different enrollments (SRC: slot " + std::to_string(p.index()) + ", row " +
-                          std::to_string(p.order_row()) + ", enrolled " + text(p.row[6]) +
-                          (p.released() ? ", released" : "") + "; DST: slot " + std::to_string(q.index()) + ", row " +
-                          std::to_string(q.order_row()) + ", enrolled " + text(q.row[6]) +
-                          (q.released() ? ", released" : "") + ")");
-      Plan plan{&p, q.id(), q.index(), q.order_row(), false};
-      if (p.session && q.session) {
-        int in_src = 0, in_dst = 0;
-        auto rs = session_record(src_, *p.session, v2_, src_sha_, &in_src);
-        if (!rs) return rs.error();
-        auto rd = session_record(dst_, *q.session, true, dst_sha_, &in_dst);
-        if (!rd) return rd.error();
-        if (*rs != *rd)
-          return refuse(dst_, "sessions",
-                        who + " has a session in both that differs (SRC: " + std::to_string(in_src) +
-                            " trials recorded, DST: " + std::to_string(in_dst) +
-                            "); sessions are not merged trial by trial");
-        ++sum_.unchanged;
-      } else if (p.session) {
-        plan.import_session = true;
-      } else {
-        ++sum_.unchanged;
-      }
-      plans_.push_back(plan);
+      if (auto st = plan_present(p, *it->second); !st) return st;
       continue;
     }
     if (!p.session) {  // no plan yet: takes DST's next free slot below
@@ -363,13 +334,52 @@ Status Merger::plan_ledger() {
     }
     if (auto it = used.find(p.index()); it != used.end())
       return refuse(dst_, "participants.enrollment_index",
-                    who + " ran the plan of ledger slot " + std::to_string(p.index()) + " (order row " +
-                        std::to_string(p.order_row()) + "), which DST gives to participant \"" + it->second->name() +
-                        "\"; another slot would give other trial seeds (design/seeds.h)");
+                    "participant \"" + p.name() + "\" ran the plan of ledger slot " + std::to_string(p.index()) +
+                        " (order row " + std::to_string(p.order_row()) + "), which DST gives to participant \"" +
+                        it->second->name() + "\"; another slot would give other trial seeds (design/seeds.h)");
     used[p.index()] = &p;
     plans_.push_back(Plan{&p, std::nullopt, p.index(), p.order_row(), true});
   }
-  // Enrolled, never started: the lowest free slot and the row DST's rule gives (invariant 4).
+  plan_free_slots(renumber, used);
+  return check_no_gaps(used);
+}
+
+// A participant DST holds already: the same enrollment (a never-started one may have been given
+// another slot by an earlier merge), and the same session or none in DST.
+Status Merger::plan_present(const Person& p, const Person& q) {
+  const std::string who = "participant \"" + p.name() + "\"";
+  Row a = p.row, b = q.row;
+  a[0] = b[0] = std::int64_t{0};
+  a[4] = src_sha_[num(a[4])];
+  b[4] = dst_sha_[num(b[4])];
+  if (!p.session) a[2] = b[2] = a[3] = b[3] = std::int64_t{0};
+  if (a != b)
+    return refuse(dst_, "participants",
+                  who + " is in both with different enrollments (SRC: slot " + std::to_string(p.index()) + ", row " +
+                      std::to_string(p.order_row()) + ", enrolled " + text(p.row[6]) +
+                      (p.released() ? ", released" : "") + "; DST: slot " + std::to_string(q.index()) + ", row " +
+                      std::to_string(q.order_row()) + ", enrolled " + text(q.row[6]) +
+                      (q.released() ? ", released" : "") + ")");
+  Plan plan{&p, q.id(), q.index(), q.order_row(), false};
+  if (p.session && q.session) {
+    int in_src = 0, in_dst = 0;
+    auto rs = session_record(src_, *p.session, v2_, src_sha_, &in_src);
+    if (!rs) return rs.error();
+    auto rd = session_record(dst_, *q.session, true, dst_sha_, &in_dst);
+    if (!rd) return rd.error();
+    if (*rs != *rd)
+      return refuse(dst_, "sessions",
+                    who + " has a session in both that differs (SRC: " + std::to_string(in_src) +
+                        " trials recorded, DST: " + std::to_string(in_dst) + "); sessions are not merged trial by trial");
+  }
+  plan.import_session = p.session && !q.session;
+  if (!plan.import_session) ++sum_.unchanged;
+  plans_.push_back(plan);
+  return {};
+}
+
+// Enrolled, never started: the lowest free slot and the row DST's rule gives (invariant 4).
+void Merger::plan_free_slots(const std::vector<const Person*>& renumber, Slots& used) {
   const std::int64_t rows = dst_studies_.back().order_rows();
   std::vector<std::int64_t> fill(static_cast<std::size_t>(rows), 0);
   auto count_active = [&](std::int64_t row, bool released) {
@@ -391,41 +401,46 @@ Status Merger::plan_ledger() {
                              std::to_string(p->order_row()) + " -> " + std::to_string(row));
     ++sum_.renumbered;
   }
+}
+
+Status Merger::check_no_gaps(const Slots& used) const {
   std::string gaps;
   std::int64_t expect = 0;
   for (const auto& [index, who] : used) {
     for (; expect < index; ++expect) gaps += (gaps.empty() ? "" : ", ") + std::to_string(expect);
     expect = index + 1;
   }
-  if (!gaps.empty())
-    return refuse(dst_, "participants.enrollment_index",
-                  "the merge would leave ledger slot(s) " + gaps +
-                      " empty: participants who ran a plan keep their slot, and slots are given without gaps "
-                      "(docs/store.md, invariant 3)");
-  return {};
+  if (gaps.empty()) return {};
+  return refuse(dst_, "participants.enrollment_index",
+                "the merge would leave ledger slot(s) " + gaps +
+                    " empty: participants who ran a plan keep their slot, and slots are given without gaps "
+                    "(docs/store.md, invariant 3)");
 }
 
-Status Merger::write_participants() {
-  const std::int64_t now_current = dst_studies_.back().id();
-  for (const StudyRow& r : append_) {  // wording revisions of DST's design, as Store::open records them
+// SRC's texts of DST's design that DST lacks, recorded as revisions (as Store::open would).
+Status Merger::append_revisions() {
+  const std::int64_t was_current = dst_studies_.back().id();
+  for (const StudyRow& r : append_) {
     auto id = next("studies");
     if (!id) return id.error();
     Row row = r.row;
     row[0] = *id;
-    if (auto s = dst_.conn().insert_rows("studies", spec_columns("studies"), {row}, "adding a protocol revision"); !s) return s;
     std::vector<Row> factors;
     for (std::size_t i = 0; i < r.factors.size(); ++i)
       factors.push_back({*id, static_cast<std::int64_t>(i + 1), r.factors[i]});
-    if (auto s = dst_.conn().insert_rows("study_factors", spec_columns("study_factors"), factors, "adding a revision"); !s)
-      return s;
-    if (auto s = dst_.conn().insert_rows("study_designs", spec_columns("study_designs"), {{*id, r.design}}, "adding a revision");
-        !s)
-      return s;
+    for (const auto& [table, rows] : std::vector<std::pair<const char*, std::vector<Row>>>{
+             {"studies", {row}}, {"study_factors", factors}, {"study_designs", {{*id, r.design}}}})
+      if (auto s = dst_.conn().insert_rows(table, spec_columns(table), rows, "adding a protocol revision"); !s) return s;
     study_[r.id()] = *id;
     ++sum_.revisions;
     sum_.changes.push_back("protocol text " + r.sha().substr(0, 12) + " added as a revision of DST's design (DST's "
-                           "current text was study " + std::to_string(now_current) + ")");
+                           "current text was study " + std::to_string(was_current) + ")");
   }
+  return {};
+}
+
+Status Merger::write_participants() {
+  if (auto s = append_revisions(); !s) return s;
   for (Plan& p : plans_) {
     std::optional<std::int64_t> dst_pid = p.existing;
     if (!dst_pid) {

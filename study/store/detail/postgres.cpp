@@ -225,16 +225,22 @@ class PgConnection final : public Connection {
   }
 
   Status begin_write(std::string_view what) override {
-    if (auto s = exec("BEGIN ISOLATION LEVEL READ COMMITTED", what); !s) return s;
-    // The study's write lock: released by COMMIT or ROLLBACK, and by the server when the client dies.
-    if (auto s = exec("SELECT pg_advisory_xact_lock(" + std::to_string(kApplicationId) + ", " +
-                          std::to_string(address_.lock_key) + ")",
-                      what);
-        !s) {
-      rollback();
-      return s;
+    // One round trip: the transaction, the study's write lock (released by COMMIT or ROLLBACK, and
+    // by the server when the client dies), and the server's clock once the lock is held.
+    const std::string sql = "BEGIN ISOLATION LEVEL READ COMMITTED; SELECT pg_advisory_xact_lock(" +
+                            std::to_string(kApplicationId) + ", " + std::to_string(address_.lock_key) +
+                            "), extract(epoch FROM clock_timestamp())::float8";
+    PGresult* res = PQexec(conn_, sql.c_str());
+    Status out;
+    if (PQresultStatus(res) != PGRES_TUPLES_OK) {
+      out = pg_error(conn_, res, name_, what);
+    } else {
+      clock_offset_ = from_epoch(std::strtod(PQgetvalue(res, 0, 1), nullptr)) - std::chrono::system_clock::now();
+      in_write_ = true;
     }
-    return {};
+    PQclear(res);
+    if (!out) rollback();
+    return out;
   }
   Status begin_read(std::string_view what) override {
     if (auto s = exec("BEGIN ISOLATION LEVEL REPEATABLE READ READ ONLY", what); !s) return s;
@@ -245,6 +251,7 @@ class PgConnection final : public Connection {
     return {};
   }
   Status commit(std::string_view what) override {
+    in_write_ = false;
     if (PQtransactionStatus(conn_) == PQTRANS_INERROR)
       return Error{name_, 0, 0, "postgresql", std::string(what) + ": the transaction failed earlier; nothing of it is saved",
                    ErrorKind::internal};
@@ -258,6 +265,7 @@ class PgConnection final : public Connection {
     return out;
   }
   bool rollback() override {
+    in_write_ = false;
     const auto t = PQtransactionStatus(conn_);
     if (t == PQTRANS_IDLE) return true;
     if (t == PQTRANS_UNKNOWN) return false;  // the connection is gone: the server rolled back
@@ -326,13 +334,14 @@ class PgConnection final : public Connection {
     return report.empty() ? std::string("ok") : report;
   }
 
+  // The server's clock: read in the write transaction's first round trip and advanced by this
+  // machine's clock while the transaction runs (milliseconds); outside one, read from the server.
   Result<std::chrono::system_clock::time_point> now() override {
+    if (in_write_) return std::chrono::system_clock::now() + clock_offset_;
     auto st = prepare("SELECT extract(epoch FROM clock_timestamp())::float8", "reading the server's clock");
     auto row = (*st)->step("reading the server's clock");
     if (!row) return row.error();
-    const double s = (*st)->real(0);
-    return std::chrono::system_clock::time_point(
-        std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(s)));
+    return from_epoch((*st)->real(0));
   }
 
   Status insert_rows(const std::string& table, const std::vector<std::string>& columns,
@@ -416,8 +425,15 @@ class PgConnection final : public Connection {
     return s;
   }
 
+  static std::chrono::system_clock::time_point from_epoch(double seconds) {
+    return std::chrono::system_clock::time_point(
+        std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(seconds)));
+  }
+
   PGconn* conn_ = nullptr;
   PgAddress address_;
+  bool in_write_ = false;  // a write transaction is open: now() needs no round trip
+  std::chrono::system_clock::duration clock_offset_{};  // server clock - this machine's, at its start
 };
 
 Result<bool> PgStatement::step(std::string_view what) {
