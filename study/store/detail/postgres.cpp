@@ -28,6 +28,21 @@ namespace {
 // Type OIDs of the built-in types the store uses (PostgreSQL's catalog/pg_type.h).
 constexpr Oid kBool = 16, kInt8 = 20, kInt2 = 21, kInt4 = 23, kText = 25, kFloat4 = 700, kFloat8 = 701, kNumeric = 1700;
 
+// libpq's messages end in a newline and may hold more lines ("\n\tIs the server running ..."):
+// one line for an Error.
+std::string one_line(std::string m) {
+  std::string out;
+  for (char c : m) {
+    if (c == '\n' || c == '\t') {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
 // The ErrorKind of an SQLSTATE: integrity violations (class 23, our triggers raise 23000) are
 // conflicts; a lock held past lock_timeout, a serialization failure or a deadlock is busy
 // (retrying helps); a syntax error is ours (internal); bad data is the input's; the rest, the
@@ -49,8 +64,7 @@ Error pg_error(PGconn* conn, const PGresult* res, const std::string& name, std::
     message = primary ? primary : "";
     if (detail) message += std::string(" (") + detail + ")";
   } else {
-    message = conn ? PQerrorMessage(conn) : "out of memory";
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+    message = conn ? one_line(PQerrorMessage(conn)) : "out of memory";
     if (conn && PQstatus(conn) != CONNECTION_OK) message += "; the connection to the server is lost";
   }
   std::string msg = std::string(what) + ": " + message;
@@ -477,8 +491,7 @@ Result<std::unique_ptr<Connection>> open_postgres(const std::string& uri, Access
   if (!conn)
     return Error{address->display, 0, 0, "postgresql", "cannot connect: out of memory", ErrorKind::environment};
   if (PQstatus(conn) != CONNECTION_OK) {
-    std::string msg = PQerrorMessage(conn);
-    while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
+    const std::string msg = one_line(PQerrorMessage(conn));
     PQfinish(conn);
     return Error{address->display, 0, 0, "postgresql", "cannot connect to the PostgreSQL server: " + msg,
                  ErrorKind::environment};
