@@ -148,35 +148,6 @@ TEST_P(Processes, ConcurrentEnrollmentNeverSharesALedgerSlot) {
   EXPECT_EQ(joined(db, "SELECT count(*) FROM participants GROUP BY order_row ORDER BY order_row"), "14,14,13,13");
 }
 
-// Forks `n` children that wait on one pipe and then run body(k); returns their exit statuses.
-template <class F>
-std::vector<int> race(int n, F&& body) {
-  int go[2];
-  if (::pipe(go) != 0) return {};
-  std::vector<pid_t> pids;
-  for (int k = 0; k < n; ++k) {
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-      ::close(go[1]);
-      char c;
-      if (::read(go[0], &c, 1) != 1) ::_exit(90);
-      ::_exit(body(k));
-    }
-    pids.push_back(pid);
-  }
-  ::close(go[0]);
-  const std::string start(static_cast<std::size_t>(n), 'g');
-  if (::write(go[1], start.data(), start.size()) != static_cast<ssize_t>(start.size())) ADD_FAILURE() << "barrier";
-  ::close(go[1]);
-  std::vector<int> out;
-  for (pid_t pid : pids) {
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    out.push_back(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
-  }
-  return out;
-}
-
 // Regression (issue 9): two processes opening a new file at once sometimes failed with "not a
 // dtlab study database (application_id 0x00000000)": the header and the schema were read in two
 // snapshots, around the other process's commit. 8 processes, 50 new files in a row (3 new

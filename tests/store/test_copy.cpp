@@ -25,15 +25,6 @@ namespace {
 
 using namespace dtlab::store::testing;
 
-Store open_ok(const std::string& where, const StudyInfo& info = study_info(), OpenOptions o = {}) {
-  auto s = Store::open(where, info, o);
-  if (!s) {
-    ADD_FAILURE() << s.error().to_string();
-    std::abort();
-  }
-  return std::move(*s);
-}
-
 // Runs one participant's session: `n` trials recorded (all: finished), with an interrupted
 // attempt and a pause in trial 2.
 void run_participant(Store& s, const std::string& id, int n, Demographics demo = {}) {

@@ -22,15 +22,6 @@ namespace {
 using namespace dtlab::store::testing;
 namespace fs = std::filesystem;
 
-Store open_ok(const std::string& path, const StudyInfo& info = study_info(), OpenOptions o = {}) {
-  auto s = Store::open(path, info, o);
-  if (!s) {
-    ADD_FAILURE() << s.error().to_string();
-    std::abort();
-  }
-  return std::move(*s);
-}
-
 StudyReader read_ok(const std::string& path, ReadOptions o = {}) {
   auto r = StudyReader::open(path, o);
   if (!r) {

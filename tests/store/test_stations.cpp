@@ -18,6 +18,7 @@
 #include "study/store/copy.h"
 #include "study/store/export.h"
 #include "study/store/read.h"
+#include "tests/common/light_pilot.h"
 #include "tests/common/run_cli.h"
 #include "tests/store/store_fixtures.h"
 
@@ -64,28 +65,8 @@ DTLAB_ON_BOTH_BACKENDS(Stations);
 
 TEST_P(Stations, FourStationsFillEveryOrderRowEvenlyAndNeverShareASlot) {
   const std::string where = study("lab");  // created by whichever station comes first
-  int go[2];
-  ASSERT_EQ(::pipe(go), 0);
-  std::vector<pid_t> pids;
-  for (int k = 0; k < kStations; ++k) {
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      ::close(go[1]);
-      char c;
-      if (::read(go[0], &c, 1) != 1) ::_exit(90);
-      ::_exit(station(where, k));
-    }
-    pids.push_back(pid);
-  }
-  ::close(go[0]);
-  ASSERT_EQ(::write(go[1], "gggg", kStations), kStations);  // all start at once
-  ::close(go[1]);
-  for (pid_t pid : pids) {
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "station exit status " << status;
-  }
+  EXPECT_EQ(race(kStations, [&](int k) { return station(where, k); }), std::vector<int>(kStations, 0))
+      << "station exit codes";
 
   RawDb db(where);
   const int total = kStations * kEach;
@@ -119,13 +100,8 @@ TEST(PgStations, FourSimulateProcessesOnOneServer) {
   DTLAB_SKIP_WITHOUT_SERVER(Backend::postgresql);
   TempDir dir;
   const std::string where = new_study(Backend::postgresql, dir.path(), "pilot");
-  std::string text = slurp(std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml");
-  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
-           {"objects = 200", "objects = 40"}, {"grid = [16, 16]", "grid = [8, 8]"}, {"objects = 50", "objects = 20"}}) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
+  const std::string text = dtlab::test::light_pilot_text();
+  ASSERT_FALSE(text.empty()) << "protocols/pilot.toml no longer has the lines light_pilot_text() lightens";
   const std::string protocol = dir.file("pilot-light.toml");
   std::ofstream(protocol) << text;
   std::string script;

@@ -23,15 +23,6 @@ namespace {
 
 using namespace dtlab::store::testing;
 
-Store open_ok(const std::string& path, const StudyInfo& info = study_info(), OpenOptions o = {}) {
-  auto s = Store::open(path, info, o);
-  if (!s) {
-    ADD_FAILURE() << s.error().to_string();
-    std::abort();
-  }
-  return std::move(*s);
-}
-
 std::string read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

@@ -34,22 +34,27 @@ Result<std::unique_ptr<Connection>> open_connection(const std::string& where, Ac
   return open_sqlite(where, access, busy_timeout_ms);
 }
 
-Result<std::optional<std::int64_t>> Db::query_int(const std::string& sql, std::string_view what) {
-  auto st = Stmt::prepare(*this, sql, what);
+namespace {
+
+// The first column of the first row, read by `get`; nullopt if there is no row or it is NULL.
+template <class T, class Get>
+Result<std::optional<T>> query_one(const Db& db, const std::string& sql, std::string_view what, Get get) {
+  auto st = Stmt::prepare(db, sql, what);
   if (!st) return st.error();
   auto row = st->step(what);
   if (!row) return row.error();
-  if (!*row || st->is_null(0)) return std::optional<std::int64_t>{};
-  return std::optional<std::int64_t>{st->int64(0)};
+  if (!*row || st->is_null(0)) return std::optional<T>{};
+  return std::optional<T>{get(*st)};
+}
+
+}  // namespace
+
+Result<std::optional<std::int64_t>> Db::query_int(const std::string& sql, std::string_view what) {
+  return query_one<std::int64_t>(*this, sql, what, [](const Stmt& st) { return st.int64(0); });
 }
 
 Result<std::optional<std::string>> Db::query_text(const std::string& sql, std::string_view what) {
-  auto st = Stmt::prepare(*this, sql, what);
-  if (!st) return st.error();
-  auto row = st->step(what);
-  if (!row) return row.error();
-  if (!*row || st->is_null(0)) return std::optional<std::string>{};
-  return std::optional<std::string>{st->text(0)};
+  return query_one<std::string>(*this, sql, what, [](const Stmt& st) { return st.text(0); });
 }
 
 Result<std::string> Db::now_iso() {
