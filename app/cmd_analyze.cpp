@@ -13,6 +13,7 @@
 #include "analysis/report/report.h"
 #include "app/commands.h"
 #include "app/database_arg.h"
+#include "study/common/text.h"
 
 namespace dtlab::app {
 
@@ -50,9 +51,6 @@ void run_analyze(const AnalyzeArgs& a) {
                      {"simulated", sum->simulated}, {"warnings", sum->warnings}};
     std::cout << j.dump(2) << "\n";
   } else {
-    auto count = [](long long n, const char* what) {
-      return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
-    };
     std::cerr << "dtlab analyze: wrote " << a.out << "/index.html and report.md (" << count(sum->participants, "participant")
               << ", " << count(sum->trials, "trial") << ", " << count(sum->tests, "test")
               << (sum->excluded_trials ? ", " + count(sum->excluded_trials, "excluded trial") +

@@ -22,8 +22,10 @@
 #include "app/commands.h"
 #include "app/database_arg.h"
 #include "study/common/file.h"
+#include "study/common/text.h"
 #include "study/protocol/protocol.h"
 #include "study/session/mapping.h"
+#include "study/session/runnable.h"
 #include "study/sim/summary.h"
 #include "study/store/export.h"
 #include "study/store/read.h"
@@ -103,10 +105,10 @@ void run_demo(DemoArgs a) {
                                   [](const std::string& step) { std::cerr << "dtlab demo: report: " << step << "\n"; });
   if (!rep) fail(exit_code(rep.error()), rep.error().to_string());
   for (const auto& w : rep->warnings) std::cerr << "dtlab demo: report: warning: " << w << "\n";
-  const protocol::Factor* rendering = protocol::rendering_factor(p.value());
+  const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
   auto summary = sim::summarize(*reader, rendering ? rendering->name : "");
-  std::cout << "dtlab demo: " << r.finished_total << " of " << a.run.participants << " simulated participants finished ("
-            << r.trials_run << " trials run now, in " << std::lround(r.wall_s) << " s)\n";
+  std::cout << "dtlab demo: " << r.finished_total << " of " << count(a.run.participants, "simulated participant")
+            << " finished (" << count(r.trials_run, "trial") << " run now, in " << std::lround(r.wall_s) << " s)\n";
   if (summary) std::cout << sim::format_summary(summary.value());
   std::cout << "  protocol  " << protocol_path.string() << "\n"
             << "  database  " << store::display_name(a.run.db) << "\n"
@@ -142,9 +144,11 @@ void add_demo_command(CLI::App& root) {
   cmd->add_option("--jobs", a->run.jobs, "Worker processes (default: one per processor)")->check(CLI::Range(1, 64));
   cmd->add_option("--seed", a->run.seed, "Seed of the simulated participants' traits and choices")->capture_default_str();
   cmd->add_option("--width", a->run.width, "Width of every view the agents look at, pixels")
-      ->check(CLI::Range(16, 4096))
+      ->check(CLI::Range(session::kMinViewportSide, session::kMaxViewportSide))
       ->capture_default_str();
-  cmd->add_option("--height", a->run.height, "Height of every view, pixels")->check(CLI::Range(16, 4096))->capture_default_str();
+  cmd->add_option("--height", a->run.height, "Height of every view, pixels")
+      ->check(CLI::Range(session::kMinViewportSide, session::kMaxViewportSide))
+      ->capture_default_str();
   cmd->callback([a] { run_demo(*a); });
 }
 

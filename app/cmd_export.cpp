@@ -16,6 +16,7 @@
 #include "app/database_arg.h"
 #include "study/common/file.h"
 #include "study/session/mapping.h"
+#include "study/common/text.h"
 #include "study/store/export.h"
 #include "study/store/read.h"
 
@@ -51,8 +52,8 @@ void run_export(const ExportArgs& a) {
                      {"columns", sum.columns}};
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cerr << "dtlab export: wrote " << sum.rows << (sum.rows == 1 ? " trial" : " trials") << " ("
-              << sum.columns.size() << " columns) to " << a.csv;
+    std::cerr << "dtlab export: wrote " << count(sum.rows, "trial") << " ("
+              << count(static_cast<long long>(sum.columns.size()), "column") << ") to " << a.csv;
     if (sum.excluded > 0)
       std::cerr << "; " << sum.excluded << " of them excluded (their `excluded` column holds the reason)";
     std::cerr << "\n";

@@ -9,7 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +19,7 @@
 
 #include "app/commands.h"
 #include "app/database_arg.h"
+#include "study/common/text.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
 #include "study/session/mapping.h"
@@ -46,7 +49,7 @@ nlohmann::ordered_json plan_json(const design::Plan& plan) {
 void print_table(const protocol::Protocol& p, const design::Plan& plan, int rows) {
   std::cout << "protocol " << plan.protocol_id << " (" << p.source_path << "), enrollment index " << plan.index
             << ", order row " << plan.order_row << " of " << rows << " ("
-            << protocol::to_string(p.order.scheme) << "), " << plan.trials.size() << " trials\n";
+            << protocol::to_string(p.order.scheme) << "), " << count(static_cast<long long>(plan.trials.size()), "trial") << "\n";
   std::vector<std::string> header{"position", "block"};
   for (const auto& f : p.factors) header.push_back(f.name);
   for (const char* h : {"task", "trial", "seed", "method"}) header.emplace_back(h);
@@ -79,6 +82,20 @@ void print_table(const protocol::Protocol& p, const design::Plan& plan, int rows
   for (const auto& row : cells) print_row(row);
 }
 
+// --index: an integer 0 .. INT_MAX, said in one message whatever was written (-1, 1e99, "x").
+CLI::Validator enrollment_index_check() {
+  return CLI::Validator(
+      [](const std::string& text) -> std::string {
+        long long v = -1;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || end != text.data() + text.size() || v < 0 || v > std::numeric_limits<int>::max())
+          return "expected an enrollment index, an integer from 0 to " +
+                 std::to_string(std::numeric_limits<int>::max()) + "; got '" + text + "'";
+        return {};
+      },
+      "INDEX");
+}
+
 }  // namespace
 
 void add_plan_command(CLI::App& root) {
@@ -89,8 +106,8 @@ void add_plan_command(CLI::App& root) {
   auto participant = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   cmd->add_option("protocol", *path, "Protocol file (TOML; format in docs/protocol.md)")->required();
-  auto* index_opt = cmd->add_option("--index", *index, "0-based enrollment index K; gets order row K mod rows")
-                        ->check(CLI::NonNegativeNumber);
+  auto* index_opt = cmd->add_option("--index", *index, "0-based enrollment index K (0 to 2147483647); gets order row K mod rows")
+                        ->check(enrollment_index_check());
   auto* db_opt = cmd->add_option("--db", *db,
                                  std::string(kDatabaseHelp) + ": take K and the order row from its participant ledger")
                      ->check(existing_database());
@@ -107,8 +124,11 @@ void add_plan_command(CLI::App& root) {
       "Exit status: 0 ok, 1 invalid protocol, unknown participant or a database of another protocol\n"
       "(FILE:LINE:COLUMN: error: FIELD: MESSAGE on stderr), 2 bad command line, 3 database failure.");
   cmd->callback([path, index, db, participant, json, index_opt] {
-    if (index_opt->count() == 0 && db->empty())
-      throw CLI::RequiredError("plan: give --index K or --db FILE --participant ID");
+    if (index_opt->count() == 0 && db->empty()) {
+      std::cerr << "dtlab plan: give either --index K or --db FILE --participant ID\n"
+                << "Run with --help for more information.\n";
+      throw CLI::RuntimeError(kExitUsage);
+    }
     const auto p = protocol::load_protocol(*path);
     if (!p.ok()) {
       std::cerr << Diagnostic{Severity::error, p.error()}.to_string() << "\n"

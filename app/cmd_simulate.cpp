@@ -4,8 +4,10 @@
 // database; progress on stderr, a summary on stdout. Into an existing database it continues: running sessions
 // resume, finished ones are skipped, ids up to sim-N are added. Ctrl-C stops
 // after the trials in progress (a second Ctrl-C at once); SIGKILL loses at
-// most the trials in progress. Exit 0 all finished, 1 bad protocol/database,
-// 2 bad command line, 3 environment (GL, database, fork), 130 interrupted.
+// most the trials in progress. The protocol is checked first as `dtlab
+// validate` does (session::validate_runnable). Exit 0 all finished, 1 bad
+// protocol/database, 2 bad command line, 3 environment (GL, database, fork),
+// 130 interrupted.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -20,8 +22,10 @@
 #include "app/commands.h"
 #include "app/database_arg.h"
 #include "app/platform/gl_context.h"
+#include "study/common/text.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
+#include "study/session/runnable.h"
 #include "study/sim/driver.h"
 #include "study/sim/summary.h"
 #include "study/session/mapping.h"
@@ -108,7 +112,7 @@ void run_simulate(const SimulateArgs& a) {
   const int rc = run_simulation(p.value(), run, "dtlab simulate", r);
   if (rc != kExitOk && rc != kExitInterrupted && rc != kExitFailure) throw CLI::RuntimeError(rc);
   auto reader = store::StudyReader::open(a.db, session::read_options());
-  const protocol::Factor* rendering = protocol::rendering_factor(p.value());
+  const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
   auto summary = reader ? sim::summarize(*reader, rendering ? rendering->name : "") : Result<sim::Summary>(reader.error());
   if (a.json) {
     nlohmann::json j{{"protocol", p->id},          {"database", store::display_name(a.db)},
@@ -128,11 +132,10 @@ void run_simulate(const SimulateArgs& a) {
     std::cout << j.dump(2) << "\n";
   } else {
     std::cout << "dtlab simulate: " << p->id << " -> " << store::display_name(a.db) << ": " << r.finished_total << " of "
-              << run.participants << " participants finished (" << r.already_finished << " before this run, "
+              << count(run.participants, "participant") << " finished (" << r.already_finished << " before this run, "
               << r.resumed << " resumed";
     if (r.elsewhere > 0) std::cout << ", " << r.elsewhere << " run by another process";
-    std::cout << "); " << r.trials_run << (r.trials_run == 1 ? " trial" : " trials") << " in "
-              << clock_text(r.wall_s) << "\n";
+    std::cout << "); " << count(r.trials_run, "trial") << " in " << clock_text(r.wall_s) << "\n";
     if (summary) std::cout << sim::format_summary(summary.value());
   }
   if (rc != kExitOk) throw CLI::RuntimeError(rc);
@@ -143,6 +146,10 @@ void run_simulate(const SimulateArgs& a) {
 int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const std::string& prefix,
                    SimulationResult& result) {
   const auto start = std::chrono::steady_clock::now();
+  // What the sessions will hand the generator and the renderer, checked before anything runs.
+  const auto problems = session::validate_runnable(p, {session::Viewport{run.width, run.height}});
+  for (const auto& d : problems) std::cerr << prefix << ": " << d.to_string() << "\n";
+  if (protocol::has_errors(problems)) return kExitInvalid;
   const store::OpenOptions open = session::open_options(run.allow_protocol_change);
   auto roster = sim::enroll_simulated(run.db, p, run.participants, open);
   if (!roster) {
@@ -203,7 +210,8 @@ int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const 
               << ". Run the same command again to resume.\n";
     return kExitInterrupted;
   }
-  return ran->failed > 0 ? kExitFailure : kExitOk;
+  if (ran->failed == 0) return kExitOk;
+  return ran->failed == ran->invalid ? kExitInvalid : kExitFailure;
 }
 
 void add_simulate_command(CLI::App& root) {
@@ -216,9 +224,12 @@ void add_simulate_command(CLI::App& root) {
       "finished ones are skipped, participants sim-001 .. sim-N are added as needed. Ctrl-C stops after the trials "
       "in progress; rerun to resume");
   cmd->footer(
+      "Before anything runs, the protocol is checked as `dtlab validate` checks it, at this --width x --height too\n"
+      "(errors as FILE:LINE:COLUMN: error: FIELD: MESSAGE; nothing is created).\n"
       "Progress on stderr (one line per recorded trial, with an ETA); a per-task summary on stdout.\n"
-      "Exit status: 0 all finished, 1 invalid protocol or database, 2 bad command line, 3 environment (GL, database, "
-      "fork) or a participant failed, 130 interrupted (rerun to resume).");
+      "Exit status: 0 all finished, 1 invalid protocol (also when every failed session failed on it) or database,\n"
+      "2 bad command line, 3 environment (GL, database, fork) or a participant failed otherwise, 130 interrupted\n"
+      "(rerun to resume).");
   cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--participants", a->run.participants, "Simulated participants sim-001 .. sim-N")
       ->required()
@@ -228,9 +239,11 @@ void add_simulate_command(CLI::App& root) {
                                          "come from the protocol's master seed)")
       ->capture_default_str();
   cmd->add_option("--width", a->run.width, "Width of every view the agents look at, pixels")
-      ->check(CLI::Range(16, 4096))
+      ->check(CLI::Range(session::kMinViewportSide, session::kMaxViewportSide))
       ->capture_default_str();
-  cmd->add_option("--height", a->run.height, "Height of every view, pixels")->check(CLI::Range(16, 4096))->capture_default_str();
+  cmd->add_option("--height", a->run.height, "Height of every view, pixels")
+      ->check(CLI::Range(session::kMinViewportSide, session::kMaxViewportSide))
+      ->capture_default_str();
   cmd->add_option("--jobs", a->run.jobs, "Worker processes (each its own GL context and database connection)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();

@@ -1,11 +1,13 @@
 // `dtlab stats anova|rm-anova|friedman|wilcoxon`: the statistics library
 // (analysis/stats) on any long-format CSV (or --wide, one column per
-// condition). Prints a readable table, or with --json one JSON object whose
-// numbers round-trip (shortest representation that reads back to the same
-// double; NaN as null, infinities as the strings "Infinity"/"-Infinity").
+// condition). Rows are selected first (--where, practice trials, rows marked
+// excluded: analysis/stats/select.h) and what was left out is stated. Prints
+// a readable table, or with --json one JSON object whose numbers round-trip
+// (analysis/stats/json.h: NaN as null, infinities as "Infinity"/"-Infinity").
 // Warnings (listwise deletion naming the subjects, degenerate data) go to
-// stderr and into the JSON "warnings" array. Exit codes: 1 bad CSV or data,
-// 3 unreadable file, 2 bad command line. Never writes any file.
+// stderr and into the JSON "warnings" array; Monte Carlo progress to stderr.
+// Exit codes: 1 bad CSV or data, 3 unreadable file, 2 bad command line.
+// Never writes any file.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -13,17 +15,22 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/stats/anova.h"
+#include "analysis/stats/apa.h"
+#include "analysis/stats/assumptions.h"
 #include "analysis/stats/csv.h"
+#include "analysis/stats/followup.h"
 #include "analysis/stats/friedman.h"
+#include "analysis/stats/json.h"
 #include "analysis/stats/long_data.h"
 #include "analysis/stats/paired.h"
 #include "analysis/stats/posthoc.h"
 #include "analysis/stats/rm_anova.h"
+#include "analysis/stats/select.h"
 #include "app/commands.h"
 
 namespace dtlab::app {
@@ -33,17 +40,26 @@ using json = nlohmann::ordered_json;
 namespace st = dtlab::stats;
 
 struct StatsOptions {
-  std::string data, dv, subject, exact = "auto", alternative = "two-sided";
-  std::vector<std::string> within, between, observed;
+  std::string data, dv, subject, exact = "auto", alternative = "two-sided", aggregate = "none", factor;
+  std::vector<std::string> within, between, observed, where;
   std::uint64_t seed = 1;
   bool wide = false, json = false, posthoc = false, no_correct = false;
+  bool exclude_practice = false, include_practice = false, with_excluded = false;
+  bool simple_effects = false, within_ci = false, normality = false;
 };
 
-json num(double v) {
-  if (std::isnan(v)) return nullptr;
-  if (std::isinf(v)) return v > 0 ? "Infinity" : "-Infinity";
-  return v;
-}
+// The optional follow-ups of rm-anova (--simple-effects, --within-ci, --normality).
+struct Followups {
+  std::vector<st::SimpleEffects> simple;
+  std::vector<st::CellInterval> intervals;
+  std::optional<st::ShapiroWilkResult> normality;
+};
+
+// What the row selection did, for the output.
+struct Loaded {
+  st::LongData data;
+  st::SelectionReport selection;
+};
 
 [[noreturn]] void fail(int code, const std::string& message) {
   std::cerr << "dtlab stats: " << message << "\n";
@@ -52,16 +68,27 @@ json num(double v) {
 
 std::string fmt(double v) {
   if (std::isnan(v)) return "NA";
-  if (std::isinf(v)) return v > 0 ? "Inf" : "-Inf";
+  if (std::isinf(v)) return v > 0 ? "Infinity" : "-Infinity";
   char b[64];
   std::snprintf(b, sizeof b, "%.6g", v);
   return b;
 }
 
+// p for a table: 6 significant digits; below the double range from its log10 ("5.89e-346"); 0 only when exact.
 std::string fmt_p(double p, double log10_p) {
   if (std::isnan(p)) return "NA";
-  if (p < 1e-300 || p == 0) return "1e" + fmt(log10_p);
+  if (p == 0 && std::isinf(log10_p)) return "0";
+  if (p < 1e-300 && std::isfinite(log10_p)) {
+    const double e = std::floor(log10_p);
+    char b[64];
+    std::snprintf(b, sizeof b, "%.3ge%.0f", std::pow(10.0, log10_p - e), e);
+    return b;
+  }
   return fmt(p);
+}
+
+std::string count(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
 st::ExactOptions parse_exact(const StatsOptions& o) {
@@ -79,19 +106,45 @@ st::ExactOptions parse_exact(const StatsOptions& o) {
     char* end = nullptr;
     const unsigned long long v = std::strtoull(n.c_str(), &end, 10);
     if (n.empty() || *end != '\0' || v == 0 || v > 100000000ULL)
-      fail(kExitUsage, "--exact monte-carlo=N needs N between 1 and 100000000, got '" + n + "'");
+      fail(kExitUsage, "--exact monte-carlo=N needs N between 1 and 100000000, got " + st::quote_text(n));
     e.monte_carlo_samples = static_cast<std::size_t>(v);
+    e.progress = [last = -1](std::size_t done, std::size_t total) mutable {
+      const int tenth = static_cast<int>(10 * done / total);
+      if (tenth == last) return;
+      last = tenth;
+      std::cerr << "dtlab stats: Monte Carlo " << done << " of " << total << " resamples\n";
+    };
   } else {
-    fail(kExitUsage, "--exact must be auto, always, never or monte-carlo=N, got '" + o.exact + "'");
+    fail(kExitUsage, "--exact must be auto, always, never or monte-carlo=N, got " + st::quote_text(o.exact));
   }
   return e;
 }
 
-// Reads the CSV and assigns the roles; on failure prints file:line:column and throws.
-st::LongData load(const StatsOptions& o, bool groups_design) {
+st::RowSelection parse_selection(const StatsOptions& o) {
+  st::RowSelection s;
+  if (o.exclude_practice && o.include_practice) fail(kExitUsage, "--exclude-practice and --include-practice exclude each other");
+  s.practice = o.exclude_practice ? st::Practice::exclude : o.include_practice ? st::Practice::include : st::Practice::automatic;
+  s.with_excluded = o.with_excluded;
+  for (const auto& w : o.where) {
+    auto c = st::parse_row_condition(w);
+    if (!c) fail(kExitUsage, c.error().to_string());
+    s.where.push_back(*c);
+  }
+  return s;
+}
+
+// Reads the CSV, selects rows and assigns the roles; on failure prints file:line:column and throws.
+Loaded load(const StatsOptions& o, bool groups_design) {
+  const st::RowSelection selection = parse_selection(o);
+  st::Aggregate aggregate = st::Aggregate::none;
+  if (o.aggregate == "mean") aggregate = st::Aggregate::mean;
+  else if (o.aggregate == "median") aggregate = st::Aggregate::median;
+  else if (o.aggregate != "none") fail(kExitUsage, "--aggregate must be none, mean or median, got " + st::quote_text(o.aggregate));
   auto table = st::read_csv_file(o.data);
   if (!table) fail(table.error().line == 0 && table.error().message.rfind("cannot open", 0) == 0 ? kExitFailure : kExitInvalid,
                    table.error().to_string());
+  auto report = st::select_rows(*table, selection);
+  if (!report) fail(kExitInvalid, report.error().to_string());
   Result<st::LongData> data = Error{};
   if (o.wide) {
     st::WideRoles w;
@@ -113,107 +166,127 @@ st::LongData load(const StatsOptions& o, bool groups_design) {
     data = st::long_data_from_csv(*table, roles);
   }
   if (!data) fail(kExitInvalid, data.error().to_string());
-  return std::move(data).value();
+  data->aggregate = aggregate;
+  return {std::move(data).value(), *report};
 }
 
 void warn(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "dtlab stats: warning: " << w << "\n";
 }
 
-json effect_json(const st::Effect& e) {
-  return json{{"effect", e.name},        {"df1", num(e.df1)},          {"df2", num(e.df2)},
-              {"ss", num(e.ss)},         {"ss_error", num(e.ss_error)}, {"F", num(e.F)},
-              {"p", num(e.p)},           {"log10_p", num(e.log10_p)},  {"eta_p2", num(e.eta_p2)},
-              {"eta_g2", num(e.eta_g2)}, {"mauchly_W", num(e.mauchly_W)}, {"mauchly_p", num(e.mauchly_p)},
-              {"gg_epsilon", num(e.gg_epsilon)}, {"hf_epsilon", num(e.hf_epsilon)},
-              {"p_gg", num(e.p_gg)},     {"p_hf", num(e.p_hf)}};
+json header_json(const char* test, const StatsOptions& o, const st::SelectionReport& s) {
+  json where = json::array();
+  for (const auto& w : o.where) where.push_back(w);
+  return json{{"test", test},
+              {"data", o.data},
+              {"dv", o.dv},
+              {"subject", o.subject},
+              {"within", o.within},
+              {"between", o.between},
+              {"aggregate", o.aggregate},
+              {"rows", {{"read", s.read},
+                        {"used", s.kept},
+                        {"practice_left_out", s.practice_left_out},
+                        {"excluded_left_out", s.excluded_left_out},
+                        {"where_left_out", s.where_left_out},
+                        {"where", where},
+                        {"notes", s.notes}}}};
 }
 
-json descriptives_json(const st::Descriptives& d) {
-  return json{{"n", d.n},           {"mean", num(d.mean)},     {"sd", num(d.sd)},         {"se", num(d.se)},
-              {"ci_low", num(d.ci_low)}, {"ci_high", num(d.ci_high)}, {"median", num(d.median)},
-              {"q1", num(d.q1)},    {"q3", num(d.q3)},         {"iqr", num(d.iqr)}};
-}
-
-json comparisons_json(const std::vector<st::Comparison>& cs) {
-  json a = json::array();
-  for (const auto& c : cs)
-    a.push_back({{"a", c.a}, {"b", c.b}, {"test", c.test}, {"estimate", num(c.estimate)},
-                 {"statistic", num(c.statistic)}, {"df", num(c.df)}, {"p", num(c.p)}, {"p_holm", num(c.p_holm)}});
-  return a;
+void print_selection(const st::SelectionReport& s) {
+  if (s.notes.empty()) return;
+  std::cout << "Rows: " << s.read << " read, " << s.kept << " used";
+  for (const auto& n : s.notes) std::cout << "; " << n;
+  std::cout << "\n\n";
 }
 
 void print_comparisons(const std::string& factor, const std::vector<st::Comparison>& cs) {
-  std::cout << "\nPairwise comparisons of " << factor << " (Holm-corrected)\n";
-  for (const auto& c : cs)
-    std::cout << "  " << c.a << " - " << c.b << ": " << c.test << " statistic " << fmt(c.statistic)
-              << (std::isnan(c.df) ? "" : ", df " + fmt(c.df)) << ", p " << fmt(c.p) << ", p_holm " << fmt(c.p_holm) << "\n";
+  std::cout << "\nPairwise comparisons of " << factor << " (Holm-corrected; differences a - b)\n"
+            << "  a - b                    test        n   estimate         SE   95% CI                    statistic"
+               "       df          p     p_holm        dz\n";
+  for (const auto& c : cs) {
+    char b[512];
+    std::snprintf(b, sizeof b, "  %-24s %-9s %4zu %10s %10s   [%10s, %10s] %10s %8s %10s %10s %9s\n",
+                  (c.a + " - " + c.b).c_str(), c.test.c_str(), c.n, fmt(c.estimate).c_str(), fmt(c.se).c_str(),
+                  fmt(c.ci_low).c_str(), fmt(c.ci_high).c_str(), fmt(c.statistic).c_str(), fmt(c.df).c_str(),
+                  fmt(c.p).c_str(), fmt(c.p_holm).c_str(), fmt(c.dz).c_str());
+    std::cout << b;
+  }
 }
 
 void print_effects(const std::vector<st::Effect>& effects) {
-  std::cout << "effect                   df1      df2          SS    SS_error           F          p   eta_p2   eta_g2\n";
+  std::cout << "effect                    df1      df2          SS    SS_error         MSE           F          p"
+               "   eta_p2  90% CI of eta_p2     eta_g2\n";
   for (const auto& e : effects) {
     char b[512];
-    std::snprintf(b, sizeof b, "%-20s %8s %8s %11s %11s %11s %10s %8s %8s\n", e.name.c_str(), fmt(e.df1).c_str(),
-                  fmt(e.df2).c_str(), fmt(e.ss).c_str(), fmt(e.ss_error).c_str(), fmt(e.F).c_str(),
-                  fmt_p(e.p, e.log10_p).c_str(), fmt(e.eta_p2).c_str(), fmt(e.eta_g2).c_str());
+    std::snprintf(b, sizeof b, "%-20s %8s %8s %11s %11s %11s %11s %10s %8s  [%6s, %6s] %10s\n", e.name.c_str(),
+                  fmt(e.df1).c_str(), fmt(e.df2).c_str(), fmt(e.ss).c_str(), fmt(e.ss_error).c_str(), fmt(e.mse).c_str(),
+                  fmt(e.F).c_str(), fmt_p(e.p, e.log10_p).c_str(), fmt(e.eta_p2).c_str(),
+                  st::apa_bounded(e.eta_p2_ci_low, 3).c_str(), st::apa_bounded(e.eta_p2_ci_high, 3).c_str(),
+                  fmt(e.eta_g2).c_str());
     std::cout << b;
   }
   bool any = false;
-  for (const auto& e : effects)
-    if (e.within && e.df1 > 1 && !std::isnan(e.gg_epsilon)) any = true;
-  if (!any) return;
-  std::cout << "\nsphericity               Mauchly W   p(W)     GG eps    HF eps     p[GG]      p[HF]\n";
-  for (const auto& e : effects) {
-    if (!e.within || std::isnan(e.mauchly_W)) continue;
-    char b[512];
-    std::snprintf(b, sizeof b, "%-20s %11s %8s %10s %9s %10s %10s\n", e.name.c_str(), fmt(e.mauchly_W).c_str(),
-                  fmt(e.mauchly_p).c_str(), fmt(e.gg_epsilon).c_str(), fmt(e.hf_epsilon).c_str(),
-                  fmt_p(e.p_gg, e.log10_p_gg).c_str(), fmt_p(e.p_hf, e.log10_p_hf).c_str());
-    std::cout << b;
+  for (const auto& e : effects) any = any || (e.within && !std::isnan(e.mauchly_W));
+  if (any) {
+    std::cout << "\nsphericity            Mauchly W     p(W)     GG eps            df (GG)      p[GG]     HF eps"
+                 "            df (HF)      p[HF]\n";
+    for (const auto& e : effects) {
+      if (!e.within || std::isnan(e.mauchly_W)) continue;
+      char b[512];
+      std::snprintf(b, sizeof b, "%-20s %11s %8s %10s %18s %10s %10s %18s %10s\n", e.name.c_str(),
+                    fmt(e.mauchly_W).c_str(), fmt(e.mauchly_p).c_str(), fmt(e.gg_epsilon).c_str(),
+                    (fmt(e.df1_gg) + ", " + fmt(e.df2_gg)).c_str(), fmt_p(e.p_gg, e.log10_p_gg).c_str(),
+                    fmt(e.hf_epsilon).c_str(), (fmt(e.df1_hf) + ", " + fmt(e.df2_hf)).c_str(),
+                    fmt_p(e.p_hf, e.log10_p_hf).c_str());
+      std::cout << b;
+    }
   }
+  std::cout << "\nAPA (Greenhouse-Geisser df and p for within effects with more than one df)\n";
+  for (const auto& e : effects) std::cout << "  " << e.name << ": " << st::apa_effect(e) << "\n";
 }
 
-json header_json(const char* test, const StatsOptions& o) {
-  return json{{"test", test}, {"data", o.data}, {"dv", o.dv}, {"subject", o.subject}, {"within", o.within},
-              {"between", o.between}};
+void print_descriptives(const std::string& label, const st::Descriptives& d) {
+  std::cout << "  " << label << ": n " << d.n << ", mean " << fmt(d.mean) << ", sd " << fmt(d.sd) << ", se " << fmt(d.se)
+            << ", CI [" << fmt(d.ci_low) << ", " << fmt(d.ci_high) << "], median " << fmt(d.median) << ", IQR "
+            << fmt(d.iqr) << "\n";
 }
 
 void run_anova(const StatsOptions& o) {
   if (o.between.size() != 1 && !o.wide) fail(kExitUsage, "anova needs --between COL (one factor)");
   if (!o.within.empty()) fail(kExitUsage, "anova takes no --within; use rm-anova");
-  const st::LongData data = load(o, true);
-  auto r = st::one_way_anova(data);
+  const Loaded in = load(o, true);
+  auto r = st::one_way_anova(in.data);
   if (!r) fail(kExitInvalid, r.error().to_string());
   std::vector<st::Comparison> post;
   if (o.posthoc) {
-    auto pc = st::pairwise_between(data);
+    auto pc = st::pairwise_between(in.data);
     if (!pc) fail(kExitInvalid, pc.error().to_string());
     post = *pc;
   }
   warn(r->warnings);
   if (o.json) {
-    json j = header_json("anova", o);
+    json j = header_json("anova", o, in.selection);
     j["n"] = r->n;
-    j["effects"] = json::array({effect_json(r->effect)});
+    j["effects"] = json::array({st::effect_json(r->effect)});
     json groups = json::array();
     for (const auto& g : r->groups) {
-      json d = descriptives_json(g.d);
+      json d = st::descriptives_json(g.d);
       d["group"] = g.level;
       groups.push_back(d);
     }
     j["descriptives"] = groups;
-    if (o.posthoc) j["posthoc"] = comparisons_json(post);
+    if (o.posthoc) j["posthoc"] = st::comparisons_json(post);
     j["warnings"] = r->warnings;
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::cout << "One-way ANOVA of " << data.dv_name << " by " << r->factor << " (" << r->n << " observations)\n\n";
+  print_selection(in.selection);
+  std::cout << "One-way ANOVA of " << in.data.dv_name << " by " << r->factor << " ("
+            << count(r->n, "observation", "observations") << ")\n\n";
   print_effects({r->effect});
   std::cout << "\ngroups\n";
-  for (const auto& g : r->groups)
-    std::cout << "  " << g.level << ": n " << g.d.n << ", mean " << fmt(g.d.mean) << ", sd " << fmt(g.d.sd) << ", CI ["
-              << fmt(g.d.ci_low) << ", " << fmt(g.d.ci_high) << "], median " << fmt(g.d.median) << ", IQR " << fmt(g.d.iqr) << "\n";
+  for (const auto& g : r->groups) print_descriptives(g.level, g.d);
   if (o.posthoc) print_comparisons(r->factor, post);
 }
 
@@ -223,31 +296,121 @@ void require_subject_design(const StatsOptions& o, const char* test) {
     fail(kExitUsage, std::string(test) + " needs --subject COL and --within COL[,COL] (or --wide)");
 }
 
+Followups followups(const StatsOptions& o, const st::LongData& data, const st::RmAnovaResult& r) {
+  Followups f;
+  if (o.simple_effects)
+    for (std::size_t i = 0; i < r.within.size(); ++i)
+      for (std::size_t j = i + 1; j < r.within.size(); ++j) {
+        auto se = st::simple_effects(data, r.within[i], r.within[j]);
+        if (!se) fail(kExitInvalid, se.error().to_string());
+        f.simple.push_back(*se);
+      }
+  if (o.simple_effects && r.within.size() < 2) fail(kExitUsage, "--simple-effects needs two within factors or more");
+  if (o.within_ci) {
+    auto ci = st::within_subject_intervals(data);
+    if (!ci) fail(kExitInvalid, ci.error().to_string());
+    f.intervals = *ci;
+  }
+  if (o.normality) {
+    auto res = st::anova_residuals(data);
+    if (!res) fail(kExitInvalid, res.error().to_string());
+    std::vector<double> e;
+    for (const auto& x : res->residuals) e.push_back(x.value);
+    f.normality = st::shapiro_wilk(e);
+    warn(f.normality->warnings);
+  }
+  return f;
+}
+
+json levels_json(const std::vector<std::pair<std::string, std::string>>& levels) {
+  json lv = json::object();
+  for (const auto& [f, l] : levels) lv[f] = l;
+  return lv;
+}
+
+void followups_json(json& j, const Followups& f) {
+  if (!f.simple.empty()) {
+    json rows = json::array();
+    for (const auto& se : f.simple)
+      for (const auto& row : se.rows) {
+        json r{{"factor", row.factor}, {"at", {{row.at_factor, row.at_level}}}, {"test", row.test}, {"n", row.n},
+               {"p", st::json_number(row.p)}, {"p_holm", st::json_number(row.p_holm)}};
+        if (row.test == "paired t") r["contrast"] = st::comparison_json(row.contrast);
+        else r["anova"] = st::effect_json(row.anova);
+        rows.push_back(r);
+      }
+    j["simple_effects"] = rows;
+  }
+  if (!f.intervals.empty()) {
+    json cells = json::array();
+    for (const auto& c : f.intervals)
+      cells.push_back({{"cell", levels_json(c.levels)}, {"n", c.n}, {"mean", st::json_number(c.mean)},
+                       {"se", st::json_number(c.se)}, {"ci_low", st::json_number(c.ci_low)},
+                       {"ci_high", st::json_number(c.ci_high)}});
+    j["within_subject_ci"] = cells;
+  }
+  if (f.normality)
+    j["normality"] = {{"test", "shapiro-wilk on the ANOVA residuals"}, {"n", f.normality->n},
+                      {"W", st::json_number(f.normality->W)}, {"p", st::json_number(f.normality->p)}};
+}
+
+void print_followups(const Followups& f) {
+  for (const auto& se : f.simple) {
+    std::cout << "\nSimple effects (Holm within each family)\n";
+    for (const auto& row : se.rows) {
+      std::cout << "  " << row.factor << " at " << row.at_factor << "=" << row.at_level << ": ";
+      if (row.test == "paired t")
+        std::cout << row.contrast.a << " - " << row.contrast.b << " = " << fmt(row.contrast.estimate) << " [" << fmt(row.contrast.ci_low)
+                  << ", " << fmt(row.contrast.ci_high) << "], t(" << fmt(row.contrast.df) << ") = " << fmt(row.contrast.statistic)
+                  << ", p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ", d_z = " << fmt(row.contrast.dz) << "\n";
+      else
+        std::cout << st::apa_effect(row.anova, st::Correction::none) << " (p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ")\n";
+    }
+  }
+  if (!f.intervals.empty()) {
+    std::cout << "\nWithin-subject 95% CIs of the cell means (Cousineau-Morey)\n";
+    for (const auto& c : f.intervals) {
+      std::string label;
+      for (const auto& [name, level] : c.levels) label += (label.empty() ? "" : ", ") + name + "=" + level;
+      std::cout << "  " << label << ": mean " << fmt(c.mean) << ", se " << fmt(c.se) << ", CI [" << fmt(c.ci_low) << ", "
+                << fmt(c.ci_high) << "]\n";
+    }
+  }
+  if (f.normality)
+    std::cout << "\nShapiro-Wilk on the ANOVA residuals: W = " << fmt(f.normality->W) << ", p = " << fmt(f.normality->p)
+              << " (" << count(f.normality->n, "residual", "residuals") << ")\n";
+}
+
 void run_rm_anova(const StatsOptions& o) {
   require_subject_design(o, "rm-anova");
-  const st::LongData data = load(o, false);
+  const Loaded in = load(o, false);
   st::RmAnovaOptions ro;
   ro.observed = o.observed;
-  auto r = st::rm_anova(data, ro);
+  auto r = st::rm_anova(in.data, ro);
   if (!r) fail(kExitInvalid, r.error().to_string());
   std::vector<std::pair<std::string, std::vector<st::Comparison>>> post;
   if (o.posthoc)
     for (const auto& f : r->within) {
-      auto pc = st::pairwise_within(data, f, st::PairwiseTest::paired_t);
+      auto pc = st::pairwise_within(in.data, f, st::PairwiseTest::paired_t);
       if (!pc) fail(kExitInvalid, pc.error().to_string());
       post.emplace_back(f, *pc);
     }
   warn(r->warnings);
+  const Followups more = followups(o, in.data, *r);
   if (o.json) {
-    json j = header_json("rm-anova", o);
+    json j = header_json("rm-anova", o, in.selection);
     j["within"] = r->within;
     j["n_subjects"] = r->n_subjects;
     j["dropped_subjects"] = r->dropped_subjects;
     j["effects"] = json::array();
-    for (const auto& e : r->effects) j["effects"].push_back(effect_json(e));
+    for (const auto& e : r->effects) {
+      json ej = st::effect_json(e);
+      ej["apa"] = st::apa_effect(e);
+      j["effects"].push_back(ej);
+    }
     json cells = json::array();
     for (const auto& c : r->cells) {
-      json d = descriptives_json(c.d);
+      json d = st::descriptives_json(c.d);
       json lv = json::object();
       for (const auto& [f, l] : c.levels) lv[f] = l;
       d["cell"] = lv;
@@ -256,14 +419,16 @@ void run_rm_anova(const StatsOptions& o) {
     j["descriptives"] = cells;
     if (o.posthoc) {
       json p = json::object();
-      for (const auto& [f, cs] : post) p[f] = comparisons_json(cs);
+      for (const auto& [f, cs] : post) p[f] = st::comparisons_json(cs);
       j["posthoc"] = p;
     }
+    followups_json(j, more);
     j["warnings"] = r->warnings;
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::cout << "Repeated-measures ANOVA of " << data.dv_name << " (" << r->n_subjects << " subjects";
+  print_selection(in.selection);
+  std::cout << "Repeated-measures ANOVA of " << in.data.dv_name << " (" << count(r->n_subjects, "subject", "subjects");
   if (!r->dropped_subjects.empty()) std::cout << ", " << r->dropped_subjects.size() << " removed";
   std::cout << "; type III, car/afex conventions)\n\n";
   print_effects(r->effects);
@@ -271,63 +436,48 @@ void run_rm_anova(const StatsOptions& o) {
   for (const auto& c : r->cells) {
     std::string label;
     for (const auto& [f, l] : c.levels) label += (label.empty() ? "" : ", ") + f + "=" + l;
-    std::cout << "  " << label << ": mean " << fmt(c.d.mean) << ", sd " << fmt(c.d.sd) << ", se " << fmt(c.d.se)
-              << ", CI [" << fmt(c.d.ci_low) << ", " << fmt(c.d.ci_high) << "], median " << fmt(c.d.median) << ", IQR "
-              << fmt(c.d.iqr) << "\n";
+    print_descriptives(label, c.d);
   }
   for (const auto& [f, cs] : post) print_comparisons(f, cs);
+  print_followups(more);
 }
 
 void run_friedman(const StatsOptions& o) {
   require_subject_design(o, "friedman");
   const st::ExactOptions exact = parse_exact(o);
-  const st::LongData data = load(o, false);
-  auto r = st::friedman(data, exact);
+  const Loaded in = load(o, false);
+  auto r = st::friedman(in.data, exact);
   if (!r) fail(kExitInvalid, r.error().to_string());
   std::vector<st::Comparison> post;
   if (o.posthoc) {
-    if (data.within.size() != 1) fail(kExitUsage, "--posthoc for friedman needs exactly one within factor");
-    auto pc = st::pairwise_within(data, data.within.front().name, st::PairwiseTest::wilcoxon);
+    if (in.data.within.size() != 1) fail(kExitUsage, "--posthoc for friedman needs exactly one within factor");
+    auto pc = st::pairwise_within(in.data, in.data.within.front().name, st::PairwiseTest::wilcoxon);
     if (!pc) fail(kExitInvalid, pc.error().to_string());
     post = *pc;
   }
   warn(r->warnings);
   if (o.json) {
-    json j = header_json("friedman", o);
-    j["n"] = r->n;
-    j["k"] = r->k;
-    j["treatments"] = r->treatments;
-    j["mean_ranks"] = r->mean_ranks;
-    j["Q"] = num(r->Q);
-    j["df"] = num(r->df);
-    j["p"] = num(r->p);
-    j["log10_p"] = num(r->log10_p);
-    j["p_exact"] = num(r->p_exact);
-    j["exact_method"] = r->exact_method;
-    if (r->exact_method == "monte-carlo") {
-      j["monte_carlo_samples"] = r->monte_carlo_samples;
-      j["seed"] = r->seed;
-    }
-    j["kendall_W"] = num(r->kendall_W);
-    j["iman_davenport_F"] = num(r->iman_davenport_F);
-    j["iman_davenport_df1"] = num(r->id_df1);
-    j["iman_davenport_df2"] = num(r->id_df2);
-    j["p_iman_davenport"] = num(r->p_iman_davenport);
-    j["ties"] = r->ties;
+    json j = header_json("friedman", o, in.selection);
+    j.update(st::friedman_json(*r));
     j["dropped_subjects"] = r->dropped_blocks;
-    if (o.posthoc) j["posthoc"] = comparisons_json(post);
+    if (o.posthoc) j["posthoc"] = st::comparisons_json(post);
     j["warnings"] = r->warnings;
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::cout << "Friedman rank sum test (" << r->n << " blocks, " << r->k << " treatments" << (r->ties ? ", ties" : "")
-            << ")\n  Q = " << fmt(r->Q) << ", df = " << fmt(r->df) << ", p = " << fmt_p(r->p, r->log10_p)
-            << " (chi-square)\n  p_exact = " << fmt(r->p_exact) << " (" << r->exact_method << ")\n  Kendall's W = "
-            << fmt(r->kendall_W) << "\n  Iman-Davenport F(" << fmt(r->id_df1) << ", " << fmt(r->id_df2)
-            << ") = " << fmt(r->iman_davenport_F) << ", p = " << fmt_p(r->p_iman_davenport, r->log10_p_iman_davenport) << "\n";
-  for (std::size_t j = 0; j < r->treatments.size(); ++j)
+  print_selection(in.selection);
+  std::cout << "Friedman rank sum test (" << count(r->n, "block", "blocks") << ", " << count(r->k, "treatment", "treatments")
+            << (r->ties ? ", ties" : "") << ")\n  Q = " << fmt(r->Q) << ", df = " << fmt(r->df)
+            << ", p = " << fmt_p(r->p, r->log10_p) << " (chi-square)\n  p_exact = " << fmt(r->p_exact) << " ("
+            << r->exact_method;
+  if (r->exact_method == "monte-carlo") std::cout << ", " << r->monte_carlo_samples << " resamples, seed " << r->seed;
+  if (!r->exact_note.empty()) std::cout << ": " << r->exact_note;
+  std::cout << ")\n  Kendall's W = " << fmt(r->kendall_W) << "\n  Iman-Davenport F(" << fmt(r->id_df1) << ", "
+            << fmt(r->id_df2) << ") = " << fmt(r->iman_davenport_F)
+            << ", p = " << fmt_p(r->p_iman_davenport, r->log10_p_iman_davenport) << "\n";
+  for (std::size_t j = 0; j < r->treatments.size() && j < r->mean_ranks.size(); ++j)
     std::cout << "  mean rank " << r->treatments[j] << ": " << fmt(r->mean_ranks[j]) << "\n";
-  if (o.posthoc) print_comparisons(data.within.front().name, post);
+  if (o.posthoc) print_comparisons(in.data.within.front().name, post);
 }
 
 void run_wilcoxon(const StatsOptions& o) {
@@ -339,43 +489,38 @@ void run_wilcoxon(const StatsOptions& o) {
   else if (o.alternative == "less") wo.alternative = st::Alternative::less;
   else if (o.alternative == "greater") wo.alternative = st::Alternative::greater;
   else fail(kExitUsage, "--alternative must be two-sided, less or greater");
-  const st::LongData data = load(o, false);
-  auto r = st::paired_tests(data, wo);
+  const Loaded in = load(o, false);
+  if (o.factor.empty() && in.data.within.size() > 1)
+    fail(kExitUsage, "with several --within factors, name the two-level one to test with --factor");
+  auto r = st::paired_tests(in.data, wo, o.factor);
   if (!r) fail(kExitInvalid, r.error().to_string());
   warn(r->warnings);
   const auto& w = r->wilcoxon;
   if (o.json) {
-    json j = header_json("wilcoxon", o);
+    json j = header_json("wilcoxon", o, in.selection);
     j["x"] = r->x_level;
     j["y"] = r->y_level;
-    j["V"] = num(w.V);
-    j["p"] = num(w.p);
-    j["log10_p"] = num(w.log10_p);
-    j["p_exact"] = num(w.p_exact);
-    j["z"] = num(w.z);
-    j["method"] = w.method;
-    j["exact_method"] = w.exact_method;
-    j["p_normal"] = num(w.p_normal);
-    j["n"] = w.n;
-    j["pairs"] = w.pairs;
-    j["zeros"] = w.zeros;
-    j["ties"] = w.ties;
     j["alternative"] = o.alternative;
-    j["sign_test"] = {{"positive", r->sign.positive}, {"negative", r->sign.negative}, {"p", num(r->sign.p)},
-                      {"log10_p", num(r->sign.log10_p)}};
-    j["paired_t"] = {{"t", num(r->t.t)},   {"df", num(r->t.df)}, {"p", num(r->t.p)}, {"log10_p", num(r->t.log10_p)},
-                     {"mean_difference", num(r->t.mean_difference)}, {"ci_low", num(r->t.ci_low)}, {"ci_high", num(r->t.ci_high)}};
+    j.update(st::wilcoxon_json(w));
+    j["sign_test"] = st::sign_test_json(r->sign);
+    j["paired_t"] = st::paired_t_json(r->t);
     j["dropped_subjects"] = r->dropped_subjects;
     j["warnings"] = r->warnings;
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::cout << "Paired tests of " << data.dv_name << ": " << r->x_level << " - " << r->y_level << " (" << w.pairs
-            << " pairs)\n  Wilcoxon signed-rank: V = " << fmt(w.V) << ", p = " << fmt_p(w.p, w.log10_p) << " ("
-            << w.method << "), z = " << fmt(w.z) << ", p_exact = " << fmt(w.p_exact) << "\n  sign test: "
-            << r->sign.positive << " positive, " << r->sign.negative << " negative, p = " << fmt_p(r->sign.p, r->sign.log10_p)
-            << "\n  paired t: t(" << fmt(r->t.df) << ") = " << fmt(r->t.t) << ", p = " << fmt_p(r->t.p, r->t.log10_p)
-            << ", mean difference " << fmt(r->t.mean_difference) << " [" << fmt(r->t.ci_low) << ", " << fmt(r->t.ci_high) << "]\n";
+  print_selection(in.selection);
+  const char* ci = o.alternative == "two-sided" ? "95% CI" : "one-sided 95% CI";
+  std::cout << "Paired tests of " << in.data.dv_name << ": " << r->x_level << " - " << r->y_level << " ("
+            << count(w.pairs, "pair", "pairs") << ", alternative " << o.alternative << ")\n  Wilcoxon signed-rank: V = "
+            << fmt(w.V) << ", p = " << fmt_p(w.p, w.log10_p) << " (" << w.method << "), z = " << fmt(w.z)
+            << ", p_exact = " << fmt(w.p_exact);
+  if (!w.exact_note.empty()) std::cout << " (" << w.exact_note << ")";
+  std::cout << "\n  sign test: " << r->sign.positive << " positive, " << r->sign.negative
+            << " negative, p = " << fmt_p(r->sign.p, r->sign.log10_p) << "\n  paired t: t(" << fmt(r->t.df)
+            << ") = " << fmt(r->t.t) << ", p = " << fmt_p(r->t.p, r->t.log10_p) << ", mean difference "
+            << fmt(r->t.mean_difference) << ", " << ci << " [" << fmt(r->t.ci_low) << ", " << fmt(r->t.ci_high)
+            << "], d_z = " << fmt(r->t.dz) << "\n";
 }
 
 void add_common(CLI::App* cmd, StatsOptions& o) {
@@ -385,11 +530,22 @@ void add_common(CLI::App* cmd, StatsOptions& o) {
   cmd->add_option("--within", o.within, "Within-subject factor column(s), comma separated")->delimiter(',');
   cmd->add_option("--between", o.between, "Between-subject factor column(s), comma separated")->delimiter(',');
   cmd->add_flag("--wide", o.wide, "One row per subject, one column per condition (empty cell = missing)");
+  cmd->add_option("--where", o.where, "Keep rows where COL=VALUE (or COL!=VALUE); repeatable, all must hold");
+  cmd->add_flag("--exclude-practice", o.exclude_practice,
+                "Leave out rows with practice = 1 (the default for a dtlab export)");
+  cmd->add_flag("--include-practice", o.include_practice, "Keep practice rows of a dtlab export");
+  cmd->add_flag("--with-excluded", o.with_excluded,
+                "Keep rows with a non-empty 'excluded' column (left out by default)");
+  cmd->add_option("--aggregate", o.aggregate,
+                  "none|mean|median: several rows per subject and cell are an error (none) or reduced to one")
+      ->capture_default_str();
   cmd->add_flag("--json", o.json, "Print one JSON object (see README, Statistics)");
 }
 
 void add_exact(CLI::App* cmd, StatsOptions& o) {
-  cmd->add_option("--exact", o.exact, "auto|always|never|monte-carlo=N: how p_exact is computed")->capture_default_str();
+  cmd->add_option("--exact", o.exact,
+                  "auto|always|never|monte-carlo=N: how p_exact is computed (auto: exact when it is cheap, else none)")
+      ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Monte Carlo seed")->capture_default_str();
 }
 
@@ -409,6 +565,10 @@ void add_stats_command(CLI::App& root) {
   add_common(rm, *o);
   rm->add_option("--observed", o->observed, "Measured (not manipulated) factors, for generalized eta squared")->delimiter(',');
   rm->add_flag("--posthoc", o->posthoc, "Holm-corrected pairwise paired t tests for each within factor");
+  rm->add_flag("--simple-effects", o->simple_effects,
+               "Simple effects of every two-way within interaction (paired t or one-way ANOVA, Holm per family)");
+  rm->add_flag("--within-ci", o->within_ci, "Within-subject 95% CIs of the cell means (Cousineau-Morey)");
+  rm->add_flag("--normality", o->normality, "Shapiro-Wilk test of the ANOVA residuals");
   rm->callback([o] { run_rm_anova(*o); });
 
   auto* fr = stats->add_subcommand("friedman", "Friedman rank sum test with exact / Monte Carlo p and Kendall's W");
@@ -421,6 +581,8 @@ void add_stats_command(CLI::App& root) {
   add_common(wx, *o);
   add_exact(wx, *o);
   wx->add_flag("--no-correct", o->no_correct, "No continuity correction in the normal approximation");
+  wx->add_option("--factor", o->factor,
+                 "With several --within factors: the two-level factor to test (each subject's values averaged over the others)");
   wx->add_option("--alternative", o->alternative, "two-sided|less|greater (for first level - second level)")
       ->capture_default_str();
   wx->callback([o] { run_wilcoxon(*o); });

@@ -1,17 +1,23 @@
 // `dtlab validate PROTOCOL [--json]`: checks a protocol file and explains every
 // error and warning with file:line:column, the field path and what was
-// expected. Exit 0 when valid (warnings allowed), 1 when invalid; never
-// crashes on any input (missing, empty, binary or malformed files).
+// expected; a file that reads well is then checked as its sessions will run it
+// (session::validate_runnable), so "valid" means a session can run it. Exit 0
+// when valid (warnings allowed), 1 when invalid; never crashes on any input
+// (missing, empty, binary or malformed files).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "app/commands.h"
+#include "study/common/text.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
+#include "study/session/runnable.h"
 
 namespace dtlab::app {
 
@@ -32,10 +38,24 @@ void add_validate_command(CLI::App& root) {
                 "Print {\"file\", \"valid\", \"errors\", \"warnings\", \"diagnostics\": [{\"severity\", \"file\", "
                 "\"line\", \"column\", \"field\", \"message\"}], \"summary\"} on stdout");
   cmd->footer(
+      "Valid means a session can run it: besides every key, type and range, each task's scene parameters\n"
+      "go through the scene generator's checks, each rendering through the renderer's at every viewport\n"
+      "a session may use (16x16 to 4096x4096), the work of one frame is bounded, and each depth test's\n"
+      "view and pairs are made for the first participants (docs/protocol.md, \"What validate checks\").\n"
       "Exit status: 0 valid (warnings allowed), 1 invalid. Errors and warnings go to stderr as\n"
       "FILE:LINE:COLUMN: error|warning: FIELD: MESSAGE (with --json, on stdout as JSON).");
   cmd->callback([path, json] {
-    const auto diagnostics = protocol::validate_protocol_file(*path);
+    auto diagnostics = protocol::validate_protocol_file(*path);
+    if (!protocol::has_errors(diagnostics)) {
+      // The file is well formed: now what the sessions will hand the generator and the renderer.
+      if (auto p = protocol::load_protocol(*path); p.ok()) {
+        const auto runnable = session::validate_runnable(*p);
+        diagnostics.insert(diagnostics.end(), runnable.begin(), runnable.end());
+        std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& a, const Diagnostic& b) {
+          return std::pair(a.where.line, a.where.column) < std::pair(b.where.line, b.where.column);
+        });
+      }
+    }
     const bool valid = !protocol::has_errors(diagnostics);
     int errors = 0, warnings = 0;
     for (const auto& d : diagnostics) (d.severity == Severity::error ? errors : warnings)++;
@@ -54,10 +74,9 @@ void add_validate_command(CLI::App& root) {
                    {"participants", p->participants},
                    {"trials_per_participant", trials},
                    {"sha256", p->sha256}};
-        summary_text = "protocol '" + p->id + "': " + std::to_string(p->conditions.size()) + " conditions, " +
-                       std::to_string(rows) + (rows == 1 ? " order row (" : " order rows (") +
-                       std::string(protocol::to_string(p->order.scheme)) + "), " + std::to_string(trials) + " trials per participant, " +
-                       std::to_string(p->participants) + " participants";
+        summary_text = "protocol '" + p->id + "': " + count(static_cast<long long>(p->conditions.size()), "condition") +
+                       ", " + count(rows, "order row") + " (" + std::string(protocol::to_string(p->order.scheme)) +
+                       "), " + count(trials, "trial") + " per participant, " + count(p->participants, "participant");
       }
     }
 

@@ -54,6 +54,8 @@ void add_copy_command(CLI::App& root);  // `dtlab copy SRC DST`: a whole study b
 void add_analyze_command(CLI::App& root);  // `dtlab analyze DB --out DIR`: study report (report.md, index.html, JSON, CSV)
 void add_simulate_command(CLI::App& root);  // `dtlab simulate PROTOCOL --participants N --db FILE`: simulated participants, headless
 void add_demo_command(CLI::App& root);  // `dtlab demo [--out DIR]`: the reference study simulated end to end, then its report
+void add_run_command(CLI::App& root);  // `dtlab run PROTOCOL --db FILE`: a person's session in a window (app/run)
+void add_replay_command(CLI::App& root);  // `dtlab replay DB --participant ID --trial N --out DIR`: what they saw
 
 // Shared by `dtlab simulate` and `dtlab demo` (cmd_simulate.cpp): enrolls sim-001 .. sim-N into
 // run.db and runs their sessions with progress on stderr (lines start with `prefix`); returns an exit code.

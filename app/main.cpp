@@ -3,12 +3,33 @@
 // in its own cmd_*.cpp. Subcommands appear here when they work, never before.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
+#include "study/common/text.h"
 #include "study/common/version.h"
+
+namespace {
+
+// `dtlab analyse`: CLI11 would only say that a subcommand is required. Names the word and the
+// nearest command; false when argv[1] is an option or a command.
+bool unknown_command(const CLI::App& root, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  const std::string word = argv[1];
+  std::vector<std::string> names;
+  for (const CLI::App* sub : root.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+  if (std::find(names.begin(), names.end(), word) != names.end()) return false;
+  std::cerr << "dtlab: unknown command '" << word << "'";
+  if (const std::string near = dtlab::nearest(word, names); !near.empty()) std::cerr << "; did you mean '" << near << "'?";
+  std::cerr << "\nRun 'dtlab --help' for the list of commands.\n";
+  return true;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App root{
@@ -32,7 +53,10 @@ int main(int argc, char** argv) {
   dtlab::app::add_simulate_command(root);
   dtlab::app::add_demo_command(root);
   dtlab::app::add_analyze_command(root);
+  dtlab::app::add_run_command(root);
+  dtlab::app::add_replay_command(root);
 
+  if (unknown_command(root, argc, argv)) return dtlab::app::kExitUsage;
   try {
     root.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

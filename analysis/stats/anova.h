@@ -10,6 +10,9 @@
 // StRD ANOVA dataset, SmLs07-09 included, when the data come from decimal text.
 // Missing data: rows with a missing dv are left out (R's na.omit) with a
 // warning; groups with no observation are not counted in k.
+// Range: deltas are scaled by a power of two before squaring (F does not
+// depend on the scale); a sum of squares beyond the double range is an Error
+// naming the overflow (R prints NaN).
 // Defined results (also in README "Statistics"):
 //   zero within-group variance, groups differ -> F = +inf, p = 0, log10_p = -inf;
 //   zero within variance and equal means (0/0) -> F, p = NaN;
@@ -32,15 +35,21 @@ namespace dtlab::stats {
 
 // One row of an ANOVA table. Values that do not apply are NaN (null in JSON):
 // sphericity fields for between-subject effects; Mauchly for 1-df effects.
+// mse, the corrected df and the eta_p2 interval are filled by
+// complete_effect() (effect_size.h) from the fields above them.
 struct Effect {
   std::string name;                   // "angle", "angle:noise", "group:phase"
   bool within = false;                // involves a within-subject factor
   double df1 = 0, df2 = 0;            // uncorrected degrees of freedom
   double ss = 0, ss_error = 0;        // effect and error sums of squares (type III = type I when balanced)
+  double mse = 0;                     // mean square error = ss_error / df2
   double F = 0, p = 0, log10_p = 0;
   double eta_p2 = 0, eta_g2 = 0;      // partial and generalized eta squared
+  double eta_p2_ci_low = 0, eta_p2_ci_high = 0;  // 90% CI of eta_p2 from the noncentral F (Steiger 2004)
   double mauchly_W = 0, mauchly_p = 0;
   double gg_epsilon = 0, hf_epsilon = 0;  // HF as car/afex compute it: may exceed 1
+  double df1_gg = 0, df2_gg = 0;      // df1, df2 times GG epsilon (the df of p_gg); NaN for between effects
+  double df1_hf = 0, df2_hf = 0;      // df1, df2 times min(1, HF epsilon) (the df of p_hf)
   double p_gg = 0, log10_p_gg = 0;    // p with df1, df2 times GG epsilon
   double p_hf = 0, log10_p_hf = 0;    // p with df1, df2 times min(1, HF epsilon)
 };
@@ -62,6 +71,6 @@ struct OneWayResult {
 Result<OneWayResult> one_way_anova(const LongData& data);
 
 // The same from plain vectors: group label and value per observation (NaN = missing).
-OneWayResult one_way_anova(const std::vector<std::string>& group, const std::vector<double>& y);
+Result<OneWayResult> one_way_anova(const std::vector<std::string>& group, const std::vector<double>& y);
 
 }  // namespace dtlab::stats

@@ -3,6 +3,8 @@
 // grammar is four rules (field, quoted field, separator, record end).
 #include "analysis/stats/csv.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -59,6 +61,10 @@ Result<CsvTable> parse_csv(std::string_view text, std::string file) {
 
   for (size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
+    if (c == '\0')
+      return Error{t.file, line, static_cast<int>(record.size() + 1), "",
+                   "NUL byte (\\0) in field " + std::to_string(record.size() + 1) +
+                       ": the file is binary or corrupt, not CSV text"};
     if (quoted) {
       if (c == '"') {
         if (i + 1 < text.size() && text[i + 1] == '"') {
@@ -103,7 +109,8 @@ Result<CsvTable> parse_csv(std::string_view text, std::string file) {
     if (t.header[c].empty()) continue;  // an unnamed column (e.g. a pandas index) cannot be selected
     for (size_t d = 0; d < c; ++d)
       if (t.header[d] == t.header[c])
-        return Error{t.file, starts.front(), static_cast<int>(c + 1), t.header[c], "column name appears twice in the header"};
+        return Error{t.file, starts.front(), static_cast<int>(c + 1), name_for_message(t.header[c]),
+                     "column name appears twice in the header"};
   }
   for (size_t r = 1; r < records.size(); ++r) {
     if (records[r].size() != t.header.size())
@@ -114,6 +121,31 @@ Result<CsvTable> parse_csv(std::string_view text, std::string file) {
     t.line.push_back(starts[r]);
   }
   return t;
+}
+
+std::string quote_text(std::string_view text, std::size_t max_bytes) {
+  std::string s = "'";
+  const std::size_t shown = std::min(text.size(), max_bytes);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7F) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02X", c);
+      s += b;
+    } else {
+      s += static_cast<char>(c);
+    }
+  }
+  s += shown < text.size() ? "...'" : "'";
+  if (shown < text.size()) s += " (" + std::to_string(text.size()) + " bytes)";
+  return s;
+}
+
+std::string name_for_message(std::string_view name) {
+  constexpr std::size_t kShort = 60;
+  bool printable = name.size() <= kShort;
+  for (char ch : name) printable = printable && static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7F;
+  return printable ? std::string(name) : quote_text(name, kShort);
 }
 
 Result<CsvTable> read_csv_file(const std::string& path) {

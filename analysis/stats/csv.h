@@ -30,4 +30,13 @@ Result<CsvTable> parse_csv(std::string_view text, std::string file);
 // Reads and parses a CSV file; a missing or unreadable file is an Error.
 Result<CsvTable> read_csv_file(const std::string& path);
 
+// User text as error messages and warnings quote it: in single quotes, control
+// bytes written as \xNN, and cut after `max_bytes` bytes with the full length
+// named ("'aaaa...' (10485760 bytes)"), so a 10 MB field never floods stderr.
+std::string quote_text(std::string_view text, std::size_t max_bytes = 60);
+
+// A column, subject or level name for a message: as is when it is short and
+// printable, else quote_text().
+std::string name_for_message(std::string_view name);
+
 }  // namespace dtlab::stats

@@ -32,19 +32,26 @@ Descriptives describe(const std::vector<double>& deltas, double offset) {
     r.mean = r.sd = r.se = r.ci_low = r.ci_high = r.median = r.q1 = r.q3 = r.iqr = r.min = r.max = nan;
     return r;
   }
+  // Scaled by a power of two (exact) so that sums of squares neither overflow nor underflow.
+  double largest = 0;
+  for (double v : x) largest = std::max(largest, std::fabs(v));
+  int e = 0;
+  if (std::isfinite(largest) && largest > 0) std::frexp(largest, &e);
+  std::vector<double> z(x.size());
+  for (size_t i = 0; i < x.size(); ++i) z[i] = std::ldexp(x[i], -e);
   detail::Sum s;
-  for (double v : x) s.add(v);
-  double m = s.value() / static_cast<double>(x.size());
+  for (double v : z) s.add(v);
+  double m = s.value() / static_cast<double>(z.size());
   detail::Sum corr;  // second pass: corrects the mean for the rounding of the first
-  for (double v : x) corr.add(v - m);
-  m += corr.value() / static_cast<double>(x.size());
-  r.mean = offset + m;
-  if (x.size() > 1) {
+  for (double v : z) corr.add(v - m);
+  m += corr.value() / static_cast<double>(z.size());
+  r.mean = offset + std::ldexp(m, e);
+  if (z.size() > 1) {
     detail::Sum ss;
-    for (double v : x) ss.add((v - m) * (v - m));
-    r.sd = std::sqrt(ss.value() / static_cast<double>(x.size() - 1));
-    r.se = r.sd / std::sqrt(static_cast<double>(x.size()));
-    const double q = t_quantile(0.975, static_cast<double>(x.size() - 1));
+    for (double v : z) ss.add((v - m) * (v - m));
+    r.sd = std::ldexp(std::sqrt(ss.value() / static_cast<double>(z.size() - 1)), e);
+    r.se = r.sd / std::sqrt(static_cast<double>(z.size()));
+    const double q = t_quantile(0.975, static_cast<double>(z.size() - 1));
     r.ci_low = r.mean - q * r.se;
     r.ci_high = r.mean + q * r.se;
   } else {

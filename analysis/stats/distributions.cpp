@@ -11,16 +11,13 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/stats/detail/policy.h"
+
 namespace dtlab::stats {
 namespace {
 
 namespace bm = boost::math;
-namespace pol = boost::math::policies;
-
-// Errors become NaN/inf return values (errno) instead of exceptions: inputs are
-// checked before every call, and no Boost exception may reach the user.
-using Policy = pol::policy<pol::domain_error<pol::errno_on_error>, pol::pole_error<pol::errno_on_error>,
-                           pol::overflow_error<pol::errno_on_error>, pol::evaluation_error<pol::errno_on_error>>;
+using detail::Policy;  // errors become NaN/inf values, never exceptions
 using FisherF = bm::fisher_f_distribution<double, Policy>;
 using ChiSquared = bm::chi_squared_distribution<double, Policy>;
 using Normal = bm::normal_distribution<double, Policy>;

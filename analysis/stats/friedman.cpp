@@ -21,6 +21,40 @@ void set_undefined(FriedmanResult& r) {
   r.iman_davenport_F = r.p_iman_davenport = r.log10_p_iman_davenport = kNaN;
 }
 
+// p_exact by the exact permutation distribution or by Monte Carlo, as `exact` asks.
+void permutation_p(FriedmanResult& r, const std::vector<std::vector<int>>& doubled, const ExactOptions& exact) {
+  const std::int64_t s_obs = detail::friedman_s(doubled);
+  r.p_exact = kNaN;
+  auto run_monte_carlo = [&](std::size_t samples) {
+    r.p_exact = detail::friedman_monte_carlo_tail(doubled, s_obs, samples, exact.seed, exact.progress);
+    r.exact_method = "monte-carlo";
+    r.monte_carlo_samples = samples;
+    r.seed = exact.seed;
+  };
+  switch (exact.mode) {
+    case ExactMode::never:
+      break;
+    case ExactMode::monte_carlo:
+      run_monte_carlo(exact.monte_carlo_samples);
+      break;
+    case ExactMode::automatic:
+    case ExactMode::always: {
+      const double budget = exact.mode == ExactMode::always ? 50 * kExactBudget : kExactBudget;
+      if (auto p = detail::friedman_exact_tail(doubled, s_obs, budget)) {
+        r.p_exact = *p;
+        r.exact_method = "exact";
+      } else if (exact.mode == ExactMode::automatic) {
+        r.exact_note = "the exact permutation distribution is too large to enumerate for n = " + std::to_string(r.n) +
+                       ", k = " + std::to_string(r.k) + "; the chi-square p applies (a Monte Carlo estimate on request)";
+      } else {
+        r.warnings.push_back("exact enumeration too large for n = " + std::to_string(r.n) + ", k = " +
+                             std::to_string(r.k) + ": p_exact not computed (use monte-carlo=N)");
+      }
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 FriedmanResult friedman_blocks(const std::vector<std::vector<double>>& y, const ExactOptions& exact) {
@@ -35,6 +69,7 @@ FriedmanResult friedman_blocks(const std::vector<std::vector<double>>& y, const 
   r.id_df2 = (k - 1.0) * (n - 1.0);
   if (r.n == 0 || r.k < 2) {
     set_undefined(r);
+    r.mean_ranks.assign(r.k, r.n == 0 ? kNaN : 1.0);
     r.warnings.push_back(r.n == 0 ? "no complete block: nothing to test" : "one treatment: nothing to compare");
     return r;
   }
@@ -73,43 +108,15 @@ FriedmanResult friedman_blocks(const std::vector<std::vector<double>>& y, const 
   } else {
     const double spare = n * (k - 1.0) - r.Q;
     r.iman_davenport_F = spare > 1e-12 * n * (k - 1.0) ? (n - 1.0) * r.Q / spare : std::numeric_limits<double>::infinity();
+    if (std::isinf(r.iman_davenport_F))
+      r.warnings.push_back("perfect agreement (Kendall's W = 1): every block ranks the treatments alike, so the "
+                           "Iman-Davenport F is infinite and its p is 0");
     const Tail f = f_upper(r.iman_davenport_F, r.id_df1, r.id_df2);
     r.p_iman_davenport = f.p;
     r.log10_p_iman_davenport = f.log10_p;
   }
 
-  // Permutation p-value.
-  const std::int64_t s_obs = detail::friedman_s(doubled);
-  r.p_exact = kNaN;
-  auto run_monte_carlo = [&](std::size_t samples) {
-    r.p_exact = detail::friedman_monte_carlo_tail(doubled, s_obs, samples, exact.seed);
-    r.exact_method = "monte-carlo";
-    r.monte_carlo_samples = samples;
-    r.seed = exact.seed;
-  };
-  switch (exact.mode) {
-    case ExactMode::never:
-      break;
-    case ExactMode::monte_carlo:
-      run_monte_carlo(exact.monte_carlo_samples);
-      break;
-    case ExactMode::automatic:
-    case ExactMode::always: {
-      const double budget = exact.mode == ExactMode::always ? 50 * kExactBudget : kExactBudget;
-      if (auto p = detail::friedman_exact_tail(doubled, s_obs, budget)) {
-        r.p_exact = *p;
-        r.exact_method = "exact";
-      } else if (exact.mode == ExactMode::automatic) {
-        run_monte_carlo(exact.monte_carlo_samples);
-        r.warnings.push_back("exact enumeration too large for n = " + std::to_string(r.n) + ", k = " +
-                             std::to_string(r.k) + ": p_exact is a Monte Carlo estimate");
-      } else {
-        r.warnings.push_back("exact enumeration too large for n = " + std::to_string(r.n) + ", k = " +
-                             std::to_string(r.k) + ": p_exact not computed (use monte-carlo=N)");
-      }
-      break;
-    }
-  }
+  permutation_p(r, doubled, exact);
   return r;
 }
 
@@ -120,6 +127,11 @@ Result<FriedmanResult> friedman(const LongData& data, const ExactOptions& exact)
   auto built = detail::build_cell_design(data);
   if (!built) return built.error();
   const detail::CellDesign& d = *built;
+  if (d.cells < 2)
+    return Error{data.source, 0, 0, data.within.front().name,
+                 "the Friedman test needs at least two treatments (cells); this design has " + std::to_string(d.cells)};
+  if (d.subjects.empty())
+    return Error{data.source, 0, 0, "", "no subject has every cell: nothing left after listwise deletion"};
   FriedmanResult r = friedman_blocks(d.value, exact);
   for (std::size_t c = 0; c < d.cells; ++c) r.treatments.push_back(d.cell_name(c));
   r.dropped_blocks = d.dropped;

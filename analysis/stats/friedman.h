@@ -11,17 +11,21 @@
 //     with ties. Computed by dynamic programming over the sorted vector of
 //     rank sums (Kendall & Babington Smith), or by Monte Carlo with a seed:
 //     p = (b + 1) / (N + 1) with b the resamples at or above Q (Phipson & Smyth 2010).
-// Exact modes: automatic = exact if the enumeration fits the work budget,
-// else Monte Carlo with 100000 resamples; always = exact (an Error-free NaN
-// with a warning if beyond 50 times the budget); never = no p_exact;
-// monte_carlo = N resamples.
+// Exact modes: automatic = exact if the enumeration fits the work budget
+// (about a second), else none (p_exact NaN, exact_note says why: the
+// chi-square p is then the answer, as in R); always = exact (NaN with a
+// warning if beyond 50 times the budget); never = no p_exact; monte_carlo =
+// N resamples, only on request, reporting progress through the callback.
 // Missing data: blocks with a missing cell are removed (R drops incomplete
-// blocks; we warn and name them); several rows per cell are averaged.
+// blocks; we warn and name them); several rows per cell are an error unless
+// the data ask for an aggregation (LongData::aggregate).
 // Ties are decided by exact double equality of the values read (as R).
 // Defined results: every block fully tied -> Q = 0/0: Q, W, F and every p are
 // NaN, with a warning (R gives NaN); Q = n(k-1) (perfect agreement) -> F = +inf,
-// p_iman_davenport = 0; one treatment (k = 1) or no block -> NaN with a warning;
-// one block (n = 1) -> Q, W and p defined, Iman-Davenport F NaN (df2 = 0).
+// p_iman_davenport = 0, with a warning; one block (n = 1) -> Q, W and p
+// defined, Iman-Davenport F NaN (df2 = 0). friedman_blocks: one treatment
+// (k = 1) or no block -> NaN with a warning; friedman() on long data makes
+// those two an Error (nothing to test). mean_ranks always has k entries.
 // References: Friedman (1937); Iman & Davenport (1980); Kendall & Babington
 // Smith (1939); Hollander & Wolfe (1973) 7.1.
 // Validated against: R 4.x friedman.test examples (stats-Ex.Rout.save), scipy
@@ -30,6 +34,7 @@
 // with R package SuppDists).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,10 +45,14 @@ namespace dtlab::stats {
 
 enum class ExactMode { automatic, always, never, monte_carlo };
 
+// Called now and then during a Monte Carlo run with (resamples done, total).
+using Progress = std::function<void(std::size_t, std::size_t)>;
+
 struct ExactOptions {
   ExactMode mode = ExactMode::automatic;
-  std::size_t monte_carlo_samples = 100000;  // used by monte_carlo (and by automatic when exact is too costly)
+  std::size_t monte_carlo_samples = 100000;  // used by monte_carlo
   std::uint64_t seed = 1;                    // Monte Carlo seed (SplitMix64 stream)
+  Progress progress;                         // optional; Monte Carlo only
 };
 
 struct FriedmanResult {
@@ -54,6 +63,7 @@ struct FriedmanResult {
   double Q = 0, df = 0, p = 0, log10_p = 0;
   double p_exact = 0;                   // NaN when not computed
   std::string exact_method = "none";    // "exact", "monte-carlo" or "none"
+  std::string exact_note;               // why p_exact was not computed ("" when it was, or when never asked)
   std::size_t monte_carlo_samples = 0;
   std::uint64_t seed = 0;
   double kendall_W = 0;

@@ -10,14 +10,15 @@ namespace {
 
 std::string column_list(const CsvTable& t) {
   std::string s;
-  for (size_t i = 0; i < t.header.size(); ++i) s += (i ? ", " : "") + t.header[i];
+  for (size_t i = 0; i < t.header.size() && i < 40; ++i) s += (i ? ", " : "") + name_for_message(t.header[i]);
+  if (t.header.size() > 40) s += ", and " + std::to_string(t.header.size() - 40) + " more";
   return s;
 }
 
 Result<int> find_column(const CsvTable& t, const std::string& name, const char* role) {
   const int c = t.column(name);
   if (c < 0)
-    return Error{t.file, 1, 0, name,
+    return Error{t.file, 1, 0, name_for_message(name),
                  std::string("no such column for ") + role + "; the header has: " + column_list(t)};
   return c;
 }
@@ -32,12 +33,13 @@ Result<std::optional<Decimal>> numeric_cell(const CsvTable& t, size_t row, int c
   std::string hint = "expected a number (leave the cell empty or write NA for a missing value)";
   if (lower == "nan" || lower == "inf" || lower == "-inf" || lower == "+inf" || lower == "infinity")
     hint = "NaN and Inf are not accepted as data: " + hint;
-  return Error{t.file, t.line[row], col + 1, t.header[static_cast<size_t>(col)], hint + ", found '" + cell + "'"};
+  return Error{t.file, t.line[row], col + 1, name_for_message(t.header[static_cast<size_t>(col)]),
+               hint + ", found " + quote_text(cell)};
 }
 
 Status check_label(const CsvTable& t, size_t row, int col, const char* what) {
   if (is_missing_token(t.rows[row][static_cast<size_t>(col)]))
-    return Error{t.file, t.line[row], col + 1, t.header[static_cast<size_t>(col)],
+    return Error{t.file, t.line[row], col + 1, name_for_message(t.header[static_cast<size_t>(col)]),
                  std::string("empty or NA ") + what + ": every row needs one"};
   return {};
 }
@@ -45,7 +47,7 @@ Status check_label(const CsvTable& t, size_t row, int col, const char* what) {
 Status check_distinct(const std::vector<std::string>& names, const std::string& file) {
   for (size_t i = 0; i < names.size(); ++i)
     for (size_t j = 0; j < i; ++j)
-      if (names[i] == names[j]) return Error{file, 0, 0, names[i], "column given for two roles"};
+      if (names[i] == names[j]) return Error{file, 0, 0, name_for_message(names[i]), "column given for two roles"};
   return {};
 }
 

@@ -21,6 +21,11 @@ struct Factor {
   std::vector<std::string> level;
 };
 
+// What several rows for one subject and cell mean: by default an error (the
+// table is meant to hold one value per subject and cell, e.g. per-participant
+// means); `mean` or `median` reduce them to one value (afex's fun_aggregate).
+enum class Aggregate { none, mean, median };
+
 struct LongData {
   std::string source;                // file name used in messages; empty for in-memory data
   std::vector<int> line;             // line[i]: 1-based source line of row i, 0 if unknown (may be empty)
@@ -29,6 +34,7 @@ struct LongData {
   std::vector<Factor> between;       // between-subject factors
   std::string dv_name = "y";         // name of the dependent variable
   Measurements dv;                   // one per row; NaN = missing
+  Aggregate aggregate = Aggregate::none;  // repeated subject x cell rows: error, mean or median
 
   size_t rows() const { return dv.size(); }
   // "file:line" of row i for messages ("row i+1" when there is no source).

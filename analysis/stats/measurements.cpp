@@ -46,6 +46,47 @@ double round_to_double(uint128 mag, int exp, bool neg) {
   return neg ? -r : r;
 }
 
+// Whether mag * 10^exp is a double exactly: mag * 10^exp = odd * 2^k with
+// odd < 2^53 (and inside the exponent range, which |exp| <= 300 keeps).
+bool representable(uint128 mag, int exp) {
+  if (mag == 0) return true;
+  if (exp > 300 || exp < -300) return false;
+  uint128 m = mag;
+  if (exp >= 0) {
+    for (int i = 0; i < exp; ++i) {
+      if (m > (~static_cast<uint128>(0)) / 5) return false;
+      m *= 5;
+    }
+  } else {
+    for (int i = 0; i < -exp; ++i) {
+      if (m % 5 != 0) return false;
+      m /= 5;
+    }
+  }
+  while ((m & 1) == 0) m >>= 1;
+  return m < (static_cast<uint128>(1) << 53);
+}
+
+double difference_rounded(uint128 mag, int exp, bool neg, bool* exact) {
+  if (exact) *exact = representable(mag, exp);
+  return round_to_double(mag, exp, neg);
+}
+
+// Rounding error of a - b in double, known exactly (TwoSum).
+double subtraction_error(double a, double b) {
+  const double s = a - b;
+  const double bb = s - a;
+  return std::fabs((a - (s - bb)) + (-b - bb));
+}
+
+// Mean of the finite values without overflow (sum of v / n), for choosing the offset only.
+double safe_mean(const std::vector<double>& v, size_t n) {
+  double m = 0.0;
+  for (double x : v)
+    if (!std::isnan(x)) m += x / static_cast<double>(n);
+  return m;
+}
+
 }  // namespace
 
 std::optional<Decimal> parse_decimal(std::string_view s) {
@@ -115,47 +156,52 @@ std::optional<Decimal> parse_decimal(std::string_view s) {
   return d;
 }
 
-double decimal_difference(const Decimal& a, const Decimal& b) {
-  if (!a.exact || !b.exact) return a.value - b.value;
-  if (a.magnitude == 0) return -b.value;
-  if (b.magnitude == 0) return a.value;
+double decimal_difference(const Decimal& a, const Decimal& b, bool* exact) {
+  auto fallback = [&] {
+    if (exact) *exact = a.exact && b.exact && subtraction_error(a.value, b.value) == 0.0;
+    return a.value - b.value;
+  };
+  if (!a.exact || !b.exact) return fallback();
+  if (a.magnitude == 0) return difference_rounded(b.magnitude, b.exponent, !b.negative, exact);
+  if (b.magnitude == 0) return difference_rounded(a.magnitude, a.exponent, a.negative, exact);
   const int e = std::min(a.exponent, b.exponent);
   const int sa = a.exponent - e, sb = b.exponent - e;
   const uint128 max = ~static_cast<uint128>(0) >> 2;  // keep one bit of headroom for the sum
-  if (sa > kMaxDigits || sb > kMaxDigits) return a.value - b.value;
+  if (sa > kMaxDigits || sb > kMaxDigits) return fallback();
   const uint128 pa = pow10_128(sa), pb = pow10_128(sb);
-  if (a.magnitude > max / pa || b.magnitude > max / pb) return a.value - b.value;
+  if (a.magnitude > max / pa || b.magnitude > max / pb) return fallback();
   const uint128 A = a.magnitude * pa, B = b.magnitude * pb;
   // signed A - B with magnitudes: compute |A -+ B| and its sign.
   if (a.negative == b.negative) {
-    if (A >= B) return round_to_double(A - B, e, a.negative);
-    return round_to_double(B - A, e, !a.negative);
+    if (A >= B) return difference_rounded(A - B, e, a.negative, exact);
+    return difference_rounded(B - A, e, !a.negative, exact);
   }
-  return round_to_double(A + B, e, a.negative);
+  return difference_rounded(A + B, e, a.negative, exact);
 }
 
 bool Measurements::missing(size_t i) const { return std::isnan(value[i]); }
 
 Measurements Measurements::from_doubles(std::vector<double> values) {
   Measurements m;
-  double sum = 0.0;
   size_t n = 0;
-  for (double v : values)
-    if (!std::isnan(v)) {
-      sum += v;
-      ++n;
-    }
+  for (double v : values) n += std::isnan(v) ? 0 : 1;
   if (n > 0) {
-    const double mean = sum / static_cast<double>(n);
+    const double mean = safe_mean(values, n);
     double best = std::numeric_limits<double>::infinity();
+    bool found = false;
     for (double v : values)
-      if (!std::isnan(v) && std::fabs(v - mean) < best) {
+      if (!std::isnan(v) && (!found || std::fabs(v - mean) < best)) {
         best = std::fabs(v - mean);
         m.offset = v;
+        found = true;
       }
   }
   m.delta.resize(values.size());
-  for (size_t i = 0; i < values.size(); ++i) m.delta[i] = values[i] - m.offset;  // NaN stays NaN
+  m.noise.resize(values.size());
+  for (size_t i = 0; i < values.size(); ++i) {
+    m.delta[i] = values[i] - m.offset;  // NaN stays NaN
+    m.noise[i] = std::isnan(values[i]) ? values[i] : subtraction_error(values[i], m.offset);
+  }
   m.value = std::move(values);
   return m;
 }
@@ -165,26 +211,30 @@ Measurements Measurements::from_decimals(const std::vector<std::optional<Decimal
   const size_t n = values.size();
   m.value.assign(n, std::numeric_limits<double>::quiet_NaN());
   m.delta.assign(n, std::numeric_limits<double>::quiet_NaN());
-  double sum = 0.0;
+  m.noise.assign(n, std::numeric_limits<double>::quiet_NaN());
   size_t count = 0;
   for (size_t i = 0; i < n; ++i)
     if (values[i]) {
       m.value[i] = values[i]->value;
-      sum += values[i]->value;
       ++count;
     }
   if (count == 0) return m;
-  const double mean = sum / static_cast<double>(count);
+  const double mean = safe_mean(m.value, count);
   size_t ref = n;
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < n; ++i)
-    if (values[i] && std::fabs(values[i]->value - mean) < best) {
+    if (values[i] && (ref == n || std::fabs(values[i]->value - mean) < best)) {
       best = std::fabs(values[i]->value - mean);
       ref = i;
     }
   m.offset = values[ref]->value;
   for (size_t i = 0; i < n; ++i)
-    if (values[i]) m.delta[i] = decimal_difference(*values[i], *values[ref]);
+    if (values[i]) {
+      bool exact = false;
+      m.delta[i] = decimal_difference(*values[i], *values[ref], &exact);
+      // Inexact: the one rounding of the exact difference, at most half an ulp.
+      m.noise[i] = exact ? 0.0 : std::ldexp(std::fabs(m.delta[i]), -53);
+    }
   return m;
 }
 

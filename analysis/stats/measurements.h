@@ -35,22 +35,28 @@ std::optional<Decimal> parse_decimal(std::string_view text);
 // a - b computed exactly on the decimal digits, then rounded once to double.
 // Falls back to a.value - b.value only when the digits cannot be aligned in
 // 128 bits (e.g. 1e30 - 1e-30), where that double difference is as accurate.
-double decimal_difference(const Decimal& a, const Decimal& b);
+// *exact (if given) is set to whether the result equals a - b exactly.
+double decimal_difference(const Decimal& a, const Decimal& b, bool* exact = nullptr);
 
 // One numeric variable (e.g. the dependent variable, one entry per CSV row).
 struct Measurements {
   double offset = 0.0;        // the reference value (one of the inputs), as a double
   std::vector<double> value;  // value[i]: correctly rounded input; NaN = missing
   std::vector<double> delta;  // delta[i]: input - offset, exact difference rounded once; NaN = missing
+  std::vector<double> noise;  // noise[i]: bound on |delta[i] - (input - offset)|: 0 when delta is exact
+                              // (integers, binary fractions); empty = unknown (callers assume half an ulp)
 
   size_t size() const { return value.size(); }
   bool missing(size_t i) const;
 
   // From doubles (NaN = missing): delta = value - offset in double, which is
-  // exact to 1/2 ulp of the difference of the doubles given.
+  // exact to 1/2 ulp of the difference of the doubles given (noise is that
+  // rounding error, known exactly from TwoSum).
   static Measurements from_doubles(std::vector<double> values);
   // From parsed decimals (nullopt = missing): offset is the value nearest the
-  // mean, deltas from decimal_difference().
+  // mean (the mean taken without overflow, values up to the double maximum),
+  // deltas from decimal_difference(); a difference beyond the double range is
+  // +-inf (callers report the overflow).
   static Measurements from_decimals(const std::vector<std::optional<Decimal>>& values);
 };
 

@@ -5,6 +5,7 @@
 #include <boost/math/special_functions/gamma.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -32,6 +33,12 @@ std::vector<double> differences(const std::vector<double>& x, const std::vector<
 }
 
 Tail from_p(double p) { return {p, p > 0 ? std::log10(p) : -kInf}; }
+
+std::string g6(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
 
 // P(Binomial(n, 1/2) <= m), with an analytic log when it underflows.
 Tail binomial_half_lower(std::size_t n, std::size_t m) {
@@ -150,13 +157,16 @@ WilcoxonResult wilcoxon_signed_rank(const std::vector<double>& x, const std::vec
     if (o.exact.mode == ExactMode::monte_carlo) {
       detail::SplitMixStream rng(o.exact.seed);
       std::size_t hi = 0, lo = 0;
-      for (std::size_t b = 0; b < o.exact.monte_carlo_samples; ++b) {
+      const std::size_t total = o.exact.monte_carlo_samples, every = std::max<std::size_t>(1, total / 100);
+      for (std::size_t b = 0; b < total; ++b) {
+        if (o.exact.progress && b % every == 0) o.exact.progress(b, total);
         long t = 0;
         for (std::size_t i = 0; i < w.size(); ++i)
           if (rng.next() >> 63) t += w[i];
         if (t >= v2) ++hi;
         if (t <= v2) ++lo;
       }
+      if (o.exact.progress) o.exact.progress(total, total);
       const double N = static_cast<double>(o.exact.monte_carlo_samples);
       r.p_exact = pick(o.alternative, above_mean, (static_cast<double>(hi) + 1) / (N + 1), (static_cast<double>(lo) + 1) / (N + 1));
       r.exact_method = "monte-carlo";
@@ -166,8 +176,12 @@ WilcoxonResult wilcoxon_signed_rank(const std::vector<double>& x, const std::vec
       if (signed_rank_exact(w, v2, budget, up, lo)) {
         r.p_exact = pick(o.alternative, above_mean, up, lo);
         r.exact_method = "exact";
+      } else if (o.exact.mode == ExactMode::always) {
+        r.warnings.push_back("exact signed-rank distribution too large for n = " + std::to_string(r.n) +
+                             ": p_exact not computed (use monte-carlo=N)");
       } else {
-        r.warnings.push_back("exact signed-rank distribution too large for n = " + std::to_string(r.n));
+        r.exact_note = "the exact signed-rank distribution is too large to enumerate for n = " + std::to_string(r.n) +
+                       "; the normal approximation applies (a Monte Carlo estimate on request)";
       }
     }
   }
@@ -221,12 +235,23 @@ SignTestResult sign_test(const std::vector<double>& x, const std::vector<double>
 }
 
 PairedTResult paired_t(const std::vector<double>& x, const std::vector<double>& y, Alternative alternative) {
+  if (x.size() != y.size()) throw std::invalid_argument("paired test: x and y differ in length");
   PairedTResult r;
-  const std::vector<double> d = differences(x, y);
+  // x and y scaled by a power of two (exact) so that x - y cannot overflow.
+  double largest = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isnan(x[i]) && !std::isnan(y[i])) largest = std::max({largest, std::fabs(x[i]), std::fabs(y[i])});
+  int e = 0;
+  if (std::isfinite(largest) && largest > 0) std::frexp(largest, &e);
+  std::vector<double> d;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isnan(x[i]) && !std::isnan(y[i])) d.push_back(std::ldexp(x[i], -e) - std::ldexp(y[i], -e));
   r.n = d.size();
   if (r.n < 2) {
-    r.mean_difference = r.n == 1 ? d.front() : kNaN;
-    r.sd = r.t = r.df = r.p = r.log10_p = r.ci_low = r.ci_high = kNaN;
+    r.mean_difference = r.n == 1 ? std::ldexp(d.front(), e) : kNaN;
+    r.sd = r.se = r.t = r.df = r.p = r.log10_p = r.ci_low = r.ci_high = r.dz = kNaN;
+    r.warnings.push_back(r.n == 1 ? "one pair: the paired t test needs two (t and p undefined)"
+                                  : "no complete pair: the paired t test is undefined");
     return r;
   }
   detail::Sum s;
@@ -237,18 +262,25 @@ PairedTResult paired_t(const std::vector<double>& x, const std::vector<double>& 
   m += c.value() / static_cast<double>(r.n);
   detail::Sum ss;
   for (double v : d) ss.add((v - m) * (v - m));
-  r.mean_difference = m;
   r.df = static_cast<double>(r.n - 1);
-  r.sd = std::sqrt(ss.value() / r.df);
-  const double se = r.sd / std::sqrt(static_cast<double>(r.n));
-  const double q = t_quantile(0.975, r.df);
-  r.ci_low = m - q * se;
-  r.ci_high = m + q * se;
-  if (se == 0) {
-    r.t = m == 0 ? kNaN : (m > 0 ? kInf : -kInf);
-  } else {
-    r.t = m / se;
-  }
+  const double sd = std::sqrt(ss.value() / r.df), se = sd / std::sqrt(static_cast<double>(r.n));
+  r.t = se > 0 ? m / se : (m == 0 ? kNaN : (m > 0 ? kInf : -kInf));
+  r.dz = sd > 0 ? m / sd : r.t;
+  r.mean_difference = std::ldexp(m, e);
+  r.sd = std::ldexp(sd, e);
+  r.se = std::ldexp(se, e);
+  const double q = t_quantile(alternative == Alternative::two_sided ? 0.975 : 0.95, r.df);
+  r.ci_low = alternative == Alternative::less ? -kInf : r.mean_difference - q * r.se;
+  r.ci_high = alternative == Alternative::greater ? kInf : r.mean_difference + q * r.se;
+  if (m == 0 && se == 0)
+    r.warnings.push_back("every difference is zero: the paired t statistic is 0/0 (t and p undefined)");
+  else if (se < 10 * std::numeric_limits<double>::epsilon() * std::fabs(m))
+    r.warnings.push_back("the differences are essentially constant (mean " + g6(r.mean_difference) + ", SD " +
+                         g6(r.sd) + "): t = " + (std::isinf(r.t) ? "Infinity" : g6(r.t)) +
+                         " is not a meaningful test (R's t.test stops here: \"data are essentially constant\")");
+  if (!std::isfinite(r.mean_difference) || !std::isfinite(r.sd))
+    r.warnings.push_back("overflow: the mean or SD of the differences exceeds the largest double (about 1.8e308); "
+                         "t and p are computed on rescaled differences and stay valid");
   Tail t{};
   switch (alternative) {
     case Alternative::two_sided: t = t_two_sided(r.t, r.df); break;
@@ -260,34 +292,36 @@ PairedTResult paired_t(const std::vector<double>& x, const std::vector<double>& 
   return r;
 }
 
-Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options) {
+Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options, const std::string& factor) {
   if (!data.between.empty())
     return Error{data.source, 0, 0, data.between.front().name, "the paired tests take no between-subject factor"};
-  if (data.within.size() != 1)
-    return Error{data.source, 0, 0, "", "the paired tests need exactly one within-subject factor with two levels"};
+  if (factor.empty() && data.within.size() != 1)
+    return Error{data.source, 0, 0, "", "the paired tests need exactly one within-subject factor with two levels "
+                                        "(or the name of one two-level factor of the design)"};
   auto built = detail::build_cell_design(data);
   if (!built) return built.error();
   const detail::CellDesign& d = *built;
-  if (d.cells != 2)
-    return Error{data.source, 0, 0, data.within.front().name,
-                 "the paired tests need exactly two levels; this factor has " + std::to_string(d.cells) +
-                     " (use friedman or rm-anova for more)"};
+  const auto it = std::find(d.within_names.begin(), d.within_names.end(), factor.empty() ? d.within_names[0] : factor);
+  if (it == d.within_names.end()) return Error{data.source, 0, 0, factor, "not a within-subject factor of the design"};
+  const std::size_t f = static_cast<std::size_t>(it - d.within_names.begin());
+  if (d.within_levels[f].size() != 2)
+    return Error{data.source, 0, 0, d.within_names[f],
+                 "the paired tests need exactly two levels; this factor has " +
+                     std::to_string(d.within_levels[f].size()) + " (use friedman or rm-anova for more)"};
+  if (d.subjects.empty())
+    return Error{data.source, 0, 0, "", "no subject has every cell: nothing left after listwise deletion"};
   PairedResult r;
-  r.x_level = d.within_levels[0][0];
-  r.y_level = d.within_levels[0][1];
-  std::vector<double> x, y, dx, dy;
-  for (std::size_t s = 0; s < d.subjects.size(); ++s) {
-    x.push_back(d.value[s][0]);
-    y.push_back(d.value[s][1]);
-    dx.push_back(d.delta[s][0]);
-    dy.push_back(d.delta[s][1]);
-  }
+  r.x_level = d.within_levels[f][0];
+  r.y_level = d.within_levels[f][1];
+  const detail::FactorMarginals m = detail::factor_marginals(d, f);  // the cells themselves for a lone factor
+  const std::vector<double>&x = m.value[0], &y = m.value[1], &dx = m.delta[0], &dy = m.delta[1];
   r.wilcoxon = wilcoxon_signed_rank(x, y, options);
   r.sign = sign_test(x, y, options.alternative);
   r.t = paired_t(dx, dy, options.alternative);  // deltas: the offset cancels exactly
   r.dropped_subjects = d.dropped;
   r.warnings = d.warnings;
   r.warnings.insert(r.warnings.end(), r.wilcoxon.warnings.begin(), r.wilcoxon.warnings.end());
+  for (const auto& w : r.t.warnings) r.warnings.push_back("paired t: " + w);
   return r;
 }
 

@@ -22,8 +22,14 @@
 // Sign test: n+ = #(d > 0) of n = #(d != 0); p = P(Binomial(n, 1/2) as or more extreme), two-sided
 //   min(1, 2 min(P(X <= n+), P(X >= n+))) (= binom.test at p = 1/2). n = 0 -> p = NaN.
 // Paired t: t = mean(d) / (sd(d) / sqrt(m)), df = m - 1 over the m complete pairs (zeros kept),
-//   95% CI of mean(d). Zero variance: t = +-inf, p = 0 if mean(d) != 0, else t = p = NaN
-//   (R stops with "data are essentially constant"); m < 2 -> NaN.
+//   95% CI of mean(d) as t.test: two-sided mean +- t(.975, df) SE; one-sided
+//   (-Inf, mean + t(.95, df) SE) for "less", (mean - t(.95, df) SE, Inf) for "greater".
+//   Cohen's d_z = mean(d) / sd(d). Differences are taken after scaling x and y
+//   by a power of two, so values near the double maximum do not overflow t.
+//   Degenerate data, each with a warning: SE < 10 eps |mean| (R's "data are
+//   essentially constant", where t.test stops): t and p as computed, which for
+//   SE = 0 is t = +-inf, p = 0; every difference zero: t = p = NaN (R: NaN);
+//   m < 2 -> NaN; a mean or SD beyond the double range: those fields +-inf/NaN.
 // Validated against: R 4.x stats-Ex.Rout.save (wilcox.test examples) and
 //   t.test(extra ~ group, data = sleep, paired = TRUE); closed-form binomial tails.
 #pragma once
@@ -55,6 +61,7 @@ struct WilcoxonResult {
   double p_normal = 0;
   double p_exact = 0;                       // NaN when not computed
   std::string exact_method = "none";        // "exact", "monte-carlo" or "none"
+  std::string exact_note;                   // why p_exact was not computed in automatic mode ("" otherwise)
   std::vector<std::string> warnings;
 };
 
@@ -65,8 +72,10 @@ struct SignTestResult {
 
 struct PairedTResult {
   std::size_t n = 0;
-  double mean_difference = 0, sd = 0, t = 0, df = 0, p = 0, log10_p = 0;
-  double ci_low = 0, ci_high = 0;           // 95% CI of the mean difference
+  double mean_difference = 0, sd = 0, se = 0, t = 0, df = 0, p = 0, log10_p = 0;
+  double ci_low = 0, ci_high = 0;           // 95% CI of the mean difference (one-sided for less / greater)
+  double dz = 0;                            // Cohen's d_z = mean_difference / sd
+  std::vector<std::string> warnings;        // degenerate data (see above)
 };
 
 WilcoxonResult wilcoxon_signed_rank(const std::vector<double>& x, const std::vector<double>& y,
@@ -76,8 +85,11 @@ SignTestResult sign_test(const std::vector<double>& x, const std::vector<double>
 PairedTResult paired_t(const std::vector<double>& x, const std::vector<double>& y,
                        Alternative alternative = Alternative::two_sided);
 
-// The three tests on long data with one within-subject factor of exactly two
-// levels (x = first level in order of appearance, y = second).
+// The three tests on long data for a within-subject factor of exactly two
+// levels (x = first level in order of appearance, y = second): the design's
+// only within factor, or `factor` of a larger all-within design, each
+// subject's values then averaged over the other within factors (the
+// robustness check of a two-level ANOVA effect).
 struct PairedResult {
   std::string x_level, y_level;
   WilcoxonResult wilcoxon;
@@ -86,6 +98,7 @@ struct PairedResult {
   std::vector<std::string> dropped_subjects;
   std::vector<std::string> warnings;
 };
-Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options = {});
+Result<PairedResult> paired_tests(const LongData& data, const WilcoxonOptions& options = {},
+                                  const std::string& factor = "");
 
 }  // namespace dtlab::stats

@@ -28,6 +28,32 @@ std::vector<double> holm(const std::vector<double>& p) {
   return out;
 }
 
+Comparison paired_comparison(const std::string& a, const std::string& b, const std::vector<double>& x,
+                             const std::vector<double>& y) {
+  const PairedTResult t = paired_t(x, y);
+  Comparison c;
+  c.a = a;
+  c.b = b;
+  c.test = "paired t";
+  c.n = t.n;
+  c.estimate = t.mean_difference;
+  c.se = t.se;
+  c.ci_low = t.ci_low;
+  c.ci_high = t.ci_high;
+  c.statistic = t.t;
+  c.df = t.df;
+  c.p = t.p;
+  c.dz = t.dz;
+  return c;
+}
+
+void adjust_holm(std::vector<Comparison>& family) {
+  std::vector<double> ps;
+  for (const auto& c : family) ps.push_back(c.p);
+  const auto adj = holm(ps);
+  for (std::size_t i = 0; i < family.size(); ++i) family[i].p_holm = adj[i];
+}
+
 Result<std::vector<Comparison>> pairwise_within(const LongData& data, const std::string& factor, PairwiseTest test,
                                                 const WilcoxonOptions& options) {
   auto built = detail::build_cell_design(data);
@@ -36,52 +62,24 @@ Result<std::vector<Comparison>> pairwise_within(const LongData& data, const std:
   const auto it = std::find(d.within_names.begin(), d.within_names.end(), factor);
   if (it == d.within_names.end()) return Error{data.source, 0, 0, factor, "not a within-subject factor of the design"};
   const std::size_t f = static_cast<std::size_t>(it - d.within_names.begin());
-  const std::size_t L = d.within_levels[f].size(), N = d.subjects.size();
-  // Marginal means per subject and level (values for rank tests, deltas for t).
-  std::vector<std::vector<double>> val(L, std::vector<double>(N, 0.0)), del = val;
-  std::vector<double> count(L, 0.0);
-  for (std::size_t c = 0; c < d.cells; ++c) {
-    const std::size_t l = d.cell_levels(c)[f];
-    count[l] += 1.0;
-    for (std::size_t s = 0; s < N; ++s) {
-      val[l][s] += d.value[s][c];
-      del[l][s] += d.delta[s][c];
-    }
-  }
-  for (std::size_t l = 0; l < L; ++l)
-    for (std::size_t s = 0; s < N; ++s) {
-      if (count[l] > 1) {
-        val[l][s] /= count[l];
-        del[l][s] /= count[l];
-      }
-    }
+  const std::size_t L = d.within_levels[f].size();
+  const detail::FactorMarginals m = detail::factor_marginals(d, f);
+  const std::vector<std::vector<double>>& val = m.value;
+  const std::vector<std::vector<double>>& del = m.delta;
   std::vector<Comparison> out;
   for (std::size_t i = 0; i < L; ++i)
     for (std::size_t j = i + 1; j < L; ++j) {
-      Comparison c;
-      c.a = d.within_levels[f][i];
-      c.b = d.within_levels[f][j];
-      if (test == PairwiseTest::paired_t) {
-        const PairedTResult t = paired_t(del[i], del[j]);
-        c.test = "paired t";
-        c.estimate = t.mean_difference;
-        c.statistic = t.t;
-        c.df = t.df;
-        c.p = t.p;
-      } else {
+      Comparison c = paired_comparison(d.within_levels[f][i], d.within_levels[f][j], del[i], del[j]);
+      if (test == PairwiseTest::wilcoxon) {
         const WilcoxonResult w = wilcoxon_signed_rank(val[i], val[j], options);
         c.test = "wilcoxon";
-        c.estimate = paired_t(del[i], del[j]).mean_difference;
         c.statistic = w.V;
         c.df = std::numeric_limits<double>::quiet_NaN();
         c.p = w.p;
       }
       out.push_back(c);
     }
-  std::vector<double> ps;
-  for (const auto& c : out) ps.push_back(c.p);
-  const auto adj = holm(ps);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i].p_holm = adj[i];
+  adjust_holm(out);
   return out;
 }
 
@@ -110,23 +108,25 @@ Result<std::vector<Comparison>> pairwise_between(const LongData& data) {
   }
   const double pooled_sd = std::sqrt(pooled_num / total_df);
   std::vector<Comparison> out;
+  const double q = t_quantile(0.975, total_df);
   for (std::size_t i = 0; i < levels.size(); ++i)
     for (std::size_t j = i + 1; j < levels.size(); ++j) {
       Comparison c;
       c.a = levels[i];
       c.b = levels[j];
       c.test = "pooled t";
+      c.n = desc[i].n + desc[j].n;
       c.estimate = desc[i].mean - desc[j].mean;
-      const double se = pooled_sd * std::sqrt(1.0 / static_cast<double>(desc[i].n) + 1.0 / static_cast<double>(desc[j].n));
-      c.statistic = c.estimate / se;
+      c.se = pooled_sd * std::sqrt(1.0 / static_cast<double>(desc[i].n) + 1.0 / static_cast<double>(desc[j].n));
+      c.ci_low = c.estimate - q * c.se;
+      c.ci_high = c.estimate + q * c.se;
+      c.statistic = c.estimate / c.se;
       c.df = total_df;
       c.p = t_two_sided(c.statistic, total_df).p;
+      c.dz = std::numeric_limits<double>::quiet_NaN();
       out.push_back(c);
     }
-  std::vector<double> ps;
-  for (const auto& c : out) ps.push_back(c.p);
-  const auto adj = holm(ps);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i].p_holm = adj[i];
+  adjust_holm(out);
   return out;
 }
 

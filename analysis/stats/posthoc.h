@@ -9,8 +9,14 @@
 // the other within factors (marginal means). Holm (1979): sort the m p-values,
 // p_(i) -> min(1, max_{j <= i} (m - j + 1) p_(j)); NaN p-values are kept and
 // not counted in m (R's p.adjust).
-// Validated against: R 4.x p.adjust(method = "holm") definition, t.test and
-// wilcox.test values (see paired.h).
+// Every row describes the difference a - b whatever the test: n pairs (or
+// n_a + n_b), mean difference, its SE and 95% CI (paired: t.test(paired =
+// TRUE)$conf.int; pooled: mean +- t(.975, N - k) s_pooled sqrt(1/n_a + 1/n_b)),
+// Cohen's d_z = mean difference / SD of the differences (within only; NaN
+// for between). Missing data: the subject x cell rules of detail/design.h.
+// Validated against: R 4.2 p.adjust(p, "holm") values, t.test(paired = TRUE)
+// and pairwise.t.test(pool.sd = TRUE) on the sleep and PlantGrowth data
+// (tests/analysis/stats/test_posthoc_descriptives.cpp).
 #pragma once
 #include <string>
 #include <vector>
@@ -26,11 +32,22 @@ std::vector<double> holm(const std::vector<double>& p);  // same order as p
 struct Comparison {
   std::string a, b;     // levels compared; differences are a - b
   std::string test;     // "paired t", "wilcoxon", "pooled t"
+  std::size_t n = 0;    // pairs (within) or observations in a and b (between)
   double estimate = 0;  // mean difference a - b
+  double se = 0;        // its standard error
+  double ci_low = 0, ci_high = 0;  // 95% CI of the mean difference
   double statistic = 0; // t or V
   double df = 0;        // NaN for Wilcoxon
   double p = 0, p_holm = 0;
+  double dz = 0;        // Cohen's d_z (within); NaN between
 };
+
+// A paired-t comparison row from two paired samples (x = level a, y = level b).
+Comparison paired_comparison(const std::string& a, const std::string& b, const std::vector<double>& x,
+                             const std::vector<double>& y);
+
+// Sets p_holm of every row from the p of all rows (one family).
+void adjust_holm(std::vector<Comparison>& family);
 
 enum class PairwiseTest { paired_t, wilcoxon };
 

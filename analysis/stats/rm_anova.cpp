@@ -1,4 +1,8 @@
-// Repeated-measures and mixed ANOVA; see rm_anova.h for the method.
+// Repeated-measures and mixed ANOVA; see rm_anova.h for the method. One
+// stratum per within term: its residual is formed in double-double from the
+// subject x cell deltas (exact when the data are), its sums of squares and
+// products give the error SS, the sphericity statistics and Mauchly's test;
+// each between term's SS comes from the multivariate regression.
 #include "analysis/stats/rm_anova.h"
 
 #include <algorithm>
@@ -7,14 +11,19 @@
 #include <map>
 #include <tuple>
 
+#include "analysis/stats/csv.h"
+#include "analysis/stats/detail/dd.h"
 #include "analysis/stats/detail/design.h"
 #include "analysis/stats/detail/linalg.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
+#include "analysis/stats/effect_size.h"
 
 namespace dtlab::stats {
 namespace {
 
+using detail::CellDesign;
+using detail::DD;
 using detail::Matrix;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -47,6 +56,41 @@ Matrix contr_sum(size_t levels) {
     m(levels - 1, j) = -1.0;
   }
   return m;
+}
+
+// The between-subject groups that survive listwise deletion, renumbered.
+struct Groups {
+  std::vector<size_t> levels;                     // per between factor
+  std::vector<std::vector<std::string>> labels;   // per between factor
+  std::vector<std::vector<size_t>> of;            // of[s][f]: level of subject s
+  std::vector<size_t> id;                         // id[s]: index of the subject's between cell
+  size_t count = 0;                               // between cells
+};
+
+Result<Groups> surviving_groups(const CellDesign& d, const std::string& source) {
+  const size_t N = d.subjects.size(), nb = d.between_names.size();
+  Groups g;
+  g.levels.resize(nb);
+  g.labels.resize(nb);
+  g.of.assign(N, std::vector<size_t>(nb));
+  for (size_t f = 0; f < nb; ++f) {
+    std::map<size_t, size_t> remap;
+    for (size_t s = 0; s < N; ++s) {
+      auto [it, ins] = remap.emplace(d.group[s][f], remap.size());
+      if (ins) g.labels[f].push_back(d.between_levels[f][d.group[s][f]]);
+      g.of[s][f] = it->second;
+    }
+    g.levels[f] = remap.size();
+  }
+  std::map<std::vector<size_t>, size_t> cell;
+  for (const auto& o : g.of) g.id.push_back(cell.emplace(o, cell.size()).first->second);
+  g.count = cell.size();
+  size_t expected = 1;
+  for (size_t L : g.levels) expected *= L;
+  if (g.count < expected)
+    return Error{source, 0, 0, "", "some combination of the between-subject factors has no subject (after listwise "
+                                   "deletion): the full-factorial between design cannot be estimated"};
+  return g;
 }
 
 // The design: X's columns grouped by between term.
@@ -100,14 +144,56 @@ Matrix submatrix(const Matrix& m, const std::vector<size_t>& rows, const std::ve
   return s;
 }
 
-// car's Mauchly test: {W, p}.
-std::pair<double, double> mauchly(const Matrix& E, double n, size_t cells) {
-  const double pp = static_cast<double>(E.rows);
-  const double tr = detail::trace(E);
-  const double log_det = detail::spd_log_det(E);
+std::vector<size_t> all_indices(size_t n) {
+  std::vector<size_t> v(n);
+  for (size_t i = 0; i < n; ++i) v[i] = i;
+  return v;
+}
+
+// The residual of within term S in cell space, Y_res P_S, in double-double:
+// Y minus its between-cell means (the full-factorial between model), then for
+// every within factor the deviation from the mean over its levels (factor in
+// S) or that mean itself (factor not in S). P_S is the projection onto the
+// contrasts M_S, so U M_S' equals the residual of Z = Y M_S'.
+Matrix stratum_residual(const Matrix& Y, const Groups& g, const CellDesign& d, const std::vector<size_t>& S) {
+  const size_t N = Y.rows, C = Y.cols;
+  std::vector<DD> u(N * C);
+  std::vector<DD> sum(g.count * C);
+  std::vector<double> members(g.count, 0.0);
+  for (size_t s = 0; s < N; ++s) {
+    members[g.id[s]] += 1.0;
+    for (size_t c = 0; c < C; ++c) sum[g.id[s] * C + c] = sum[g.id[s] * C + c] + DD(Y(s, c));
+  }
+  for (size_t s = 0; s < N; ++s)
+    for (size_t c = 0; c < C; ++c) u[s * C + c] = DD(Y(s, c)) - detail::divide(sum[g.id[s] * C + c], members[g.id[s]]);
+  size_t stride = C;
+  for (size_t f = 0; f < d.within_levels.size(); ++f) {
+    const size_t L = d.within_levels[f].size();
+    stride /= L;
+    const bool centre = contains(S, f);
+    for (size_t s = 0; s < N; ++s)
+      for (size_t base = 0; base < C; ++base) {
+        if ((base / stride) % L != 0) continue;  // one line along factor f per base
+        DD mean;
+        for (size_t l = 0; l < L; ++l) mean = mean + u[s * C + base + l * stride];
+        mean = detail::divide(mean, static_cast<double>(L));
+        for (size_t l = 0; l < L; ++l) {
+          DD& x = u[s * C + base + l * stride];
+          x = centre ? x - mean : mean;
+        }
+      }
+  }
+  Matrix out(N, C);
+  for (size_t i = 0; i < N * C; ++i) out.a[i] = u[i].value();
+  return out;
+}
+
+// car's Mauchly test from the residual R (E = R'R): {W, p}.
+std::pair<double, double> mauchly(const Matrix& R, double tr, double n, size_t cells) {
+  const double pp = static_cast<double>(R.cols);
   if (n < pp) return {0.0, kNaN};
-  const double log_w = log_det - pp * std::log(tr / pp);
-  const double w = std::isinf(log_w) ? 0.0 : std::exp(log_w);
+  const double log_w = detail::gram_log_det(R) - pp * std::log(tr / pp);
+  const double w = std::exp(log_w);
   const double rho = 1.0 - (2.0 * pp * pp + pp + 2.0) / (6.0 * pp * n);
   const double w2 = (pp + 2.0) * (pp - 1.0) * (pp - 2.0) *
                     (2.0 * pp * pp * pp + 6.0 * pp * pp + 3.0 * static_cast<double>(cells) + 2.0) /
@@ -116,7 +202,56 @@ std::pair<double, double> mauchly(const Matrix& E, double n, size_t cells) {
   const double f = pp * (pp + 1.0) / 2.0 - 1.0;
   const double pr1 = chi_squared_upper(z, f).p;
   const double pr2 = chi_squared_upper(z, f + 4.0).p;
-  return {w, pr1 + w2 * (pr2 - pr1)};
+  return {w, std::min(1.0, std::max(0.0, pr1 + w2 * (pr2 - pr1)))};
+}
+
+// One within term's stratum: contrasts, residual, error SS, sphericity.
+struct Stratum {
+  std::vector<size_t> S;
+  Matrix M;                // p x C orthonormal contrasts
+  Matrix Z;                // N x p transformed data
+  double ss_error = 0;     // scaled units
+  bool zero_error = false;
+  double gg = 1, hf = 1, mauchly_W = kNaN, mauchly_p = kNaN;
+};
+
+Stratum within_stratum(const std::vector<size_t>& S, const Matrix& Y, const Groups& g, const CellDesign& d, double dfe,
+                       double zero_threshold) {
+  Stratum st;
+  st.S = S;
+  Matrix M(1, 1, 1.0);
+  for (size_t f = 0; f < d.within_levels.size(); ++f) {
+    const size_t L = d.within_levels[f].size();
+    M = detail::kronecker(M, contains(S, f) ? detail::orthonormal_contrasts(L) : detail::normalized_mean_row(L));
+  }
+  st.M = M;
+  const size_t p = M.rows;
+  if (p == 0) return st;
+  const Matrix Mt = detail::transpose(M);
+  st.Z = detail::multiply(Y, Mt);
+  const Matrix R = detail::multiply(stratum_residual(Y, g, d, S), Mt);
+  const Matrix E = detail::crossprod(R);
+  st.ss_error = detail::trace(E);
+  st.zero_error = dfe > 0 && st.ss_error <= zero_threshold;
+  if (st.zero_error) st.ss_error = 0.0;
+  if (S.empty()) {
+    st.gg = st.hf = kNaN;
+  } else if (p >= 2) {
+    if (st.zero_error || dfe <= 0) {
+      st.gg = st.hf = kNaN;
+    } else {
+      const double pd = static_cast<double>(p);
+      if (dfe == 1) {  // E has rank 1: GG = 1/p exactly and the HF formula is 0/0
+        st.gg = 1.0 / pd;
+        st.hf = kNaN;
+      } else {
+        st.gg = st.ss_error * st.ss_error / (pd * detail::trace(detail::multiply(E, E)));
+        st.hf = ((dfe + 1.0) * pd * st.gg - 2.0) / (pd * (dfe - pd * st.gg));
+      }
+      std::tie(st.mauchly_W, st.mauchly_p) = mauchly(R, st.ss_error, dfe, d.cells);
+    }
+  }
+  return st;
 }
 
 void set_test(Effect& e, bool zero_error) {
@@ -138,184 +273,105 @@ void set_test(Effect& e, bool zero_error) {
   }
 }
 
-}  // namespace
-
-Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& options) {
-  auto built = detail::build_cell_design(data);
-  if (!built) return built.error();
-  detail::CellDesign& d = *built;
-
-  RmAnovaResult r;
-  r.within = d.within_names;
-  r.between = d.between_names;
-  r.dropped_subjects = d.dropped;
-  r.warnings = d.warnings;
-  const size_t N = d.subjects.size();
-  r.n_subjects = N;
-  if (N == 0) return Error{data.source, 0, 0, "", "no subject has every cell: nothing left after listwise deletion"};
-
-  // Between levels that survive deletion, renumbered.
-  const size_t nb = d.between_names.size(), nw = d.within_names.size(), C = d.cells;
-  std::vector<size_t> blevels(nb);
-  std::vector<std::vector<std::string>> blabels(nb);
-  std::vector<std::vector<size_t>> group(N, std::vector<size_t>(nb));
-  for (size_t f = 0; f < nb; ++f) {
-    std::map<size_t, size_t> remap;
-    for (size_t s = 0; s < N; ++s) {
-      auto [it, ins] = remap.emplace(d.group[s][f], remap.size());
-      if (ins) blabels[f].push_back(d.between_levels[f][d.group[s][f]]);
-      group[s][f] = it->second;
-    }
-    blevels[f] = remap.size();
+// Sphericity fields of a within effect from its stratum.
+void set_sphericity(Effect& e, const Stratum& st) {
+  e.gg_epsilon = st.gg;
+  e.hf_epsilon = st.hf;
+  e.mauchly_W = st.mauchly_W;
+  e.mauchly_p = st.mauchly_p;
+  if (st.M.rows == 1 || st.zero_error) {
+    e.p_gg = e.p_hf = e.p;
+    e.log10_p_gg = e.log10_p_hf = e.log10_p;
+    return;
   }
-  // Every between cell needs a subject, else the full-factorial model is not estimable.
-  {
-    std::map<std::vector<size_t>, size_t> seen;
-    for (const auto& g : group) ++seen[g];
-    size_t expected = 1;
-    for (size_t L : blevels) expected *= L;
-    if (seen.size() < expected)
-      return Error{data.source, 0, 0, "", "some combination of the between-subject factors has no subject (after listwise "
-                                          "deletion): the full-factorial between design cannot be estimated"};
-  }
-  for (size_t f = 0; f < nb; ++f)
-    if (blevels[f] < 2) r.warnings.push_back("between factor '" + d.between_names[f] + "' has one level: its effects are not tested");
-  for (size_t f = 0; f < nw; ++f)
-    if (d.within_levels[f].size() < 2) r.warnings.push_back("within factor '" + d.within_names[f] + "' has one level: its effects are not tested");
-  if (N == 1) r.warnings.push_back("one subject: no error degrees of freedom, F and p are undefined");
+  const Tail tg = f_upper(e.F, e.df1 * st.gg, e.df2 * st.gg);
+  e.p_gg = tg.p;
+  e.log10_p_gg = tg.log10_p;
+  const double h = std::isnan(st.hf) ? kNaN : std::min(1.0, st.hf);
+  const Tail th = h > 0 ? f_upper(e.F, e.df1 * h, e.df2 * h) : Tail{kNaN, kNaN};
+  e.p_hf = th.p;
+  e.log10_p_hf = th.log10_p;
+}
 
-  const BetweenDesign bd = between_design(group, blevels);
-  const size_t q = bd.X.cols;
-  const auto V = detail::spd_inverse(detail::crossprod(bd.X));
-  if (!V) return Error{data.source, 0, 0, "", "the between-subjects design matrix is singular"};
-  const Matrix Xt = detail::transpose(bd.X);
-  const double dfe = static_cast<double>(N) - static_cast<double>(q);
-  if (N > 1 && dfe == 0) r.warnings.push_back("as many subjects as between-subject cells: no error degrees of freedom");
+std::string term_name(const std::vector<size_t>& T, const std::vector<size_t>& S, const CellDesign& d) {
+  std::string name;
+  for (size_t f : T) name += (name.empty() ? "" : ":") + d.between_names[f];
+  for (size_t f : S) name += (name.empty() ? "" : ":") + d.within_names[f];
+  return name;
+}
 
-  Matrix Y(N, C);
-  detail::Sum sumsq;
-  for (size_t s = 0; s < N; ++s)
-    for (size_t c = 0; c < C; ++c) {
-      Y(s, c) = d.delta[s][c];
-      sumsq.add(d.delta[s][c] * d.delta[s][c]);
-    }
-  const double zero_threshold = 2e-28 * static_cast<double>(C) * sumsq.value();
+// An effect that is recorded with its stratum and factors (for generalized eta squared).
+struct Pending {
+  Effect e;
+  size_t stratum;
+  std::vector<size_t> factors_between, factors_within;
+};
 
-  struct Pending {
+// What every stratum's effects share: the between design, its inverse cross
+// product, X', the error df and the power of two the deltas were scaled by.
+struct Regression {
+  const BetweenDesign& bd;
+  const Matrix& V;
+  const Matrix& Xt;
+  double dfe;
+  int exponent;
+};
+
+// The rows of within term st.S crossed with every between term (type III
+// multivariate SS). Result false: a sum of squares overflowed; Error: a
+// singular between term.
+Result<bool> stratum_effects(const Stratum& st, const Regression& reg, const CellDesign& d, size_t stratum,
+                             std::vector<Pending>& pending) {
+  const size_t p = st.M.rows;
+  const auto unscale = [&](double ss) { return std::ldexp(ss, 2 * reg.exponent); };
+  Matrix B = detail::multiply(reg.V, detail::multiply(reg.Xt, st.Z));
+  const Matrix fit = detail::multiply(reg.bd.X, B);  // one step of iterative refinement of B
+  Matrix res = st.Z;
+  for (size_t i = 0; i < res.a.size(); ++i) res.a[i] -= fit.a[i];
+  const Matrix dB = detail::multiply(reg.V, detail::multiply(reg.Xt, res));
+  for (size_t i = 0; i < B.a.size(); ++i) B.a[i] += dB.a[i];
+  for (size_t ti = 0; ti < reg.bd.terms.size(); ++ti) {
+    const auto& T = reg.bd.terms[ti];
+    if ((st.S.empty() && T.empty()) || reg.bd.df[ti] == 0) continue;  // no intercept row (afex intercept = FALSE)
     Effect e;
-    size_t stratum;
-    std::vector<size_t> factors_between, factors_within;
-  };
-  std::vector<Pending> pending;
-  std::vector<double> stratum_error;
-  const auto wterms = terms(nw);
-  for (size_t si = 0; si < wterms.size(); ++si) {
-    const auto& S = wterms[si];
-    Matrix M(1, 1, 1.0);
-    for (size_t f = 0; f < nw; ++f) {
-      const size_t L = d.within_levels[f].size();
-      M = detail::kronecker(M, contains(S, f) ? detail::orthonormal_contrasts(L) : detail::normalized_mean_row(L));
+    e.name = term_name(T, st.S, d);
+    e.within = !st.S.empty();
+    const Matrix Bt = submatrix(B, reg.bd.columns[ti], all_indices(p));
+    const auto Vinv = detail::spd_inverse(submatrix(reg.V, reg.bd.columns[ti], reg.bd.columns[ti]));
+    if (!Vinv) return Error{"", 0, 0, "", "singular between-subjects term " + e.name};
+    e.ss = unscale(detail::trace(detail::multiply(detail::transpose(Bt), detail::multiply(*Vinv, Bt))));
+    e.ss_error = unscale(st.ss_error);
+    if (!std::isfinite(e.ss) || !std::isfinite(e.ss_error)) return false;
+    e.df1 = static_cast<double>(reg.bd.df[ti] * p);
+    e.df2 = std::max(0.0, reg.dfe) * static_cast<double>(p);
+    set_test(e, st.zero_error);
+    e.eta_p2 = (e.ss + e.ss_error) > 0 ? e.ss / (e.ss + e.ss_error) : kNaN;
+    if (e.within) {
+      set_sphericity(e, st);
+    } else {
+      e.gg_epsilon = e.hf_epsilon = e.mauchly_W = e.mauchly_p = kNaN;
+      e.p_gg = e.log10_p_gg = e.p_hf = e.log10_p_hf = kNaN;
     }
-    const size_t p = M.rows;
-    if (p == 0) continue;
-    const Matrix Z = detail::multiply(Y, detail::transpose(M));
-    Matrix B = detail::multiply(*V, detail::multiply(Xt, Z));
-    Matrix R = Z;
-    for (int pass = 0; pass < 2; ++pass) {  // residuals, then one step of iterative refinement of B
-      const Matrix fit = detail::multiply(bd.X, B);
-      for (size_t i = 0; i < R.a.size(); ++i) R.a[i] = Z.a[i] - fit.a[i];
-      if (pass == 0) {
-        const Matrix dB = detail::multiply(*V, detail::multiply(Xt, R));
-        for (size_t i = 0; i < B.a.size(); ++i) B.a[i] += dB.a[i];
-      }
-    }
-    const Matrix E = detail::crossprod(R);
-    double ss_error = detail::trace(E);
-    const bool zero_error = dfe > 0 && ss_error <= zero_threshold;
-    if (zero_error) ss_error = 0.0;
-    stratum_error.push_back(ss_error);
-    if (zero_error && dfe > 0)
-      r.warnings.push_back(std::string("zero error variance in stratum ") + (S.empty() ? "between subjects" : "of the within term") +
-                           ": F is infinite (or 0/0) there");
-
-    // Sphericity of this stratum.
-    double gg = 1.0, hf = 1.0, mw = kNaN, mp = kNaN;
-    if (S.empty()) {
-      gg = hf = kNaN;
-    } else if (p >= 2) {
-      if (zero_error || dfe <= 0) {
-        gg = hf = kNaN;
-      } else {
-        const Matrix E2 = detail::multiply(E, E);
-        const double pd = static_cast<double>(p);
-        if (dfe == 1) {  // E has rank 1: GG = 1/p exactly and the HF formula is 0/0
-          gg = 1.0 / pd;
-          hf = kNaN;
-        } else {
-          gg = ss_error * ss_error / (pd * detail::trace(E2));
-          hf = ((dfe + 1.0) * pd * gg - 2.0) / (pd * (dfe - pd * gg));
-        }
-        std::tie(mw, mp) = mauchly(E, dfe, C);
-      }
-    }
-
-    for (size_t ti = 0; ti < bd.terms.size(); ++ti) {
-      const auto& T = bd.terms[ti];
-      if (S.empty() && T.empty()) continue;  // the intercept is not reported (afex intercept = FALSE)
-      if (bd.df[ti] == 0) continue;
-      Effect e;
-      std::string name;
-      for (size_t f : T) name += (name.empty() ? "" : ":") + d.between_names[f];
-      for (size_t f : S) name += (name.empty() ? "" : ":") + d.within_names[f];
-      e.name = name;
-      e.within = !S.empty();
-      const Matrix Bt = submatrix(B, bd.columns[ti], [&] {
-        std::vector<size_t> all(p);
-        for (size_t j = 0; j < p; ++j) all[j] = j;
-        return all;
-      }());
-      const auto Vinv = detail::spd_inverse(submatrix(*V, bd.columns[ti], bd.columns[ti]));
-      if (!Vinv) return Error{data.source, 0, 0, "", "singular between-subjects term " + name};
-      const Matrix H = detail::multiply(detail::transpose(Bt), detail::multiply(*Vinv, Bt));
-      e.ss = detail::trace(H);
-      e.ss_error = ss_error;
-      e.df1 = static_cast<double>(bd.df[ti] * p);
-      e.df2 = std::max(0.0, dfe) * static_cast<double>(p);
-      set_test(e, zero_error);
-      e.eta_p2 = (e.ss + e.ss_error) > 0 ? e.ss / (e.ss + e.ss_error) : kNaN;
-      if (!e.within) {
-        e.gg_epsilon = e.hf_epsilon = e.mauchly_W = e.mauchly_p = kNaN;
-        e.p_gg = e.log10_p_gg = e.p_hf = e.log10_p_hf = kNaN;
-      } else {
-        e.gg_epsilon = gg;
-        e.hf_epsilon = hf;
-        e.mauchly_W = mw;
-        e.mauchly_p = mp;
-        if (p == 1 || (zero_error && p >= 2)) {
-          e.p_gg = e.p_hf = e.p;
-          e.log10_p_gg = e.log10_p_hf = e.log10_p;
-        } else {
-          const Tail tg = f_upper(e.F, e.df1 * gg, e.df2 * gg);
-          e.p_gg = tg.p;
-          e.log10_p_gg = tg.log10_p;
-          const double h = std::isnan(hf) ? kNaN : std::min(1.0, hf);
-          const Tail th = h > 0 ? f_upper(e.F, e.df1 * h, e.df2 * h) : Tail{kNaN, kNaN};
-          e.p_hf = th.p;
-          e.log10_p_hf = th.log10_p;
-        }
-      }
-      pending.push_back({e, stratum_error.size() - 1, T, S});
-    }
+    complete_effect(e);
+    pending.push_back({e, stratum, T, st.S});
   }
+  return true;
+}
 
-  // Generalized eta squared (afex): distinct error SS of all strata, plus observed effects.
+// Generalized eta squared (afex): distinct error SS of all strata, plus observed effects.
+Status generalized_eta(std::vector<Pending>& pending, const std::vector<double>& stratum_error, const CellDesign& d,
+                       const std::vector<std::string>& observed, const std::string& source) {
+  for (const auto& o : observed)
+    if (std::find(d.between_names.begin(), d.between_names.end(), o) == d.between_names.end() &&
+        std::find(d.within_names.begin(), d.within_names.end(), o) == d.within_names.end())
+      return Error{source, 0, 0, o, "observed factor is not a factor of the design"};
   std::vector<double> distinct;
   for (double v : stratum_error)
     if (std::find(distinct.begin(), distinct.end(), v) == distinct.end()) distinct.push_back(v);
   detail::Sum err_sum;
   for (double v : distinct) err_sum.add(v);
   auto is_observed = [&](const Pending& pe) {
-    for (const auto& o : options.observed) {
+    for (const auto& o : observed) {
       for (size_t f : pe.factors_between)
         if (d.between_names[f] == o) return true;
       for (size_t f : pe.factors_within)
@@ -323,33 +379,111 @@ Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& optio
     }
     return false;
   };
-  for (const auto& o : options.observed)
-    if (std::find(d.between_names.begin(), d.between_names.end(), o) == d.between_names.end() &&
-        std::find(d.within_names.begin(), d.within_names.end(), o) == d.within_names.end())
-      return Error{data.source, 0, 0, o, "observed factor is not a factor of the design"};
   double obs_ss = 0.0;
   for (const auto& pe : pending)
     if (is_observed(pe)) obs_ss += pe.e.ss;
   for (auto& pe : pending) {
     const double denom = pe.e.ss + err_sum.value() + obs_ss - (is_observed(pe) ? pe.e.ss : 0.0);
     pe.e.eta_g2 = denom > 0 ? pe.e.ss / denom : kNaN;
-    r.effects.push_back(pe.e);
   }
+  return {};
+}
 
-  // Descriptives of the subjects' cell means, per between group and within cell.
+// Descriptives of the subjects' cell means, per between group and within cell.
+std::vector<CellSummary> cell_summaries(const CellDesign& d, const Groups& g) {
+  std::vector<CellSummary> out;
   std::map<std::vector<size_t>, std::vector<size_t>> members;
-  for (size_t s = 0; s < N; ++s) members[group[s]].push_back(s);
-  for (const auto& [g, subjects] : members)
-    for (size_t c = 0; c < C; ++c) {
+  for (size_t s = 0; s < d.subjects.size(); ++s) members[g.of[s]].push_back(s);
+  for (const auto& [grp, subjects] : members)
+    for (size_t c = 0; c < d.cells; ++c) {
       CellSummary cs;
-      for (size_t f = 0; f < nb; ++f) cs.levels.emplace_back(d.between_names[f], blabels[f][g[f]]);
+      for (size_t f = 0; f < d.between_names.size(); ++f) cs.levels.emplace_back(d.between_names[f], g.labels[f][grp[f]]);
       const auto lv = d.cell_levels(c);
-      for (size_t f = 0; f < nw; ++f) cs.levels.emplace_back(d.within_names[f], d.within_levels[f][lv[f]]);
+      for (size_t f = 0; f < d.within_names.size(); ++f) cs.levels.emplace_back(d.within_names[f], d.within_levels[f][lv[f]]);
       std::vector<double> x;
       for (size_t s : subjects) x.push_back(d.delta[s][c]);
       cs.d = describe(x, d.offset);
-      r.cells.push_back(std::move(cs));
+      out.push_back(std::move(cs));
     }
+  return out;
+}
+
+Error overflow_error(const std::string& source, const std::string& dv, const char* what) {
+  return Error{source, 0, 0, name_for_message(dv),
+               std::string("overflow: ") + what +
+                   " exceed the largest double (about 1.8e308), so F and p cannot be computed; divide the "
+                   "column by a power of ten (e.g. 1e300) and run again"};
+}
+
+}  // namespace
+
+Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& options) {
+  auto built = detail::build_cell_design(data);
+  if (!built) return built.error();
+  const CellDesign& d = *built;
+
+  RmAnovaResult r;
+  r.within = d.within_names;
+  r.between = d.between_names;
+  r.dropped_subjects = d.dropped;
+  r.warnings = d.warnings;
+  const size_t N = d.subjects.size(), C = d.cells;
+  r.n_subjects = N;
+  if (N == 0) return Error{data.source, 0, 0, "", "no subject has every cell: nothing left after listwise deletion"};
+  auto groups = surviving_groups(d, data.source);
+  if (!groups) return groups.error();
+  const Groups& g = *groups;
+  for (size_t f = 0; f < g.levels.size(); ++f)
+    if (g.levels[f] < 2) r.warnings.push_back("between factor '" + d.between_names[f] + "' has one level: its effects are not tested");
+  for (size_t f = 0; f < d.within_names.size(); ++f)
+    if (d.within_levels[f].size() < 2) r.warnings.push_back("within factor '" + d.within_names[f] + "' has one level: its effects are not tested");
+  if (N == 1) r.warnings.push_back("one subject: no error degrees of freedom, F and p are undefined");
+
+  const BetweenDesign bd = between_design(g.of, g.levels);
+  const auto V = detail::spd_inverse(detail::crossprod(bd.X));
+  if (!V) return Error{data.source, 0, 0, "", "the between-subjects design matrix is singular"};
+  const Matrix Xt = detail::transpose(bd.X);
+  const double dfe = static_cast<double>(N) - static_cast<double>(bd.X.cols);
+  if (N > 1 && dfe == 0) r.warnings.push_back("as many subjects as between-subject cells: no error degrees of freedom");
+
+  // Deltas scaled by a power of two (exact) so that no square over- or underflows.
+  double largest = 0;
+  for (size_t s = 0; s < N; ++s)
+    for (size_t c = 0; c < C; ++c) largest = std::max(largest, std::fabs(d.delta[s][c]));
+  if (!std::isfinite(largest)) return overflow_error(data.source, data.dv_name, "differences between the values");
+  int exponent = 0;
+  if (largest > 0) std::frexp(largest, &exponent);
+  Matrix Y(N, C);
+  detail::Sum sumsq, noise2;
+  for (size_t s = 0; s < N; ++s)
+    for (size_t c = 0; c < C; ++c) {
+      Y(s, c) = std::ldexp(d.delta[s][c], -exponent);
+      const double n = std::ldexp(d.noise[s][c], -exponent);
+      sumsq.add(Y(s, c) * Y(s, c));
+      noise2.add(n * n);
+    }
+  // Zero error SS: at most twice the rounding error of the data in norm (0 for
+  // exact data), or the double-double floor of the residual.
+  const double zero_threshold = 4.0 * noise2.value() + 1e-60 * sumsq.value();
+  auto unscale = [&](double ss) { return std::ldexp(ss, 2 * exponent); };
+
+  std::vector<Pending> pending;
+  std::vector<double> stratum_error;
+  for (const auto& S : terms(d.within_names.size())) {
+    const Stratum st = within_stratum(S, Y, g, d, dfe, zero_threshold);
+    const size_t p = st.M.rows;
+    if (p == 0) continue;
+    stratum_error.push_back(unscale(st.ss_error));
+    if (st.zero_error)
+      r.warnings.push_back(std::string("zero error variance in stratum ") + (S.empty() ? "between subjects" : "of the within term") +
+                           ": F is infinite (or 0/0) there");
+    auto added = stratum_effects(st, {bd, *V, Xt, dfe, exponent}, d, stratum_error.size() - 1, pending);
+    if (!added) return Error{data.source, 0, 0, "", added.error().message};
+    if (!*added) return overflow_error(data.source, data.dv_name, "the sums of squares");
+  }
+  if (auto s = generalized_eta(pending, stratum_error, d, options.observed, data.source); !s) return s.error();
+  for (const auto& pe : pending) r.effects.push_back(pe.e);
+  r.cells = cell_summaries(d, g);
   return r;
 }
 

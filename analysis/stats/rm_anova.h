@@ -15,30 +15,44 @@
 // Sphericity (within terms with p >= 2), as car::summary.Anova.mlm:
 //   GG = tr(E)^2 / (p tr(E^2));  HF = ((N - q + 1) p GG - 2) / (p (N - q - p GG)), may exceed 1;
 //   p_gg uses df * GG, p_hf uses df * min(1, HF);
-//   Mauchly: log W = log det E - p log(tr E / p); chi-square approximation with
+//   Mauchly: log W = log det E - p log(tr E / p), log det E = 2 sum log |R_jj|
+//   from a Householder QR of the residual contrast scores (no cut-off, so a
+//   nearly singular E keeps its tiny W); chi-square approximation with
 //   Anderson's second term, n = N - q, including car/stats' use of the total
 //   number of within cells (not p) in the "3 p" term of w2.
+// Precision: the residual of each stratum (Y minus its between-cell means,
+//   centred or averaged along each within factor) is formed in double-double
+//   from the exact deltas, and the deltas are scaled by a power of two, so
+//   residuals far below the effects keep their digits and nothing under- or
+//   overflows short of a sum of squares beyond the double range (an Error).
 // 1-df within terms: GG = HF = 1, Mauchly NaN. Between terms: sphericity NaN.
 // Effect sizes (afex es = "pes", "ges"): eta_p2 = SS / (SS + SS_error);
 //   eta_g2 = SS / (SS + sum of the distinct error SS of all strata, including
 //   the between-subjects stratum [+ SS of effects with observed factors])
 //   (Olejnik & Algina 2003; afex sums unique() error SS values, and so do we).
 // Missing data: listwise deletion of subjects with a missing cell, with a
-// warning naming them (detail/design.h); several rows per cell are averaged.
-// Defined results: zero error SS (below the rounding noise of the data,
-// 2e-28 * cells * sum of squared deltas) -> F = +inf, p = 0 if SS > 0, else
-// F = p = NaN; sphericity then NaN and p_gg = p_hf = p. One subject (or
+// warning naming them (detail/design.h); several rows per cell are an Error
+// unless LongData::aggregate asks for their mean or median.
+// Defined results: zero error SS (at most twice the rounding error of the
+// input in norm, which is 0 for exact data such as integers, or below the
+// double-double floor 1e-60 x the total sum of squares) -> F = +inf, p = 0 if
+// SS > 0, else F = p = NaN; sphericity then NaN and p_gg = p_hf = p. One subject (or
 // N = q) -> df2 = 0, F = p = NaN. Error df < p -> Mauchly W = 0, p NaN.
 // Error df = 1 (e.g. two subjects) -> GG = 1/p exactly, HF = 0/0 = NaN.
 // A factor with one level: its effects are left out with a warning.
 // Where we knowingly differ from R: car/afex give a huge finite F (or stop)
-// where the error SS is rounding noise; we report it as exactly 0 (above).
+// where the error SS is rounding noise of the input; we report it as exactly
+// 0 (above). Where the residual is real but tiny beside the effects (data of
+// size 2.5e14, SS_error 163/6), R's aov/car lose digits and we do not.
 // Post-hoc comparisons (posthoc.h) cover within factors only.
 // References: car 3.x summary.Anova.mlm; afex anova.afex_aov; Maxwell &
 // Delaney (2004) ch. 11-12, 14; Huynh & Feldt (1976); Mauchly (1940).
 // Validated against: Maxwell & Delaney Table 12.1 (published F and SS; car
 // conventions for GG/HF/Mauchly); R ez::ezANOVA via statsmodels tests;
-// JAMOVI/ezANOVA via pingouin tests; afex 1.x obk.long values (mixed).
+// JAMOVI/ezANOVA via pingouin tests; afex 1.x obk.long values (mixed); exact
+// rational arithmetic and car 3.1-1 for the nearly singular and tiny-residual
+// cases (test_edge_cases.cpp). Each row also carries MSE, corrected df and
+// the eta_p2 interval (effect_size.h).
 #pragma once
 #include <string>
 #include <utility>

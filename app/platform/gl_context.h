@@ -7,6 +7,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "study/common/error.h"
 
@@ -44,7 +45,13 @@ struct WindowOptions {
   bool visible = true;   // false: an off-screen window (tests under xvfb)
   bool vsync = true;
   bool resizable = true;
+  bool fullscreen = false;  // full screen on `monitor`, at that monitor's current video mode (width/height ignored)
+  int monitor = 0;          // 0-based index into the connected monitors (0 = the primary one)
 };
+
+// The connected monitors' names, primary first (needs GLFW: call after a window exists, or it
+// initialises GLFW for the call); empty when there is no display.
+std::vector<std::string> monitor_names();
 
 // A GLFW window with a GL 3.3 core context (forward compatible, so macOS works).
 class Window final : public GlContext {

@@ -79,11 +79,33 @@ Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
   glfwWindowHint(GLFW_ALPHA_BITS, 8);
   glfwWindowHint(GLFW_DEPTH_BITS, 24);
   glfwWindowHint(GLFW_STENCIL_BITS, 8);
-  GLFWwindow* w = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+  GLFWmonitor* monitor = nullptr;
+  int width = options.width, height = options.height;
+  int place_x = -1, place_y = -1;  // a windowed window on another monitor: its top-left corner
+  if (options.fullscreen || options.monitor != 0) {
+    int count = 0;
+    GLFWmonitor** monitors = glfwGetMonitors(&count);
+    if (options.monitor < 0 || options.monitor >= count) {
+      if (--g_windows == 0) glfwTerminate();
+      return window_error("monitor " + std::to_string(options.monitor) + " does not exist (" + std::to_string(count) +
+                          " connected, numbered from 0)");
+    }
+    if (options.fullscreen) {
+      monitor = monitors[options.monitor];
+      const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+      width = mode->width;
+      height = mode->height;
+      glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+    } else {
+      glfwGetMonitorPos(monitors[options.monitor], &place_x, &place_y);
+    }
+  }
+  GLFWwindow* w = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
   if (w == nullptr) {
     if (--g_windows == 0) glfwTerminate();
     return window_error("cannot open a window with an OpenGL 3.3 core context");
   }
+  if (place_x >= 0) glfwSetWindowPos(w, place_x + 40, place_y + 40);
   std::unique_ptr<Window> window(new Window(w));
   detail::switching_to(ContextKind::window);
   glfwMakeContextCurrent(w);
@@ -91,6 +113,20 @@ Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
   if (version < 33) return window_error("the window's GL context is older than 3.3 core");
   glfwSwapInterval(options.vsync ? 1 : 0);
   return window;
+}
+
+std::vector<std::string> monitor_names() {
+  std::vector<std::string> out;
+  const bool init = g_windows == 0;
+  if (init && glfwInit() == GLFW_FALSE) return out;
+  int count = 0;
+  GLFWmonitor** monitors = glfwGetMonitors(&count);
+  for (int i = 0; i < count; ++i) {
+    const char* name = glfwGetMonitorName(monitors[i]);
+    out.push_back(name ? name : "monitor " + std::to_string(i));
+  }
+  if (init) glfwTerminate();
+  return out;
 }
 
 }  // namespace dtlab::platform

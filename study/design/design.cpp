@@ -7,6 +7,7 @@
 #include <string>
 
 #include "study/design/seeds.h"
+#include "study/protocol/limits.h"
 
 namespace dtlab::design {
 
@@ -51,7 +52,13 @@ void check_protocol(const Protocol& p) {
 
 }  // namespace
 
-int order_rows(const Protocol& p) { return protocol::declared_order_rows(p); }
+int order_rows(const Protocol& p) {
+  const std::int64_t rows = protocol::declared_order_rows(p);
+  require(rows <= protocol::limits::kOrderRows.max, p,
+          "the ordering has " + std::to_string(rows) + " rows, more than a loaded protocol can have (" +
+              std::to_string(protocol::limits::kOrderRows.max) + "); load protocols with load_protocol()");
+  return static_cast<int>(rows);
+}
 
 Order order_row(const Protocol& p, int row) {
   const int rows = order_rows(p);
@@ -65,7 +72,7 @@ Order order_row(const Protocol& p, int row) {
   const int bf = o.block_factor;
   const int k = static_cast<int>(p.factors[bf].levels.size());
   const int nested = product_of_levels(p, bf);
-  const int outer_rows = protocol::scheme_rows(o.scheme, k, o.rows);
+  const int outer_rows = static_cast<int>(protocol::scheme_rows(o.scheme, k, o.rows));
   const Order outer = scheme_row(o.scheme, k, o.fixed, order_seed(p.master_seed, 0), row % outer_rows);
   const Order inner =
       scheme_row(o.nested_scheme, nested, o.nested_fixed, order_seed(p.master_seed, 1), row / outer_rows);

@@ -13,7 +13,8 @@
 
 namespace dtlab::design {
 
-// Number of rows of the protocol's ordering (for unit = blocks: outer x nested).
+// Number of rows of the protocol's ordering (for unit = blocks: outer x nested); at most
+// protocol::limits::kOrderRows.max for a loaded protocol (more: std::invalid_argument).
 int order_rows(const protocol::Protocol& p);
 
 // One row of the ordering: condition indices (into p.conditions) in session

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -164,6 +165,84 @@ bool has_errors(const std::vector<Diagnostic>& diagnostics) {
   return false;
 }
 
+namespace {
+
+// "a.b[2].c" -> {"a", "b", "[2]", "c"}: keys and array indices in order.
+std::vector<std::string> path_parts(std::string_view field) {
+  std::vector<std::string> parts;
+  std::string cur;
+  for (char c : field) {
+    if (c == '.' || c == '[') {
+      if (!cur.empty()) parts.push_back(cur);
+      cur = c == '[' ? "[" : "";
+    } else if (c == ']') {
+      parts.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) parts.push_back(cur);
+  return parts;
+}
+
+SourcePos position_of(const toml::node& n) {
+  const auto& b = n.source().begin;
+  return {static_cast<int>(b.line), static_cast<int>(b.column)};
+}
+
+// The deepest node along `parts` that has a source position (the root table counts as line 1).
+SourcePos walk(const toml::table& root, const std::vector<std::string>& parts, bool* complete) {
+  SourcePos at{1, 1};
+  const toml::node* n = &root;
+  *complete = false;
+  for (const std::string& part : parts) {
+    const toml::node* next = nullptr;
+    if (part.front() == '[') {
+      const toml::array* a = n->as_array();
+      char* end = nullptr;
+      const unsigned long i = std::strtoul(part.c_str() + 1, &end, 10);
+      if (a && end && *end == '\0' && i < a->size()) next = a->get(i);
+    } else if (const toml::table* t = n->as_table()) {
+      next = t->get(part);
+    }
+    if (!next) return at;
+    n = next;
+    if (const SourcePos p = position_of(*n); p.line > 0) at = p;
+  }
+  *complete = true;
+  return at;
+}
+
+}  // namespace
+
+SourcePos field_position(const Protocol& p, std::string_view field) {
+  if (p.source_text.empty()) return {};
+  toml::table root;
+  try {
+    root = toml::parse(p.source_text, p.source_path);
+  } catch (const std::exception&) {
+    return {};
+  }
+  std::vector<std::string> parts = path_parts(field);
+  bool complete = false;
+  const SourcePos exact = walk(root, parts, &complete);
+  if (complete) return exact;
+  // scenarios.<s>.tasks.<t>.<key>: a scene key the task does not set comes from the scenario.
+  if (parts.size() >= 5 && parts[0] == "scenarios" && parts[2] == "tasks") {
+    std::vector<std::string> inherited{parts[0], parts[1]};
+    inherited.insert(inherited.end(), parts.begin() + 4, parts.end());
+    const SourcePos from_scenario = walk(root, inherited, &complete);
+    if (complete) return from_scenario;
+  }
+  return exact;
+}
+
+Error error_at(const Protocol& p, std::string field, std::string message) {
+  const SourcePos at = field_position(p, field);
+  return Error{p.source_path, at.line, at.column, std::move(field), std::move(message)};
+}
+
 std::string_view to_string(FactorRole role) {
   switch (role) {
     case FactorRole::scenario: return "scenario";
@@ -209,15 +288,18 @@ std::string_view to_string(ItemType type) {
   return "rating";
 }
 
-int scheme_rows(Scheme scheme, int n, int random_rows) {
-  constexpr std::int64_t kMax = std::numeric_limits<int>::max();
+std::int64_t scheme_rows(Scheme scheme, int n, int random_rows) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
   switch (scheme) {
     case Scheme::latin_square: return n;
-    case Scheme::williams: return n % 2 == 0 ? n : 2 * n;
+    case Scheme::williams: return n % 2 == 0 ? n : 2 * static_cast<std::int64_t>(n);
     case Scheme::full_permutation: {
       std::int64_t f = 1;
-      for (int i = 2; i <= n && f <= kMax; ++i) f *= i;
-      return static_cast<int>(std::min(f, kMax));
+      for (int i = 2; i <= n; ++i) {
+        if (f > kMax / i) return kMax;
+        f *= i;
+      }
+      return f;
     }
     case Scheme::random: return random_rows;
     case Scheme::fixed: break;
@@ -225,7 +307,8 @@ int scheme_rows(Scheme scheme, int n, int random_rows) {
   return 1;
 }
 
-int declared_order_rows(const Protocol& p) {
+std::int64_t declared_order_rows(const Protocol& p) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
   const Ordering& o = p.order;
   if (o.unit == OrderUnit::conditions) {
     int n = 1;
@@ -236,11 +319,10 @@ int declared_order_rows(const Protocol& p) {
   int nested = 1;
   for (int f = 0; f < static_cast<int>(p.factors.size()); ++f)
     if (f != o.block_factor) nested *= static_cast<int>(p.factors[f].levels.size());
-  const std::int64_t rows =
-      static_cast<std::int64_t>(
-          scheme_rows(o.scheme, static_cast<int>(p.factors[o.block_factor].levels.size()), o.rows)) *
-      scheme_rows(o.nested_scheme, nested, o.nested_rows);
-  return static_cast<int>(std::min<std::int64_t>(rows, std::numeric_limits<int>::max()));
+  const std::int64_t outer = scheme_rows(o.scheme, static_cast<int>(p.factors[o.block_factor].levels.size()), o.rows);
+  const std::int64_t inner = scheme_rows(o.nested_scheme, nested, o.nested_rows);
+  if (outer > 0 && inner > kMax / outer) return kMax;
+  return outer * inner;
 }
 
 int condition_index(const Protocol& p, const std::vector<int>& levels) {
@@ -255,26 +337,22 @@ int condition_index(const Protocol& p, const std::vector<int>& levels) {
 }
 
 namespace {
-
 template <class T>
 const T* by_name(const std::vector<T>& items, std::string_view name) {
-  for (const T& x : items)
-    if (x.name == name) return &x;
+  for (const T& item : items)
+    if (item.name == name) return &item;
   return nullptr;
 }
-
-const Factor* by_role(const Protocol& p, FactorRole role) {
-  for (const Factor& f : p.factors)
-    if (f.role == role) return &f;
-  return nullptr;
-}
-
 }  // namespace
 
 const Factor* find_factor(const Protocol& p, std::string_view name) { return by_name(p.factors, name); }
 const Scenario* find_scenario(const Protocol& p, std::string_view name) { return by_name(p.scenarios, name); }
 const Rendering* find_rendering(const Protocol& p, std::string_view name) { return by_name(p.renderings, name); }
-const Factor* rendering_factor(const Protocol& p) { return by_role(p, FactorRole::rendering); }
-const Factor* scenario_factor(const Protocol& p) { return by_role(p, FactorRole::scenario); }
+
+const Factor* factor_with_role(const Protocol& p, FactorRole role) {
+  for (const Factor& f : p.factors)
+    if (f.role == role) return &f;
+  return nullptr;
+}
 
 }  // namespace dtlab::protocol

@@ -98,6 +98,7 @@ struct Task {
   TaskType type = TaskType::count_targets;
   int trials = 0;  // recorded trials per condition
   SceneParams scene;
+  std::string instructions;  // shown to the participant before each task set; "" = the default of its type
 };
 
 struct Scenario {
@@ -144,6 +145,18 @@ struct QuestionnaireItem {
   std::string scenario;              // depth_test: scenario shown
   std::string rendering;             // depth_test: rendering used
   int pairs = 3;                     // depth_test
+  std::string neutral;               // choice: an extra option meaning "no preference" ("" = none); last of options
+};
+
+// One thing the experimenter records about a participant at enrollment (age, handedness, ...).
+struct DemographicField {
+  enum class Type { text, integer, choice };
+  std::string id;                    // identifier, the key stored in the ledger
+  std::string prompt;                // what the start screen asks
+  Type type = Type::text;
+  bool required = false;             // enrollment refuses an empty value
+  int min = 0, max = 150;            // integer: the accepted range
+  std::vector<std::string> options;  // choice: the accepted answers
 };
 
 struct Protocol {
@@ -166,7 +179,13 @@ struct Protocol {
   std::vector<Scenario> scenarios;    // in file order
   std::vector<Rendering> renderings;  // in file order
   std::vector<QuestionnaireItem> questionnaire;  // in file order
+  std::vector<DemographicField> demographics;    // in file order; asked at enrollment
 };
+
+// Checks a participant's demographic answers against the protocol's fields (required ones
+// present, integers in range, choices among the options, no unknown field); the Error names
+// the field. Values are text as entered.
+Status check_demographics(const Protocol& p, const std::vector<std::pair<std::string, std::string>>& values);
 
 // --- loading and validation -------------------------------------------------------------
 
@@ -182,6 +201,19 @@ std::vector<Diagnostic> validate_protocol_text(std::string_view text, const std:
 // True if any diagnostic is an error (warnings alone leave a protocol valid).
 bool has_errors(const std::vector<Diagnostic>& diagnostics);
 
+// Where `field` (a dotted path as diagnostics name it, e.g. "scenarios.abstract.tasks.T1.objects"
+// or "factors.transparency.levels[1]") is written in p.source_text: the value of the key; for a
+// task's scene key the task does not set, the scenario's key; for a key written nowhere (a
+// default), the table that would hold it; line 1 for the top level. {0, 0} when p has no text.
+struct SourcePos {
+  int line = 0;
+  int column = 0;
+};
+SourcePos field_position(const Protocol& p, std::string_view field);
+
+// An Error about `field` of p, at field_position(p, field) in p.source_path.
+Error error_at(const Protocol& p, std::string field, std::string message);
+
 // --- names -------------------------------------------------------------------------------
 
 std::string_view to_string(FactorRole role);
@@ -190,25 +222,26 @@ std::string_view to_string(OrderUnit unit);
 std::string_view to_string(ScenarioKind kind);   // "abstract" | "walkthrough"
 std::string_view to_string(TaskType type);       // "count-targets", ...
 std::string_view to_string(ItemType type);
+std::string_view to_string(DemographicField::Type type);  // "text", "integer", "choice"
 
 // The number of rows the declared scheme yields for n items (n >= 1):
 // latin-square n, williams n (even n) or 2n (odd n), full-permutation n!,
-// random `random_rows`, fixed 1. Saturates at INT32_MAX.
-int scheme_rows(Scheme scheme, int n, int random_rows);
+// random `random_rows`, fixed 1. Exact (n! saturates at INT64_MAX, from n = 21 on).
+std::int64_t scheme_rows(Scheme scheme, int n, int random_rows);
 
-// Rows of the protocol's ordering (for unit = blocks: outer rows x nested rows).
-int declared_order_rows(const Protocol& p);
+// Rows of the protocol's ordering (for unit = blocks: outer rows x nested rows), exact
+// (saturating at INT64_MAX); a loaded protocol has at most limits::kOrderRows.max.
+std::int64_t declared_order_rows(const Protocol& p);
 
 // Index of the condition with these level indices (one per factor); -1 if out of range.
 int condition_index(const Protocol& p, const std::vector<int>& levels);
 
-// --- lookups (nullptr when there is none) ---------------------------------------------------
-
+// Lookups by name; nullptr if p has none of that name. Valid while p is.
 const Factor* find_factor(const Protocol& p, std::string_view name);
 const Scenario* find_scenario(const Protocol& p, std::string_view name);
 const Rendering* find_rendering(const Protocol& p, std::string_view name);
-const Factor* rendering_factor(const Protocol& p);  // the factor with role = "rendering"
-const Factor* scenario_factor(const Protocol& p);   // the factor with role = "scenario"
+// The factor with this role (at most one per role); nullptr if none.
+const Factor* factor_with_role(const Protocol& p, FactorRole role);
 
 // --- identity ----------------------------------------------------------------------------
 

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "study/common/text.h"
 #include "study/scene/detail/generators.h"
 #include "study/scene/detail/walkthrough_layout.h"
 #include "study/scene/hash.h"
@@ -36,8 +37,8 @@ Status check_ratio(const std::string& field, double lo, double hi, int n) {
     return bad(field + "_min", "expected 0 <= " + field + "_min <= " + field + "_max <= 1, got [" + num(lo) + ", " +
                                    num(hi) + "]");
   if (count_low(lo, n) > count_high(hi, n))
-    return bad(field + "_min", "the range [" + num(lo) + ", " + num(hi) + "] of " + std::to_string(n) +
-                                   " objects contains no whole number of objects");
+    return bad(field + "_min", "the range [" + num(lo) + ", " + num(hi) + "] of " + count(n, "object") +
+                                   " contains no whole number of objects");
   return {};
 }
 

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "study/common/version.h"
@@ -17,29 +19,59 @@ namespace dtlab::session {
 
 namespace {
 
+// An error about a protocol key, at the line where the key (or the table that inherits it) is written.
 Error bad(const protocol::Protocol& p, std::string field, std::string message) {
+  return protocol::error_at(p, std::move(field), std::move(message));
+}
+
+// An error about a planned trial that does not fit the protocol (no protocol key to point at).
+Error plan_error(const protocol::Protocol& p, std::string field, std::string message) {
   return Error{p.source_path, 0, 0, std::move(field), std::move(message)};
+}
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
 std::string task_field(const protocol::Scenario& s, const protocol::Task& t) {
   return "scenarios." + s.name + ".tasks." + t.id;
 }
 
-// The generator's parameter names and the protocol keys they come from, so an
-// error of scene::validate names the key the author wrote.
+// The protocol key behind each generator parameter, so an error of scene::validate names a key
+// the author wrote. The generator's fixed constants (walls, doors, the T2 letter, the red
+// distractors) are named by the key that makes them fail: walls and doors need a large enough
+// cell_size, rooms a large enough grid, the letter a large enough extent, the red distractors
+// enough objects.
 std::string protocol_key(const std::string& generator_field) {
   static const std::pair<const char*, const char*> kKeys[] = {
       {"abstract.objects", "objects"},           {"abstract.cube_size", "extent"},
       {"abstract.min_radius", "object_radius"},  {"abstract.max_radius", "object_radius"},
-      {"abstract.target_ratio", "target_ratio"}, {"abstract.letters", "letters"},
+      {"abstract.target_ratio_min", "target_ratio"}, {"abstract.target_ratio_max", "target_ratio"},
+      {"abstract.letters", "letters"},           {"abstract.letter_cone_radius", "extent"},
+      {"abstract.letter_spacing", "extent"},     {"abstract.red_distractor_ratio_min", "objects"},
+      {"abstract.red_distractor_ratio_max", "objects"},
       {"walkthrough.grid_width", "grid"},        {"walkthrough.grid_depth", "grid"},
-      {"walkthrough.cell_size", "cell_size"},    {"walkthrough.objects", "objects"},
-      {"walkthrough.kinds", "object_kinds"},     {"walkthrough.count_min", "count_range"},
-      {"walkthrough.count_max", "count_range"},
+      {"walkthrough.room_min", "grid"},          {"walkthrough.room_max", "grid"},
+      {"walkthrough.cell_size", "cell_size"},    {"walkthrough.wall_thickness", "cell_size"},
+      {"walkthrough.door_width", "cell_size"},   {"walkthrough.wall_height", "object_kinds"},
+      {"walkthrough.objects", "objects"},        {"walkthrough.kinds", "object_kinds"},
+      {"walkthrough.count_min", "count_range"},  {"walkthrough.count_max", "count_range"},
   };
   for (const auto& [g, k] : kKeys)
     if (generator_field == g) return k;
   return "";
+}
+
+// scene::validate's error as an error about the protocol key behind it (the message keeps the
+// generator's own parameter name when it is not that key).
+Error scene_error(const protocol::Protocol& p, const std::string& task_field, const Error& e) {
+  const std::string key = protocol_key(e.field);
+  if (key.empty()) return bad(p, task_field, "the scene generator refuses " + e.field + ": " + e.message);
+  const std::string generator_name = e.field.substr(e.field.find('.') + 1);
+  return bad(p, task_field + "." + key,
+             generator_name == key ? e.message : e.message + " (the generator's " + generator_name + ")");
 }
 
 Result<std::vector<std::string>> model_kinds(const protocol::Protocol& p, const std::string& field,
@@ -59,6 +91,53 @@ Result<std::vector<std::string>> model_kinds(const protocol::Protocol& p, const 
   for (const scene::ModelInfo& m : scene::model_catalogue())
     if (std::find(families.begin(), families.end(), m.family) != families.end()) kinds.emplace_back(m.kind);
   return kinds;
+}
+
+// render::validate(dt), with a refusal named by the protocol key behind it: each key's value is
+// tried alone on otherwise default settings, so the error names the key the author wrote
+// whatever the renderer calls its field.
+Status check_renderer(const protocol::Protocol& p, const protocol::Rendering& r, const render::DtSettings& dt,
+                      int width, int height) {
+  const std::string viewport = std::to_string(width) + "x" + std::to_string(height);
+  std::string refusal;
+  try {
+    render::validate(dt);
+    return {};
+  } catch (const std::invalid_argument& e) {
+    refusal = e.what();
+  }
+  struct Key {
+    const char* name;
+    std::string value;
+    std::function<void(render::DtSettings&)> take;
+  };
+  const Key keys[] = {
+      {"a0", num(r.a0), [&](render::DtSettings& s) { s.alpha_start = dt.alpha_start; }},
+      {"aT", num(r.aT), [&](render::DtSettings& s) { s.alpha_target = dt.alpha_target; }},
+      {"gradient_width",
+       std::to_string(r.gradient_width) + " (mask pixels of a " + std::to_string(r.mask_resolution) +
+           "-pixel mask, " + std::to_string(static_cast<long>(std::lround(dt.gradient_px))) + " output pixels)",
+       [&](render::DtSettings& s) {
+         s.gradient_px = dt.gradient_px;
+         s.mask_resolution = dt.mask_resolution;
+       }},
+      {"mask_resolution", std::to_string(r.mask_resolution),
+       [&](render::DtSettings& s) { s.mask_resolution = dt.mask_resolution; }},
+      {"layer_limit", std::to_string(r.layer_limit), [&](render::DtSettings& s) { s.layer_limit = dt.layer_limit; }},
+  };
+  for (const Key& k : keys) {
+    render::DtSettings probe;
+    k.take(probe);
+    try {
+      render::validate(probe);
+    } catch (const std::invalid_argument& e) {
+      return bad(p, "rendering." + r.name + "." + k.name,
+                 std::string(k.name) + " = " + k.value + " at a " + viewport + " viewport: the renderer refuses it (" +
+                     e.what() + ")");
+    }
+  }
+  return bad(p, "rendering." + r.name, "the renderer refuses these settings at a " + viewport + " viewport (" +
+                                           refusal + ")");
 }
 
 }  // namespace
@@ -107,10 +186,7 @@ Result<scene::Params> scene_params(const protocol::Protocol& p, const protocol::
     if (t == scene::Task::T2 && a.letters.empty())
       return bad(p, field + ".letters", "an identify-letter task needs at least one of C K R X Y");
     if (a.letters.empty()) a.letters = scene::AbstractParams{}.letters;  // unused outside T2
-    if (Status st = scene::validate(a, t); !st) {
-      const std::string key = protocol_key(st.error().field);
-      return bad(p, field + "." + (key.empty() ? st.error().field : key), st.error().message);
-    }
+    if (Status st = scene::validate(a, t); !st) return scene_error(p, field, st.error());
   } else {
     scene::WalkthroughParams& w = out.walkthrough;
     w.grid_width = s.grid_width;
@@ -122,10 +198,7 @@ Result<scene::Params> scene_params(const protocol::Protocol& p, const protocol::
     w.kinds = std::move(kinds.value());
     w.count_min = s.count_range.min;
     w.count_max = s.count_range.max;
-    if (Status st = scene::validate(w, t); !st) {
-      const std::string key = protocol_key(st.error().field);
-      return bad(p, field + "." + (key.empty() ? st.error().field : key), st.error().message);
-    }
+    if (Status st = scene::validate(w, t); !st) return scene_error(p, field, st.error());
   }
   if (!scene::task_belongs_to(t, scene_kind(s.kind)))
     return bad(p, field + ".type", "task " + std::string(scene::task_name(t)) + " does not belong to a " +
@@ -161,20 +234,14 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
     return bad(p, field + ".mode", "unknown mode '" + r.mode + "' (passive, active)");
   }
   dt.layer_limit = r.layer_limit;
-  try {
-    render::validate(dt);
-  } catch (const std::invalid_argument& e) {
-    // The renderer names its own field (alpha_target, ...); say which protocol keys feed it.
-    return bad(p, field, std::string("the renderer refuses these settings (a0, aT, gradient_width, mask_resolution, "
-                                     "layer_limit): ") + e.what());
-  }
+  if (Status st = check_renderer(p, r, dt, width, height); !st) return st.error();
   return f;
 }
 
 Result<TrialSetup> trial_setup(const protocol::Protocol& p, const design::PlannedTrial& trial) {
   const std::string where = "plan.trials[" + std::to_string(trial.position) + "]";
   if (trial.levels.size() != p.factors.size())
-    return bad(p, where + ".levels", "the trial has " + std::to_string(trial.levels.size()) + " factor levels, the protocol " +
+    return plan_error(p, where + ".levels", "the trial has " + std::to_string(trial.levels.size()) + " factor levels, the protocol " +
                                          std::to_string(p.factors.size()) + " factors");
   std::vector<int> levels;
   for (std::size_t f = 0; f < p.factors.size(); ++f) {
@@ -182,18 +249,18 @@ Result<TrialSetup> trial_setup(const protocol::Protocol& p, const design::Planne
     const auto& lv = p.factors[f].levels;
     const auto it = std::find(lv.begin(), lv.end(), level);
     if (factor != p.factors[f].name || it == lv.end())
-      return bad(p, where + ".levels", "'" + factor + "=" + level + "' is not a level of factor '" + p.factors[f].name + "'");
+      return plan_error(p, where + ".levels", "'" + factor + "=" + level + "' is not a level of factor '" + p.factors[f].name + "'");
     levels.push_back(static_cast<int>(it - lv.begin()));
   }
   TrialSetup s;
   s.condition = protocol::condition_index(p, levels);
-  if (s.condition < 0) return bad(p, where + ".levels", "no condition has these levels");
+  if (s.condition < 0) return plan_error(p, where + ".levels", "no condition has these levels");
   const protocol::Condition& c = p.conditions[static_cast<std::size_t>(s.condition)];
   s.scenario = &p.scenarios[static_cast<std::size_t>(c.scenario)];
   s.rendering = &p.renderings[static_cast<std::size_t>(c.rendering)];
   for (const protocol::Task& t : s.scenario->tasks)
     if (t.id == trial.task) s.task = &t;
-  if (!s.task) return bad(p, where + ".task", "scenario '" + s.scenario->name + "' has no task '" + trial.task + "'");
+  if (!s.task) return plan_error(p, where + ".task", "scenario '" + s.scenario->name + "' has no task '" + trial.task + "'");
   s.kind = scene_kind(s.task->scene.kind);
   s.scene_task = scene_task(s.task->type);
   auto params = scene_params(p, *s.scenario, *s.task);

@@ -74,13 +74,15 @@ std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, i
 Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol::QuestionnaireItem& item,
                                      int enrollment_index, const Viewport& vp, std::vector<Question>& questions) {
   const std::string field = "questionnaire." + item.id;
-  auto bad = [&](const std::string& f, const std::string& m) { return Error{p.source_path, 0, 0, f, m}; };
-  const protocol::Scenario* scenario = protocol::find_scenario(p, item.scenario);
-  const protocol::Rendering* rendering = protocol::find_rendering(p, item.rendering);
+  auto bad = [&](const std::string& f, const std::string& m) { return protocol::error_at(p, f, m); };
+  const protocol::Scenario* scenario = find_scenario(p, item.scenario);
+  const protocol::Rendering* rendering = find_rendering(p, item.rendering);
   if (!scenario || scenario->tasks.empty()) return bad(field + ".scenario", "no scenario '" + item.scenario + "' with tasks");
   if (!rendering) return bad(field + ".rendering", "no rendering '" + item.rendering + "'");
   if (scenario->scene.kind != protocol::ScenarioKind::walkthrough)
-    return bad(field + ".scenario", "the depth test needs a walkthrough scenario (objects at eye level in rooms)");
+    return bad(field + ".scenario", "scenario '" + scenario->name + "' is kind = \"" +
+                                        std::string(protocol::to_string(scenario->scene.kind)) +
+                                        "\"; the depth test needs a walkthrough scenario (objects at eye level in rooms)");
 
   int item_position = 0;
   for (std::size_t i = 0; i < p.questionnaire.size(); ++i)
@@ -104,7 +106,9 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
   const float aspect = static_cast<float>(vp.width) / static_cast<float>(vp.height);
   const double half_h = 0.8 * std::atan(std::tan(0.5 * cam.fov_y) * aspect);  // inner 80% of the horizontal field
 
-  // Objects (the placed models, not the building) in view from the start, for yaw step k of 16.
+  // Objects (the placed models, not the building) in view from the start, for yaw step k of 16,
+  // half a cell to ten cells away (2 to 40 units in the reference's 4-unit cells).
+  const double near = 0.5 * task.scene.cell_size, far = 10.0 * task.scene.cell_size;
   struct Seen {
     std::uint32_t id;
     double dist;
@@ -116,7 +120,7 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
       if (!o.target) continue;
       const glm::dvec2 d(o.transform[3].x - cam.position.x, o.transform[3].z - cam.position.z);
       const double dist = std::hypot(d.x, d.y);
-      if (dist < 2.0 || dist > 40.0) continue;
+      if (dist < near || dist > far) continue;
       const double ang = std::acos(std::clamp(glm::dot(d / dist, fwd), -1.0, 1.0));
       if (ang <= half_h) seen.push_back({o.id, dist});
     }
@@ -164,7 +168,8 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
     }
   }
   return bad(field + ".pairs", "no view from the start cell shows " + std::to_string(item.pairs) +
-                                   " pairs of objects at distinguishable distances");
+                                   " pairs of objects at distinguishable distances; lower pairs or place more "
+                                   "objects (scenario '" + scenario->name + "', task " + task.id + ")");
 }
 
 Result<std::vector<RecordedTrial>> recorded_trials(store::Store& store, const std::string& participant_id) {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "study/design/design.h"
+#include "study/render/gl_info.h"
 #include "study/session/session.h"
 
 namespace dtlab::session {
@@ -39,7 +40,7 @@ Result<store::TrialRecord> make_record(const TrialSpec& spec, TrialOutcome&& out
   r.completion_s = out.completion_s;
   r.started_at = out.started_at;
   r.ended_at = out.ended_at;
-  r.frames = store::frame_stats(out.frame_ms);
+  r.frames = store::frame_stats(out.frame_ms, out.refresh_hz);
   r.events = std::move(out.events);
   r.poses = std::move(out.poses);
   return r;
@@ -91,8 +92,31 @@ Result<std::vector<store::QuestionnaireAnswer>> score_questionnaire(const std::v
   return out;
 }
 
+// The questions and depth-test views of participant `index`, made before the session begins so
+// that a questionnaire that cannot be shown stops the session before its first trial.
+struct PreparedQuestionnaire {
+  std::vector<Question> questions;
+  std::vector<DepthTestKey> keys;  // one per depth-test item
+};
+Result<PreparedQuestionnaire> prepare_questionnaire(const protocol::Protocol& p, int index, const Viewport& vp) {
+  PreparedQuestionnaire q;
+  q.questions = expand_questionnaire(p);
+  for (const protocol::QuestionnaireItem& item : p.questionnaire) {
+    if (item.type != protocol::ItemType::depth_test) continue;
+    auto key = depth_test_view(p, item, index, vp, q.questions);
+    if (!key) return key.error();
+    q.keys.push_back(std::move(key.value()));
+  }
+  return q;
+}
+
 
 }  // namespace
+
+store::DisplayInfo Responder::display() const {
+  const Viewport vp = viewport();
+  return store::DisplayInfo{"headless", vp.width, vp.height, std::nullopt, render::current_gl_description(), ""};
+}
 
 Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol& p, const std::string& participant_id,
                                    Responder& responder, const Hooks& hooks) {
@@ -113,10 +137,14 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
     if (!existing && existing.error().kind != ErrorKind::not_found) return existing.error();
   }
 
+  auto prepared = prepare_questionnaire(p, sum.enrollment.index, responder.viewport());
+  if (!prepared) return prepared.error();
+
   auto begun = store.begin_session(participant_id, sum.plan);
   if (!begun) return begun.error();
   const store::Session session = begun.value();
   sum.resumed = session.resumed;
+  if (Status st = store.record_display(session, responder.display()); !st) return st.error();
   if (hooks.on_session_start) hooks.on_session_start(session, sum.plan);
 
   auto history = recorded_trials(store, participant_id);
@@ -189,16 +217,10 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   q.protocol = &p;
   q.participant_id = participant_id;
   q.enrollment_index = sum.enrollment.index;
-  q.questions = expand_questionnaire(p);
+  q.questions = std::move(prepared->questions);
   q.history = history.value();
-  std::vector<DepthTestKey> keys;
-  for (const protocol::QuestionnaireItem& item : p.questionnaire) {
-    if (item.type != protocol::ItemType::depth_test) continue;
-    auto key = depth_test_view(p, item, sum.enrollment.index, vp, q.questions);
-    if (!key) return key.error();
-    q.depth_tests.push_back(key->view);
-    keys.push_back(std::move(key.value()));
-  }
+  const std::vector<DepthTestKey>& keys = prepared->keys;
+  for (const DepthTestKey& key : keys) q.depth_tests.push_back(key.view);
   if (!q.questions.empty() && answered->empty()) {
     auto answers = responder.answer_questionnaire(q);
     if (!answers) return answers.error();

@@ -60,6 +60,7 @@ struct TrialOutcome {
   std::vector<double> frame_ms;          // frame time of every rendered frame
   std::vector<store::CameraPose> poses;  // the camera of every rendered frame (same length as frame_ms)
   std::vector<store::InputEvent> events;  // in time order
+  std::optional<double> refresh_hz;       // the display's refresh rate (late frames count against it); nullopt: unknown
 };
 
 // A task set: the consecutive trials of one task in one block; training precedes it.
@@ -117,6 +118,9 @@ class Responder {
  public:
   virtual ~Responder() = default;
   virtual Viewport viewport() const = 0;                       // constant for the responder's life
+  // The display the trials are shown on, recorded once per session start. Default: headless at
+  // viewport(), the current GL context's renderer, refresh rate unknown.
+  virtual store::DisplayInfo display() const;
   virtual Status train(const TaskSetSpec& set) = 0;            // before the first trial of a task set run here
   virtual Result<TrialOutcome> run_trial(const TrialSpec& trial) = 0;  // one trial, start to answer
   // One answer per question, in the order of spec.questions.

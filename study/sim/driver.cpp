@@ -64,6 +64,7 @@ struct Message {
   int position = 0, planned = 0;
   int resumed = 0;
   int trials_run = 0;  // finished: trials recorded in this session by this run
+  int invalid = 0;     // failed: the error is in the protocol (it names the protocol file)
   double simulated_s = 0;
   char task[16] = {};
   char condition[96] = {};
@@ -151,6 +152,7 @@ void run_one(const RunOptions& o, store::Store& store, SimulatedParticipant& age
     copy(m.message, sizeof m.message, result.error().message);
   } else if (!result) {
     m.kind = static_cast<int>(Progress::Kind::failed);
+    m.invalid = !o.protocol->source_path.empty() && result.error().file == o.protocol->source_path;
     copy(m.message, sizeof m.message, result.error().to_string());
   } else if (result->already_finished) {
     m.kind = static_cast<int>(Progress::Kind::elsewhere);  // finished by another process since the roster was made
@@ -171,6 +173,7 @@ void tally(RunResult& r, const Message& m, const RunOptions& o) {
   if (m.kind == static_cast<int>(Progress::Kind::elsewhere)) ++r.elsewhere;
   if (m.kind == static_cast<int>(Progress::Kind::failed) && !(o.stop && *o.stop)) {
     ++r.failed;
+    r.invalid += m.invalid;
     r.errors.push_back(o.participants[static_cast<std::size_t>(m.participant)] + ": " + m.message);
   }
 }

@@ -71,6 +71,7 @@ struct RunResult {
   int elsewhere = 0;    // sessions another process was running (claimed) or finished meanwhile: skipped
   int trials_run = 0;   // trials recorded by this run
   int failed = 0;       // participants whose session stopped with an error (messages in `errors`)
+  int invalid = 0;      // of those, errors in the protocol (the Error names the protocol file), not the environment
   bool stopped = false; // *stop ended the run early
   std::vector<std::string> errors;
 };

@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "study/common/text.h"
+
 namespace dtlab::sim {
 
 namespace {
@@ -77,9 +79,8 @@ Result<Summary> summarize(store::StudyReader& reader, const std::string& renderi
 
 std::string format_summary(const Summary& s) {
   std::ostringstream out;
-  out << s.participants << (s.participants == 1 ? " participant, " : " participants, ") << s.trials
-      << (s.trials == 1 ? " trial" : " trials");
-  if (s.excluded > 0) out << " (" << s.excluded << " excluded trial" << (s.excluded == 1 ? "" : "s") << " left out)";
+  out << count(s.participants, "participant") << ", " << count(s.trials, "trial");
+  if (s.excluded > 0) out << " (" << count(s.excluded, "excluded trial") << " left out)";
   out << "\n";
   char line[160];
   std::snprintf(line, sizeof line, "  %-5s %-12s %6s %10s %8s   %s\n", "task", "rendering", "trials", "time mean", "sd",

@@ -6,6 +6,7 @@
 // file that a failed copy created is removed again.
 #include "study/store/copy.h"
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <map>
@@ -37,11 +38,13 @@ const std::vector<TableSpec>& copied_tables() {
        {"planned_trial_id", "scene_hash", "answer_kind", "answered", "answer_count", "answer_letter", "answer_x",
         "answer_z", "truth_count", "truth_letter", "truth_x", "truth_z", "rel_error", "signed_error", "correct",
         "distance", "completion_s", "started_at", "ended_at", "frame_count", "frame_ms_mean", "frame_ms_sd",
-        "frame_ms_p95", "frame_ms_max", "event_count", "recorded_at"},
+        "frame_ms_p95", "frame_ms_max", "event_count", "recorded_at", "frame_first_ms", "frame_ms_median",
+        "late_frames", "refresh_hz"},
        // plan order within each session (trigger trial_results_in_plan_order)
        "(SELECT p.session_id FROM planned_trials p WHERE p.id = trial_results.planned_trial_id), "
        "(SELECT p.position FROM planned_trials p WHERE p.id = trial_results.planned_trial_id)",
-       1},
+       1,
+       {{"frame_first_ms", 3}, {"frame_ms_median", 3}, {"late_frames", 3}, {"refresh_hz", 3}}},
       {"input_events", {"trial_id", "seq", "t_s", "kind", "detail", "x", "y"}, "trial_id, seq", 1},
       {"camera_poses", {"trial_id", "frame", "t_s", "x", "y", "z", "yaw", "pitch"}, "trial_id, frame", 1},
       {"questionnaire_answers", {"session_id", "item", "scope", "value_number", "value_text", "answered_at"},
@@ -51,8 +54,20 @@ const std::vector<TableSpec>& copied_tables() {
       {"session_pauses", {"session_id", "position", "paused_at", "resumed_at", "duration_s"},
        "session_id, paused_at, resumed_at", 2},
       {"trial_attempts", {"session_id", "position", "attempt", "started_at", "owner"}, "session_id, position, attempt", 2},
+      {"session_displays", {"session_id", "recorded_at", "kind", "width", "height", "refresh_hz", "renderer", "monitor"},
+       kDisplayOrder, 3},
   };
   return t;
+}
+
+std::string TableSpec::select_list(int version, const std::string& alias) const {
+  std::string s;
+  for (const std::string& c : columns) {
+    auto later = std::find_if(added_later.begin(), added_later.end(), [&](const auto& a) { return a.first == c; });
+    s += s.empty() ? "" : ", ";
+    s += later != added_later.end() && later->second > version ? "NULL" : (alias.empty() ? c : alias + "." + c);
+  }
+  return s;
 }
 
 Status each_row(Db& db, const std::string& sql, const Row& binds, const std::function<Status(Row&)>& row) {
@@ -101,14 +116,9 @@ std::string canonical(const Row& row) {
 
 namespace {
 
-std::string column_list(const TableSpec& t) {
-  std::string s;
-  for (std::size_t c = 0; c < t.columns.size(); ++c) s += (c ? ", " : "") + t.columns[c];
-  return s;
-}
-
 // Copies one table verbatim; events and poses page by trial so memory stays bounded.
-Status copy_table(Db& src, Db& dst, const TableSpec& t, std::vector<Row>* finals, std::int64_t& written) {
+Status copy_table(Db& src, int src_version, Db& dst, const TableSpec& t, std::vector<Row>* finals,
+                  std::int64_t& written) {
   RowSink sink(dst, t.name, t.columns);
   const bool sessions = std::string(t.name) == "sessions";
   auto add = [&](Row& r) -> Status {
@@ -119,7 +129,7 @@ Status copy_table(Db& src, Db& dst, const TableSpec& t, std::vector<Row>* finals
     }
     return sink.add(std::move(r));
   };
-  const std::string select = "SELECT " + column_list(t) + " FROM " + t.name;
+  const std::string select = "SELECT " + t.select_list(src_version) + " FROM " + t.name;
   const bool paged = std::string(t.name) == "input_events" || std::string(t.name) == "camera_poses";
   if (!paged) {
     if (auto s = each_row(src, select + " ORDER BY " + t.order_by, {}, add); !s) return s;
@@ -153,7 +163,7 @@ Status full_copy(Db& src, int src_version, Db& dst, CopySummary& summary) {
   for (const TableSpec& t : copied_tables()) {
     if (t.since_version > src_version) continue;
     std::int64_t n = 0;
-    if (auto s = copy_table(src, dst, t, &finals, n); !s) return s;
+    if (auto s = copy_table(src, src_version, dst, t, &finals, n); !s) return s;
     summary.rows.emplace_back(t.name, n);
     if (std::string(t.name) == "participants") summary.participants = static_cast<int>(n);
     if (std::string(t.name) == "sessions") summary.sessions = static_cast<int>(n);

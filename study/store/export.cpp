@@ -53,6 +53,13 @@ void answer_fields(const std::optional<Answer>& a, std::vector<std::string>& row
 
 }  // namespace
 
+const std::vector<std::string>& measured_columns() {
+  static const std::vector<std::string> c = {"session",        "started_at",    "ended_at",        "frame_ms_mean",
+                                             "frame_ms_sd",    "frame_ms_p95",  "frame_ms_max",    "frame_first_ms",
+                                             "frame_ms_median", "late_frames",  "refresh_hz"};
+  return c;
+}
+
 std::vector<std::string> export_columns(const std::vector<Revision>& revisions) {
   std::vector<std::string> c = detail::fixed_trial_columns_before_factors();
   for (const std::string& f : factor_names(revisions)) c.push_back(f);
@@ -106,6 +113,10 @@ Result<ExportSummary> export_trials_csv(StudyReader& reader, std::ostream& out) 
     row.push_back(opt(t.frames.sd_ms));
     row.push_back(opt(t.frames.p95_ms));
     row.push_back(opt(t.frames.max_ms));
+    row.push_back(opt(t.frames.first_ms));
+    row.push_back(opt(t.frames.steady_median_ms));
+    row.push_back(opt(t.frames.late));
+    row.push_back(opt(t.frames.refresh_hz));
     row.push_back(t.protocol_sha256);
     row.push_back(t.design_revision > 0 ? std::to_string(t.design_revision) : "NA");
     row.push_back(t.excluded ? csv_field(*t.excluded) : "NA");

@@ -25,6 +25,11 @@ struct ExportSummary {
 // revision (order of first appearance) after "block"; the last two are design_revision, excluded.
 std::vector<std::string> export_columns(const std::vector<Revision>& revisions);
 
+// The columns that hold what was measured while the study ran (wall-clock stamps and frame
+// times) and so differ between two runs of the same design with the same answers, and the
+// session's row id. Everything else in a row is fixed by the protocol, seed and answers.
+const std::vector<std::string>& measured_columns();
+
 // Writes every recorded trial to `out`, ordered by enrollment index, then position. Errors
 // name the file; on error `out` may hold a partial table (callers write to a temporary file
 // and rename, e.g. write_file_atomically in study/common).

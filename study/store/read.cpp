@@ -14,6 +14,7 @@
 
 #include "study/store/detail/file_check.h"
 #include "study/store/detail/reader_impl.h"
+#include "study/store/detail/schema.h"
 
 namespace dtlab::store {
 
@@ -291,6 +292,19 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
       }
     });
     if (!st) return st.error();
+    if (impl_->schema_version >= 3) {
+      st = each_row(db,
+                    std::string("SELECT session_id, recorded_at, kind, width, height, refresh_hz, renderer, monitor "
+                                "FROM session_displays ORDER BY ") + detail::kDisplayOrder,
+                    "reading the displays", no_bind, [&](const Stmt& q) {
+                      if (auto it = at.find(q.int64(0)); it != at.end()) {
+                        DisplayInfo d{q.text(2), static_cast<int>(q.int64(3)), static_cast<int>(q.int64(4)),
+                                      opt_real(q, 5), q.text(6), q.text(7)};
+                        out[it->second].displays.push_back(Display{q.text(1), std::move(d)});
+                      }
+                    });
+      if (!st) return st.error();
+    }
     st = each_row(db, "SELECT session_id, owner, host, pid, claimed_at, heartbeat_at, expires_at FROM session_claims",
                   "reading the session claims", no_bind, [&](const Stmt& q) {
                     if (auto it = at.find(q.int64(0)); it != at.end())
@@ -410,7 +424,9 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
         "r.answer_kind, r.answer_count, r.answer_letter, r.answer_x, r.answer_z, r.truth_count, r.truth_letter, "
         "r.truth_x, r.truth_z, r.completion_s, r.started_at, r.ended_at, r.frame_count, r.frame_ms_mean, "
         "r.frame_ms_sd, r.frame_ms_p95, r.frame_ms_max, r.event_count, s.study_id, st.protocol_sha256, "
-        "r.rel_error, r.signed_error, r.correct, r.distance "
+        "r.rel_error, r.signed_error, r.correct, r.distance, " +
+        std::string(impl_->schema_version >= 3 ? "r.frame_first_ms, r.frame_ms_median, r.late_frames, r.refresh_hz "
+                                               : "NULL, NULL, NULL, NULL ") +
         "FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
         "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
         "JOIN studies st ON st.id = s.study_id" + filter + " ORDER BY pa.enrollment_index, p.position",
@@ -432,6 +448,10 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
           t.scores.signed_error = opt_int(q, 28);
           if (auto c = opt_int(q, 29)) t.scores.correct = *c != 0;
           t.scores.distance = opt_real(q, 30);
+          t.frames.first_ms = opt_real(q, 31);
+          t.frames.steady_median_ms = opt_real(q, 32);
+          t.frames.late = opt_int(q, 33);
+          t.frames.refresh_hz = opt_real(q, 34);
           t.completion_s = q.real(16);
           t.started_at = q.text(17);
           t.ended_at = q.text(18);

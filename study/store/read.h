@@ -72,6 +72,11 @@ struct Claim {
   std::string claimed_at, heartbeat_at, expires_at;
 };
 
+struct Display {
+  std::string recorded_at;
+  DisplayInfo info;
+};
+
 struct SessionRecord {
   std::int64_t id = 0;
   std::string participant;
@@ -84,6 +89,7 @@ struct SessionRecord {
   std::vector<Resume> resumes;
   std::vector<Pause> pauses;
   std::vector<Interruption> interruptions;
+  std::vector<Display> displays;     // one per start or resume that recorded it (schema v3)
   std::optional<Claim> claim;        // who runs it now, if anyone holds it
   double paused_s() const;           // sum of the pauses' durations
 };

@@ -29,10 +29,22 @@ Scores score(const std::optional<Answer>& answer, const Answer& truth) {
   return s;
 }
 
-FrameStats frame_stats(std::span<const double> frame_ms) {
+FrameStats frame_stats(std::span<const double> frame_ms, std::optional<double> refresh_hz) {
   FrameStats st;
   st.frames = static_cast<std::int64_t>(frame_ms.size());
+  if (refresh_hz && !(std::isfinite(*refresh_hz) && *refresh_hz > 0))
+    throw std::invalid_argument("store::frame_stats: refresh_hz must be finite and > 0");
+  st.refresh_hz = refresh_hz;
   if (frame_ms.empty()) return st;
+  st.first_ms = frame_ms.front();
+  if (frame_ms.size() >= 2) {
+    std::vector<double> steady(frame_ms.begin() + 1, frame_ms.end());
+    std::sort(steady.begin(), steady.end());
+    const std::size_t m = steady.size();
+    st.steady_median_ms = m % 2 ? steady[m / 2] : (steady[m / 2 - 1] + steady[m / 2]) / 2;
+    const double late_ms = 1.5 * 1000.0 / refresh_hz.value_or(kAssumedRefreshHz);
+    st.late = static_cast<std::int64_t>(std::count_if(steady.begin(), steady.end(), [&](double v) { return v > late_ms; }));
+  }
   for (double v : frame_ms)
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument("store::frame_stats: frame times must be finite and >= 0");
   // Mean: Neumaier-compensated sum, then one correction pass, so constant

@@ -34,16 +34,25 @@ struct Scores {
 // a present answer has the same alternative as truth (else invalid_argument).
 Scores score(const std::optional<Answer>& answer, const Answer& truth);
 
-// Per-trial frame-time statistics from per-frame times in milliseconds.
+// Per-trial frame-time statistics from per-frame times in milliseconds (the first frame's time
+// includes the trial's warm-up: scene upload, shader compile, first present).
 struct FrameStats {
   std::int64_t frames = 0;               // number of frames rendered
   std::optional<double> mean_ms;         // compensated mean; nullopt when frames == 0
   std::optional<double> sd_ms;           // sample sd (n - 1, corrected two-pass); nullopt when frames < 2
   std::optional<double> p95_ms;          // 95th percentile, nearest rank: sorted[ceil(0.95 n) - 1]
   std::optional<double> max_ms;
+  // Apart from the warm-up (schema v3):
+  std::optional<double> first_ms;        // the first frame; nullopt when frames == 0
+  std::optional<double> steady_median_ms;  // median of frames 2..n (mean of the middle two); nullopt when frames < 2
+  std::optional<std::int64_t> late;      // frames 2..n slower than 1.5 display intervals; nullopt when frames < 2
+  std::optional<double> refresh_hz;      // the display's refresh rate the late count used; nullopt: unknown (60 Hz used)
 };
 
-// Summarises frame times (each finite, >= 0; else invalid_argument).
-FrameStats frame_stats(std::span<const double> frame_ms);
+inline constexpr double kAssumedRefreshHz = 60.0;  // for late frames when the display's rate is unknown
+
+// Summarises frame times (each finite, >= 0; else invalid_argument). `refresh_hz`: the display's
+// refresh rate (> 0), nullopt when unknown (headless, simulated): late frames then count against 60 Hz.
+FrameStats frame_stats(std::span<const double> frame_ms, std::optional<double> refresh_hz = std::nullopt);
 
 }  // namespace dtlab::store

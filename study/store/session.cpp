@@ -201,8 +201,13 @@ Status validate_record(const Store::Impl& m, const TrialRecord& r) {
   if (f.mean_ms.has_value() != some || f.p95_ms.has_value() != some || f.max_ms.has_value() != some ||
       f.sd_ms.has_value() != (f.frames > 1))
     return bad("frames", "frame statistics do not match the frame count; use frame_stats()");
-  for (const auto& v : {f.mean_ms, f.sd_ms, f.p95_ms, f.max_ms})
+  for (const auto& v : {f.mean_ms, f.sd_ms, f.p95_ms, f.max_ms, f.first_ms, f.steady_median_ms})
     if (v && (!finite(*v) || *v < 0)) return bad("frames", "frame statistics must be finite and >= 0");
+  if (f.first_ms.has_value() != some || f.steady_median_ms.has_value() != (f.frames > 1) ||
+      f.late.has_value() != (f.frames > 1) || (f.late && (*f.late < 0 || *f.late > f.frames - 1)))
+    return bad("frames", "warm-up and late-frame statistics do not match the frame count; use frame_stats()");
+  if (f.refresh_hz && !(finite(*f.refresh_hz) && *f.refresh_hz > 0))
+    return bad("frames", "the refresh rate must be finite and > 0");
   for (std::size_t i = 0; i < r.events.size(); ++i) {
     const auto& e = r.events[i];
     if (!finite(e.t_s) || e.t_s < 0 || !finite(e.x) || !finite(e.y))
@@ -223,9 +228,10 @@ Status insert_result(Db& db, std::int64_t planned_id, const TrialRecord& r) {
                           "INSERT INTO trial_results (planned_trial_id, scene_hash, answer_kind, answered, "
                           "answer_count, answer_letter, answer_x, answer_z, truth_count, truth_letter, truth_x, truth_z, "
                           "rel_error, signed_error, correct, distance, completion_s, started_at, ended_at, frame_count, "
-                          "frame_ms_mean, frame_ms_sd, frame_ms_p95, frame_ms_max, event_count, recorded_at) "
+                          "frame_ms_mean, frame_ms_sd, frame_ms_p95, frame_ms_max, event_count, recorded_at, "
+                          "frame_first_ms, frame_ms_median, late_frames, refresh_hz) "
                           "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, "
-                          "?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26)",
+                          "?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30)",
                           what);
   if (!st) return st.error();
   static const char* kinds[] = {"count", "letter", "position"};
@@ -247,6 +253,8 @@ Status insert_result(Db& db, std::int64_t planned_id, const TrialRecord& r) {
   auto now = db.now_iso();
   if (!now) return now.error();
   st->bind(26, *now);
+  st->bind(27, r.frames.first_ms).bind(28, r.frames.steady_median_ms).bind(29, r.frames.late);
+  st->bind(30, r.frames.refresh_hz);
   if (auto x = st->run(what); !x) return x;
 
   std::vector<std::vector<Value>> events;
@@ -431,6 +439,27 @@ Status Store::record_pause(const Session& session, std::optional<int> position,
     ins->bind(1, session.id).bind(2, position).bind(3, detail::iso8601_utc(paused_at));
     ins->bind(4, detail::iso8601_utc(resumed_at)).bind(5, seconds);
     return ins->run("recording the pause");
+  });
+}
+
+Status Store::record_display(const Session& session, const DisplayInfo& d) {
+  Impl& m = *impl_;
+  if (d.kind != "window" && d.kind != "headless") return m.invalid("display.kind", "expected \"window\" or \"headless\"");
+  if (d.width < 1 || d.height < 1) return m.invalid("display.size", "width and height must be >= 1");
+  if (d.refresh_hz && !(finite(*d.refresh_hz) && *d.refresh_hz > 0))
+    return m.invalid("display.refresh_hz", "must be finite and > 0");
+  return m.write("recording the display of " + describe(session), [&]() -> Status {
+    if (auto s = read_status(m.db, session); !s) return s.error();
+    auto ins = Stmt::prepare(m.db,
+                             "INSERT INTO session_displays (session_id, recorded_at, kind, width, height, refresh_hz, "
+                             "renderer, monitor) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+                             "recording the display");
+    if (!ins) return ins.error();
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
+    ins->bind(1, session.id).bind(2, *now).bind(3, d.kind).bind(4, d.width).bind(5, d.height);
+    ins->bind(6, d.refresh_hz).bind(7, d.renderer).bind(8, d.monitor);
+    return ins->run("recording the display");
   });
 }
 

@@ -1,4 +1,4 @@
-// The study database (schema v2; docs/store.md is the reference) in a file
+// The study database (schema v3; docs/store.md is the reference) in a file
 // (SQLite, the embedded default) or on a lab's PostgreSQL server (a
 // postgresql:// URI, several stations at once):
 // participants and their order rows (the ledger), sessions, planned trials,
@@ -30,7 +30,7 @@
 
 namespace dtlab::store {
 
-inline constexpr int kSchemaVersion = 2;                 // the newest schema this build reads and writes
+inline constexpr int kSchemaVersion = 3;                 // the newest schema this build reads and writes
 inline constexpr std::int32_t kApplicationId = 0x64746c62;  // PRAGMA application_id of every dtlab database ("dtlb")
 
 // Where a study is: a file path (SQLite) or a postgresql:// / postgres:// URI (PostgreSQL; its
@@ -121,6 +121,15 @@ struct TrialRecord {
   std::vector<CameraPose> poses;      // one per rendered frame, in frame order
 };
 
+// The display a session runs on, recorded at each (re)start of the session.
+struct DisplayInfo {
+  std::string kind = "headless";       // "window" (a person's screen) or "headless" (simulated, offscreen)
+  int width = 0, height = 0;           // framebuffer pixels of the trial views
+  std::optional<double> refresh_hz;    // the monitor's refresh rate; nullopt when unknown or headless
+  std::string renderer;                // "GL_VERSION / GL_RENDERER"
+  std::string monitor;                 // the monitor's name; "" for a window on the default one or headless
+};
+
 // One questionnaire answer: item id, the condition it is about ("" if none,
 // else e.g. "scenario=ABSTRACT;transparency=on"), and a number or a text.
 struct QuestionnaireAnswer {
@@ -202,6 +211,9 @@ class Store {
   Status record_pause(const Session& session, std::optional<int> position,
                       std::chrono::system_clock::time_point paused_at,
                       std::chrono::system_clock::time_point resumed_at);
+
+  // Records the display the session runs on now (once per start or resume of the session).
+  Status record_display(const Session& session, const DisplayInfo& display);
 
   // Marks a running session finished (and releases its claim); refused while planned trials remain.
   Status finish_session(const Session& session);

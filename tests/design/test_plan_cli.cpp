@@ -88,10 +88,22 @@ TEST(PlanCli, BadInputExitsNonZeroWithoutCrashing) {
   fs::remove(bad);
   r = dtlab("plan /nonexistent/p.toml --index 0");
   EXPECT_EQ(r.rc, 1);
-  r = dtlab("plan " + kReference + " --index -1");
-  EXPECT_EQ(r.rc, 2);  // usage error
+  // Issue 12: -1 was refused with a 300-digit bound, and the missing option in broken grammar.
+  for (const char* index : {"-1", "2147483648", "99999999999999999999", "1e3", "x"}) {
+    r = dtlab("plan " + kReference + " --index " + index);
+    EXPECT_EQ(r.rc, 2) << index;  // usage error
+    EXPECT_NE(r.err.find("expected an enrollment index, an integer from 0 to 2147483647; got '" + std::string(index) +
+                         "'"),
+              std::string::npos)
+        << r.err;
+    EXPECT_LT(r.err.size(), 300u) << r.err;
+  }
+  r = dtlab("plan " + kReference + " --index 2147483647 --json");
+  EXPECT_EQ(r.rc, 0) << r.err;
   r = dtlab("plan " + kReference);
-  EXPECT_EQ(r.rc, 2);  // --index is required
+  EXPECT_EQ(r.rc, 2);  // --index or --db is required
+  EXPECT_NE(r.err.find("give either --index K or --db FILE --participant ID\n"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("is required"), std::string::npos) << r.err;
 }
 
 }  // namespace

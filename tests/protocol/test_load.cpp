@@ -136,7 +136,9 @@ TEST(ReferenceProtocol, HasTheRenderingAndQuestionnaireOfStudyMd) {
   EXPECT_EQ(p.questionnaire[0].scale_max, 4);
   EXPECT_EQ(p.questionnaire[0].per, (std::vector<std::string>{"scenario", "transparency"}));
   EXPECT_EQ(p.questionnaire[1].type, ItemType::choice);
-  EXPECT_EQ(p.questionnaire[1].options, (std::vector<std::string>{"off", "on"}));
+  // The factor's levels, then the neutral option (the study's "overall preference, or none").
+  EXPECT_EQ(p.questionnaire[1].options, (std::vector<std::string>{"off", "on", "no preference"}));
+  EXPECT_EQ(p.questionnaire[1].neutral, "no preference");
   EXPECT_EQ(p.questionnaire[2].type, ItemType::rating);
   EXPECT_EQ(p.questionnaire[3].type, ItemType::depth_test);
   EXPECT_EQ(p.questionnaire[3].pairs, 3);

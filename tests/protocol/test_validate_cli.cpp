@@ -29,6 +29,18 @@ fs::path write_temp(const std::string& name, const std::string& text) {
   return p;
 }
 
+// protocols/<shipped> with `from` replaced by `to`, written to a temporary file; *line = the line of the edit.
+fs::path edited(const std::string& shipped, const std::string& name, const std::string& from, const std::string& to,
+                int* line = nullptr) {
+  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols" / shipped);
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at == std::string::npos) return write_temp(name, text);
+  text.replace(at, from.size(), to);
+  if (line) *line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  return write_temp(name, text);
+}
+
 TEST(ValidateCli, ShippedProtocolsExitZero) {
   for (const char* name : {"elmqvist2008.toml", "pilot.toml"}) {
     const Outcome r = dtlab(std::string("validate '") + DTLAB_SOURCE_DIR + "/protocols/" + name + "'");
@@ -41,13 +53,8 @@ TEST(ValidateCli, ShippedProtocolsExitZero) {
 }
 
 TEST(ValidateCli, BrokenProtocolExitsOneNamingLineAndField) {
-  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/pilot.toml");
-  const std::string from = "trials = 1\ncount_range";
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, from.size(), "trails = 1\ncount_range");
-  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-  const fs::path p = write_temp("typo.toml", text);
+  int line = 0;
+  const fs::path p = edited("pilot.toml", "typo.toml", "trials = 1\ncount_range", "trails = 1\ncount_range", &line);
   const Outcome r = dtlab("validate '" + p.string() + "'");
   EXPECT_EQ(r.rc, 1);
   const std::string expected =
@@ -105,17 +112,61 @@ TEST(ValidateCli, BadFilesExitOneWithoutCrashing) {
 }
 
 TEST(ValidateCli, WarningsKeepExitZero) {
-  std::string text = read_text(fs::path(DTLAB_SOURCE_DIR) / "protocols/elmqvist2008.toml");
-  const std::string from = "participants = 16";
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, from.size(), "participants = 10");
-  const fs::path p = write_temp("ten.toml", text);
+  const fs::path p = edited("elmqvist2008.toml", "ten.toml", "participants = 16", "participants = 10");
   const Outcome r = dtlab("validate '" + p.string() + "'");
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("warning: participants: participants = 10 is not a multiple of the 4 order rows"),
             std::string::npos)
       << r.err;
+  fs::remove(p);
+}
+
+// Issue 12: protocols `dtlab validate` called valid and `dtlab simulate` then failed on (exit 3
+// "environment failure") or never finished. Each is now refused by both commands with exit 1 and
+// FILE:LINE:COLUMN: error: FIELD at the key at fault, before simulate creates its database.
+TEST(ValidateCli, WhatASessionWouldRefuseIsInvalid) {
+  struct Case {
+    const char* name;
+    const char* from;
+    const char* to;
+    const char* field;
+  };
+  const Case cases[] = {
+      {"radius", "object_radius = [3.0, 6.0]", "object_radius = [3.0, 60.0]",
+       "scenarios.abstract.tasks.T1.object_radius"},
+      {"ratio", "target_ratio = [0.10, 0.20]", "target_ratio = [0.001, 0.001]",
+       "scenarios.abstract.tasks.T1.target_ratio"},
+      {"cell", "cell_size = 4.0", "cell_size = 3.0", "scenarios.walkthrough.tasks.T3.cell_size"},
+      {"mask", "mask_resolution = 128", "mask_resolution = 4096", "rendering.on.mask_resolution"},
+      {"depth", "scenario = \"walkthrough\"     # one", "scenario = \"abstract\"     # one",
+       "questionnaire.depth_test.scenario"},
+      {"pairs", "pairs = 3", "pairs = 20", "questionnaire.depth_test.pairs"},
+  };
+  for (const Case& c : cases) {
+    int line = 0;
+    const fs::path p = edited("elmqvist2008.toml", std::string(c.name) + ".toml", c.from, c.to, &line);
+    const std::string where = p.string() + ":" + std::to_string(line) + ":";
+    const Outcome v = dtlab("validate '" + p.string() + "'");
+    EXPECT_EQ(v.rc, 1) << c.name << "\n" << v.err;
+    EXPECT_NE(v.err.find(where), std::string::npos) << c.name << ": expected " << where << "\n" << v.err;
+    EXPECT_NE(v.err.find(std::string("error: ") + c.field + ":"), std::string::npos) << c.name << "\n" << v.err;
+    const fs::path db = fs::temp_directory_path() / ("dtlab_validate_cli_" + std::to_string(getpid()) + ".sqlite");
+    const Outcome s = dtlab("simulate '" + p.string() + "' --participants 1 --db '" + db.string() + "'");
+    EXPECT_EQ(s.rc, 1) << c.name << "\n" << s.err;
+    EXPECT_NE(s.err.find(where), std::string::npos) << c.name << "\n" << s.err;
+    EXPECT_FALSE(fs::exists(db)) << c.name << ": nothing may be created for a protocol that cannot run";
+    fs::remove(db);
+    fs::remove(p);
+  }
+}
+
+// Issue 12: "1 participants". Counts agree with their noun in the summary line.
+TEST(ValidateCli, SummaryCountsAgreeWithTheirNoun) {
+  const fs::path p = edited("pilot.toml", "one.toml", "participants = 4 ", "participants = 1 ");
+  const Outcome r = dtlab("validate '" + p.string() + "'");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("8 trials per participant, 1 participant\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("valid with 1 warning;"), std::string::npos) << r.out;
   fs::remove(p);
 }
 

@@ -146,7 +146,20 @@ TEST(Mapping, UnsupportedValuesNameTheField) {
       {"unknown method", [](protocol::Protocol& p) { p.renderings[1].method = "x-ray"; }, "", "rendering.on.method"},
       {"unknown mask shape", [](protocol::Protocol& p) { p.renderings[1].mask_shape = "star"; }, "", "rendering.on.mask_shape"},
       {"unknown mode", [](protocol::Protocol& p) { p.renderings[1].mode = "sometimes"; }, "", "rendering.on.mode"},
-      {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].aT = 1.5; }, "", "rendering.on"},
+      {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].aT = 1.5; }, "", "rendering.on.aT"},
+      {"layer_limit beyond the renderer's", [](protocol::Protocol& p) { p.renderings[1].layer_limit = 64; }, "",
+       "rendering.on.layer_limit"},
+  };
+  // Line of the first "key =" after the header of the field's scenario or rendering table in the
+  // reference file: where an error about the key must point (a task's key it does not set is
+  // written in its scenario).
+  const auto line_of = [&](const std::string& field) {
+    const std::string& text = ref.source_text;
+    const std::size_t dot = field.find('.', field.find('.') + 1);
+    const std::size_t table = text.find("\n[" + field.substr(0, dot) + "]");
+    const std::size_t at = text.find("\n" + field.substr(field.rfind('.') + 1) + " =", table);
+    if (table == std::string::npos || at == std::string::npos) return 0;
+    return 2 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
   };
   for (const Case& c : cases) {
     protocol::Protocol p = ref;
@@ -165,6 +178,10 @@ TEST(Mapping, UnsupportedValuesNameTheField) {
     }
     EXPECT_EQ(e.field, c.field) << c.what << ": " << e.to_string();
     EXPECT_EQ(e.file, p.source_path) << c.what;
+    // Every error points into the file: at the key if the file writes it, else at its table.
+    EXPECT_GE(e.line, 1) << c.what << ": " << e.to_string();
+    EXPECT_GE(e.column, 1) << c.what << ": " << e.to_string();
+    EXPECT_EQ(e.line, line_of(c.field)) << c.what << ": " << e.to_string();
     EXPECT_FALSE(e.message.empty()) << c.what;
   }
 }

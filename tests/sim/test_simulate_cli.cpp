@@ -94,8 +94,8 @@ std::map<std::string, std::string> deterministic_rows(const fs::path& db) {
   auto t = dtlab::stats::parse_csv(csv.str(), db.string());
   EXPECT_TRUE(t.ok());
   // Wall-clock stamps, measured frame times and the session's row id differ between runs.
-  const std::set<std::string> skip{"started_at", "ended_at", "frame_ms_mean", "frame_ms_sd", "frame_ms_p95",
-                                   "frame_ms_max", "session"};
+  const auto& measured = dtlab::store::measured_columns();
+  const std::set<std::string> skip(measured.begin(), measured.end());
   std::map<std::string, std::string> out;
   for (const auto& row : t->rows) {
     std::string key = row[static_cast<std::size_t>(t->column("participant"))] + "|" +

@@ -66,8 +66,10 @@ inline std::chrono::system_clock::time_point at_ms(std::int64_t ms) {
 }
 
 // The record a simulated participant produces for (seed, trial); `frames`
-// poses (default: 200 + a seed-dependent number below 800).
-inline TrialRecord make_record(std::uint64_t seed, const design::PlannedTrial& t, std::optional<int> frames = {}) {
+// poses (default: 200 + a seed-dependent number below 800), on a display of
+// `refresh_hz` (nullopt: unknown).
+inline TrialRecord make_record(std::uint64_t seed, const design::PlannedTrial& t, std::optional<int> frames = {},
+                               std::optional<double> refresh_hz = {}) {
   TrialRecord r;
   const std::uint64_t h = mix64(seed, t.seed);
   r.position = t.position;
@@ -92,7 +94,7 @@ inline TrialRecord make_record(std::uint64_t seed, const design::PlannedTrial& t
     ms.push_back(16.0 + static_cast<double>((h >> (i % 50)) % 7));
     r.poses.push_back(CameraPose{fi / 60.0, fi * 0.5, 1.7, -fi, 0.01 * fi, -0.001 * fi});
   }
-  r.frames = frame_stats(ms);
+  r.frames = frame_stats(ms, refresh_hz);
   for (int i = 0; i < 20; ++i)
     r.events.push_back(InputEvent{i * 0.25, i % 2 ? InputEvent::Kind::key_up : InputEvent::Kind::key_down,
                                   i % 3 ? "Up" : "Left, \"quoted\"", static_cast<double>(i), 2.0 * i});

@@ -25,14 +25,18 @@ namespace {
 
 using namespace dtlab::store::testing;
 
-// Runs one participant's session: `n` trials recorded (all: finished), with an interrupted
-// attempt and a pause in trial 2.
+// The display of a station's window (schema v3), with a monitor name CSV and SQL would quote.
+const DisplayInfo kWindow{"window", 1920, 1080, 143.98, "4.6 (Core Profile) Mesa 22.3.6 / llvmpipe", "DELL U2720Q, \"left\""};
+
+// Runs one participant's session on kWindow: `n` trials recorded (all: finished), with an
+// interrupted attempt and a pause in trial 2; every other trial knows the display's refresh rate.
 void run_participant(Store& s, const std::string& id, int n, Demographics demo = {}) {
   auto e = s.enroll(id, demo);
   ASSERT_TRUE(e) << e.error().to_string();
   const design::Plan plan = make_plan(e->index, e->order_row, 1);
   auto ses = s.begin_session(id, plan);
   ASSERT_TRUE(ses) << ses.error().to_string();
+  ASSERT_TRUE(s.record_display(*ses, kWindow));
   for (int i = 0; i < n; ++i) {
     const auto& t = plan.trials[static_cast<std::size_t>(i)];
     ASSERT_TRUE(s.begin_trial(*ses, t.position));
@@ -40,7 +44,8 @@ void run_participant(Store& s, const std::string& id, int n, Demographics demo =
       ASSERT_TRUE(s.begin_trial(*ses, t.position));  // the first attempt reads as interrupted
       ASSERT_TRUE(s.record_pause(*ses, t.position, at_ms(1'700'000'500'000), at_ms(1'700'000'507'250)));
     }
-    ASSERT_TRUE(s.record_trial(*ses, make_record(static_cast<std::uint64_t>(e->index) + 3, t, 7 + i)));
+    const std::optional<double> hz = i % 2 ? std::nullopt : kWindow.refresh_hz;
+    ASSERT_TRUE(s.record_trial(*ses, make_record(static_cast<std::uint64_t>(e->index) + 3, t, 7 + i, hz)));
   }
   if (n == static_cast<int>(plan.trials.size())) {
     ASSERT_TRUE(s.finish_session(*ses));
@@ -49,7 +54,8 @@ void run_participant(Store& s, const std::string& id, int n, Demographics demo =
 }
 
 // A study with everything a study holds: two protocol texts of one design, finished, running,
-// resumed and released sessions, a participant never started, exclusions and an inclusion, notes.
+// resumed and released sessions, a participant never started, exclusions and an inclusion, notes,
+// the displays sessions ran on and frame times with and without the display's refresh rate.
 void write_rich_study(const std::string& where) {
   StudyInfo a = study_info("id = \"test2x2\"\n# first wording\n");
   a.design_sha256 = std::string(64, 'd');
@@ -66,6 +72,7 @@ void write_rich_study(const std::string& where) {
   auto e = s.lookup("P2");
   auto ses = s.begin_session("P2", make_plan(e->index, e->order_row, 1));  // resumed
   ASSERT_TRUE(ses && ses->resumed);
+  ASSERT_TRUE(s.record_display(*ses, DisplayInfo{"headless", 800, 600, std::nullopt, "OSMesa", ""}));
   ASSERT_TRUE(s.record_trial(*ses, make_record(9, **s.next_trial(*ses), 3)));
   ASSERT_TRUE(s.release_claim(*ses));
   run_participant(s, "P4", 4);
@@ -96,6 +103,7 @@ const std::vector<std::pair<std::string, std::string>> kTables = {
     {"notes", "id"},
     {"session_pauses", "session_id, paused_at"},
     {"trial_attempts", "session_id, position, attempt"},
+    {"session_displays", "session_id, recorded_at, kind"},
 };
 
 // A table's rows with every real spelled the same way on both engines (17 significant digits).
@@ -167,6 +175,16 @@ TEST_P(Copy, EveryRowOfEveryTableToTheOtherEngineAndBack) {
   EXPECT_EQ((*sessions)[0].interruptions.size(), 1u);
   EXPECT_DOUBLE_EQ((*sessions)[0].paused_s(), 7.25);
   EXPECT_EQ((*sessions)[2].status, SessionStatus::abandoned);
+  ASSERT_EQ((*sessions)[1].displays.size(), 2u);  // the start and the resume
+  EXPECT_EQ((*sessions)[1].displays[0].info.monitor, kWindow.monitor);
+  EXPECT_EQ((*sessions)[1].displays[0].info.refresh_hz, kWindow.refresh_hz);
+  EXPECT_EQ((*sessions)[1].displays[1].info.kind, "headless");
+  EXPECT_FALSE((*sessions)[1].displays[1].info.refresh_hz);
+  auto trials = r->trials("P1");
+  ASSERT_EQ(trials->size(), 4u);
+  EXPECT_EQ((*trials)[0].frames.refresh_hz, kWindow.refresh_hz);
+  EXPECT_FALSE((*trials)[1].frames.refresh_hz);
+  EXPECT_TRUE((*trials)[1].frames.first_ms && (*trials)[1].frames.late);
   // And the copy is a study one can go on writing to: P5 starts there.
   Store s = open_ok(there, study_info("id = \"test2x2\"\n# second wording\n"));
   auto e = s.lookup("P5");
@@ -353,6 +371,81 @@ TEST_P(Merge, RefusesWhatWouldChangeDataAndWritesNothing) {
     EXPECT_NE(refused.error().message.find(c.says), std::string::npos) << c.name << ": " << refused.error().to_string();
     EXPECT_EQ(dump(lab), before) << c.name << ": a refused merge wrote to DST";
   }
+}
+
+// Turns a SQLite study file into what a dtlab of schema v2 wrote: without the v3 columns and table,
+// header and migration history at v2 (the trial_table view is left out: a copy never reads it).
+void downgrade_to_v2(const std::string& file) {
+  RawDb db(file);
+  for (const char* sql : {"DROP VIEW trial_table", "DROP TABLE session_displays",
+                          "ALTER TABLE trial_results DROP COLUMN frame_first_ms",
+                          "ALTER TABLE trial_results DROP COLUMN frame_ms_median",
+                          "ALTER TABLE trial_results DROP COLUMN late_frames",
+                          "ALTER TABLE trial_results DROP COLUMN refresh_hz",
+                          "DELETE FROM schema_migrations WHERE version = 3", "PRAGMA user_version = 2"})
+    ASSERT_TRUE(db.exec(sql)) << sql << ": " << db.errmsg();
+}
+
+// A station's file of schema v2 (recorded before the display timing existed) copies into an
+// empty database of either engine, which gets schema v3 with the v3 columns NULL, and merges into
+// a lab whose sessions have v3 data: the sessions both hold compare on what v2 records.
+TEST_P(Merge, AFileOfSchemaV2CopiesAndMerges) {
+  const std::string lab = lab_with(study("lab"));
+  const std::string station = dir_.file("station.sqlite");
+  ASSERT_TRUE(copy_study(lab, station));
+  {
+    Store s = open_ok(station);
+    run_participant(s, "S1", 4);
+  }
+  downgrade_to_v2(station);
+
+  const std::string fresh = study("fresh");
+  auto full = copy_study(station, fresh);
+  ASSERT_TRUE(full) << full.error().to_string();
+  EXPECT_EQ(full->trials, 16);
+  EXPECT_EQ(exported(fresh), exported(station));
+  {
+    RawDb from(station), to(fresh);
+    EXPECT_EQ(to.header().second, "3");
+    EXPECT_EQ(joined(to, "SELECT version FROM schema_migrations ORDER BY version"), "1,2,3");
+    auto history = table(to, "schema_migrations", "version");  // SRC's v1 and v2 rows as they were, then v3
+    ASSERT_EQ(history.size(), 3u);
+    history.pop_back();
+    EXPECT_EQ(history, table(from, "schema_migrations", "version"));
+    for (const auto& [name, order] : kTables)
+      if (name != "trial_results" && name != "session_displays" && name != "schema_migrations")
+        EXPECT_EQ(table(to, name, order), table(from, name, order)) << name;
+    EXPECT_EQ(to.count("SELECT count(*) FROM trial_results"), 16);
+    EXPECT_EQ(to.count("SELECT count(*) FROM trial_results WHERE frame_first_ms IS NOT NULL OR frame_ms_median IS NOT "
+                       "NULL OR late_frames IS NOT NULL OR refresh_hz IS NOT NULL"),
+              0);
+    EXPECT_EQ(to.count("SELECT count(*) FROM session_displays"), 0);
+    EXPECT_EQ(to.integrity(), "ok");
+  }
+
+  auto merged = copy_study(station, lab);
+  ASSERT_TRUE(merged) << merged.error().to_string();
+  EXPECT_TRUE(merged->merged);
+  EXPECT_EQ(merged->participants, 1);
+  EXPECT_EQ(merged->unchanged, 3);
+  auto r = StudyReader::open(lab);
+  ASSERT_TRUE(r);
+  auto s1 = r->trials("S1");
+  auto p1 = r->trials("P1");
+  ASSERT_EQ(s1->size(), 4u);
+  EXPECT_FALSE((*s1)[0].frames.first_ms || (*s1)[0].frames.late || (*s1)[0].frames.refresh_hz);
+  EXPECT_TRUE((*p1)[0].frames.first_ms && (*p1)[0].frames.refresh_hz);
+  auto sessions = r->sessions();
+  ASSERT_EQ(sessions->size(), 4u);
+  EXPECT_EQ((*sessions)[0].displays.size(), 1u);  // P1's, recorded at the lab
+  EXPECT_TRUE((*sessions)[3].displays.empty());   // S1's: the station's v2 file had none
+  EXPECT_EQ(*r->integrity_check(), "ok");
+
+  // And the station's dtlab, updated, opens the file at v3.
+  { Store s = open_ok(station); }
+  RawDb db(station);
+  EXPECT_EQ(db.header().second, "3");
+  EXPECT_EQ(db.count("SELECT count(*) FROM trial_table"), 16);
 }
 
 // The command line: JSON summary, exit codes.

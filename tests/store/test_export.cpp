@@ -25,7 +25,8 @@ const char* kHeader =
     "participant,enrollment_index,session,session_status,order_row,position,block,transparency,scenario,task,trial,"
     "practice,method,trial_seed,scene_hash,answer_count,answer_letter,answer_x,answer_z,truth_count,truth_letter,"
     "truth_x,truth_z,rel_error,signed_error,correct,distance,completion_time_s,started_at,ended_at,frame_count,"
-    "frame_ms_mean,frame_ms_sd,frame_ms_p95,frame_ms_max,protocol_sha256,design_revision,excluded";
+    "frame_ms_mean,frame_ms_sd,frame_ms_p95,frame_ms_max,frame_first_ms,frame_ms_median,late_frames,refresh_hz,"
+    "protocol_sha256,design_revision,excluded";
 
 // Minimal RFC 4180 reader: records of fields, quoted fields may hold , " CR LF.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -223,7 +224,7 @@ TEST(ExportFile, PythonCsvModuleReadsItAsIs) {
       "import csv,sys; r=list(csv.DictReader(open(sys.argv[1], newline=''))); "
       "assert len(r)==" + std::to_string(recorded) + ", len(r); "
       "assert r[4]['participant']=='P,2 \"x\"', r[4]['participant']; "
-      "assert all(len(x)==38 for x in r); float(r[0]['completion_time_s'])";
+      "assert all(len(x)==42 for x in r); float(r[0]['completion_time_s'])";
   const std::string cmd = "/usr/bin/python3 -c '" + [&] {
     std::string q;
     for (char c : script) q += c == '\'' ? std::string("'\\''") : std::string(1, c);

@@ -95,5 +95,31 @@ TEST(FrameStats, EdgeCases) {
   EXPECT_THROW(frame_stats(bad), std::invalid_argument);
 }
 
+// Schema v3: the first frame (warm-up) apart; the median of the steady frames; late frames are
+// steady frames slower than 1.5 display intervals (60 Hz when the display's rate is unknown).
+TEST(FrameStats, WarmUpAndLateFramesApart) {
+  // 500 (warm-up), then 16, 17, 25, 26, 40 ms. At 60 Hz late means > 25 ms: 26 and 40 -> 2.
+  const std::vector<double> ms{500, 16, 17, 25, 26, 40};
+  const FrameStats s = frame_stats(ms);
+  EXPECT_EQ(*s.first_ms, 500.0);
+  EXPECT_EQ(*s.steady_median_ms, 25.0);  // 16 17 25 26 40 -> 25
+  EXPECT_EQ(*s.late, 2);
+  EXPECT_FALSE(s.refresh_hz.has_value());
+  // At 144 Hz late means > 10.4166... ms: every steady frame (5).
+  const FrameStats fast = frame_stats(ms, 144.0);
+  EXPECT_EQ(*fast.late, 5);
+  EXPECT_EQ(*fast.refresh_hz, 144.0);
+  // At 30 Hz late means > 50 ms: none; the warm-up frame never counts.
+  EXPECT_EQ(*frame_stats(ms, 30.0).late, 0);
+  // Even count: the mean of the middle two (16 17 | 25 26 -> 21).
+  const std::vector<double> even{9, 16, 17, 25, 26};
+  EXPECT_EQ(*frame_stats(even).steady_median_ms, 21.0);
+  const std::vector<double> one{7.0};
+  const FrameStats single = frame_stats(one);
+  EXPECT_EQ(*single.first_ms, 7.0);
+  EXPECT_FALSE(single.steady_median_ms || single.late);
+  EXPECT_THROW(frame_stats(ms, 0.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace dtlab::store

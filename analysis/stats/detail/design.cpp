@@ -1,18 +1,77 @@
 // Subject x cell matrix with listwise deletion; see design.h.
 #include "analysis/stats/detail/design.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <stdexcept>
+#include <string_view>
+#include <unordered_map>
+
+#include "analysis/stats/csv.h"
+#include "analysis/stats/detail/sum.h"
 
 namespace dtlab::stats::detail {
 namespace {
 
-size_t index_of(std::vector<std::string>& levels, std::map<std::string, size_t>& lookup, const std::string& s) {
-  auto [it, inserted] = lookup.emplace(s, levels.size());
-  if (inserted) levels.push_back(s);
-  return it->second;
+constexpr size_t kNone = std::numeric_limits<size_t>::max();
+
+// Levels of one column in first-appearance order; the map keys view the
+// caller's strings, which outlive it.
+struct Index {
+  std::vector<std::string> names;
+  std::unordered_map<std::string_view, size_t> lookup;
+
+  size_t of(const std::string& s) {
+    auto [it, inserted] = lookup.emplace(s, names.size());
+    if (inserted) names.push_back(s);
+    return it->second;
+  }
+};
+
+// One slot per subject x cell: the rows that fell into it.
+struct Slots {
+  std::vector<size_t> count, first;          // rows in the slot, the first of them
+  std::vector<char> missing;                 // a row of the slot has a missing dv
+  std::vector<size_t> group_row;             // per subject: the row that set its between levels
+  std::vector<std::vector<size_t>> rows_of;  // per slot, filled only when some slot has several rows
+};
+
+double row_noise(const Measurements& dv, size_t r) {
+  if (r < dv.noise.size()) return dv.noise[r];
+  return std::ldexp(std::fabs(dv.delta[r]), -53);
+}
+
+// Mean of x: compensated sum / n, or the sum of x / n where the sum overflows.
+double mean_of(const std::vector<double>& x) {
+  Sum s;
+  for (double v : x) s.add(v);
+  const double n = static_cast<double>(x.size());
+  if (std::isfinite(s.value())) return s.value() / n;
+  double m = 0;
+  for (double v : x) m += v / n;
+  return m;
+}
+
+double median_of(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  const size_t h = x.size() / 2;
+  return x.size() % 2 ? x[h] : x[h - 1] / 2 + x[h] / 2;
+}
+
+// One value from the several rows of a subject x cell (only with an aggregation).
+void reduce(const LongData& data, const std::vector<size_t>& rows, double& delta, double& value, double& noise) {
+  std::vector<double> d, v;
+  double worst = 0;
+  for (size_t r : rows) {
+    d.push_back(data.dv.delta[r]);
+    v.push_back(data.dv.value[r]);
+    worst = std::max(worst, row_noise(data.dv, r));
+  }
+  const bool median = data.aggregate == Aggregate::median;
+  delta = median ? median_of(d) : mean_of(d);
+  value = median ? median_of(v) : mean_of(v);
+  noise = worst + std::ldexp(std::fabs(delta), -52);  // the division's rounding
 }
 
 }  // namespace
@@ -29,7 +88,8 @@ std::vector<size_t> CellDesign::cell_levels(size_t cell) const {
 std::string CellDesign::cell_label(size_t cell) const {
   const auto lv = cell_levels(cell);
   std::string s;
-  for (size_t f = 0; f < lv.size(); ++f) s += (f ? ", " : "") + within_names[f] + "=" + within_levels[f][lv[f]];
+  for (size_t f = 0; f < lv.size(); ++f)
+    s += (f ? ", " : "") + name_for_message(within_names[f]) + "=" + name_for_message(within_levels[f][lv[f]]);
   return s.empty() ? "(all)" : s;
 }
 
@@ -40,6 +100,159 @@ std::string CellDesign::cell_name(size_t cell) const {
   return s;
 }
 
+FactorMarginals factor_marginals(const CellDesign& d, size_t f) {
+  const size_t L = d.within_levels[f].size(), N = d.subjects.size();
+  FactorMarginals m{std::vector<std::vector<double>>(L, std::vector<double>(N, 0.0)),
+                    std::vector<std::vector<double>>(L, std::vector<double>(N, 0.0))};
+  std::vector<double> count(L, 0.0);
+  for (size_t c = 0; c < d.cells; ++c) {
+    const size_t l = d.cell_levels(c)[f];
+    count[l] += 1.0;
+    for (size_t s = 0; s < N; ++s) {
+      m.value[l][s] += d.value[s][c];
+      m.delta[l][s] += d.delta[s][c];
+    }
+  }
+  for (size_t l = 0; l < L; ++l)
+    if (count[l] > 1)
+      for (size_t s = 0; s < N; ++s) {
+        m.value[l][s] /= count[l];
+        m.delta[l][s] /= count[l];
+      }
+  return m;
+}
+
+std::string name_list(const std::vector<std::string>& names, size_t shown) {
+  std::string s;
+  for (size_t i = 0; i < names.size() && i < shown; ++i) s += (i ? "; " : "") + name_for_message(names[i]);
+  if (names.size() > shown) s += "; and " + std::to_string(names.size() - shown) + " more";
+  return s;
+}
+
+namespace {
+
+// Every row's subject, within levels and between levels, as indices in first-appearance order.
+struct Rows {
+  Index subjects;
+  std::vector<size_t> subject, within, group;  // within: n x nw, group: n x nb
+};
+
+Rows index_rows(const LongData& data, CellDesign& d) {
+  const size_t n = data.rows(), nw = data.within.size(), nb = data.between.size();
+  Rows rows;
+  rows.subject.resize(n);
+  rows.within.resize(n * nw);
+  rows.group.resize(n * nb);
+  std::vector<Index> wl(nw), bl(nb);
+  for (size_t r = 0; r < n; ++r) {
+    rows.subject[r] = rows.subjects.of(data.subject[r]);
+    for (size_t f = 0; f < nw; ++f) rows.within[r * nw + f] = wl[f].of(data.within[f].level[r]);
+    for (size_t f = 0; f < nb; ++f) rows.group[r * nb + f] = bl[f].of(data.between[f].level[r]);
+  }
+  for (size_t f = 0; f < nw; ++f) d.within_levels.push_back(wl[f].names);
+  for (size_t f = 0; f < nb; ++f) d.between_levels.push_back(bl[f].names);
+  for (const auto& lv : d.within_levels) d.cells *= lv.size();
+  return rows;
+}
+
+// Which rows fall into each subject x cell slot; Errors for a between level
+// changing within a subject and for a repeated slot without an aggregation.
+Result<Slots> fill_slots(const LongData& data, const CellDesign& d, const Rows& rows) {
+  const size_t n = data.rows(), nw = data.within.size(), nb = data.between.size();
+  const size_t C = d.cells, ns = rows.subjects.names.size();
+  Slots slots{std::vector<size_t>(ns * C, 0), std::vector<size_t>(ns * C, kNone), std::vector<char>(ns * C, 0),
+              std::vector<size_t>(ns, kNone), {}};
+  std::vector<size_t> row_slot(n);
+  bool repeated = false;
+  for (size_t r = 0; r < n; ++r) {
+    const size_t s = rows.subject[r];
+    size_t c = 0;
+    for (size_t f = 0; f < nw; ++f) c = c * d.within_levels[f].size() + rows.within[r * nw + f];
+    const size_t k = s * C + c;
+    row_slot[r] = k;
+    const int line = r < data.line.size() ? data.line[r] : 0;
+    if (slots.group_row[s] == kNone) {
+      slots.group_row[s] = r;
+    } else {
+      const size_t r0 = slots.group_row[s];
+      for (size_t f = 0; f < nb; ++f)
+        if (rows.group[r * nb + f] != rows.group[r0 * nb + f])
+          return Error{data.source, line, 0, name_for_message(data.between[f].name),
+                       "subject " + quote_text(rows.subjects.names[s]) + " has level " +
+                           quote_text(data.between[f].level[r]) + " here but " + quote_text(data.between[f].level[r0]) +
+                           " at " + data.where(r0) + "; a between-subject factor must be constant within a subject"};
+    }
+    if (slots.count[k] > 0 && data.aggregate == Aggregate::none)
+      return Error{data.source, line, 0, "",
+                   "subject " + quote_text(rows.subjects.names[s]) + " has a second row for the cell " + d.cell_label(c) +
+                       " (the first is at " + data.where(slots.first[k]) +
+                       "): expected one value per subject and cell; filter the rows or choose an aggregation "
+                       "(mean or median of the rows)"};
+    if (slots.first[k] == kNone) slots.first[k] = r;
+    ++slots.count[k];
+    repeated = repeated || slots.count[k] > 1;
+    if (data.dv.missing(r)) slots.missing[k] = 1;
+  }
+  if (repeated) {
+    slots.rows_of.resize(ns * C);
+    for (size_t r = 0; r < n; ++r) slots.rows_of[row_slot[r]].push_back(r);
+  }
+  return slots;
+}
+
+// The subjects with every cell, their cell values, and the warnings naming the others.
+void keep_complete(const LongData& data, CellDesign& d, const Rows& rows, const Slots& slots) {
+  const size_t C = d.cells, nb = data.between.size();
+  size_t aggregated = 0;
+  std::vector<std::string> dropped_text;
+  for (size_t s = 0; s < rows.subjects.names.size(); ++s) {
+    size_t first_missing = C;
+    for (size_t c = 0; c < C && first_missing == C; ++c)
+      if (slots.count[s * C + c] == 0 || slots.missing[s * C + c]) first_missing = c;
+    if (first_missing < C) {
+      d.dropped.push_back(rows.subjects.names[s]);
+      if (dropped_text.size() < 10)
+        dropped_text.push_back(name_for_message(rows.subjects.names[s]) + " (" + d.cell_label(first_missing) + ")");
+      continue;
+    }
+    std::vector<double> dl(C), vl(C), nl(C);
+    for (size_t c = 0; c < C; ++c) {
+      const size_t k = s * C + c;
+      if (slots.count[k] > 1) {
+        ++aggregated;
+        reduce(data, slots.rows_of[k], dl[c], vl[c], nl[c]);
+      } else {
+        const size_t r = slots.first[k];
+        dl[c] = data.dv.delta[r];
+        vl[c] = data.dv.value[r];
+        nl[c] = row_noise(data.dv, r);
+      }
+    }
+    d.subjects.push_back(rows.subjects.names[s]);
+    d.delta.push_back(std::move(dl));
+    d.value.push_back(std::move(vl));
+    d.noise.push_back(std::move(nl));
+    std::vector<size_t> g(nb);
+    for (size_t f = 0; f < nb; ++f) g[f] = rows.group[slots.group_row[s] * nb + f];
+    d.group.push_back(std::move(g));
+  }
+  if (!d.dropped.empty()) {
+    std::string text;
+    for (const auto& t : dropped_text) text += (text.empty() ? "" : "; ") + t;
+    if (d.dropped.size() > dropped_text.size())
+      text += "; and " + std::to_string(d.dropped.size() - dropped_text.size()) + " more";
+    d.warnings.push_back("listwise deletion: removed " + std::to_string(d.dropped.size()) +
+                         (d.dropped.size() == 1 ? " subject" : " subjects") +
+                         " with a missing cell (first missing cell in parentheses): " + text);
+  }
+  if (aggregated > 0)
+    d.warnings.push_back(std::to_string(aggregated) + " subject x cell combination" + (aggregated == 1 ? "" : "s") +
+                         " had more than one row; each was replaced by the " +
+                         (data.aggregate == Aggregate::median ? "median" : "mean") + " of its rows (as requested)");
+}
+
+}  // namespace
+
 Result<CellDesign> build_cell_design(const LongData& data) {
   const size_t n = data.rows();
   if (data.subject.size() != n) throw std::invalid_argument("build_cell_design: one subject id per row is required");
@@ -47,87 +260,14 @@ Result<CellDesign> build_cell_design(const LongData& data) {
     if (f.level.size() != n) throw std::invalid_argument("build_cell_design: factor '" + f.name + "' needs one level per row");
   for (const auto& f : data.between)
     if (f.level.size() != n) throw std::invalid_argument("build_cell_design: factor '" + f.name + "' needs one level per row");
-
   CellDesign d;
   d.offset = data.dv.offset;
-  const size_t nw = data.within.size(), nb = data.between.size();
-  d.within_levels.resize(nw);
-  d.between_levels.resize(nb);
   for (const auto& f : data.within) d.within_names.push_back(f.name);
   for (const auto& f : data.between) d.between_names.push_back(f.name);
-  std::vector<std::map<std::string, size_t>> wl(nw), bl(nb);
-  std::map<std::string, size_t> subject_lookup;
-  std::vector<std::string> subjects;
-  std::vector<size_t> row_subject(n), row_cell(n, 0);
-  std::vector<std::vector<size_t>> row_group(n, std::vector<size_t>(nb));
-  for (size_t r = 0; r < n; ++r) {
-    row_subject[r] = index_of(subjects, subject_lookup, data.subject[r]);
-    for (size_t f = 0; f < nw; ++f) index_of(d.within_levels[f], wl[f], data.within[f].level[r]);
-    for (size_t f = 0; f < nb; ++f) row_group[r][f] = index_of(d.between_levels[f], bl[f], data.between[f].level[r]);
-  }
-  for (const auto& lv : d.within_levels) d.cells *= lv.size();
-  for (size_t r = 0; r < n; ++r) {
-    size_t c = 0;
-    for (size_t f = 0; f < nw; ++f) c = c * d.within_levels[f].size() + wl[f].at(data.within[f].level[r]);
-    row_cell[r] = c;
-  }
-
-  const size_t ns = subjects.size();
-  std::vector<std::vector<double>> sum_delta(ns, std::vector<double>(d.cells, 0.0));
-  std::vector<std::vector<double>> sum_value = sum_delta;
-  std::vector<std::vector<size_t>> count(ns, std::vector<size_t>(d.cells, 0));
-  std::vector<std::vector<bool>> has_missing(ns, std::vector<bool>(d.cells, false));
-  std::vector<long> group_row(ns, -1);
-  for (size_t r = 0; r < n; ++r) {
-    const size_t s = row_subject[r], c = row_cell[r];
-    if (group_row[s] < 0) {
-      group_row[s] = static_cast<long>(r);
-    } else {
-      const size_t r0 = static_cast<size_t>(group_row[s]);
-      for (size_t f = 0; f < nb; ++f)
-        if (row_group[r][f] != row_group[r0][f])
-          return Error{data.source, r < data.line.size() ? data.line[r] : 0, 0, data.between[f].name,
-                       "subject '" + subjects[s] + "' has level '" + data.between[f].level[r] + "' here but '" +
-                           data.between[f].level[r0] + "' at " + data.where(r0) +
-                           "; a between-subject factor must be constant within a subject"};
-    }
-    if (data.dv.missing(r)) {
-      has_missing[s][c] = true;
-      continue;
-    }
-    sum_delta[s][c] += data.dv.delta[r];
-    sum_value[s][c] += data.dv.value[r];
-    ++count[s][c];
-  }
-
-  size_t averaged = 0;
-  std::string dropped_text;
-  for (size_t s = 0; s < ns; ++s) {
-    size_t first_missing = d.cells;
-    for (size_t c = 0; c < d.cells && first_missing == d.cells; ++c)
-      if (count[s][c] == 0 || has_missing[s][c]) first_missing = c;
-    if (first_missing < d.cells) {
-      d.dropped.push_back(subjects[s]);
-      dropped_text += (dropped_text.empty() ? "" : "; ") + subjects[s] + " (" + d.cell_label(first_missing) + ")";
-      continue;
-    }
-    std::vector<double> dl(d.cells), vl(d.cells);
-    for (size_t c = 0; c < d.cells; ++c) {
-      if (count[s][c] > 1) ++averaged;
-      dl[c] = count[s][c] == 1 ? sum_delta[s][c] : sum_delta[s][c] / static_cast<double>(count[s][c]);
-      vl[c] = count[s][c] == 1 ? sum_value[s][c] : sum_value[s][c] / static_cast<double>(count[s][c]);
-    }
-    d.subjects.push_back(subjects[s]);
-    d.delta.push_back(std::move(dl));
-    d.value.push_back(std::move(vl));
-    d.group.push_back(row_group[static_cast<size_t>(group_row[s])]);
-  }
-  if (!d.dropped.empty())
-    d.warnings.push_back("listwise deletion: removed " + std::to_string(d.dropped.size()) +
-                         " subject(s) with a missing cell (first missing cell in parentheses): " + dropped_text);
-  if (averaged > 0)
-    d.warnings.push_back(std::to_string(averaged) +
-                         " subject x cell combination(s) had more than one row; each was replaced by the mean of its rows");
+  const Rows rows = index_rows(data, d);
+  auto slots = fill_slots(data, d, rows);
+  if (!slots) return slots.error();
+  keep_complete(data, d, rows, *slots);
   return d;
 }
 

@@ -113,13 +113,15 @@ std::optional<double> friedman_exact_tail(const std::vector<std::vector<int>>& r
 }
 
 double friedman_monte_carlo_tail(const std::vector<std::vector<int>>& r, std::int64_t s_obs, std::size_t samples,
-                                 std::uint64_t seed) {
+                                 std::uint64_t seed, const std::function<void(std::size_t, std::size_t)>& progress) {
   SplitMixStream rng(seed);
   const std::size_t k = r.empty() ? 0 : r.front().size();
   std::vector<std::int64_t> t(k);
   std::vector<int> row;
   std::size_t hits = 0;
+  const std::size_t every = std::max<std::size_t>(1, samples / 100);
   for (std::size_t b = 0; b < samples; ++b) {
+    if (progress && b % every == 0) progress(b, samples);
     std::fill(t.begin(), t.end(), 0);
     for (const auto& block : r) {
       row = block;
@@ -130,6 +132,7 @@ double friedman_monte_carlo_tail(const std::vector<std::vector<int>>& r, std::in
     for (auto v : t) s += v * v;
     if (s >= s_obs) ++hits;
   }
+  if (progress) progress(samples, samples);
   return (static_cast<double>(hits) + 1.0) / (static_cast<double>(samples) + 1.0);
 }
 

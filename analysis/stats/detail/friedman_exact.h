@@ -7,6 +7,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -23,9 +24,11 @@ std::optional<std::vector<std::pair<std::int64_t, double>>> friedman_exact_distr
 std::optional<double> friedman_exact_tail(const std::vector<std::vector<int>>& doubled_ranks, std::int64_t s_obs,
                                           double budget);
 
-// Monte Carlo estimate (b + 1) / (N + 1) with b the resamples with S >= s_obs.
+// Monte Carlo estimate (b + 1) / (N + 1) with b the resamples with S >= s_obs;
+// progress (if set) is called about 100 times.
 double friedman_monte_carlo_tail(const std::vector<std::vector<int>>& doubled_ranks, std::int64_t s_obs,
-                                 std::size_t samples, std::uint64_t seed);
+                                 std::size_t samples, std::uint64_t seed,
+                                 const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 // S for the given (doubled) ranks.
 std::int64_t friedman_s(const std::vector<std::vector<int>>& doubled_ranks);

@@ -117,13 +117,34 @@ std::optional<Matrix> spd_inverse(const Matrix& m) {
   return inv;
 }
 
-double spd_log_det(const Matrix& m) {
-  assert(m.rows == m.cols && "spd_log_det: matrix must be square");
-  Matrix l;
-  if (!cholesky(m, l)) return -std::numeric_limits<double>::infinity();
-  double s = 0.0;
-  for (size_t i = 0; i < m.rows; ++i) s += 2.0 * std::log(l(i, i));
-  return s;
+double gram_log_det(const Matrix& r) {
+  assert(r.rows >= r.cols && "gram_log_det: needs at least as many rows as columns");
+  Matrix a = r;
+  double log_det = 0.0;
+  for (size_t j = 0; j < a.cols; ++j) {
+    // Householder reflection zeroing a(j+1.., j); the new a(j, j) is -+ the column norm.
+    double scale = 0.0;
+    for (size_t i = j; i < a.rows; ++i) scale = std::max(scale, std::fabs(a(i, j)));
+    if (scale == 0.0) return -std::numeric_limits<double>::infinity();
+    Sum ss;
+    for (size_t i = j; i < a.rows; ++i) ss.add((a(i, j) / scale) * (a(i, j) / scale));
+    const double norm = scale * std::sqrt(ss.value());
+    const double alpha = a(j, j) > 0 ? -norm : norm;
+    log_det += 2.0 * std::log(norm);
+    std::vector<double> v(a.rows - j);
+    for (size_t i = j; i < a.rows; ++i) v[i - j] = a(i, j);
+    v[0] -= alpha;
+    Sum vv;
+    for (double x : v) vv.add(x * x);
+    if (vv.value() == 0.0) continue;
+    for (size_t c = j + 1; c < a.cols; ++c) {
+      Sum dot;
+      for (size_t i = j; i < a.rows; ++i) dot.add(v[i - j] * a(i, c));
+      const double f = 2.0 * dot.value() / vv.value();
+      for (size_t i = j; i < a.rows; ++i) a(i, c) -= f * v[i - j];
+    }
+  }
+  return log_det;
 }
 
 }  // namespace dtlab::stats::detail

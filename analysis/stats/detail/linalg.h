@@ -1,7 +1,9 @@
 // Small dense matrices for the repeated-measures ANOVA (contrast matrices,
 // sums of squares and products, the between-subjects normal equations). Row
-// major, sizes checked by assert. Only what the ANOVA needs: products,
-// symmetric positive-definite inverse and log-determinant by Cholesky.
+// major, sizes checked by assert. Only what the ANOVA needs: products, the
+// symmetric positive-definite inverse by Cholesky, and the log-determinant of
+// a Gram matrix R'R from a Householder QR of R (no cut-off: a nearly singular
+// R'R keeps its tiny determinant to about eps / smallest singular value).
 #pragma once
 #include <cassert>
 #include <cstddef>
@@ -35,8 +37,8 @@ Matrix normalized_mean_row(size_t levels);
 // Inverse of a symmetric positive-definite matrix; nullopt if it is not
 // (numerically) positive definite.
 std::optional<Matrix> spd_inverse(const Matrix& m);
-// log(det m) for symmetric positive semi-definite m; -inf when singular
-// (a Cholesky pivot at or below 1e-12 times the largest diagonal entry).
-double spd_log_det(const Matrix& m);
+// log det(r' r) for r with rows >= cols, as 2 sum log |R_jj| of r's
+// Householder QR; -inf only when r has exactly dependent columns (a zero R_jj).
+double gram_log_det(const Matrix& r);
 
 }  // namespace dtlab::stats::detail

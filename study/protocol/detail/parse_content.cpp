@@ -53,26 +53,26 @@ void read_scene_keys(TableReader& r, SceneParams& scene, ParseState& s) {
                     " scenarios; this one is kind = \"" + std::string(to_string(scene.kind)) + "\"");
     return applies;
   };
-  if (auto v = r.integer("objects", false, 1, abstract ? 10000 : 1000)) scene.objects = static_cast<int>(*v);
+  if (auto v = r.integer("objects", false, abstract ? limits::kAbstractObjects : limits::kWalkthroughObjects)) scene.objects = static_cast<int>(*v);
   if (only("extent", abstract))
-    if (auto v = r.number("extent", false, 1.0, 1e6)) scene.extent = *v;
+    if (auto v = r.number("extent", false, limits::kExtent)) scene.extent = *v;
   if (only("grid", !abstract))
-    if (auto v = r.int_pair("grid", false, 2, 64)) {
+    if (auto v = r.int_pair("grid", false, limits::kGrid)) {
       scene.grid_width = v->first;
       scene.grid_height = v->second;
     }
   if (only("cell_size", !abstract))
-    if (auto v = r.number("cell_size", false, 0.1, 1000.0)) scene.cell_size = *v;
-  if (auto v = r.strings("object_kinds", false, 1, 8, abstract ? kAbstractKinds : kWalkthroughKinds))
+    if (auto v = r.number("cell_size", false, limits::kCellSize)) scene.cell_size = *v;
+  if (auto v = r.strings("object_kinds", false, limits::kObjectKinds, abstract ? kAbstractKinds : kWalkthroughKinds))
     scene.object_kinds = *v;
   if (only("object_radius", abstract))
-    if (auto v = r.number_range("object_radius", false, 0.01, 1e6)) scene.object_radius = *v;
+    if (auto v = r.number_range("object_radius", false, limits::kObjectRadius)) scene.object_radius = *v;
   if (only("target_ratio", abstract))
-    if (auto v = r.number_range("target_ratio", false, 0.001, 1.0)) scene.target_ratio = *v;
+    if (auto v = r.number_range("target_ratio", false, limits::kTargetRatio)) scene.target_ratio = *v;
   if (only("letters", abstract))
-    if (auto v = r.strings("letters", false, 1, kLetters.size(), kLetters)) scene.letters = *v;
+    if (auto v = r.strings("letters", false, limits::kLetters, kLetters)) scene.letters = *v;
   if (only("count_range", !abstract))
-    if (auto v = r.int_range("count_range", false, 1, 1000)) scene.count_range = *v;
+    if (auto v = r.int_range("count_range", false, limits::kCountRange)) scene.count_range = *v;
 }
 
 // Checks a task's final scene parameters (after the cascade) against its type.
@@ -85,8 +85,6 @@ void check_task_scene(const Task& task, Pos at, const std::string& path, ParseSt
   if (task.type == TaskType::count_kind && sc.count_range.max > sc.objects)
     s.d.error(at, path + ".count_range", "count_range max " + std::to_string(sc.count_range.max) +
                                              " exceeds objects = " + std::to_string(sc.objects));
-  if (task.type == TaskType::count_targets && sc.target_ratio.min * sc.objects < 1.0)
-    s.d.warning(at, path + ".target_ratio", "target_ratio min x objects < 1: a trial may have no target to count");
 }
 
 // Keys of the scenario/rendering tables must be exactly the levels of the factor with that role.
@@ -147,7 +145,8 @@ void parse_task(const toml::key& k, const toml::node& n, const std::string& task
                 : *type == "identify-letter" ? TaskType::identify_letter
                 : *type == "find-unique"     ? TaskType::find_unique
                                              : TaskType::count_kind;
-  if (auto v = tr.integer("trials", true, 1, 100)) task.trials = static_cast<int>(*v);
+  if (auto v = tr.integer("trials", true, limits::kTrials)) task.trials = static_cast<int>(*v);
+  if (auto v = tr.string("instructions", false)) task.instructions = *v;
   read_scene_keys(tr, task.scene, s);
   tr.finish();
   if (!type) return;
@@ -229,13 +228,13 @@ void parse_renderings(TableReader& root, ParseState& s) {
     Rendering r;
     r.name = name;
     if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference"})) r.method = *v;
-    if (auto v = rr.number("a0", false, 0.0, 1.0)) r.a0 = *v;
-    if (auto v = rr.number("aT", false, 0.0, 1.0)) r.aT = *v;
-    if (auto v = rr.integer("gradient_width", false, 0, 64)) r.gradient_width = static_cast<int>(*v);
-    if (auto v = rr.integer("mask_resolution", false, 16, 4096)) r.mask_resolution = static_cast<int>(*v);
+    if (auto v = rr.number("a0", false, limits::kAlpha)) r.a0 = *v;
+    if (auto v = rr.number("aT", false, limits::kAlpha)) r.aT = *v;
+    if (auto v = rr.integer("gradient_width", false, limits::kGradientWidth)) r.gradient_width = static_cast<int>(*v);
+    if (auto v = rr.integer("mask_resolution", false, limits::kMaskResolution)) r.mask_resolution = static_cast<int>(*v);
     if (auto v = rr.choice("mask_shape", false, {"outline", "circle", "ellipse"})) r.mask_shape = *v;
     if (auto v = rr.choice("mode", false, {"passive", "active"})) r.mode = *v;
-    if (auto v = rr.integer("layer_limit", false, 0, 64)) r.layer_limit = static_cast<int>(*v);
+    if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
     rr.finish();
     if (r.method == "standard") {
       for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "mode", "layer_limit"})
@@ -277,13 +276,14 @@ void parse_questionnaire(TableReader& root, ParseState& s) {
     item.id = id;
     const auto type = qr.choice("type", true, {"rating", "choice", "depth-test"});
     if (auto v = qr.string("prompt", true)) item.prompt = *v;
-    const auto scale = qr.int_range("scale", false, -100, 100, true);
-    const auto per = qr.strings("per", false, 0, 8);
+    const auto scale = qr.int_range("scale", false, limits::kScale, true);
+    const auto per = qr.strings("per", false, limits::kPer);
     const auto factor = qr.string("factor", false);
-    const auto options = qr.strings("options", false, 2, 32);
+    const auto options = qr.strings("options", false, limits::kOptions);
+    const auto neutral = qr.string("neutral", false);
     const auto scenario = qr.string("scenario", false);
     const auto rendering = qr.string("rendering", false);
-    const auto pairs = qr.integer("pairs", false, 1, 20);
+    const auto pairs = qr.integer("pairs", false, limits::kPairs);
     qr.finish();
     if (!type) continue;
     item.type = *type == "rating" ? ItemType::rating : *type == "choice" ? ItemType::choice : ItemType::depth_test;
@@ -294,7 +294,7 @@ void parse_questionnaire(TableReader& root, ParseState& s) {
                       "\"");
     };
     for (const char* key : {"scale", "per"}) only(key, ItemType::rating);
-    for (const char* key : {"factor", "options"}) only(key, ItemType::choice);
+    for (const char* key : {"factor", "options", "neutral"}) only(key, ItemType::choice);
     for (const char* key : {"scenario", "rendering", "pairs"}) only(key, ItemType::depth_test);
     const auto known = [&](const char* key, const std::string& name, const std::vector<std::string>& names,
                            const char* what) {
@@ -327,6 +327,15 @@ void parse_questionnaire(TableReader& root, ParseState& s) {
         if (factor && known("factor", *factor, factor_names(p), "factor")) item.factor = *factor;
         if (options) item.options = *options;
         if (!item.factor.empty()) item.options = p.factors[find_index(factor_names(p), item.factor)].levels;
+        if (neutral) {
+          if (find_index(item.options, *neutral) >= 0)
+            s.d.error(qr.pos("neutral"), qr.field("neutral"),
+                      "\"" + *neutral + "\" is already one of the options; the neutral option must differ");
+          else {
+            item.neutral = *neutral;
+            item.options.push_back(*neutral);
+          }
+        }
         break;
       case ItemType::depth_test:
         if (!qr.has("scenario"))

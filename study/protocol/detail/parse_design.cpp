@@ -6,17 +6,16 @@
 #include <algorithm>
 #include <limits>
 
+#include "study/common/text.h"
 #include "study/protocol/detail/parser.h"
 
 namespace dtlab::protocol::detail {
 
 namespace {
 
-constexpr int kMaxFactors = 8;
-constexpr int kMaxConditions = 256;
-constexpr int kMaxPermutationItems = 8;  // 8! = 40320 rows; 9! would be 362880
-constexpr std::int64_t kMaxParticipants = 100000;
-constexpr std::int64_t kMaxTrialsPerParticipant = 100000;
+constexpr int kMaxFactors = static_cast<int>(limits::kFactors.max);
+constexpr int kMaxConditions = static_cast<int>(limits::kConditions.max);
+constexpr int kMaxPermutationItems = static_cast<int>(limits::kPermutationItems.max);  // 8! = 40320 rows
 
 bool is_protocol_id(std::string_view s) {
   if (s.empty() || s.size() > 64) return false;
@@ -193,6 +192,50 @@ std::optional<std::vector<int>> parse_fixed(ParseState& s, const toml::node& n, 
   return order;
 }
 
+// Counted exactly (a random nested scheme can ask for 100000 x 100000 rows), refused before
+// anything is built from it: the store keeps a count per row, and rows beyond the most
+// participants a protocol can have are never used. False (with an error) if there are too many.
+bool check_row_count(ParseState& s, TableReader& r, const Items& outer, const Items& nested) {
+  const Ordering& o = s.p.order;
+  const bool blocks = o.unit == OrderUnit::blocks;
+  const std::int64_t total_rows = declared_order_rows(s.p);
+  if (total_rows <= limits::kOrderRows.max) return true;
+  const char* key = blocks && o.nested_scheme == Scheme::random && r.has("nested_rows") ? "nested_rows"
+                    : o.scheme == Scheme::random && r.has("rows")                       ? "rows"
+                                                                                        : "scheme";
+  std::string how;
+  if (blocks)
+    how = " (" + std::to_string(scheme_rows(o.scheme, outer.count, o.rows)) + " outer x " +
+          std::to_string(scheme_rows(o.nested_scheme, nested.count, o.nested_rows)) + " nested)";
+  s.d.error(r.pos(key), r.field(key),
+            "the ordering has " + std::to_string(total_rows) + " order rows" + how + "; at most " +
+                std::to_string(limits::kOrderRows.max) + " (the most participants a protocol can have)");
+  return false;
+}
+
+// Balance warnings: they do not make the protocol invalid.
+void warn_balance(ParseState& s, TableReader& r) {
+  const Protocol& p = s.p;
+  const Ordering& o = p.order;
+  if (!s.participants_ok) return;
+  const std::int64_t total_rows = declared_order_rows(p);
+  const std::int64_t n = p.participants;
+  const std::string rows_text = count(total_rows, "order row");
+  if (o.scheme == Scheme::fixed && (o.unit != OrderUnit::blocks || o.nested_scheme == Scheme::fixed) && n > 1) {
+    s.d.warning(r.pos("scheme"), "order.scheme",
+                "every participant gets the same order, so order effects are confounded with conditions");
+  } else if (total_rows > n) {
+    s.d.warning(s.participants_pos, "participants",
+                "participants = " + std::to_string(n) + " is fewer than the " + rows_text + " of the ordering; " +
+                    std::to_string(total_rows - n) + " rows are never used and positions are not balanced");
+  } else if (n % total_rows != 0) {
+    s.d.warning(s.participants_pos, "participants",
+                "participants = " + std::to_string(n) + " is not a multiple of the " + rows_text +
+                    " of the ordering; the first " + std::to_string(n % total_rows) +
+                    " rows get one participant more and positions are not balanced");
+  }
+}
+
 }  // namespace
 
 int find_index(const std::vector<std::string>& names, const std::string& name) {
@@ -209,7 +252,7 @@ std::vector<std::string> factor_names(const Protocol& p) {
 void parse_document(const toml::table& root, ParseState& s) {
   Protocol& p = s.p;
   TableReader r(root, "", s.d, {1, 1});
-  if (auto v = r.integer("format", false, 1, 1)) p.format = static_cast<int>(*v);
+  if (auto v = r.integer("format", false, limits::kFormat)) p.format = static_cast<int>(*v);
   if (auto v = r.string("id", true)) {
     if (is_protocol_id(*v))
       p.id = *v;
@@ -220,22 +263,22 @@ void parse_document(const toml::table& root, ParseState& s) {
   if (auto v = r.string("title", true)) p.title = *v;
   if (auto v = r.string("description", false, false)) p.description = *v;
   s.participants_pos = r.pos("participants");
-  if (auto v = r.integer("participants", true, 1, kMaxParticipants)) {
+  if (auto v = r.integer("participants", true, limits::kParticipants)) {
     p.participants = static_cast<int>(*v);
     s.participants_ok = true;
   }
-  if (auto v = r.integer("master_seed", true, 0, std::numeric_limits<std::int64_t>::max()))
+  if (auto v = r.integer("master_seed", true, limits::kMasterSeed))
     p.master_seed = static_cast<std::uint64_t>(*v);
 
   if (const toml::table* t = r.table("session", false)) {
     TableReader sr(*t, "session", s.d, r.pos("session"));
-    if (auto v = sr.number("time_limit_s", false, 1, 86400)) p.session_time_limit_s = *v;
+    if (auto v = sr.number("time_limit_s", false, limits::kSessionTimeLimit)) p.session_time_limit_s = *v;
     sr.finish();
   }
   if (const toml::table* t = r.table("training", false)) {
     TableReader tr(*t, "training", s.d, r.pos("training"));
-    if (auto v = tr.number("time_limit_s", false, 0, 7200)) p.training.time_limit_s = *v;
-    if (auto v = tr.integer("practice_trials", false, 0, 100)) p.training.practice_trials = static_cast<int>(*v);
+    if (auto v = tr.number("time_limit_s", false, limits::kTrainingTimeLimit)) p.training.time_limit_s = *v;
+    if (auto v = tr.integer("practice_trials", false, limits::kPracticeTrials)) p.training.practice_trials = static_cast<int>(*v);
     tr.finish();
   }
 
@@ -245,6 +288,7 @@ void parse_document(const toml::table& root, ParseState& s) {
   build_conditions(s);
   parse_order(r, s);
   parse_questionnaire(r, s);
+  parse_demographics(r, s);
   r.finish();
 
   if (!p.conditions.empty() && s.scenarios_ok) {
@@ -252,9 +296,10 @@ void parse_document(const toml::table& root, ParseState& s) {
     for (const auto& c : p.conditions)
       for (const auto& task : p.scenarios[c.scenario].tasks)
         per_participant += task.trials + p.training.practice_trials;
-    if (per_participant > kMaxTrialsPerParticipant)
+    if (per_participant > limits::kTrialsPerParticipant.max)
       s.d.error({1, 1}, "scenarios", "a participant would run " + std::to_string(per_participant) +
-                                         " trials; at most " + std::to_string(kMaxTrialsPerParticipant));
+                                         " trials (conditions x tasks x (trials + practice_trials)); at most " +
+                                         std::to_string(limits::kTrialsPerParticipant.max));
   }
 }
 
@@ -286,7 +331,7 @@ void parse_factors(TableReader& root, ParseState& s) {
     if (auto role = fr.choice("role", false, {"none", "scenario", "rendering"}))
       f.role = *role == "scenario" ? FactorRole::scenario
                : *role == "rendering" ? FactorRole::rendering : FactorRole::none;
-    if (auto levels = fr.strings("levels", true, 2, 64)) {
+    if (auto levels = fr.strings("levels", true, limits::kLevels)) {
       const toml::array& a = *fr.node("levels")->as_array();
       for (std::size_t i = 0; i < levels->size(); ++i)
         if (!is_level_name((*levels)[i]))
@@ -360,11 +405,11 @@ void parse_order(TableReader& root, ParseState& s) {
   const int errors_before = s.d.errors();
   const auto unit = r.choice("unit", false, {"conditions", "blocks"});
   const auto scheme = scheme_from(r.choice("scheme", true, DTLAB_SCHEMES));
-  const auto rows = r.integer("rows", false, 1, kMaxParticipants);
+  const auto rows = r.integer("rows", false, limits::kRandomRows);
   const toml::node* fixed = r.node("order");
   const auto block_factor = r.string("block_factor", false);
   const auto nested_scheme = scheme_from(r.choice("nested_scheme", false, DTLAB_SCHEMES));
-  const auto nested_rows = r.integer("nested_rows", false, 1, kMaxParticipants);
+  const auto nested_rows = r.integer("nested_rows", false, limits::kRandomRows);
   const toml::node* nested_fixed = r.node("nested_order");
   r.finish();
   const bool blocks = unit && *unit == "blocks";
@@ -458,24 +503,7 @@ void parse_order(TableReader& root, ParseState& s) {
   }
   if (!ok) return;
 
-  // Balance warnings: they do not make the protocol invalid.
-  if (!s.participants_ok) return;
-  const std::int64_t total_rows = declared_order_rows(p);
-  const std::int64_t n = p.participants;
-  const std::string rows_text = std::to_string(total_rows) + (total_rows == 1 ? " order row" : " order rows");
-  if (o.scheme == Scheme::fixed && (!blocks || o.nested_scheme == Scheme::fixed) && n > 1) {
-    s.d.warning(r.pos("scheme"), "order.scheme",
-                "every participant gets the same order, so order effects are confounded with conditions");
-  } else if (total_rows > n) {
-    s.d.warning(s.participants_pos, "participants",
-                "participants = " + std::to_string(n) + " is fewer than the " + rows_text + " of the ordering; " +
-                    std::to_string(total_rows - n) + " rows are never used and positions are not balanced");
-  } else if (n % total_rows != 0) {
-    s.d.warning(s.participants_pos, "participants",
-                "participants = " + std::to_string(n) + " is not a multiple of the " + rows_text +
-                    " of the ordering; the first " + std::to_string(n % total_rows) +
-                    " rows get one participant more and positions are not balanced");
-  }
+  if (check_row_count(s, r, outer, nested)) warn_balance(s, r);
 }
 
 }  // namespace dtlab::protocol::detail

@@ -45,6 +45,9 @@ void parse_scenarios(TableReader& root, ParseState& s);
 void parse_renderings(TableReader& root, ParseState& s);
 void parse_questionnaire(TableReader& root, ParseState& s);
 
+// Sections (parse_people.cpp).
+void parse_demographics(TableReader& root, ParseState& s);
+
 // Index of `name` in `names`, -1 if absent.
 int find_index(const std::vector<std::string>& names, const std::string& name);
 // Names of the declared factors, in file order.

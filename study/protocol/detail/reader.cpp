@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 
+#include "study/common/text.h"
+
 namespace dtlab::protocol::detail {
 
 namespace {
@@ -19,19 +21,9 @@ std::string num(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
-    }
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
+std::string interval(limits::Numbers r) { return "[" + num(r.min) + ", " + num(r.max) + "]"; }
+
+bool inside(double v, limits::Numbers r) { return std::isfinite(v) && v >= r.min && v <= r.max; }
 
 // Printable form of a string found in the file (quoted, control bytes escaped, shortened).
 std::string shown(std::string_view s) {
@@ -203,8 +195,8 @@ std::optional<std::string> TableReader::choice(std::string_view key, bool requir
   return s;
 }
 
-std::optional<std::int64_t> TableReader::integer(std::string_view key, bool required, std::int64_t min,
-                                                 std::int64_t max) {
+std::optional<std::int64_t> TableReader::integer(std::string_view key, bool required, limits::Ints range) {
+  const auto [min, max] = range;
   const toml::node* n = node(key);
   const std::string expected = "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
   if (!n) {
@@ -232,9 +224,9 @@ std::optional<double> as_number(const toml::node& n) {
 }
 }  // namespace
 
-std::optional<double> TableReader::number(std::string_view key, bool required, double min, double max) {
+std::optional<double> TableReader::number(std::string_view key, bool required, limits::Numbers range) {
   const toml::node* n = node(key);
-  const std::string expected = "a number in [" + num(min) + ", " + num(max) + "]";
+  const std::string expected = "a number in " + interval(range);
   if (!n) {
     if (required) missing(key, expected);
     return std::nullopt;
@@ -244,16 +236,16 @@ std::optional<double> TableReader::number(std::string_view key, bool required, d
     wrong_type(key, *n, expected);
     return std::nullopt;
   }
-  if (!std::isfinite(*v) || *v < min || *v > max) {
+  if (!inside(*v, range)) {
     d_.error(pos_of(*n), field(key), "value " + num(*v) + " out of range; expected " + expected);
     return std::nullopt;
   }
   return v;
 }
 
-std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, bool required,
-                                                             std::size_t min_count, std::size_t max_count,
+std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, bool required, limits::Ints count,
                                                              const std::vector<std::string>& allowed) {
+  const auto min_count = static_cast<std::size_t>(count.min), max_count = static_cast<std::size_t>(count.max);
   const toml::node* n = node(key);
   std::string expected = "an array of " + std::to_string(min_count) + " to " + std::to_string(max_count) +
                          " unique strings";
@@ -303,10 +295,9 @@ std::optional<std::vector<std::string>> TableReader::strings(std::string_view ke
   return out;
 }
 
-std::optional<Range<double>> TableReader::number_range(std::string_view key, bool required, double lo,
-                                                        double hi) {
+std::optional<Range<double>> TableReader::number_range(std::string_view key, bool required, limits::Numbers range) {
   const toml::node* n = node(key);
-  const std::string expected = "[min, max] with " + num(lo) + " <= min <= max <= " + num(hi);
+  const std::string expected = "[min, max] with min <= max, each in " + interval(range);
   if (!n) {
     if (required) missing(key, expected);
     return std::nullopt;
@@ -326,7 +317,7 @@ std::optional<Range<double>> TableReader::number_range(std::string_view key, boo
       d_.error(pos_of(e), indexed(field(key), i), "expected a number, got " + type_name(e));
       return std::nullopt;
     }
-    if (!std::isfinite(*x) || *x < lo || *x > hi) {
+    if (!inside(*x, range)) {
       d_.error(pos_of(e), indexed(field(key), i), "value " + num(*x) + " out of range; expected " + expected);
       return std::nullopt;
     }
@@ -339,8 +330,8 @@ std::optional<Range<double>> TableReader::number_range(std::string_view key, boo
   return Range<double>{v[0], v[1]};
 }
 
-// Two integers at `key`, each in [lo, hi]; nullopt (after reporting) when absent or malformed.
-std::optional<std::array<int, 2>> TableReader::two_ints(std::string_view key, bool required, int lo, int hi,
+// Two integers at `key`, each in `range`; nullopt (after reporting) when absent or malformed.
+std::optional<std::array<int, 2>> TableReader::two_ints(std::string_view key, bool required, limits::Ints range,
                                                          const std::string& expected) {
   const toml::node* n = node(key);
   if (!n) {
@@ -362,7 +353,7 @@ std::optional<std::array<int, 2>> TableReader::two_ints(std::string_view key, bo
       return std::nullopt;
     }
     const std::int64_t x = e.as_integer()->get();
-    if (x < lo || x > hi) {
+    if (x < range.min || x > range.max) {
       d_.error(pos_of(e), indexed(field(key), i),
                "value " + std::to_string(x) + " out of range; expected " + expected);
       return std::nullopt;
@@ -372,11 +363,11 @@ std::optional<std::array<int, 2>> TableReader::two_ints(std::string_view key, bo
   return v;
 }
 
-std::optional<Range<int>> TableReader::int_range(std::string_view key, bool required, int lo, int hi,
+std::optional<Range<int>> TableReader::int_range(std::string_view key, bool required, limits::Ints range,
                                                  bool strictly_increasing) {
-  const std::string expected = "[min, max] of integers with " + std::to_string(lo) + " <= min " +
-                               (strictly_increasing ? "<" : "<=") + " max <= " + std::to_string(hi);
-  const auto v = two_ints(key, required, lo, hi, expected);
+  const std::string expected = "[min, max] of integers with " + std::to_string(range.min) + " <= min " +
+                               (strictly_increasing ? "<" : "<=") + " max <= " + std::to_string(range.max);
+  const auto v = two_ints(key, required, range, expected);
   if (!v) return std::nullopt;
   if ((*v)[0] > (*v)[1] || (strictly_increasing && (*v)[0] == (*v)[1])) {
     d_.error(pos_of(*node(key)), field(key),
@@ -387,9 +378,10 @@ std::optional<Range<int>> TableReader::int_range(std::string_view key, bool requ
   return Range<int>{(*v)[0], (*v)[1]};
 }
 
-std::optional<std::pair<int, int>> TableReader::int_pair(std::string_view key, bool required, int lo, int hi) {
-  const auto v = two_ints(key, required, lo, hi,
-                          "two integers [a, b], each in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+std::optional<std::pair<int, int>> TableReader::int_pair(std::string_view key, bool required, limits::Ints range) {
+  const auto v = two_ints(key, required, range,
+                          "two integers [a, b], each in [" + std::to_string(range.min) + ", " +
+                              std::to_string(range.max) + "]");
   if (!v) return std::nullopt;
   return std::pair{(*v)[0], (*v)[1]};
 }
@@ -415,15 +407,7 @@ void TableReader::finish() {
     const std::string_view name = k->str();
     if (std::find(expected.begin(), expected.end(), name) != expected.end()) continue;
     std::string msg = "unknown key " + shown(name);
-    std::string best;
-    std::size_t best_d = 3;  // suggest only close matches
-    for (const auto& e : expected) {
-      const std::size_t dist = edit_distance(name, e);
-      if (dist < best_d) {
-        best_d = dist;
-        best = e;
-      }
-    }
+    const std::string best = nearest(name, expected);  // at most 2 edits away
     if (!best.empty()) msg += " (did you mean '" + best + "'?)";
     msg += expected.empty() ? "; this table takes no keys" : "; expected one of: ";
     for (std::size_t i = 0; i < expected.size(); ++i) msg += (i ? ", " : "") + expected[i];

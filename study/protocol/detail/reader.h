@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "study/common/error.h"
+#include "study/protocol/limits.h"
 #include "study/protocol/protocol.h"
 
 namespace dtlab::protocol::detail {
@@ -70,18 +71,18 @@ class TableReader {
   std::optional<std::string> string(std::string_view key, bool required, bool non_empty = true);
   std::optional<std::string> choice(std::string_view key, bool required,
                                     std::initializer_list<std::string_view> allowed);
-  std::optional<std::int64_t> integer(std::string_view key, bool required,
-                                      std::int64_t min, std::int64_t max);
-  std::optional<double> number(std::string_view key, bool required, double min, double max);
-  // Array of unique strings, each passing `allowed` (empty = anything non-empty).
-  std::optional<std::vector<std::string>> strings(std::string_view key, bool required,
-                                                  std::size_t min_count, std::size_t max_count,
+  std::optional<std::int64_t> integer(std::string_view key, bool required, limits::Ints range);
+  std::optional<double> number(std::string_view key, bool required, limits::Numbers range);
+  // Array of unique strings, as many as `count` allows, each passing `allowed` (empty = anything non-empty).
+  std::optional<std::vector<std::string>> strings(std::string_view key, bool required, limits::Ints count,
                                                   const std::vector<std::string>& allowed = {});
-  std::optional<Range<double>> number_range(std::string_view key, bool required, double lo, double hi);
-  std::optional<Range<int>> int_range(std::string_view key, bool required, int lo, int hi,
+  // [min, max]: two numbers, each in `range`, min <= max.
+  std::optional<Range<double>> number_range(std::string_view key, bool required, limits::Numbers range);
+  // [min, max]: two integers, each in `range`, min <= max (min < max if strictly_increasing).
+  std::optional<Range<int>> int_range(std::string_view key, bool required, limits::Ints range,
                                       bool strictly_increasing = false);
-  // Two integers [a, b], each in [lo, hi] (no order between them).
-  std::optional<std::pair<int, int>> int_pair(std::string_view key, bool required, int lo, int hi);
+  // Two integers [a, b], each in `range` (no order between them).
+  std::optional<std::pair<int, int>> int_pair(std::string_view key, bool required, limits::Ints range);
   const toml::table* table(std::string_view key, bool required);
 
   // Reports every key of the table no getter asked for. Call once, at the end.
@@ -89,7 +90,7 @@ class TableReader {
 
  private:
   void missing(std::string_view key, std::string_view expected);
-  std::optional<std::array<int, 2>> two_ints(std::string_view key, bool required, int lo, int hi,
+  std::optional<std::array<int, 2>> two_ints(std::string_view key, bool required, limits::Ints range,
                                              const std::string& expected);
   void wrong_type(std::string_view key, const toml::node& n, std::string_view expected);
 

@@ -21,6 +21,12 @@ struct Judgement {
   double margin = 0;  // |log ratio| of the two distance estimates
 };
 
+// The rendering factor's name, or "".
+std::string rendering_factor(const protocol::Protocol& p) {
+  const protocol::Factor* f = protocol::factor_with_role(p, protocol::FactorRole::rendering);
+  return f ? f->name : "";
+}
+
 bool matches(const design::PlannedTrial& t, const std::vector<std::pair<std::string, std::string>>& levels,
              const std::string& except) {
   for (const auto& [factor, level] : levels) {
@@ -98,8 +104,7 @@ Result<std::vector<session::QuestionAnswer>> SimulatedParticipant::answer_questi
     }
   }
 
-  const protocol::Factor* rendering_f = protocol::rendering_factor(*spec.protocol);
-  const std::string rendering = rendering_f ? rendering_f->name : std::string();
+  const std::string rendering = rendering_factor(*spec.protocol);
   std::vector<session::QuestionAnswer> answers;
   std::map<std::string, std::vector<double>> rating_of_level;  // level of the rendering factor -> ratings given
   for (const session::Question& q : spec.questions) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "study/common/error.h"
@@ -17,13 +18,19 @@ namespace dtlab::store::detail {
 
 using Row = std::vector<Value>;
 
-// A table a copy carries: its columns (as selected from SRC and inserted into DST), the order
-// that keeps every trigger satisfied, and the schema version that added it.
+// A table a copy carries: its columns (as inserted into DST, whose schema is current), the order
+// that keeps every trigger satisfied, the schema version that added it, and the columns a later
+// version added to it (with that version).
 struct TableSpec {
   const char* name;
   std::vector<std::string> columns;
   const char* order_by;
   int since_version;
+  std::vector<std::pair<std::string, int>> added_later = {};
+
+  // The select list reading `columns` from a database of schema `version`, each prefixed with
+  // `alias` ("" for none); a column that version lacks reads as NULL.
+  std::string select_list(int version, const std::string& alias = "") const;
 };
 
 // Every table of the study except schema_migrations (carried as the migration history) and

@@ -101,14 +101,11 @@ Result<std::vector<Person>> read_ledger(Db& db) {
   return out;
 }
 
-// The select list of `table`'s copied columns, each prefixed with `alias`.
-std::string columns_of(const char* table, const std::string& alias) {
+// The select list of `table`'s copied columns in a database of schema `version`, each prefixed
+// with `alias` (a column that version lacks reads as NULL).
+std::string columns_of(const char* table, const std::string& alias, int version = kSchemaVersion) {
   for (const TableSpec& t : copied_tables())
-    if (std::string(t.name) == table) {
-      std::string s;
-      for (std::size_t c = 0; c < t.columns.size(); ++c) s += (c ? ", " : "") + alias + "." + t.columns[c];
-      return s;
-    }
+    if (std::string(t.name) == table) return t.select_list(version, alias);
   return "";
 }
 const std::vector<std::string>& spec_columns(const char* table) {
@@ -118,18 +115,19 @@ const std::vector<std::string>& spec_columns(const char* table) {
   return none;
 }
 
-// The rows of a session's tables, keyed by the session's own ids: selects per table.
+// The rows of a session's tables, keyed by the session's own ids: selects per table, reading a
+// database of schema `version`.
 struct SessionQueries {
-  std::string session, planned, levels, results, events, poses, resumes, answers, pauses, attempts;
+  std::string session, planned, levels, results, events, poses, resumes, answers, pauses, attempts, displays;
 };
-const SessionQueries& session_queries() {
-  static const SessionQueries q = {
+SessionQueries session_queries(int version) {
+  return {
       "SELECT " + columns_of("sessions", "s") + " FROM sessions s WHERE s.id = ?",
       "SELECT " + columns_of("planned_trials", "p") + " FROM planned_trials p WHERE p.session_id = ? ORDER BY p.position",
       "SELECT " + columns_of("planned_levels", "l") +
           " FROM planned_levels l JOIN planned_trials p ON p.id = l.planned_trial_id WHERE p.session_id = ? "
           "ORDER BY p.position, l.factor_position",
-      "SELECT " + columns_of("trial_results", "r") +
+      "SELECT " + columns_of("trial_results", "r", version) +
           " FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id WHERE p.session_id = ? "
           "ORDER BY p.position",
       "SELECT " + columns_of("input_events", "e") +
@@ -145,18 +143,20 @@ const SessionQueries& session_queries() {
           " FROM session_pauses x WHERE x.session_id = ? ORDER BY x.paused_at, x.resumed_at",
       "SELECT " + columns_of("trial_attempts", "a") +
           " FROM trial_attempts a WHERE a.session_id = ? ORDER BY a.position, a.attempt",
+      "SELECT " + columns_of("session_displays", "x") + " FROM session_displays x WHERE x.session_id = ? ORDER BY " +
+          kDisplayOrder,
   };
-  return q;
 }
 
-// Everything recorded in a session, with its ids replaced (the session's and planned trials' by
-// positions, the study's by its protocol hash): two databases hold the same session exactly when
-// these are equal. Also counts the recorded trials.
-Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, bool v2,
+// Everything recorded in a session that schema `version` records, with its ids replaced (the
+// session's and planned trials' by positions, the study's by its protocol hash): two databases
+// hold the same session exactly when these are equal at SRC's version (what an older SRC could
+// not record is not compared). Also counts the recorded trials.
+Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, int version,
                                                 const std::map<std::int64_t, std::string>& sha, int* recorded) {
   std::vector<std::string> out;
   std::map<std::int64_t, std::int64_t> position;  // planned trial id -> position
-  const SessionQueries& q = session_queries();
+  const SessionQueries q = session_queries(version);
   auto add = [&](const std::string& sql, const char* tag, int id_column, bool by_trial) -> Status {
     return each_row(db, sql, {session}, [&](Row& r) -> Status {
       if (by_trial) r[static_cast<std::size_t>(id_column)] = position[num(r[static_cast<std::size_t>(id_column)])];
@@ -189,9 +189,11 @@ Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, bo
                                                                     {q.answers, "Q", 0, false}}) {
     if (auto s = add(sql, tag, column, by_trial); !s) return s.error();
   }
-  if (v2)
+  if (version >= 2)
     for (const auto& [sql, tag] : std::vector<std::pair<std::string, const char*>>{{q.pauses, "U"}, {q.attempts, "A"}})
       if (auto s = add(sql, tag, 0, false); !s) return s.error();
+  if (version >= 3)
+    if (auto s = add(q.displays, "D", 0, false); !s) return s.error();
   *recorded = static_cast<int>(std::count_if(out.begin() + static_cast<std::ptrdiff_t>(before), out.end(),
                                              [](const std::string& s) { return s[0] == 'R'; }));
   return out;
@@ -218,7 +220,7 @@ bool same_content(const Row& a, const Row& b) {  // ignoring id and participant_
 class Merger {
  public:
   Merger(Db& src, int src_version, Db& dst, const CopyOptions& o, CopySummary& sum)
-      : src_(src), dst_(dst), v2_(src_version >= 2), options_(o), sum_(sum) {}
+      : src_(src), dst_(dst), src_version_(src_version), v2_(src_version >= 2), options_(o), sum_(sum) {}
 
   Status run();
 
@@ -238,6 +240,7 @@ class Merger {
 
   Db& src_;
   Db& dst_;
+  int src_version_;
   bool v2_;
   const CopyOptions& options_;
   CopySummary& sum_;
@@ -363,9 +366,9 @@ Status Merger::plan_present(const Person& p, const Person& q) {
   Plan plan{&p, q.id(), q.index(), q.order_row(), false};
   if (p.session && q.session) {
     int in_src = 0, in_dst = 0;
-    auto rs = session_record(src_, *p.session, v2_, src_sha_, &in_src);
+    auto rs = session_record(src_, *p.session, src_version_, src_sha_, &in_src);
     if (!rs) return rs.error();
-    auto rd = session_record(dst_, *q.session, true, dst_sha_, &in_dst);
+    auto rd = session_record(dst_, *q.session, src_version_, dst_sha_, &in_dst);  // what both schemas record
     if (!rd) return rd.error();
     if (*rs != *rd)
       return refuse(dst_, "sessions",
@@ -467,7 +470,7 @@ Status Merger::write_participants() {
 }
 
 Status Merger::import_session(std::int64_t src_session, std::int64_t dst_participant) {
-  const SessionQueries& q = session_queries();
+  const SessionQueries q = session_queries(src_version_);
   auto session = next("sessions");
   if (!session) return session.error();
   std::optional<Row> final_state;
@@ -522,6 +525,8 @@ Status Merger::import_session(std::int64_t src_session, std::int64_t dst_partici
     for (const auto& [sql, table] :
          std::vector<std::pair<std::string, const char*>>{{q.pauses, "session_pauses"}, {q.attempts, "trial_attempts"}})
       if (auto s = copy(sql, table, by_session); !s) return s;
+  if (src_version_ >= 3)
+    if (auto s = copy(q.displays, "session_displays", by_session); !s) return s;
   ++sum_.sessions;
   if (!final_state) return {};
   auto fin = Stmt::prepare(dst_, "UPDATE sessions SET status = ?, ended_at = ? WHERE id = ?", "finishing the session");

@@ -276,10 +276,12 @@ struct Migration {
 
 const char* const kV1 = "schema v1: studies, ledger, sessions, planned trials, results, events, poses, questionnaire";
 const char* const kV2 = "schema v2: design hashes, exclusions, notes, pauses, trial attempts, session claims";
+const char* const kV3 = "schema v3: warm-up and late frames per trial, the display of each session";
 
 const std::vector<Migration>& migrations(Backend backend) {
-  static const std::vector<Migration> sqlite = {{1, kV1, &schema_v1}, {2, kV2, &schema_v2}};
-  static const std::vector<Migration> postgres = {{1, kV1, &pg_schema_v1}, {2, kV2, &pg_schema_v2}};
+  static const std::vector<Migration> sqlite = {{1, kV1, &schema_v1}, {2, kV2, &schema_v2}, {3, kV3, &schema_v3}};
+  static const std::vector<Migration> postgres = {
+      {1, kV1, &pg_schema_v1}, {2, kV2, &pg_schema_v2}, {3, kV3, &pg_schema_v3}};
   return backend == Backend::postgresql ? postgres : sqlite;
 }
 
@@ -309,7 +311,8 @@ const std::vector<std::string>& fixed_trial_columns_after_factors() {
       "answer_count",  "answer_letter", "answer_x",     "answer_z",      "truth_count",   "truth_letter",
       "truth_x",       "truth_z",       "rel_error",    "signed_error",  "correct",       "distance",
       "completion_time_s", "started_at", "ended_at",    "frame_count",   "frame_ms_mean", "frame_ms_sd",
-      "frame_ms_p95",  "frame_ms_max",  "protocol_sha256", "design_revision", "excluded"};
+      "frame_ms_p95",  "frame_ms_max",  "frame_first_ms", "frame_ms_median", "late_frames", "refresh_hz",
+      "protocol_sha256", "design_revision", "excluded"};
   return c;
 }
 
@@ -356,7 +359,7 @@ Status migrate(Db& db, int from, const std::string& software_version, const std:
     st->bind(1, m.version).bind(2, row.description).bind(3, row.applied_at).bind(4, row.software_version);
     if (auto s = st->run(what); !s) return s;
   }
-  if (from < 2 && from >= 1)  // the v1 view lacks the v2 columns; a new database gets its view with the first study
+  if (from >= 1)  // an older view lacks the newer columns; a new database gets its view with the first study
     if (auto s = create_trial_table_view(db); !s) return s;
   return db.conn().mark_as_dtlab(kSchemaVersion);
 }
@@ -389,6 +392,8 @@ Status create_trial_table_view(Db& db) {
       "  r.completion_s AS completion_time_s, r.started_at AS started_at, r.ended_at AS ended_at,\n"
       "  r.frame_count AS frame_count, r.frame_ms_mean AS frame_ms_mean, r.frame_ms_sd AS frame_ms_sd,\n"
       "  r.frame_ms_p95 AS frame_ms_p95, r.frame_ms_max AS frame_ms_max,\n"
+      "  r.frame_first_ms AS frame_first_ms, r.frame_ms_median AS frame_ms_median,\n"
+      "  r.late_frames AS late_frames, r.refresh_hz AS refresh_hz,\n"
       "  st.protocol_sha256 AS protocol_sha256,\n"
       // Design revision: 1 + the number of distinct design hashes first recorded before this one's.
       "  (SELECT count(*) FROM (SELECT 1 FROM study_designs d2 GROUP BY d2.design_sha256\n"

@@ -18,6 +18,11 @@ namespace dtlab::store::detail {
 const std::vector<std::string>& fixed_trial_columns_before_factors();
 const std::vector<std::string>& fixed_trial_columns_after_factors();
 
+// The order session_displays rows are read in, the same on both engines (neither has a rowid the
+// other keeps): by session, the time recorded, then every other column.
+inline constexpr const char* kDisplayOrder =
+    "session_id, recorded_at, kind, width, height, refresh_hz IS NULL, refresh_hz, renderer, monitor";
+
 // Highest migration applied (0 for a database without the migrations table).
 Result<int> applied_schema_version(Db& db);
 

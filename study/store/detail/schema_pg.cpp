@@ -1,6 +1,7 @@
-// Schema v1 and v2 on PostgreSQL (docs/store.md, "Schema v1", "Schema v2",
-// "PostgreSQL"): the same tables, columns, constraints and views as the
-// SQLite text in schema.cpp and schema_v2.cpp, in PostgreSQL's dialect.
+// Schema v1, v2 and v3 on PostgreSQL (docs/store.md, "Schema v1", "Schema
+// v2", "Schema v3", "PostgreSQL"): the same tables, columns, constraints and
+// views as the SQLite text in schema.cpp, schema_v2.cpp and schema_v3.cpp, in
+// PostgreSQL's dialect.
 // SQLite's STRICT INTEGER/REAL/TEXT are BIGINT/DOUBLE PRECISION/TEXT COLLATE
 // "C" (byte order, as SQLite compares); GLOB checks are regular expressions;
 // SQLite's RAISE(ABORT) triggers are PL/pgSQL functions raising SQLSTATE 23000.
@@ -383,6 +384,30 @@ CREATE TABLE session_claims (
   s += append_only("notes", "dtlab: notes are never changed; add another", "dtlab: notes are never deleted");
   s += append_only("session_pauses", "dtlab: pauses are never changed", "dtlab: pauses are never deleted");
   s += append_only("trial_attempts", "dtlab: trial attempts are never changed", "dtlab: trial attempts are never deleted");
+  return c_collated(s);
+}
+
+std::string pg_schema_v3() {
+  std::string s = R"sql(
+ALTER TABLE trial_results ADD COLUMN frame_first_ms DOUBLE PRECISION CHECK (frame_first_ms IS NULL OR frame_first_ms >= 0);
+ALTER TABLE trial_results ADD COLUMN frame_ms_median DOUBLE PRECISION CHECK (frame_ms_median IS NULL OR frame_ms_median >= 0);
+ALTER TABLE trial_results ADD COLUMN late_frames BIGINT CHECK (late_frames IS NULL OR late_frames >= 0);
+ALTER TABLE trial_results ADD COLUMN refresh_hz DOUBLE PRECISION CHECK (refresh_hz IS NULL OR refresh_hz > 0);
+
+CREATE TABLE session_displays (
+  session_id BIGINT NOT NULL REFERENCES sessions(id),
+  recorded_at TEXT NOT NULL )sql" + iso("recorded_at") + R"sql(,
+  kind TEXT NOT NULL CHECK (kind IN ('window', 'headless')),
+  width BIGINT NOT NULL CHECK (width >= 1),
+  height BIGINT NOT NULL CHECK (height >= 1),
+  refresh_hz DOUBLE PRECISION CHECK (refresh_hz IS NULL OR refresh_hz > 0),
+  renderer TEXT NOT NULL,
+  monitor TEXT NOT NULL
+);
+CREATE INDEX session_displays_by_session ON session_displays(session_id);
+)sql";
+  s += append_only("session_displays", "dtlab: a display record is never changed",
+                   "dtlab: a display record is never deleted");
   return c_collated(s);
 }
 

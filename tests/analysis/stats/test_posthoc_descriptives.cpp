@@ -12,6 +12,7 @@
 namespace dtlab::stats {
 namespace {
 
+using test::near_rel;
 using test::printed;
 
 struct HolmCase {
@@ -19,7 +20,9 @@ struct HolmCase {
 };
 
 TEST(Holm, StepDownAsPAdjust) {
-  // Holm (1979), as R's p.adjust(p, "holm"): sorted p_(i) -> max_{j<=i} min(1, (m-j+1) p_(j)).
+  // Holm (1979). Expected: R 4.2.2 p.adjust(p, "holm") for each p below:
+  //   c(0.01, 0.02, 0.03, 0.04, 0.05) -> 0.05 0.08 0.09 0.09 0.09;  c(0.04, 0.01, 0.03) -> 0.06 0.03 0.06
+  //   c(0.5, 0.6) -> 1 1;  c(0.02, NA, 0.01) -> 0.02 NA 0.02
   const double nan = std::nan("");
   const std::vector<HolmCase> cases{
       {{0.01, 0.02, 0.03, 0.04, 0.05}, {0.05, 0.08, 0.09, 0.09, 0.09}},
@@ -59,13 +62,20 @@ TEST(Posthoc, PairwisePairedTEqualsTheSingleTTests) {
   // R: t.test(extra ~ group, data = sleep, paired = TRUE): t = -4.0621, df = 9, p-value = 0.002833
   EXPECT_TRUE(printed((*r)[0].statistic, "-4.0621"));
   EXPECT_TRUE(printed((*r)[0].p, "0.002833"));
-  std::vector<double> ps;
-  for (const auto& cmp : *r) ps.push_back(cmp.p);
-  const auto adj = holm(ps);
-  for (size_t i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ((*r)[i].p_holm, adj[i]);
+  // R 4.2.2: pairwise.t.test(y, g, paired = TRUE, p.adjust.method = "holm")$p.value
+  //   b-a 0.00849867059215281, c-a 0.02369870191360855, c-b 0.0342018954536123
+  EXPECT_NEAR((*r)[0].p_holm, 0.00849867059215281, 1e-12);
+  EXPECT_NEAR((*r)[1].p_holm, 0.02369870191360855, 1e-12);
+  EXPECT_NEAR((*r)[2].p_holm, 0.0342018954536123, 1e-12);
+  // R 4.2.2: pairwise.wilcox.test(y, g, paired = TRUE, p.adjust.method = "none")$p.value
+  //   b-a 0.00909069801592506, c-a 0.01653449266792267, c-b 0.0524794995592466
+  //   (zeros/ties -> normal approximation with continuity correction, as wilcox.test)
   auto w = pairwise_within(d, "cond", PairwiseTest::wilcoxon);
   ASSERT_TRUE(w.ok());
   EXPECT_EQ((*w)[0].test, "wilcoxon");
+  EXPECT_TRUE(near_rel((*w)[0].p, 0.00909069801592506, 1e-10));
+  EXPECT_TRUE(near_rel((*w)[1].p, 0.01653449266792267, 1e-10));
+  EXPECT_TRUE(near_rel((*w)[2].p, 0.0524794995592466, 1e-10));
   EXPECT_FALSE(pairwise_within(d, "nope", PairwiseTest::paired_t).ok());
 }
 

@@ -257,8 +257,9 @@ LongData grid(const std::vector<std::vector<double>>& y) {
 }
 
 TEST(RmAnovaHardCases, ParallelProfilesGiveInfiniteF) {
-  // y = subject + condition effect exactly: the error SS is 0 (up to rounding).
-  const RmAnovaResult r = run(grid({{1.1, 3.3, 8.8}, {11.1, 13.3, 18.8}, {26.1, 28.3, 33.8}, {5.1, 7.3, 12.8}}));
+  // y = subject + condition effect exactly (integers given as doubles, which are
+  // exact): the error SS is exactly 0. Decimal data: test_edge_cases.cpp.
+  const RmAnovaResult r = run(grid({{1, 3, 8}, {11, 13, 18}, {26, 28, 33}, {5, 7, 12}}));
   const Effect& e = find(r, "cond");
   EXPECT_EQ(e.ss_error, 0.0);
   EXPECT_EQ(e.F, INFINITY);
@@ -322,9 +323,10 @@ TEST(RmAnovaHardCases, MissingCellRemovesTheSubjectAndNamesIt) {
   EXPECT_DOUBLE_EQ(find(r, "cond").F, find(complete, "cond").F);
 }
 
-TEST(RmAnovaHardCases, RepeatedRowsAreAveragedWithAWarning) {
+TEST(RmAnovaHardCases, RepeatedRowsAreAveragedWhenAskedWithAWarning) {
   LongData twice = test::long_from_text(
       "id,cond,y\na,x,1\na,x,3\na,y,5\nb,x,2\nb,y,4\nb,y,8\nc,x,0\nc,y,3\n", {"y", "id", {"cond"}, {}});
+  twice.aggregate = Aggregate::mean;
   const RmAnovaResult r = run(twice);
   const RmAnovaResult means = run(grid({{2, 5}, {2, 6}, {0, 3}}));
   EXPECT_DOUBLE_EQ(find(r, "cond").F, find(means, "cond").F);

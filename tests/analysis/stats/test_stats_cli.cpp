@@ -48,12 +48,15 @@ TEST(StatsCli, NistLreThroughTheCommandLine) {
   }
 }
 
-TEST(StatsCli, RmAnovaJsonHasTheSixteenFieldsPerEffect) {
+TEST(StatsCli, RmAnovaJsonHasEveryFieldPerEffect) {
   const CliRun r = dtlab("stats rm-anova --data " + data("md_12.1.csv") + " --dv rt --subject id --within angle,noise --json");
   ASSERT_EQ(r.rc, 0) << r.err;
   const json j = json::parse(r.out);
-  const std::set<std::string> expected{"effect", "df1", "df2", "ss", "ss_error", "F", "p", "log10_p", "eta_p2", "eta_g2",
-                                       "mauchly_W", "mauchly_p", "gg_epsilon", "hf_epsilon", "p_gg", "p_hf"};
+  const std::set<std::string> expected{"effect",     "df1",        "df2",        "ss",        "ss_error",
+                                       "mse",        "F",          "p",          "log10_p",   "eta_p2",
+                                       "eta_p2_ci90_low", "eta_p2_ci90_high", "eta_g2", "mauchly_W", "mauchly_p",
+                                       "gg_epsilon", "hf_epsilon", "df1_gg",     "df2_gg",    "p_gg",
+                                       "log10_p_gg", "df1_hf",     "df2_hf",     "p_hf",      "log10_p_hf", "apa"};
   ASSERT_EQ(j["effects"].size(), 3u);
   for (const auto& e : j["effects"]) {
     std::set<std::string> keys;
@@ -68,6 +71,9 @@ TEST(StatsCli, RmAnovaJsonHasTheSixteenFieldsPerEffect) {
   EXPECT_TRUE(test::printed(number(angle["gg_epsilon"]), "0.961637"));
   EXPECT_TRUE(test::printed(number(angle["hf_epsilon"]), "1.217564"));
   EXPECT_TRUE(j["effects"][1]["mauchly_W"].is_null()) << "1-df effect: no Mauchly test";
+  // Maxwell & Delaney: noise F(1, 9) = 33.77, MSE = 76140 / 9
+  EXPECT_EQ(j["effects"][1]["apa"].get<std::string>().substr(0, 16), "F(1, 9) = 33.77,");
+  EXPECT_NEAR(number(j["effects"][1]["mse"]), 76140.0 / 9.0, 1e-9);
   EXPECT_EQ(j["descriptives"].size(), 6u);
 }
 
@@ -157,6 +163,158 @@ TEST(StatsCli, BadInputExitsWithCodeAndPlace) {
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
+}
+
+// Broke: text output of friedman segfaulted (exit 139) with no complete block
+// or a one-level factor (mean_ranks read out of bounds).
+TEST(StatsCli, FriedmanWithoutBlocksOrWithOneLevelExitsOneNotCrashes) {
+  const std::string none = write_temp("fr_none.csv", "id,cond,y\na,x,1\na,y,\nb,x,2\nb,y,NA\n");
+  const std::string one = write_temp("fr_one.csv", "id,cond,y\na,x,1\nb,x,2\nc,x,5\n");
+  for (const auto& [file, needle] : {std::pair{none, "no subject has every cell"}, std::pair{one, "at least two treatments"}}) {
+    for (const char* json : {"", " --json"}) {
+      const CliRun r = dtlab("stats friedman --data " + file + " --dv y --subject id --within cond" + json);
+      EXPECT_EQ(r.rc, 1) << r.err;
+      EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    }
+  }
+}
+
+// Broke: two levels with W = 1 printed "Iman-Davenport F(1, 7) = Inf, p = 1e-Inf".
+TEST(StatsCli, PerfectAgreementPrintsReadably) {
+  std::string csv = "id,cond,y\n";
+  for (int i = 1; i <= 8; ++i) csv += std::to_string(i) + ",a," + std::to_string(i) + "\n" + std::to_string(i) + ",b," + std::to_string(i + 10) + "\n";
+  const std::string file = write_temp("fr_w1.csv", csv);
+  const CliRun r = dtlab("stats friedman --data " + file + " --dv y --subject id --within cond");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("Iman-Davenport F(1, 7) = Infinity, p = 0\n"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("e-Inf"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("perfect agreement"), std::string::npos) << r.err;
+  const CliRun j = dtlab("stats friedman --data " + file + " --dv y --subject id --within cond --json");
+  EXPECT_EQ(json::parse(j.out)["iman_davenport_F"], "Infinity");
+  EXPECT_EQ(number(json::parse(j.out)["p_iman_davenport"]), 0.0);
+}
+
+// Broke: values near 1.7e308 printed NA for SS, F and mean without a word.
+TEST(StatsCli, OverflowExitsOneNamingIt) {
+  const std::string between = write_temp("big_between.csv", "g,y\na,1.7e308\na,-1.7e308\nb,1\nb,2\n");
+  const std::string within = write_temp("big_within.csv", "id,cond,y\na,x,1.7e308\na,y,-1.7e308\nb,x,1\nb,y,2\nc,x,4\nc,y,3\n");
+  const CliRun a = dtlab("stats anova --data " + between + " --dv y --between g");
+  EXPECT_EQ(a.rc, 1);
+  EXPECT_NE(a.err.find("overflow"), std::string::npos) << a.err;
+  const CliRun rm = dtlab("stats rm-anova --data " + within + " --dv y --subject id --within cond");
+  EXPECT_EQ(rm.rc, 1);
+  EXPECT_NE(rm.err.find("overflow"), std::string::npos) << rm.err;
+  // Wilcoxon ranks the differences (as R); the paired t beside it warns.
+  const CliRun w = dtlab("stats wilcoxon --data " + within + " --dv y --subject id --within cond --json");
+  ASSERT_EQ(w.rc, 0) << w.err;
+  EXPECT_NE(w.err.find("overflow"), std::string::npos) << w.err;
+  EXPECT_EQ(number(json::parse(w.out)["V"]), 4.5);  // d = Inf, -1, 1: ranks 3, 1.5, 1.5; V = 3 + 1.5
+}
+
+// Broke: a NUL byte made a second subject; a 10 MB field was echoed whole.
+TEST(StatsCli, NulBytesAndHugeFieldsGiveShortErrors) {
+  const std::string nul = write_temp("nul.csv", std::string("id,cond,y\na,x,1\na\0b,y,2\n", 24));
+  const CliRun r = dtlab("stats rm-anova --data " + nul + " --dv y --subject id --within cond");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("nul.csv:3:1: NUL byte"), std::string::npos) << r.err;
+  const std::string huge = write_temp("huge.csv", "id,cond,y\na,x,1\na,y," + std::string(10 << 20, '7') + "x\n");
+  const CliRun h = dtlab("stats rm-anova --data " + huge + " --dv y --subject id --within cond");
+  EXPECT_EQ(h.rc, 1);
+  EXPECT_LT(h.err.size(), 500u);
+  EXPECT_NE(h.err.find("(10485761 bytes)"), std::string::npos) << h.err.substr(0, 500);
+}
+
+// Broke: "1 trials", "n = 1 participants": counts agree with their noun.
+TEST(StatsCli, CountsAgreeWithTheirNoun) {
+  const std::string one = write_temp("one_subject.csv", "id,cond,y\na,x,1\na,y,3\n");
+  const CliRun r = dtlab("stats rm-anova --data " + one + " --dv y --subject id --within cond");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("(1 subject;"), std::string::npos) << r.out;
+  const CliRun w = dtlab("stats wilcoxon --data " + one + " --dv y --subject id --within cond");
+  EXPECT_NE(w.out.find("(1 pair,"), std::string::npos) << w.out;
+}
+
+// Paired t: one-sided CI as R, constant differences warned.
+// R 4.2.2: t.test(c(5,6,7,8,9), c(4,5,6,7,8), paired = TRUE) -> Error: data are essentially constant
+TEST(StatsCli, PairedTWarnsAndFollowsROneSided) {
+  const std::string pairs = write_temp("const_pairs.csv", "id,c,y\n1,a,5\n1,b,4\n2,a,6\n2,b,5\n3,a,7\n3,b,6\n4,a,8\n4,b,7\n5,a,9\n5,b,8\n");
+  const CliRun r = dtlab("stats wilcoxon --data " + pairs + " --dv y --subject id --within c");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("essentially constant"), std::string::npos) << r.err;
+  const CliRun less = dtlab("stats wilcoxon --data " + data("md_12.1.csv") +
+                            " --dv rt --subject id --within noise --aggregate mean --alternative less --json");
+  ASSERT_EQ(less.rc, 0) << less.err;
+  EXPECT_EQ(json::parse(less.out)["paired_t"]["ci_low"], "-Infinity");
+}
+
+// Issue 13 item 7: --where, practice rows, excluded rows, repeated rows.
+TEST(StatsCli, RowSelectionIsStatedAndUndoable) {
+  const std::string header = "participant,session,transparency,task,trial,practice,excluded,completion_time_s,trial_seed,protocol_sha256\n";
+  std::string csv = header;
+  const char* ids[] = {"p1", "p2", "p3", "p4"};
+  for (int p = 0; p < 4; ++p)
+    for (const char* level : {"off", "on"}) {
+      const int base = 10 + p * 3 + (std::string(level) == "on" ? 5 + p : 0);
+      csv += std::string(ids[p]) + ",1," + level + ",T1,1,1,," + std::to_string(base + 100) + ",1,abc\n";  // practice
+      csv += std::string(ids[p]) + ",1," + level + ",T1,1,0," + (p == 3 ? "fell asleep" : "") + "," + std::to_string(base) + ",2,abc\n";
+      csv += std::string(ids[p]) + ",1," + level + ",T2,1,0,," + std::to_string(base * 2) + ",3,abc\n";
+    }
+  const std::string file = write_temp("export.csv", csv);
+  const std::string base = "stats rm-anova --data " + file + " --dv completion_time_s --subject participant --within transparency";
+  // Practice and T2 rows would repeat cells: without --where the repeats are an error naming lines.
+  const CliRun repeats = dtlab(base);
+  EXPECT_EQ(repeats.rc, 1);
+  EXPECT_NE(repeats.err.find("second row for the cell"), std::string::npos) << repeats.err;
+  const CliRun r = dtlab(base + " --where task=T1 --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["rows"]["read"], 24);
+  EXPECT_EQ(j["rows"]["practice_left_out"], 8);
+  EXPECT_EQ(j["rows"]["excluded_left_out"], 2);
+  EXPECT_EQ(j["rows"]["where_left_out"], 8);
+  EXPECT_EQ(j["n_subjects"], 3);
+  // on - off per kept participant: 5, 6, 7 -> F(1, 2) = mean^2 n / var = 36 * 3 / 1 = 108
+  EXPECT_NEAR(number(j["effects"][0]["F"]), 108.0, 1e-9);
+  const CliRun text = dtlab(base + " --where task=T1");
+  EXPECT_NE(text.out.find("8 rows of practice trials left out (the default for a dtlab export; --include-practice keeps them)"),
+            std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("2 rows of excluded participants or trials left out"), std::string::npos) << text.out;
+  const CliRun kept = dtlab(base + " --where task=T1 --with-excluded --json");
+  EXPECT_EQ(json::parse(kept.out)["n_subjects"], 4);
+  const CliRun practice = dtlab(base + " --where task=T1 --include-practice --aggregate mean --json");
+  ASSERT_EQ(practice.rc, 0) << practice.err;
+  EXPECT_EQ(json::parse(practice.out)["rows"]["practice_left_out"], 0);
+  const CliRun neq = dtlab(base + " --where task!=T2 --json");
+  EXPECT_EQ(json::parse(neq.out)["rows"]["where_left_out"], 8);
+  const CliRun median = dtlab(base + " --aggregate median --json");
+  ASSERT_EQ(median.rc, 0) << median.err;
+  const CliRun bad = dtlab(base + " --where nosuch=1");
+  EXPECT_EQ(bad.rc, 1);
+  EXPECT_NE(bad.err.find("nosuch: no such column for --where"), std::string::npos) << bad.err;
+  EXPECT_EQ(dtlab(base + " --where =x").rc, 2);
+  EXPECT_EQ(dtlab(base + " --aggregate mode").rc, 2);
+}
+
+// The follow-ups of issue 13 through the command line (values: test_followup_power.cpp,
+// test_assumptions_apa.cpp, each against R).
+TEST(StatsCli, RmAnovaFollowUpsAndWilcoxonOfOneFactor) {
+  const CliRun r = dtlab("stats rm-anova --data " + data("md_12.1.csv") +
+                         " --dv rt --subject id --within noise,angle --simple-effects --within-ci --normality --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["simple_effects"].size(), 5u);
+  // R: t.test(absent, present, paired = TRUE) at angle 4 -> t = -4.44261658319319
+  EXPECT_NEAR(number(j["simple_effects"][1]["contrast"]["statistic"]), -4.44261658319319, 1e-10);
+  // R (Cousineau-Morey formula): se of absent:0 = 17.0528589978338
+  EXPECT_NEAR(number(j["within_subject_ci"][0]["se"]), 17.0528589978338, 1e-9);
+  // R: shapiro.test(residuals) -> W = 0.971873411127596
+  EXPECT_NEAR(number(j["normality"]["W"]), 0.971873411127596, 1e-9);
+  const CliRun w = dtlab("stats wilcoxon --data " + data("md_12.1.csv") +
+                         " --dv rt --subject id --within noise,angle --factor noise --json");
+  ASSERT_EQ(w.rc, 0) << w.err;
+  // R: t.test(rowMeans(absent cells), rowMeans(present cells), paired = TRUE) -> mean difference -138
+  EXPECT_NEAR(number(json::parse(w.out)["paired_t"]["mean_difference"]), -138, 1e-10);
+  EXPECT_EQ(dtlab("stats wilcoxon --data " + data("md_12.1.csv") + " --dv rt --subject id --within noise,angle").rc, 2);
 }
 
 }  // namespace

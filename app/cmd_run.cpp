@@ -1,0 +1,164 @@
+// `dtlab run PROTOCOL --db DB [--participant ID] [--fullscreen] [--monitor N]
+// [--size WxH] [--script FILE] [--screenshots DIR] [--experimenter NAME]`: a
+// person's session in a GLFW window with Dear ImGui (app/run; docs/run.md).
+// The experimenter's start screen enrolls (or resumes) a participant, the
+// session runner (study/session) drives the participant's screens, the end
+// screen thanks them. Every finished trial is committed before the next
+// starts, so a crash or a closed window loses at most the trial in progress
+// and running the command again resumes at the first unfinished trial.
+// Exit 0: the session finished (or the experimenter quit or aborted it);
+// 1: invalid protocol, database or script; 2: bad command line; 3: no
+// display, GL or database failure; 130: the window was closed mid-session.
+#include <CLI/CLI.hpp>
+
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <regex>
+
+#include "app/commands.h"
+#include "app/database_arg.h"
+#include "app/platform/gl_context.h"
+#include "app/run/responder.h"
+#include "app/run/script.h"
+#include "app/run/start.h"
+#include "app/run/ui.h"
+#include "study/protocol/protocol.h"
+#include "study/session/mapping.h"
+#include "study/session/session.h"
+
+namespace dtlab::app {
+
+namespace {
+
+struct RunArgs {
+  std::string protocol, db, participant, size = "1280x800", script, screenshots, experimenter;
+  bool fullscreen = false, allow_protocol_change = false;
+  int monitor = 0;
+};
+
+[[noreturn]] void fail(int code, const std::string& message) {
+  std::cerr << "dtlab run: " << message << "\n";
+  throw CLI::RuntimeError(code);
+}
+
+std::string experimenter_name(const std::string& given) {
+  if (!given.empty()) return given;
+  for (const char* var : {"DTLAB_EXPERIMENTER", "USER", "LOGNAME"})
+    if (const char* v = std::getenv(var); v && *v) return v;
+  return "experimenter";
+}
+
+void run_person(const RunArgs& a) {
+  auto p = protocol::load_protocol(a.protocol);
+  if (!p) fail(kExitInvalid, p.error().to_string() + "\n(run `dtlab validate " + a.protocol + "` for every problem)");
+  std::optional<run::Script> script;
+  if (!a.script.empty()) {
+    auto s = run::parse_script(a.script);
+    if (!s) fail(exit_code(s.error()), s.error().to_string());
+    script = std::move(s.value());
+  }
+  int width = 0, height = 0;
+  std::smatch m;
+  if (!std::regex_match(a.size, m, std::regex("([0-9]{2,5})x([0-9]{2,5})")))
+    fail(kExitUsage, "--size " + a.size + ": expected WIDTHxHEIGHT, e.g. 1280x800");
+  width = std::stoi(m[1]);
+  height = std::stoi(m[2]);
+  if (width < 320 || height < 240 || width > 16384 || height > 16384)
+    fail(kExitUsage, "--size " + a.size + ": expected 320x240 up to 16384x16384");
+
+  auto store = store::Store::open(a.db, session::study_info(p.value()), session::open_options(a.allow_protocol_change));
+  if (!store) fail(exit_code(store.error()), store.error().to_string());
+
+  platform::WindowOptions wo;
+  wo.title = "dtlab - " + p->title;
+  wo.width = width;
+  wo.height = height;
+  wo.fullscreen = a.fullscreen;
+  wo.monitor = a.monitor;
+  wo.resizable = false;  // the trial views keep one size for the whole session
+  auto window = platform::create_window(wo);
+  if (!window) fail(kExitFailure, window.error().to_string() + " (a participant session needs a display; for headless "
+                                                              "runs use dtlab simulate)");
+  run::UiOptions uo;
+  uo.screenshots = a.screenshots;
+  uo.script = script ? &*script : nullptr;
+  auto ui = run::Ui::create(**window, uo);
+  if (!ui) fail(exit_code(ui.error()), ui.error().to_string());
+
+  auto chosen = run::start_screen(**ui, *store, p.value(), a.participant);
+  if (!chosen) fail(chosen.error().kind == ErrorKind::conflict ? kExitInterrupted : exit_code(chosen.error()),
+                    chosen.error().to_string());
+  if (!chosen->has_value()) {
+    std::cerr << "dtlab run: quit from the start screen; nothing was run\n";
+    return;
+  }
+  const std::string participant = **chosen;
+  run::WindowResponder responder(**ui, *store, p.value(), participant, experimenter_name(a.experimenter));
+  session::Hooks hooks;
+  hooks.on_session_start = [&](const store::Session& s, const design::Plan& plan) { responder.on_session_start(s, plan); };
+  hooks.on_trial_recorded = [&](const session::TrialSpec& t, const store::TrialRecord& r) {
+    responder.on_trial_recorded(t, r);
+    std::cerr << "dtlab run: " << participant << " trial " << r.position << " of " << t.planned_trials
+              << " recorded (" << t.planned.task << ", " << r.completion_s << " s)\n";
+  };
+  auto result = session::run_session(*store, p.value(), participant, responder, hooks);
+  if (!result) {
+    if (responder.aborted()) {
+      run::end_screen(**ui, "end", "Session aborted", "The experimenter ended this session.");
+      std::cerr << "dtlab run: " << participant << "'s session was aborted from the console (abandoned); every "
+                << "recorded trial is kept\n";
+      return;
+    }
+    if (result.error().field == "window")
+      fail(kExitInterrupted, result.error().to_string() + "; run the same command again to resume " + participant);
+    if (result.error().kind == ErrorKind::busy && result.error().field == store::kClaimField)
+      fail(kExitFailure, result.error().to_string());
+    fail(exit_code(result.error()), result.error().to_string());
+  }
+  if (result->already_finished)
+    std::cerr << "dtlab run: " << participant << " had already finished; nothing to run\n";
+  Status st = run::end_screen(**ui, "end", "Thank you!",
+                              "The session is complete. Thank you for taking part.\n\n(Experimenter: close with the "
+                              "button or Escape.)");
+  std::cerr << "dtlab run: " << participant << "'s session is finished: " << result->trials_recorded
+            << " trials recorded in " << store::display_name(a.db) << "\n";
+  if (!st && st.error().field != "window") fail(exit_code(st.error()), st.error().to_string());
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& root) {
+  auto a = std::make_shared<RunArgs>();
+  auto* cmd = root.add_subcommand(
+      "run",
+      "Run a person through a protocol in a window: the experimenter's start screen (enroll with demographics, "
+      "resume, release), then instructions, training, the trials, breaks between blocks, the post-test "
+      "questionnaire with the depth test, and an end screen. The experimenter console (Ctrl+Shift+E) pauses, marks "
+      "trials invalid, takes notes and aborts, all stored. Every finished trial is saved at once; run the same "
+      "command again to resume an interrupted session");
+  cmd->footer(
+      "Keys: Enter answers a trial; in WALKTHROUGH the arrow keys move and turn, the mouse turns; in ABSTRACT "
+      "left-drag turns the scene. docs/run.md describes every screen, the console, scripts and replay.\n"
+      "Exit status: 0 finished (or quit, or aborted from the console), 1 invalid protocol, database or script, 2 bad "
+      "command line, 3 no display, GL or database failure, 130 window closed mid-session (rerun to resume).");
+  cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--db", a->db, std::string(kDatabaseHelp) + "; a file is created if missing")->required();
+  cmd->add_option("--participant", a->participant, "Participant ID to fill in on the start screen");
+  cmd->add_flag("--fullscreen", a->fullscreen, "Full screen on the monitor (at its current resolution)");
+  cmd->add_option("--monitor", a->monitor, "Monitor to use, 0-based (0 = primary)")->check(CLI::Range(0, 16));
+  cmd->add_option("--size", a->size, "Window size WIDTHxHEIGHT in pixels (windowed)")->capture_default_str();
+  cmd->add_option("--script", a->script,
+                  "Scripted input: a text file of timed events per screen (docs/run.md, \"Scripts\"), fed in where "
+                  "GLFW's callbacks enter; protocols/pilot-session.script runs the pilot end to end")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--screenshots", a->screenshots, "Directory for one PNG per distinct screen");
+  cmd->add_option("--experimenter", a->experimenter,
+                  "Who runs the session (recorded with console actions; default $DTLAB_EXPERIMENTER, else $USER)");
+  cmd->add_flag("--allow-protocol-change", a->allow_protocol_change,
+                "Accept a protocol whose design differs from the one the database was created with (recorded as a "
+                "new design revision; a reworded protocol needs no flag)");
+  cmd->callback([a] { run_person(*a); });
+}
+
+}  // namespace dtlab::app

@@ -1,0 +1,99 @@
+// Scripted input for `dtlab run --script FILE`: a text file of timed input
+// events, grouped in sections by the screen they answer. Whenever the app
+// shows a screen, the section for it plays from its first line (once the
+// screen has been presented twice, so its layout has settled); its events
+// enter through Input's entry points, exactly where GLFW's callbacks enter,
+// so the app and Dear ImGui cannot tell them from a person. Because sections
+// follow screens, not a fixed timeline, the same script finishes a session
+// that was interrupted and resumed half-way. docs/run.md, "Scripts", lists
+// the syntax. Guarantees: a malformed script is an Error naming file:line
+// before anything runs; a step that cannot happen (a UI item that never
+// appears) is an Error naming its line. Never: reads the answer key.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/run/input.h"
+#include "study/common/error.h"
+
+namespace dtlab::run {
+
+struct ScriptStep {
+  enum class Op {
+    wait,        // wait SECONDS
+    key,         // key NAME: press and release (two frames)
+    key_down,    // key_down NAME
+    key_up,      // key_up NAME
+    hold,        // hold NAME SECONDS
+    type,        // type "TEXT": characters (as a keyboard's text input)
+    move,        // move X Y: the cursor to window coordinates
+    click,       // click X Y [left|right]
+    drag,        // drag X0 Y0 X1 Y1 SECONDS (left button)
+    turn,        // turn DX SECONDS: relative cursor motion (a captured cursor turns the view)
+    scroll,      // scroll DX DY
+    click_item,  // click_item "NAME" [FX FY]: the UI item named NAME (at fractions of its box; default centre)
+  };
+  Op op = Op::wait;
+  int line = 0;
+  double seconds = 0;
+  int key = -1;
+  int button = 0;
+  std::string text;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+struct ScriptSection {
+  std::string screen;  // "trial T1" (exactly that screen) or "trial" (every screen "trial ...")
+  int line = 0;
+  std::vector<ScriptStep> steps;
+};
+
+struct Script {
+  std::string file;
+  std::vector<ScriptSection> sections;
+  // The section for a screen id: an exact match first, then its first word; nullptr if none.
+  const ScriptSection* for_screen(const std::string& screen) const;
+};
+
+Result<Script> parse_script(const std::string& path);
+Result<Script> parse_script_text(const std::string& text, const std::string& file);
+
+// A UI item's box in window coordinates (what click_item aims at).
+struct ItemBox {
+  float x = 0, y = 0, w = 0, h = 0;
+};
+using ItemBoxes = std::map<std::string, ItemBox>;
+
+class ScriptPlayer {
+ public:
+  ScriptPlayer(const Script& script, Input& input);
+
+  // Once per frame, after the frame's real events arrived: a new screen instance restarts its
+  // section; the steps that are due are fed to the input. `items` are the boxes drawn last frame.
+  Status tick(const std::string& screen, std::uint64_t instance, const ItemBoxes& items, Clock::time_point now);
+  // The screen is being left: the playing section stops, and every key and button it holds down
+  // is released (a release lost with its screen would leave the key down on the next one).
+  void leave();
+
+ private:
+  bool step(const ScriptStep& s, const ItemBoxes& items, Clock::time_point now, Status& error);
+  void key(int key, bool down);
+  void button(int button, bool down);
+
+  const Script& script_;
+  Input& input_;
+  const ScriptSection* section_ = nullptr;
+  std::uint64_t instance_ = ~0ULL;
+  std::size_t next_ = 0;
+  int phase_ = 0;
+  Clock::time_point step_start_{};
+  double moved_ = 0;  // turn/drag: the share of the motion already fed
+  std::vector<int> held_keys_, held_buttons_;
+};
+
+// How long click_item waits for its item before it fails.
+inline constexpr double kItemTimeoutS = 60.0;
+
+}  // namespace dtlab::run

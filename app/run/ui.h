@@ -1,0 +1,94 @@
+// The participant window's frame loop: Dear ImGui (its OpenGL3 backend;
+// input comes from run::Input, never from GLFW directly) over the
+// renderer's 3D view, with large text for reading at arm's length, a
+// registry of named UI items (for scripts and tests), the experimenter
+// console overlay (Ctrl+Shift+E), the script player and screenshots.
+// Guarantees: every frame is one call of frame(); the time of each buffer
+// swap is kept (trial clocks start at the first one); the GL state the
+// renderer and ImGui's backend leave is theirs to restore. Never: writes to
+// the study database (screens and the console do, through the store).
+#pragma once
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/platform/gl_context.h"
+#include "app/run/input.h"
+#include "app/run/script.h"
+#include "study/common/error.h"
+
+namespace dtlab::run {
+
+struct UiOptions {
+  std::string screenshots;        // directory for one PNG per distinct screen; "" = none
+  const Script* script = nullptr; // scripted input, or none
+  double frame_limit_hz = 0;      // 0: the display's refresh rate (a cap when vsync does not hold)
+};
+
+class Ui {
+ public:
+  static Result<std::unique_ptr<Ui>> create(platform::Window& window, const UiOptions& options);
+  ~Ui();
+  Ui(const Ui&) = delete;
+  Ui& operator=(const Ui&) = delete;
+
+  Input& input() { return *input_; }
+  platform::Window& window() { return window_; }
+  int width() const { return window_.width(); }    // framebuffer pixels
+  int height() const { return window_.height(); }
+  std::optional<double> refresh_hz() const { return refresh_hz_; }  // the monitor's, when it says
+
+  // One frame of screen `screen` (e.g. "trial T1"): the frame's events, then draw3d() (the 3D
+  // view, into the default framebuffer), then widgets() (ImGui), the console if shown, and the
+  // buffer swap. A new screen id, or new_instance(), restarts the script's section for it.
+  // Errors: the window was closed (kind conflict: the session stays resumable), a script step failed.
+  Status frame(const std::string& screen, const std::function<void()>& draw3d, const std::function<void()>& widgets);
+  void new_instance() { ++instance_; }                // the next frame starts a new instance of the same screen
+  Clock::time_point last_swap() const { return last_swap_; }
+  double last_frame_ms() const { return last_frame_ms_; }  // between the last two swaps
+
+  // Named items: registers the last ImGui item's box under `name` (the script's click_item).
+  void name_item(const std::string& name);
+  bool button(const std::string& label, ImVec2 size = ImVec2(0, 0));  // ImGui::Button, named by its label
+  ImFont* heading_font() const { return heading_; }
+  ImFont* small_font() const { return small_; }  // the experimenter's screens (start, console): read at a desk
+  float text_px() const { return text_px_; }
+
+  // The experimenter console: drawn over every screen while shown (toggled by Ctrl+Shift+E).
+  void set_console(std::function<void()> draw) { console_ = std::move(draw); }
+  bool console_shown() const { return console_shown_; }
+  void show_console(bool on) { console_shown_ = on; }
+
+ private:
+  Ui(platform::Window& window, const UiOptions& options);
+  void screenshot(const std::string& name);
+  void write_items() const;  // $DTLAB_RUN_ITEMS: the screen and its named items' boxes, as JSON (tests drive real X events by them)
+
+  platform::Window& window_;
+  UiOptions options_;
+  std::unique_ptr<Input> input_;
+  std::unique_ptr<ScriptPlayer> player_;
+  ImGuiContext* imgui_ = nullptr;
+  ImFont* heading_ = nullptr;
+  ImFont* small_ = nullptr;
+  float text_px_ = 24;
+  std::optional<double> refresh_hz_;
+  std::string screen_;
+  std::uint64_t instance_ = 0, played_instance_ = 0;  // the screen instance now; the one frames run in
+  int frames_in_screen_ = 0;
+  ItemBoxes items_, items_next_;
+  std::set<std::string> shot_;      // screens already saved
+  std::string items_path_;          // $DTLAB_RUN_ITEMS, or ""
+  int shots_ = 0;
+  std::function<void()> console_;
+  bool console_shown_ = false;
+  Clock::time_point last_swap_{}, frame_start_{};
+  double last_frame_ms_ = 0;
+};
+
+}  // namespace dtlab::run

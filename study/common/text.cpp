@@ -1,0 +1,42 @@
+// edit_distance and nearest (text.h): the classic two-row dynamic program; count.
+#include "study/common/text.h"
+
+#include <algorithm>
+
+namespace dtlab {
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string nearest(std::string_view word, const std::vector<std::string>& candidates, std::size_t max_distance) {
+  std::string best;
+  std::size_t best_d = max_distance + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+std::string count(long long n, std::string_view noun, std::string_view plural) {
+  std::string s = std::to_string(n) + " ";
+  if (n == 1) return s.append(noun);
+  if (!plural.empty()) return s.append(plural);
+  return s.append(noun).append("s");
+}
+
+}  // namespace dtlab

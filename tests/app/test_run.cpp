@@ -1,0 +1,365 @@
+// `dtlab run` through the real app in a real window (this program runs under
+// xvfb-run): the shipped pilot script takes a new participant through the
+// whole pilot protocol (every planned trial and the questionnaire stored,
+// the answers the script's); every screen's screenshot is non-blank and
+// differs from the others; kill -9 at several moments and a rerun with the
+// same script give the trial sequence and answers of an uninterrupted run,
+// with PRAGMA integrity_check ok after each kill; replay reproduces the
+// logged poses and its first frame equals `dtlab render` of that pose; and
+// real X events (xdotool) reach the app the way a person's do.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <stb_image.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "study/render/image.h"
+#include "study/store/read.h"
+#include "tests/common/run_cli.h"
+
+namespace dtlab::run {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::string kPilot = std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml";
+const std::string kScript = std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot-session.script";
+constexpr const char* kSize = "640x480";  // small: llvmpipe renders every frame of the session
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("dtlab_run_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Starts `dtlab run` with the pilot and its script; stdout and stderr to `log`.
+pid_t start_run(const fs::path& db, const fs::path& log, const std::vector<std::string>& extra = {},
+                const std::vector<std::pair<std::string, std::string>>& env = {}) {
+  std::vector<std::string> args{DTLAB_BINARY, "run", kPilot, "--db", db.string(), "--size", kSize};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    for (const auto& [k, v] : env) ::setenv(k.c_str(), v.c_str(), 1);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(DTLAB_BINARY, argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string slurp(const fs::path& p) { return dtlab::test::read_text(p); }
+
+store::StudyReader reader(const fs::path& db) {
+  auto r = store::StudyReader::open(db.string());
+  if (!r) {
+    ADD_FAILURE() << r.error().to_string();
+    std::abort();
+  }
+  return std::move(*r);
+}
+
+// What must not depend on when the session was interrupted: the planned sequence, the scenes
+// and the answers, and the questionnaire.
+std::string outcome(const fs::path& db) {
+  auto r = reader(db);
+  std::string s;
+  const auto trials = r.trials();
+  for (const auto& t : *trials) {
+    s += t.participant + " " + std::to_string(t.planned.position) + " " + t.planned.task + " " +
+         std::to_string(t.planned.seed) + " " + t.scene_hash.substr(0, 16) + " ";
+    if (t.answer) {
+      if (const auto* c = std::get_if<store::Count>(&*t.answer)) s += "count " + std::to_string(c->n);
+      if (const auto* l = std::get_if<store::Letter>(&*t.answer)) s += "letter " + l->letter;
+      if (const auto* p = std::get_if<store::Position>(&*t.answer)) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "position %.2f %.2f", p->x, p->z);
+        s += buf;
+      }
+    } else {
+      s += "none";
+    }
+    s += "\n";
+  }
+  const auto answers = r.questionnaire();
+  for (const auto& q : *answers) {
+    s += q.item + "[" + q.scope + "]=";
+    if (const double* v = std::get_if<double>(&q.value)) s += std::to_string(*v);
+    else s += std::get<std::string>(q.value);
+    s += "\n";
+  }
+  return s;
+}
+
+class RunPilot : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir = new fs::path(temp_dir("reference"));
+    db = new fs::path(*dir / "pilot.sqlite");
+    const auto t0 = Clock::now();
+    const pid_t pid = start_run(*db, *dir / "log.txt", {"--script", kScript, "--screenshots", (*dir / "shots").string()});
+    rc = wait_exit(pid);
+    seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+  static void TearDownTestSuite() {
+    if (!::testing::Test::HasFailure() && !std::getenv("DTLAB_KEEP_TEST_DIRS")) fs::remove_all(*dir);
+    delete db;
+    delete dir;
+  }
+  static fs::path* dir;
+  static fs::path* db;
+  static int rc;
+  static double seconds;
+};
+fs::path* RunPilot::dir = nullptr;
+fs::path* RunPilot::db = nullptr;
+int RunPilot::rc = -1;
+double RunPilot::seconds = 0;
+
+TEST_F(RunPilot, TheScriptedSessionFinishesWithEveryTrialAndTheQuestionnaire) {
+  ASSERT_EQ(rc, 0) << slurp(*dir / "log.txt");
+  RecordProperty("session_seconds", std::to_string(seconds));
+  auto r = reader(*db);
+  auto sessions = r.sessions();
+  ASSERT_EQ(sessions->size(), 1u);
+  const auto& s = (*sessions)[0];
+  EXPECT_EQ(s.participant, "pilot-01");
+  EXPECT_EQ(s.status, store::SessionStatus::finished);
+  EXPECT_EQ(s.planned, 8);
+  EXPECT_EQ(s.recorded, 8);
+  ASSERT_EQ(s.displays.size(), 1u);
+  EXPECT_EQ(s.displays[0].info.kind, "window");
+  EXPECT_EQ(s.displays[0].info.width, 640);
+  EXPECT_EQ(s.displays[0].info.height, 480);
+  // Demographics as the script entered them on the start screen.
+  const auto ledger = r.ledger();
+  EXPECT_EQ((*ledger)[0].demographics,
+            (store::Demographics{{"age", "27"}, {"gender", "female"}, {"handedness", "right"}, {"games", "sometimes"}}));
+  // The answers are the script's: T1 23, T2 K, T4 5, T3 a point of the plan.
+  auto trials = r.trials();
+  ASSERT_EQ(trials->size(), 8u);
+  for (const auto& t : *trials) {
+    SCOPED_TRACE(t.planned.task + " at " + std::to_string(t.planned.position));
+    ASSERT_TRUE(t.answer.has_value());
+    if (t.planned.task == "T1") {
+      EXPECT_EQ(std::get<store::Count>(*t.answer).n, 23);
+    } else if (t.planned.task == "T2") {
+      EXPECT_EQ(std::get<store::Letter>(*t.answer).letter, "K");
+    } else if (t.planned.task == "T4") {
+      EXPECT_EQ(std::get<store::Count>(*t.answer).n, 5);
+    }
+    if (t.planned.task == "T3") {
+      const auto& p = std::get<store::Position>(*t.answer);
+      EXPECT_GT(p.x, 0);
+      EXPECT_GT(p.z, 0);
+    }
+    EXPECT_GT(t.completion_s, 0);
+    EXPECT_GT(t.frames.frames, 1);
+    EXPECT_GT(t.event_count, 0);  // keys, cursor, buttons and the answer
+    EXPECT_TRUE(t.frames.first_ms.has_value());
+    EXPECT_TRUE(t.frames.late.has_value());
+    EXPECT_EQ(r.poses(t.participant, t.planned.position)->size(), static_cast<std::size_t>(t.frames.frames));
+  }
+  // The questionnaire: 4 ratings (3), the preference (on), self-reported depth (2), 3 depth-test pairs.
+  auto q = r.questionnaire();
+  std::map<std::string, std::string> answers;
+  for (const auto& a : *q)
+    answers[a.item + "[" + a.scope + "]"] = std::holds_alternative<double>(a.value)
+                                                ? std::to_string(static_cast<int>(std::get<double>(a.value)))
+                                                : std::get<std::string>(a.value);
+  EXPECT_EQ(answers.size(), 4u + 1 + 1 + 3);
+  EXPECT_EQ(answers["rating[scenario=abstract;transparency=off]"], "3");
+  EXPECT_EQ(answers["preference[]"], "on");
+  EXPECT_EQ(answers["depth_self[]"], "2");
+  for (const char* pair : {"pair=1", "pair=2", "pair=3"}) {
+    const std::string v = answers[std::string("depth_test[") + pair + "]"];
+    EXPECT_TRUE(v == "0" || v == "1") << pair << ": " << v;  // scored against the geometry
+  }
+  EXPECT_EQ(*r.integrity_check(), "ok");
+}
+
+// Decodes a PNG; empty on failure.
+render::Image decode(const fs::path& png) {
+  render::Image img;
+  int n = 0;
+  unsigned char* data = stbi_load(png.c_str(), &img.width, &img.height, &n, 4);
+  if (!data) return img;
+  img.rgba.assign(data, data + static_cast<std::size_t>(img.width) * img.height * 4);
+  stbi_image_free(data);
+  return img;
+}
+
+TEST_F(RunPilot, EveryScreenHasANonBlankScreenshotDistinctFromTheOthers) {
+  ASSERT_EQ(rc, 0);
+  std::vector<fs::path> shots;
+  for (const auto& e : fs::directory_iterator(*dir / "shots")) shots.push_back(e.path());
+  std::sort(shots.begin(), shots.end());
+  std::vector<std::string> names;
+  for (const auto& p : shots) names.push_back(p.filename().string().substr(3));
+  for (const char* want : {"start.png", "instructions-T1.png", "training-T1.png", "trial-T1.png", "answer-T1.png",
+                           "answer-T2.png", "trial-T3.png", "answer-T3.png", "trial-T4.png", "break.png",
+                           "questionnaire-rating.png", "questionnaire-preference.png", "questionnaire-depth-self.png",
+                           "depth-test.png", "end.png"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  std::vector<render::Image> images;
+  for (const auto& p : shots) {
+    images.push_back(decode(p));
+    const render::Image& img = images.back();
+    ASSERT_EQ(img.width, 640) << p;
+    ASSERT_EQ(img.height, 480) << p;
+    std::set<std::uint32_t> colours;
+    for (std::size_t i = 0; i < img.rgba.size(); i += 4 * 7)
+      colours.insert(img.rgba[i] | img.rgba[i + 1] << 8 | img.rgba[i + 2] << 16);
+    EXPECT_GT(colours.size(), 8u) << p << " is blank (" << colours.size() << " colours)";
+  }
+  for (std::size_t a = 0; a < images.size(); ++a)
+    for (std::size_t b = a + 1; b < images.size(); ++b)
+      EXPECT_GT(render::compare(images[a], images[b]).pixels_off_pct, 0.5) << shots[a] << " and " << shots[b];
+}
+
+TEST_F(RunPilot, ReplayReproducesTheLoggedPosesAndRendersWhatDtlabRenderDraws) {
+  ASSERT_EQ(rc, 0);
+  auto r = reader(*db);
+  const auto trials = r.trials();
+  int position = 0;
+  for (const auto& t : *trials)
+    if (t.planned.task == "T3" && position == 0) position = t.planned.position;
+  ASSERT_GT(position, 0);
+  const auto poses = *r.poses("pilot-01", position);
+  const fs::path out = *dir / "replay";
+  const auto rep = dtlab::test::run_dtlab("replay '" + db->string() + "' --participant pilot-01 --trial " +
+                                          std::to_string(position) + " --out '" + out.string() + "' --json");
+  ASSERT_EQ(rep.rc, 0) << rep.err;
+  const auto j = nlohmann::json::parse(rep.out);
+  EXPECT_EQ(j["poses"].get<std::size_t>(), poses.size());
+  std::size_t frames = 0;
+  for (const auto& e : fs::directory_iterator(out)) frames += e.path().extension() == ".png";
+  EXPECT_EQ(frames, poses.size()) << "one frame per recorded pose (--every 1)";
+  const std::string svg = slurp(out / "path.svg");
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);
+  EXPECT_NE(svg.find("x answer"), std::string::npos);  // the T3 answer is marked
+  // Its first frame is `dtlab render` of the first pose (yaw in degrees, the eye position).
+  char camera[256];
+  std::snprintf(camera, sizeof camera, "yaw=%.17g,pitch=%.17g,x=%.17g,y=%.17g,z=%.17g", poses[0].yaw * 180 / M_PI,
+                poses[0].pitch * 180 / M_PI, poses[0].x, poses[0].y, poses[0].z);
+  const fs::path rendered = *dir / "render.png";
+  const auto ren = dtlab::test::run_dtlab("render --protocol '" + kPilot + "' --db '" + db->string() +
+                                          "' --participant pilot-01 --trial " + std::to_string(position) +
+                                          " --width 640 --height 480 --camera " + camera + " --out '" +
+                                          rendered.string() + "'");
+  ASSERT_EQ(ren.rc, 0) << ren.err;
+  const auto diff = render::compare(decode(out / "frame-00001.png"), decode(rendered));
+  EXPECT_LT(diff.mae, 0.5);
+  EXPECT_LT(diff.pixels_off_pct, 0.5);
+}
+
+// kill -9 at several moments of a scripted session; each rerun with the same script continues.
+// The file stays intact after every kill, and the end result equals the uninterrupted run's.
+TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
+  ASSERT_EQ(rc, 0);
+  const fs::path d = temp_dir("killed");
+  const fs::path killed = d / "pilot.sqlite", log = d / "log.txt";
+  int kills = 0, final_rc = -1;
+  for (double delay : {4.0, 9.0, 14.0, 19.0, 24.0, 29.0}) {
+    const pid_t pid = start_run(killed, log, {"--script", kScript});
+    const auto until = Clock::now() + std::chrono::duration<double>(delay);
+    int status = 0;
+    bool ended = false;
+    while (Clock::now() < until)
+      if (::waitpid(pid, &status, WNOHANG) == pid) {
+        ended = true;
+        break;
+      } else {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    if (ended) {
+      final_rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      break;
+    }
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    ++kills;
+    if (fs::exists(killed)) {
+      EXPECT_EQ(*reader(killed).integrity_check(), "ok") << "after kill " << kills;
+    }
+  }
+  if (final_rc < 0) final_rc = wait_exit(start_run(killed, log, {"--script", kScript}));
+  ASSERT_EQ(final_rc, 0) << slurp(log);
+  EXPECT_GE(kills, 2) << "the session should have been interrupted more than once";
+  EXPECT_EQ(outcome(killed), outcome(*db));
+  auto sessions = reader(killed).sessions();
+  ASSERT_EQ(sessions->size(), 1u);
+  EXPECT_EQ((*sessions)[0].status, store::SessionStatus::finished);
+  EXPECT_EQ(*reader(killed).integrity_check(), "ok");
+  fs::remove_all(d);
+}
+
+// Real X events: xdotool types the participant's ID and age into the start screen and clicks
+// "Start session" by the boxes the app reports ($DTLAB_RUN_ITEMS); the enrollment is stored.
+TEST(RunWindow, RealXEventsReachTheAppLikeAPersons) {
+  if (std::system("command -v xdotool >/dev/null 2>&1") != 0) GTEST_SKIP() << "xdotool is not installed";
+  const fs::path d = temp_dir("xdotool");
+  const fs::path db = d / "x.sqlite", log = d / "log.txt", items = d / "items.json";
+  const pid_t pid = start_run(db, log, {}, {{"DTLAB_RUN_ITEMS", items.string()}});
+  auto wait_for_screen = [&](const std::string& screen) -> nlohmann::json {
+    const auto until = Clock::now() + std::chrono::seconds(60);
+    while (Clock::now() < until) {
+      const std::string text = slurp(items);
+      if (!text.empty()) {
+        const auto j = nlohmann::json::parse(text, nullptr, false);
+        if (!j.is_discarded() && j["screen"] == screen) return j;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return {};
+  };
+  const auto start = wait_for_screen("start");
+  ASSERT_FALSE(start.is_null()) << slurp(log);
+  auto click = [&](const std::string& item) {
+    const auto& b = start["items"][item];
+    char cmd[256];
+    std::snprintf(cmd, sizeof cmd,
+                  "xdotool search --sync --name 'dtlab - Pilot' mousemove --window %%1 %d %d "
+                  "click 1",
+                  static_cast<int>(b[0].get<double>() + b[2].get<double>() / 2),
+                  static_cast<int>(b[1].get<double>() + b[3].get<double>() / 2));
+    return std::system(cmd);
+  };
+  ASSERT_EQ(click("Participant ID"), 0);
+  ASSERT_EQ(std::system("xdotool type --delay 50 'xdo-01'"), 0);
+  ASSERT_EQ(click("age"), 0);
+  ASSERT_EQ(std::system("xdotool type --delay 50 '33'"), 0);
+  ASSERT_EQ(click("Start session"), 0);
+  EXPECT_FALSE(wait_for_screen("instructions T1").is_null()) << slurp(log);
+  ::kill(pid, SIGTERM);
+  wait_exit(pid);
+  auto ledger = reader(db).ledger();
+  ASSERT_EQ(ledger->size(), 1u);
+  EXPECT_EQ((*ledger)[0].participant, "xdo-01");
+  EXPECT_EQ((*ledger)[0].demographics, (store::Demographics{{"age", "33"}}));
+  fs::remove_all(d);
+}
+
+}  // namespace
+}  // namespace dtlab::run

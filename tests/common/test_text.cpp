@@ -1,0 +1,38 @@
+// Message helpers (study/common/text.h): edit distances against hand-counted
+// values, "did you mean" picks the nearest candidate only within its bound,
+// and counts agree with their noun.
+#include <gtest/gtest.h>
+
+#include "study/common/text.h"
+
+namespace {
+
+TEST(Text, EditDistanceCountsSingleEdits) {
+  EXPECT_EQ(dtlab::edit_distance("", ""), 0u);
+  EXPECT_EQ(dtlab::edit_distance("analyse", "analyze"), 1u);  // one substitution
+  EXPECT_EQ(dtlab::edit_distance("plan", "plans"), 1u);       // one insertion
+  EXPECT_EQ(dtlab::edit_distance("kitten", "sitting"), 3u);   // the textbook case: k->s, e->i, +g
+  EXPECT_EQ(dtlab::edit_distance("abc", ""), 3u);
+}
+
+TEST(Text, NearestSuggestsOnlyCloseWords) {
+  const std::vector<std::string> commands{"validate", "plan", "analyze", "export", "simulate"};
+  EXPECT_EQ(dtlab::nearest("analyse", commands), "analyze");
+  EXPECT_EQ(dtlab::nearest("simlate", commands), "simulate");
+  EXPECT_EQ(dtlab::nearest("foo", commands), "");
+  EXPECT_EQ(dtlab::nearest("pln", commands, 0), "");
+  EXPECT_EQ(dtlab::nearest("pln", commands, 1), "plan");
+  EXPECT_EQ(dtlab::nearest("x", {}), "");
+  EXPECT_EQ(dtlab::nearest("ab", {"ax", "xb"}), "ax");  // ties go to the first
+}
+
+TEST(Text, CountsAgreeWithTheirNoun) {
+  EXPECT_EQ(dtlab::count(1, "trial"), "1 trial");
+  EXPECT_EQ(dtlab::count(0, "trial"), "0 trials");
+  EXPECT_EQ(dtlab::count(24, "trial"), "24 trials");
+  EXPECT_EQ(dtlab::count(1, "order row"), "1 order row");
+  EXPECT_EQ(dtlab::count(2, "analysis", "analyses"), "2 analyses");
+  EXPECT_EQ(dtlab::count(-1, "step"), "-1 steps");
+}
+
+}  // namespace
