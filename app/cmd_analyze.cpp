@@ -3,7 +3,7 @@
 // self-contained index.html with inline SVG plots, report.json, trials.csv
 // and per-analysis CSVs in DIR. Never modifies the database. Progress goes to
 // stderr; exit 1 for a database that cannot be analysed, 3 for an
-// environment failure (I/O, SQLite, gnuplot).
+// environment failure (I/O, database, gnuplot).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +12,7 @@
 
 #include "analysis/report/report.h"
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "study/common/text.h"
 
 namespace dtlab::app {
@@ -44,7 +45,7 @@ void run_analyze(const AnalyzeArgs& a) {
     throw CLI::RuntimeError(exit_code(sum.error()));
   }
   if (a.json) {
-    nlohmann::json j{{"database", a.db},         {"out", a.out},          {"files", sum->files},
+    nlohmann::json j{{"database", store::display_name(a.db)},         {"out", a.out},          {"files", sum->files},
                      {"participants", sum->participants}, {"trials", sum->trials}, {"tests", sum->tests},
                      {"excluded_trials", sum->excluded_trials}, {"revisions", sum->revisions},
                      {"simulated", sum->simulated}, {"warnings", sum->warnings}};
@@ -70,10 +71,10 @@ void add_analyze_command(CLI::App& root) {
       "the article's Table III layout, RM ANOVA and Friedman tests per task and overall, accuracy, speed-accuracy, "
       "questionnaire, position effects, frame-time audit, gnuplot figures inline), report.json with every number, "
       "trials.csv (as dtlab export) and per-analysis CSVs. Exit 1: not a dtlab database or nothing to analyse; "
-      "3: I/O, SQLite or gnuplot failure");
-  cmd->add_option("database", args->db, "Study database (SQLite) written by dtlab run or dtlab simulate")
+      "3: I/O, database or gnuplot failure");
+  cmd->add_option("database", args->db, std::string(kDatabaseHelp) + ", written by dtlab run or dtlab simulate")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(existing_database());
   cmd->add_option("--out", args->out, "Output directory (created if missing; files of the same names are replaced)")
       ->required();
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable (default: $DTLAB_GNUPLOT, else gnuplot on PATH)");

@@ -1,8 +1,9 @@
-// `dtlab demo [--out DIR] [--participants N] [--jobs J] [--seed S] [--width W
-// --height H]`: the reference study (protocols/elmqvist2008.toml, compiled
-// into the binary) end to end with simulated participants, headless: the
-// protocol is written to DIR, the sessions to DIR/elmqvist2008.sqlite, the
-// tidy table to DIR/elmqvist2008.csv and the analysis report to DIR/report/.
+// `dtlab demo [--out DIR] [--db DB] [--participants N] [--jobs J] [--seed S]
+// [--width W --height H]`: the reference study (protocols/elmqvist2008.toml,
+// compiled into the binary) end to end with simulated participants, headless:
+// the protocol is written to DIR, the sessions to DIR/elmqvist2008.sqlite (or
+// to --db, e.g. a lab's PostgreSQL server), the tidy table to
+// DIR/elmqvist2008.csv and the analysis report to DIR/report/.
 // Rerunning resumes and finishes what is missing. Never overwrites a database
 // or protocol file of another protocol (exit 1). Exit codes as `simulate`.
 #include <CLI/CLI.hpp>
@@ -19,6 +20,7 @@
 
 #include "analysis/report/report.h"
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "study/common/file.h"
 #include "study/common/text.h"
 #include "study/protocol/protocol.h"
@@ -40,6 +42,7 @@ constexpr const char* kProtocolFile = "elmqvist2008.toml";
 
 struct DemoArgs {
   std::string out = "dtlab-demo";
+  std::string db;  // "" = DIR/elmqvist2008.sqlite
   SimulationRun run;
 };
 
@@ -78,12 +81,12 @@ void run_demo(DemoArgs a) {
   if (!p) fail(kExitInvalid, p.error().to_string());
   write_protocol(protocol_path, text);
 
-  a.run.db = (dir / "elmqvist2008.sqlite").string();
+  a.run.db = a.db.empty() ? (dir / "elmqvist2008.sqlite").string() : a.db;
   if (a.run.jobs <= 0) a.run.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::cerr << "dtlab demo: the reference study (" << p->title << ")\n"
             << "dtlab demo: " << a.run.participants << " simulated participants x " << p->conditions.size()
             << " conditions, headless at " << a.run.width << "x" << a.run.height << ", " << a.run.jobs
-            << " worker process(es), into " << a.run.db << "\n";
+            << " worker process(es), into " << store::display_name(a.run.db) << "\n";
   SimulationResult r;
   const int rc = run_simulation(p.value(), a.run, "dtlab demo", r);
   if (rc != kExitOk) throw CLI::RuntimeError(rc);
@@ -108,7 +111,7 @@ void run_demo(DemoArgs a) {
             << " finished (" << count(r.trials_run, "trial") << " run now, in " << std::lround(r.wall_s) << " s)\n";
   if (summary) std::cout << sim::format_summary(summary.value());
   std::cout << "  protocol  " << protocol_path.string() << "\n"
-            << "  database  " << a.run.db << "\n"
+            << "  database  " << store::display_name(a.run.db) << "\n"
             << "  table     " << csv.string() << "\n"
             << "  report    " << (report_dir / "index.html").string() << " (and report.md)\n";
   std::cout << "Completion times are simulated seconds from the agent model (docs/sim.md), not measurements of "
@@ -128,11 +131,13 @@ void add_demo_command(CLI::App& root) {
       "missing. The completion times are simulated seconds from the agent model in docs/sim.md, not measurements "
       "of people");
   cmd->footer(
-      "Writes DIR/elmqvist2008.toml, DIR/elmqvist2008.sqlite, DIR/elmqvist2008.csv and DIR/report/ (index.html, "
+      "Writes DIR/elmqvist2008.toml, DIR/elmqvist2008.sqlite (or --db), DIR/elmqvist2008.csv and DIR/report/ (index.html, "
       "report.md, report.json, CSVs, figures). Progress on stderr; a per-task summary and the paths on stdout.\n"
       "Exit status: 0 done, 1 invalid input (DIR holds another protocol's files, left untouched), 2 bad command "
-      "line, 3 environment (GL, SQLite, fork, gnuplot, I/O), 130 interrupted (rerun to resume).");
+      "line, 3 environment (GL, database, fork, gnuplot, I/O), 130 interrupted (rerun to resume).");
   cmd->add_option("--out", a->out, "Output directory (created if missing)")->capture_default_str();
+  cmd->add_option("--db", a->db,
+                  std::string(kDatabaseHelp) + "; created if missing (default: DIR/elmqvist2008.sqlite)");
   cmd->add_option("--participants", a->run.participants, "Simulated participants")
       ->check(CLI::Range(1, 9999))
       ->capture_default_str();

@@ -5,7 +5,7 @@
 // notes"); nothing recorded is changed or deleted. The analysis and `dtlab
 // stats` on the export leave excluded data out by default and list every
 // exclusion with its reason. Exit 0 done, 1 unknown participant or trial or
-// no reason, 2 bad command line, 3 SQLite or I/O failure.
+// no reason, 2 bad command line, 3 database or I/O failure.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "study/session/mapping.h"
 #include "study/store/store.h"
 
@@ -50,13 +51,13 @@ void run_decision(const DecisionArgs& a, bool exclude) {
   }
   const std::string what = "participant " + a.participant + (a.trial ? " trial " + std::to_string(*a.trial) : "");
   if (a.json) {
-    nlohmann::json j{{"database", a.db},   {"participant", a.participant},
+    nlohmann::json j{{"database", store::display_name(a.db)},   {"participant", a.participant},
                      {"trial", a.trial ? nlohmann::json(*a.trial) : nlohmann::json(nullptr)},
                      {"decision", name},   {"reason", a.reason}, {"by", by}};
     std::cout << j.dump(2) << "\n";
   } else {
     std::cerr << "dtlab " << name << ": " << what << (exclude ? " excluded" : " included again")
-              << (a.reason.empty() ? "" : " (" + a.reason + ")") << "; recorded in " << a.db << "\n";
+              << (a.reason.empty() ? "" : " (" + a.reason + ")") << "; recorded in " << store::display_name(a.db) << "\n";
   }
 }
 
@@ -72,8 +73,8 @@ void add_decision(CLI::App& root, bool exclude) {
                 "itself, which stays in the record");
   cmd->footer("Trials are numbered as in `dtlab plan` and the export's position column (1-based).\n"
               "Exit status: 0 recorded, 1 unknown participant or trial, missing reason, not a dtlab database, "
-              "2 bad command line, 3 SQLite or I/O failure.");
-  cmd->add_option("database", a->db, "Study database (SQLite)")->required();
+              "2 bad command line, 3 database or I/O failure.");
+  cmd->add_option("database", a->db, kDatabaseHelp)->required();
   cmd->add_option("--participant", a->participant, "Participant id as enrolled")->required();
   cmd->add_option("--trial", a->trial, "Only this trial of the participant's session (1-based position)")
       ->check(CLI::PositiveNumber);

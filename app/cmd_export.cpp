@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "study/common/file.h"
 #include "study/session/mapping.h"
 #include "study/common/text.h"
@@ -47,7 +48,7 @@ void run_export(const ExportArgs& a) {
     throw CLI::RuntimeError(exit_code(st.error()));
   }
   if (a.json) {
-    nlohmann::json j{{"database", a.db}, {"csv", a.csv}, {"rows", sum.rows}, {"excluded_rows", sum.excluded},
+    nlohmann::json j{{"database", store::display_name(a.db)}, {"csv", a.csv}, {"rows", sum.rows}, {"excluded_rows", sum.excluded},
                      {"columns", sum.columns}};
     std::cout << j.dump(2) << "\n";
   } else {
@@ -69,9 +70,9 @@ void add_export_command(CLI::App& root) {
       "position, block, one column per factor, task, trial seed, scene hash, answer, truth, scores, completion "
       "time in seconds, ..., design revision, and `excluded` with the reason of an exclusion). Readable by R's "
       "read.csv and pandas.read_csv as is; NA marks missing values");
-  cmd->add_option("database", args->db, "Study database (SQLite) written by dtlab run or dtlab simulate")
+  cmd->add_option("database", args->db, std::string(kDatabaseHelp) + ", written by dtlab run or dtlab simulate")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(existing_database());
   cmd->add_option("--csv", args->csv, "Output CSV file (replaced as a whole)")->required();
   cmd->add_flag("--json", args->json, "Print {database, csv, rows, excluded_rows, columns} as JSON on stdout");
   cmd->callback([args] { run_export(*args); });

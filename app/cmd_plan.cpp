@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "study/common/text.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
@@ -107,8 +108,9 @@ void add_plan_command(CLI::App& root) {
   cmd->add_option("protocol", *path, "Protocol file (TOML; format in docs/protocol.md)")->required();
   auto* index_opt = cmd->add_option("--index", *index, "0-based enrollment index K (0 to 2147483647); gets order row K mod rows")
                         ->check(enrollment_index_check());
-  auto* db_opt = cmd->add_option("--db", *db, "Study database: take K and the order row from its participant ledger")
-                     ->check(CLI::ExistingFile);
+  auto* db_opt = cmd->add_option("--db", *db,
+                                 std::string(kDatabaseHelp) + ": take K and the order row from its participant ledger")
+                     ->check(existing_database());
   auto* participant_opt = cmd->add_option("--participant", *participant, "Participant id enrolled in --db");
   index_opt->excludes(db_opt)->excludes(participant_opt);
   db_opt->needs(participant_opt);
@@ -117,10 +119,10 @@ void add_plan_command(CLI::App& root) {
                 "Print {\"protocol\", \"index\", \"order_row\", \"trials\": [{\"position\", \"block\", "
                 "\"levels\": {factor: level}, \"task\", \"trial\", \"seed\", \"method\", \"practice\"}]}");
   cmd->footer(
-      "Give either --index K or --db FILE --participant ID.\n"
+      "Give either --index K or --db DB --participant ID (DB: a file or a postgresql:// URI).\n"
       "Trial seeds: seed = mix64(mix64(mix64(master_seed), K), position), see study/design/seeds.h.\n"
       "Exit status: 0 ok, 1 invalid protocol, unknown participant or a database of another protocol\n"
-      "(FILE:LINE:COLUMN: error: FIELD: MESSAGE on stderr), 2 bad command line, 3 SQLite failure.");
+      "(FILE:LINE:COLUMN: error: FIELD: MESSAGE on stderr), 2 bad command line, 3 database failure.");
   cmd->callback([path, index, db, participant, json, index_opt] {
     if (index_opt->count() == 0 && db->empty()) {
       std::cerr << "dtlab plan: give either --index K or --db FILE --participant ID\n"

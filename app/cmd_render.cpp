@@ -9,7 +9,7 @@
 // plan's seed, the task's scene parameters and the condition's [rendering]
 // table (session/mapping.h); it never takes a method or mask parameter from
 // the command line. Exit 1 bad scene/protocol/database input, 2 bad command
-// line, 3 no GL context, SQLite failure or PNG not written.
+// line, 3 no GL context, database failure or PNG not written.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "app/platform/gl_context.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
@@ -363,8 +364,8 @@ void add_render_command(CLI::App& root) {
                                        "and --trial N)");
   auto* index_opt = cmd->add_option("--index", o->index, "0-based enrollment index K (order row K mod rows)")
                         ->check(CLI::NonNegativeNumber);
-  auto* db_opt = cmd->add_option("--db", o->db, "Study database: K and the order row from its participant ledger")
-                     ->check(CLI::ExistingFile);
+  auto* db_opt = cmd->add_option("--db", o->db, std::string(kDatabaseHelp) + ": K and the order row from its participant ledger")
+                     ->check(existing_database());
   auto* participant_opt = cmd->add_option("--participant", o->participant, "Participant id enrolled in --db");
   auto* trial_opt = cmd->add_option("--trial", o->trial,
                                     "Position N in the participant's plan, 1-based as `dtlab plan` numbers it");

@@ -5,7 +5,7 @@
 // DIR/path.svg, the walked path on the floor plan with the target and the
 // answer marked. Never writes the database. Exit 0 done, 1 unknown
 // participant or trial or a scene that no longer regenerates, 2 bad command
-// line, 3 GL, SQLite or I/O failure.
+// line, 3 GL, database or I/O failure.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -16,6 +16,7 @@
 #include <regex>
 
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "app/platform/gl_context.h"
 #include "study/common/file.h"
 #include "study/replay/path.h"
@@ -82,7 +83,7 @@ void run_replay(const ReplayArgs& a) {
     files.push_back("path.svg");
   }
   if (a.json) {
-    nlohmann::json j{{"database", a.db},          {"participant", a.participant}, {"trial", a.trial},
+    nlohmann::json j{{"database", store::display_name(a.db)}, {"participant", a.participant}, {"trial", a.trial},
                      {"task", trial->row.planned.task}, {"method", trial->row.planned.method},
                      {"poses", trial->poses.size()}, {"width", width}, {"height", height},
                      {"out", a.out},               {"files", files}};
@@ -105,8 +106,8 @@ void add_replay_command(CLI::App& root) {
       "target and the answer marked");
   cmd->footer("Trials are numbered as in `dtlab plan` and the export's position column (1-based).\n"
               "Exit status: 0 done, 1 unknown participant or trial, or a scene this build no longer generates, "
-              "2 bad command line, 3 GL, SQLite or I/O failure.");
-  cmd->add_option("database", a->db, "Study database")->required();
+              "2 bad command line, 3 GL, database or I/O failure.");
+  cmd->add_option("database", a->db, kDatabaseHelp)->required();
   cmd->add_option("--participant", a->participant, "Participant ID")->required();
   cmd->add_option("--trial", a->trial, "Trial position in the session, 1-based")->required()->check(CLI::PositiveNumber);
   cmd->add_option("--out", a->out, "Output directory (created if missing)")->required();

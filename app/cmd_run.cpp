@@ -1,4 +1,4 @@
-// `dtlab run PROTOCOL --db FILE [--participant ID] [--fullscreen] [--monitor N]
+// `dtlab run PROTOCOL --db DB [--participant ID] [--fullscreen] [--monitor N]
 // [--size WxH] [--script FILE] [--screenshots DIR] [--experimenter NAME]`: a
 // person's session in a GLFW window with Dear ImGui (app/run; docs/run.md).
 // The experimenter's start screen enrolls (or resumes) a participant, the
@@ -8,7 +8,7 @@
 // and running the command again resumes at the first unfinished trial.
 // Exit 0: the session finished (or the experimenter quit or aborted it);
 // 1: invalid protocol, database or script; 2: bad command line; 3: no
-// display, GL or SQLite failure; 130: the window was closed mid-session.
+// display, GL or database failure; 130: the window was closed mid-session.
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
@@ -17,6 +17,7 @@
 #include <regex>
 
 #include "app/commands.h"
+#include "app/database_arg.h"
 #include "app/platform/gl_context.h"
 #include "app/run/responder.h"
 #include "app/run/script.h"
@@ -124,7 +125,7 @@ void run_person(const RunArgs& a) {
                               "The session is complete. Thank you for taking part.\n\n(Experimenter: close with the "
                               "button or Escape.)");
   std::cerr << "dtlab run: " << participant << "'s session is finished: " << result->trials_recorded
-            << " trials recorded in " << a.db << "\n";
+            << " trials recorded in " << store::display_name(a.db) << "\n";
   if (!st && st.error().field != "window") fail(exit_code(st.error()), st.error().to_string());
 }
 
@@ -143,9 +144,9 @@ void add_run_command(CLI::App& root) {
       "Keys: Enter answers a trial; in WALKTHROUGH the arrow keys move and turn, the mouse turns; in ABSTRACT "
       "left-drag turns the scene. docs/run.md describes every screen, the console, scripts and replay.\n"
       "Exit status: 0 finished (or quit, or aborted from the console), 1 invalid protocol, database or script, 2 bad "
-      "command line, 3 no display, GL or SQLite failure, 130 window closed mid-session (rerun to resume).");
+      "command line, 3 no display, GL or database failure, 130 window closed mid-session (rerun to resume).");
   cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--db", a->db, "Study database (created if missing)")->required();
+  cmd->add_option("--db", a->db, std::string(kDatabaseHelp) + "; a file is created if missing")->required();
   cmd->add_option("--participant", a->participant, "Participant ID to fill in on the start screen");
   cmd->add_flag("--fullscreen", a->fullscreen, "Full screen on the monitor (at its current resolution)");
   cmd->add_option("--monitor", a->monitor, "Monitor to use, 0-based (0 = primary)")->check(CLI::Range(0, 16));

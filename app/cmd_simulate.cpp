@@ -1,4 +1,4 @@
-// `dtlab simulate PROTOCOL --participants N --db FILE [--seed S] [--width W
+// `dtlab simulate PROTOCOL --participants N --db DB [--seed S] [--width W
 // --height H] [--jobs J] [--allow-protocol-change] [--json]`: simulated
 // participants (study/sim) run the protocol headless (OSMesa) into a study
 // database; progress on stderr, a summary on stdout. Into an existing database it continues: running sessions
@@ -6,7 +6,7 @@
 // after the trials in progress (a second Ctrl-C at once); SIGKILL loses at
 // most the trials in progress. The protocol is checked first as `dtlab
 // validate` does (session::validate_runnable). Exit 0 all finished, 1 bad
-// protocol/database, 2 bad command line, 3 environment (GL, SQLite, fork),
+// protocol/database, 2 bad command line, 3 environment (GL, database, fork),
 // 130 interrupted.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -20,8 +20,9 @@
 #include <unistd.h>
 
 #include "app/commands.h"
-#include "study/common/text.h"
+#include "app/database_arg.h"
 #include "app/platform/gl_context.h"
+#include "study/common/text.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
 #include "study/session/runnable.h"
@@ -114,7 +115,7 @@ void run_simulate(const SimulateArgs& a) {
   const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
   auto summary = reader ? sim::summarize(*reader, rendering ? rendering->name : "") : Result<sim::Summary>(reader.error());
   if (a.json) {
-    nlohmann::json j{{"protocol", p->id},          {"database", a.db},
+    nlohmann::json j{{"protocol", p->id},          {"database", store::display_name(a.db)},
                      {"participants", run.participants}, {"finished", r.finished_total},
                      {"skipped_finished", r.already_finished}, {"resumed", r.resumed},
                      {"run_elsewhere", r.elsewhere},
@@ -130,7 +131,7 @@ void run_simulate(const SimulateArgs& a) {
     }
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cout << "dtlab simulate: " << p->id << " -> " << a.db << ": " << r.finished_total << " of "
+    std::cout << "dtlab simulate: " << p->id << " -> " << store::display_name(a.db) << ": " << r.finished_total << " of "
               << count(run.participants, "participant") << " finished (" << r.already_finished << " before this run, "
               << r.resumed << " resumed";
     if (r.elsewhere > 0) std::cout << ", " << r.elsewhere << " run by another process";
@@ -208,7 +209,7 @@ int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const 
   result.stopped = ran->stopped;
   for (const std::string& e : ran->errors) std::cerr << prefix << ": " << e << "\n";
   if (ran->stopped) {
-    std::cerr << prefix << ": interrupted; every recorded trial is saved in " << run.db
+    std::cerr << prefix << ": interrupted; every recorded trial is saved in " << store::display_name(run.db)
               << ". Run the same command again to resume.\n";
     return kExitInterrupted;
   }
@@ -230,13 +231,13 @@ void add_simulate_command(CLI::App& root) {
       "(errors as FILE:LINE:COLUMN: error: FIELD: MESSAGE; nothing is created).\n"
       "Progress on stderr (one line per recorded trial, with an ETA); a per-task summary on stdout.\n"
       "Exit status: 0 all finished, 1 invalid protocol (also when every failed session failed on it) or database,\n"
-      "2 bad command line, 3 environment (GL, SQLite, fork) or a participant failed otherwise, 130 interrupted\n"
+      "2 bad command line, 3 environment (GL, database, fork) or a participant failed otherwise, 130 interrupted\n"
       "(rerun to resume).");
   cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--participants", a->run.participants, "Simulated participants sim-001 .. sim-N")
       ->required()
       ->check(CLI::Range(1, 9999));
-  cmd->add_option("--db", a->db, "Study database (SQLite; created if missing)")->required();
+  cmd->add_option("--db", a->db, std::string(kDatabaseHelp) + "; created if missing")->required();
   cmd->add_option("--seed", a->run.seed, "Seed of the simulated participants' traits and choices (plans and scenes "
                                          "come from the protocol's master seed)")
       ->capture_default_str();

@@ -51,6 +51,7 @@ void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every 
 void add_plan_command(CLI::App& root);  // `dtlab plan PROTOCOL --index K`: one participant's trials, --json
 void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one tidy CSV row per recorded trial, --json
 void add_exclude_command(CLI::App& root);  // `dtlab exclude|include DB --participant ID [--trial N] --reason R`
+void add_copy_command(CLI::App& root);  // `dtlab copy SRC DST`: a whole study between databases (file, server), or a merge
 void add_analyze_command(CLI::App& root);  // `dtlab analyze DB --out DIR`: study report (report.md, index.html, JSON, CSV)
 void add_simulate_command(CLI::App& root);  // `dtlab simulate PROTOCOL --participants N --db FILE`: simulated participants, headless
 void add_demo_command(CLI::App& root);  // `dtlab demo [--out DIR]`: the reference study simulated end to end, then its report

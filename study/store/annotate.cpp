@@ -58,13 +58,17 @@ Status decide(Store::Impl& m, const char* action, const std::string& participant
   return m.write(what, [&]() -> Status {
     auto id = participant_row(m, participant, position);
     if (!id) return id.error();
+    auto row = detail::next_id(m.db, "exclusions");
+    if (!row) return row.error();
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
     auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO exclusions (participant_id, position, action, reason, decided_by, decided_at) "
-                             "VALUES (?, ?, ?, ?, ?, ?)",
+                             "INSERT INTO exclusions (id, participant_id, position, action, reason, decided_by, "
+                             "decided_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
                              what);
     if (!ins) return ins.error();
-    ins->bind(1, *id).bind(2, position).bind(3, action).bind(4, why).bind(5, trimmed(by));
-    ins->bind(6, detail::now_iso8601_utc());
+    ins->bind(1, *row).bind(2, *id).bind(3, position).bind(4, action).bind(5, why).bind(6, trimmed(by));
+    ins->bind(7, *now);
     return ins->run(what);
   });
 }
@@ -94,11 +98,16 @@ Status Store::add_note(const std::string& participant_id, std::optional<int> pos
       if (!id) return id.error();
       who = *id;
     }
+    auto row = detail::next_id(m.db, "notes");
+    if (!row) return row.error();
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
     auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO notes (participant_id, position, author, text, written_at) VALUES (?, ?, ?, ?, ?)",
+                             "INSERT INTO notes (id, participant_id, position, author, text, written_at) "
+                             "VALUES (?, ?, ?, ?, ?, ?)",
                              "adding a note");
     if (!ins) return ins.error();
-    ins->bind(1, who).bind(2, position).bind(3, trimmed(author)).bind(4, body).bind(5, detail::now_iso8601_utc());
+    ins->bind(1, *row).bind(2, who).bind(3, position).bind(4, trimmed(author)).bind(5, body).bind(6, *now);
     return ins->run("adding a note");
   });
 }

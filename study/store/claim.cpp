@@ -53,12 +53,24 @@ std::string host_name() {
   return buf;
 }
 
-// The start time recorded in an owner string host/pid/start/nonce.
-std::string owner_start_time(const std::string& owner) {
-  const auto a = owner.find('/', owner.find('/') + 1);
-  if (a == std::string::npos) return "";
-  const auto b = owner.find('/', a + 1);
-  return owner.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+std::string machine_id() {
+  std::ifstream in("/etc/machine-id");
+  std::string id;
+  in >> id;
+  return id.substr(0, 12);
+}
+
+// Field `n` (0-based) of an owner string host/pid/start/nonce/machine; "" if it has none
+// (owners written before the machine field have four).
+std::string owner_field(const std::string& owner, int n) {
+  std::size_t from = 0;
+  for (int i = 0; i < n; ++i) {
+    from = owner.find('/', from);
+    if (from == std::string::npos) return "";
+    ++from;
+  }
+  const auto to = owner.find('/', from);
+  return owner.substr(from, to == std::string::npos ? std::string::npos : to - from);
 }
 
 struct Holder {
@@ -69,17 +81,18 @@ struct Holder {
 // True when the holder can no longer be running the session.
 bool gone(const Claimant& me, const Holder& h, const std::string& now) {
   if (h.expires_at < now) return true;
-  if (h.host != me.host) return false;  // another machine: only expiry tells
+  const std::string machine = owner_field(h.owner, 4);
+  if (h.host != me.host || (!machine.empty() && !me.machine.empty() && machine != me.machine))
+    return false;  // another machine (or a station cloned with this one's host name): only expiry tells
   if (::kill(static_cast<pid_t>(h.pid), 0) != 0 && errno == ESRCH) return true;
   const ProcStat now_stat = proc_stat(h.pid);
   if (now_stat.state == "Z" || now_stat.state == "X") return true;  // killed, not yet reaped: a zombie runs nothing
-  const std::string recorded = owner_start_time(h.owner);
+  const std::string recorded = owner_field(h.owner, 2);
   return !recorded.empty() && !now_stat.start_time.empty() && recorded != now_stat.start_time;  // pid reused
 }
 
-std::string in_future(double seconds) {
-  return detail::iso8601_utc(std::chrono::system_clock::now() +
-                             std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000)));
+std::string in_future(std::chrono::system_clock::time_point now, double seconds) {
+  return detail::iso8601_utc(now + std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000)));
 }
 
 }  // namespace
@@ -90,9 +103,10 @@ Claimant make_claimant() {
   c.host = host_name();
   c.pid = ::getpid();
   c.start_time = process_start_time(c.pid);
+  c.machine = machine_id();
   std::random_device rd;
   std::ostringstream owner;
-  owner << c.host << '/' << c.pid << '/' << c.start_time << '/' << std::hex << rd() << counter++;
+  owner << c.host << '/' << c.pid << '/' << c.start_time << '/' << std::hex << rd() << counter++ << '/' << c.machine;
   c.owner = owner.str();
   return c;
 }
@@ -107,7 +121,9 @@ Status Store::Impl::take_claim(std::int64_t session_id, const std::string& who, 
   q->bind(1, session_id);
   auto row = q->step(what);
   if (!row) return row.error();
-  const std::string now = detail::now_iso8601_utc();
+  auto clock = db.conn().now();  // the server's clock on PostgreSQL: every station judges a claim by one clock
+  if (!clock) return clock.error();
+  const std::string now = detail::iso8601_utc(*clock);
   if (*row) {
     Holder h{q->text(0), q->text(1), q->text(3), q->text(4), q->text(5), q->int64(2)};
     if (h.owner != me.owner && !take_over && !gone(me, h, now))
@@ -120,12 +136,15 @@ Status Store::Impl::take_claim(std::int64_t session_id, const std::string& who, 
     if (took_over) *took_over = h.owner != me.owner;
   }
   auto up = Stmt::prepare(db,
-                          "INSERT OR REPLACE INTO session_claims (session_id, owner, host, pid, claimed_at, "
-                          "heartbeat_at, expires_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                          "INSERT INTO session_claims (session_id, owner, host, pid, claimed_at, heartbeat_at, "
+                          "expires_at) VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (session_id) DO UPDATE SET "
+                          "owner = excluded.owner, host = excluded.host, pid = excluded.pid, "
+                          "claimed_at = excluded.claimed_at, heartbeat_at = excluded.heartbeat_at, "
+                          "expires_at = excluded.expires_at",
                           what);
   if (!up) return up.error();
   up->bind(1, session_id).bind(2, me.owner).bind(3, me.host).bind(4, me.pid).bind(5, now).bind(6, now);
-  up->bind(7, in_future(options.claim_ttl_s));
+  up->bind(7, in_future(*clock, options.claim_ttl_s));
   if (auto s = up->run(what); !s) return s;
   claimed.insert(session_id);
   return {};
@@ -133,12 +152,20 @@ Status Store::Impl::take_claim(std::int64_t session_id, const std::string& who, 
 
 Status Store::Impl::renew_claim(std::int64_t session_id, const std::string& who) {
   const char* what = "renewing the session claim";
-  auto up = Stmt::prepare(db, "UPDATE session_claims SET heartbeat_at = ?, expires_at = ? WHERE session_id = ? AND owner = ?",
+  auto clock = db.conn().now();
+  if (!clock) return clock.error();
+  auto up = Stmt::prepare(db,
+                          "UPDATE session_claims SET heartbeat_at = ?, expires_at = ? WHERE session_id = ? AND owner = ? "
+                          "RETURNING session_id",
                           what);
   if (!up) return up.error();
-  up->bind(1, detail::now_iso8601_utc()).bind(2, in_future(options.claim_ttl_s)).bind(3, session_id).bind(4, me.owner);
-  if (auto s = up->run(what); !s) return s;
-  if (sqlite3_changes(db.get()) == 1) return {};
+  up->bind(1, detail::iso8601_utc(*clock)).bind(2, in_future(*clock, options.claim_ttl_s)).bind(3, session_id);
+  up->bind(4, me.owner);
+  auto renewed = up->step(what);
+  if (!renewed) return renewed.error();
+  const bool ours = *renewed;
+  if (auto s = up->run(what); !s) return s;  // steps past the RETURNING row to the end of the statement
+  if (ours) return {};
   claimed.erase(session_id);
   return invalid("session",
                  "the session of \"" + who + "\" is no longer claimed by this process (taken over by another, or "
@@ -158,7 +185,7 @@ Status Store::Impl::drop_claim(std::int64_t session_id) {
 Store::Impl::~Impl() {
   // Best effort: a claim left behind is taken over anyway once this process is gone.
   if (claimed.empty() || broken) return;
-  sqlite3_busy_timeout(db.get(), 2000);
+  db.conn().set_busy_timeout(2000);
   const std::set<std::int64_t> ids = claimed;
   write("releasing the session claims", [&]() -> Status {
     for (std::int64_t id : ids)

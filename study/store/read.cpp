@@ -6,16 +6,15 @@
 #include "study/store/read.h"
 
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
-#include <filesystem>
 #include <map>
 #include <set>
 
 #include "study/store/detail/file_check.h"
 #include "study/store/detail/reader_impl.h"
+#include "study/store/detail/schema.h"
 
 namespace dtlab::store {
 
@@ -91,57 +90,6 @@ std::optional<Answer> read_answer(const Stmt& st, const std::string& kind, int c
   return Answer{Position{st.real(c + 2), st.real(c + 3)}};
 }
 
-std::string uri_escape(const std::string& path) {
-  std::string out = "file:";
-  for (unsigned char ch : path) {
-    if (ch == '?' || ch == '#' || ch == '%' || ch < 0x20) {
-      char buf[4];
-      std::snprintf(buf, sizeof buf, "%%%02X", ch);
-      out += buf;
-    } else {
-      out += static_cast<char>(ch);
-    }
-  }
-  return out;
-}
-
-// Opens `path` for reading only, choosing how so that nothing is left behind:
-// writable file in a writable directory -> read-write without CREATE, made
-// read-only by query_only (as the last connection it checkpoints and removes
-// -wal/-shm like any writer; a SQLITE_OPEN_READONLY connection could not);
-// otherwise (read-only media, a write-protected file) -> immutable when no
-// write-ahead log is waiting, plain read-only when one is.
-Result<Db> open_for_reading(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path p(path);
-  if (!fs::exists(p, ec))
-    return Error{path, 0, 0, "", "no such file; expected an existing dtlab study database", ErrorKind::not_found};
-  if (fs::is_directory(p, ec)) return Error{path, 0, 0, "", "is a directory; expected a dtlab study database file"};
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  const bool writable = ::access(path.c_str(), W_OK) == 0 && ::access(dir.c_str(), W_OK) == 0;
-  if (writable) {
-    auto db = Db::open(path, SQLITE_OPEN_READWRITE);
-    if (!db) return db.error();
-    if (auto s = db->exec("PRAGMA query_only = ON", "making the connection read-only"); !s) return s.error();
-    return db;
-  }
-  const bool wal_waiting = fs::exists(path + "-wal", ec) && fs::file_size(path + "-wal", ec) > 0;
-  const std::string uri = uri_escape(path) + (wal_waiting ? "?mode=ro" : "?mode=ro&immutable=1");
-  auto db = Db::open(uri, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
-  if (!db) {
-    Error e = db.error();
-    e.file = path;
-    if (wal_waiting)
-      e.message += "; the file has an unfinished write-ahead log (" + path +
-                   "-wal) in a directory this process cannot write: copy the database and its -wal file to a "
-                   "writable place and read it there";
-    return e;
-  }
-  db->set_path(path);
-  return db;
-}
-
 }  // namespace
 
 bool LedgerEntry::simulated() const {
@@ -166,19 +114,14 @@ std::string TrialRow::level(const std::string& factor) const {
 
 Status StudyReader::Impl::begin() {
   if (in_snapshot || !owned) return {};
-  if (auto s = db->exec("BEGIN", "starting a read transaction"); !s) return s;
-  // The snapshot starts at the first read: take it now, so every call sees the same one.
-  if (auto s = db->query_int("SELECT count(*) FROM sqlite_schema", "starting a read transaction"); !s) {
-    db->exec("ROLLBACK", "ending the read transaction");
-    return s.error();
-  }
+  if (auto s = db->conn().begin_read("starting a read transaction"); !s) return s;
   in_snapshot = true;
   return {};
 }
 
 void StudyReader::Impl::end() {
   if (!in_snapshot) return;
-  db->exec("COMMIT", "ending the read transaction");
+  db->conn().commit("ending the read transaction");  // read only: nothing to lose if it fails
   in_snapshot = false;
 }
 
@@ -186,13 +129,13 @@ template <class F>
 auto StudyReader::Impl::call(F&& f) -> decltype(f()) {
   // A borrowed connection reads each outermost call in a short transaction of its own (unless its
   // Store is inside one); an owned one reads in its snapshot.
-  const bool own_tx = !owned && depth == 0 && sqlite3_get_autocommit(db->get());
+  const bool own_tx = !owned && depth == 0 && !db->conn().in_transaction();
   if (own_tx)
-    if (auto s = db->exec("BEGIN", "starting a read transaction"); !s) return s.error();
+    if (auto s = db->conn().begin_read("starting a read transaction"); !s) return s.error();
   ++depth;
   auto r = f();
   --depth;
-  if (own_tx) db->exec("COMMIT", "ending the read transaction");
+  if (own_tx) db->conn().commit("ending the read transaction");
   return r;
 }
 
@@ -212,14 +155,14 @@ StudyReader StudyReader::borrow(detail::Db& db, ReadOptions options) {
 }
 
 Result<StudyReader> StudyReader::open(const std::string& path, ReadOptions options) {
-  auto db = open_for_reading(path);
-  if (!db) return db.error();
-  sqlite3_busy_timeout(db->get(), options.busy_timeout_ms);
-  auto state = detail::inspect(*db);
+  auto opened = detail::open_connection(path, detail::Access::read, options.busy_timeout_ms);
+  if (!opened) return opened.error();
+  Db db(std::move(*opened));
+  auto state = detail::inspect(db);
   if (!state) return state.error();
-  if (auto s = detail::check_dtlab(path, *state, false); !s) return s.error();
+  if (auto s = detail::check_dtlab(db, *state, false); !s) return s.error();
   auto impl = std::make_unique<Impl>();
-  impl->own = std::move(*db);
+  impl->own = std::move(db);
   impl->db = &impl->own;
   impl->owned = true;
   impl->options = std::move(options);
@@ -329,8 +272,9 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
           out.push_back(std::move(r));
         });
     if (!st) return st.error();
+    // Resumes and pauses of a session in the order they happened (time, then the plan's progress).
     st = each_row(db, "SELECT session_id, resumed_at, software_version, next_position FROM session_resumes "
-                      "ORDER BY rowid", "reading the resumes", no_bind, [&](const Stmt& q) {
+                      "ORDER BY session_id, resumed_at, next_position IS NULL, next_position", "reading the resumes", no_bind, [&](const Stmt& q) {
       if (auto it = at.find(q.int64(0)); it != at.end()) {
         auto next = opt_int(q, 3);
         out[it->second].resumes.push_back(
@@ -340,7 +284,7 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
     if (!st) return st.error();
     if (impl_->schema_version < 2) return out;
     st = each_row(db, "SELECT session_id, position, paused_at, resumed_at, duration_s FROM session_pauses "
-                      "ORDER BY rowid", "reading the pauses", no_bind, [&](const Stmt& q) {
+                      "ORDER BY session_id, paused_at, resumed_at", "reading the pauses", no_bind, [&](const Stmt& q) {
       if (auto it = at.find(q.int64(0)); it != at.end()) {
         auto pos = opt_int(q, 1);
         out[it->second].pauses.push_back(Pause{pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
@@ -350,8 +294,8 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
     if (!st) return st.error();
     if (impl_->schema_version >= 3) {
       st = each_row(db,
-                    "SELECT session_id, recorded_at, kind, width, height, refresh_hz, renderer, monitor FROM "
-                    "session_displays ORDER BY rowid",
+                    std::string("SELECT session_id, recorded_at, kind, width, height, refresh_hz, renderer, monitor "
+                                "FROM session_displays ORDER BY ") + detail::kDisplayOrder,
                     "reading the displays", no_bind, [&](const Stmt& q) {
                       if (auto it = at.find(q.int64(0)); it != at.end()) {
                         DisplayInfo d{q.text(2), static_cast<int>(q.int64(3)), static_cast<int>(q.int64(4)),
@@ -371,10 +315,10 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
     // the last one, has no result, and nobody runs the session now (unclaimed or no longer running).
     st = each_row(db,
                   "SELECT a.session_id, a.position, a.attempt, a.started_at, "
-                  " EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
-                  "         AND b.position = a.position AND b.attempt > a.attempt), "
-                  " EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-                  "         WHERE p.session_id = a.session_id AND p.position = a.position) "
+                  " CASE WHEN EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
+                  "         AND b.position = a.position AND b.attempt > a.attempt) THEN 1 ELSE 0 END, "
+                  " CASE WHEN EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+                  "         WHERE p.session_id = a.session_id AND p.position = a.position) THEN 1 ELSE 0 END "
                   "FROM trial_attempts a ORDER BY a.session_id, a.position, a.attempt",
                   "reading the trial attempts", no_bind, [&](const Stmt& q) {
                     auto it = at.find(q.int64(0));
@@ -399,7 +343,7 @@ Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& particip
     Status st = each_row(db,
                          "SELECT l.planned_trial_id, l.factor, l.level FROM planned_levels l "
                          "JOIN planned_trials p ON p.id = l.planned_trial_id JOIN sessions s ON s.id = p.session_id "
-                         "JOIN participants pa ON pa.id = s.participant_id WHERE 1" + filter +
+                         "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                              " ORDER BY l.planned_trial_id, l.factor_position",
                          "reading the planned levels",
                          [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
@@ -409,7 +353,7 @@ Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& particip
     st = each_row(db,
                   "SELECT p.id, p.session_id, pa.participant, p.position, p.block, p.task, p.trial, p.seed, p.method, "
                   "p.practice FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
-                  "JOIN participants pa ON pa.id = s.participant_id WHERE 1" + filter +
+                  "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                       " ORDER BY pa.enrollment_index, p.position",
                   "reading the planned trials", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
                   [&](const Stmt& q) {
@@ -619,19 +563,7 @@ Result<std::vector<InputEvent>> StudyReader::events(const std::string& participa
 }
 
 Result<std::string> StudyReader::integrity_check() {
-  return impl_->call([&]() -> Result<std::string> {
-    std::string report;
-    Status st = each_row(*impl_->db, "PRAGMA integrity_check", "checking integrity", no_bind,
-                         [&](const Stmt& q) { report += (report.empty() ? "" : "; ") + q.text(0); });
-    if (!st) return st.error();
-    std::string fk;
-    st = each_row(*impl_->db, "PRAGMA foreign_key_check", "checking foreign keys", no_bind, [&](const Stmt& q) {
-      fk += (fk.empty() ? "" : "; ") + q.text(0) + " row " + q.text(1) + " points to a missing " + q.text(2);
-    });
-    if (!st) return st.error();
-    if (report == "ok" && fk.empty()) return std::string("ok");
-    return report == "ok" ? fk : report + (fk.empty() ? "" : "; " + fk);
-  });
+  return impl_->call([&]() { return impl_->db->conn().integrity_check(); });
 }
 
 }  // namespace dtlab::store

@@ -15,6 +15,7 @@ namespace {
 
 using detail::Db;
 using detail::Stmt;
+using detail::Value;
 
 std::string seed_text(std::uint64_t seed) { return std::to_string(seed); }
 
@@ -155,26 +156,23 @@ Status validate_plan(const Store::Impl& m, const Enrollment& e, const design::Pl
 
 Status insert_plan(Db& db, std::int64_t session_id, const design::Plan& plan) {
   const char* what = "storing the planned trials";
-  auto pt = Stmt::prepare(db,
-                          "INSERT INTO planned_trials (session_id, position, block, task, trial, seed, method, practice) "
-                          "VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-                          what);
-  if (!pt) return pt.error();
-  auto lv = Stmt::prepare(db,
-                          "INSERT INTO planned_levels (planned_trial_id, factor_position, factor, level) VALUES (?, ?, ?, ?)",
-                          what);
-  if (!lv) return lv.error();
+  auto first = detail::next_id(db, "planned_trials");
+  if (!first) return first.error();
+  std::vector<std::vector<Value>> trials, levels;
+  std::int64_t id = *first;
   for (const auto& t : plan.trials) {
-    pt->bind(1, session_id).bind(2, t.position).bind(3, t.block).bind(4, t.task).bind(5, t.trial);
-    pt->bind(6, seed_text(t.seed)).bind(7, t.method).bind(8, t.practice ? 1 : 0);
-    if (auto s = pt->run(what); !s) return s;
-    const std::int64_t id = sqlite3_last_insert_rowid(db.get());
-    for (std::size_t f = 0; f < t.levels.size(); ++f) {
-      lv->bind(1, id).bind(2, static_cast<int>(f + 1)).bind(3, t.levels[f].first).bind(4, t.levels[f].second);
-      if (auto s = lv->run(what); !s) return s;
-    }
+    trials.push_back({id, session_id, std::int64_t{t.position}, std::int64_t{t.block}, t.task, std::int64_t{t.trial},
+                      seed_text(t.seed), t.method, std::int64_t{t.practice ? 1 : 0}});
+    for (std::size_t f = 0; f < t.levels.size(); ++f)
+      levels.push_back({id, static_cast<std::int64_t>(f + 1), t.levels[f].first, t.levels[f].second});
+    ++id;
   }
-  return {};
+  if (auto s = db.conn().insert_rows("planned_trials",
+                                     {"id", "session_id", "position", "block", "task", "trial", "seed", "method", "practice"},
+                                     trials, what);
+      !s)
+    return s;
+  return db.conn().insert_rows("planned_levels", {"planned_trial_id", "factor_position", "factor", "level"}, levels, what);
 }
 
 bool finite(double v) { return std::isfinite(v); }
@@ -252,31 +250,31 @@ Status insert_result(Db& db, std::int64_t planned_id, const TrialRecord& r) {
   st->bind(17, r.completion_s).bind(18, detail::iso8601_utc(r.started_at)).bind(19, detail::iso8601_utc(r.ended_at));
   st->bind(20, r.frames.frames).bind(21, r.frames.mean_ms).bind(22, r.frames.sd_ms).bind(23, r.frames.p95_ms);
   st->bind(24, r.frames.max_ms).bind(25, static_cast<std::int64_t>(r.events.size()));
-  st->bind(26, detail::now_iso8601_utc());
+  auto now = db.now_iso();
+  if (!now) return now.error();
+  st->bind(26, *now);
   st->bind(27, r.frames.first_ms).bind(28, r.frames.steady_median_ms).bind(29, r.frames.late);
   st->bind(30, r.frames.refresh_hz);
   if (auto x = st->run(what); !x) return x;
 
-  auto ev = Stmt::prepare(db, "INSERT INTO input_events (trial_id, seq, t_s, kind, detail, x, y) VALUES (?, ?, ?, ?, ?, ?, ?)",
-                          "storing the input events");
-  if (!ev) return ev.error();
+  std::vector<std::vector<Value>> events;
+  events.reserve(r.events.size());
   for (std::size_t i = 0; i < r.events.size(); ++i) {
     const auto& e = r.events[i];
-    ev->bind(1, planned_id).bind(2, static_cast<std::int64_t>(i + 1)).bind(3, e.t_s).bind(4, to_string(e.kind));
-    ev->bind(5, e.detail).bind(6, e.x).bind(7, e.y);
-    if (auto x = ev->run("storing the input events"); !x) return x;
+    events.push_back({planned_id, static_cast<std::int64_t>(i + 1), e.t_s, std::string(to_string(e.kind)), e.detail, e.x, e.y});
   }
-  auto po = Stmt::prepare(db,
-                          "INSERT INTO camera_poses (trial_id, frame, t_s, x, y, z, yaw, pitch) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-                          "storing the camera poses");
-  if (!po) return po.error();
+  if (auto x = db.conn().insert_rows("input_events", {"trial_id", "seq", "t_s", "kind", "detail", "x", "y"}, events,
+                                     "storing the input events");
+      !x)
+    return x;
+  std::vector<std::vector<Value>> poses;
+  poses.reserve(r.poses.size());
   for (std::size_t i = 0; i < r.poses.size(); ++i) {
     const auto& p = r.poses[i];
-    po->bind(1, planned_id).bind(2, static_cast<std::int64_t>(i + 1)).bind(3, p.t_s).bind(4, p.x).bind(5, p.y);
-    po->bind(6, p.z).bind(7, p.yaw).bind(8, p.pitch);
-    if (auto x = po->run("storing the camera poses"); !x) return x;
+    poses.push_back({planned_id, static_cast<std::int64_t>(i + 1), p.t_s, p.x, p.y, p.z, p.yaw, p.pitch});
   }
-  return {};
+  return db.conn().insert_rows("camera_poses", {"trial_id", "frame", "t_s", "x", "y", "z", "yaw", "pitch"}, poses,
+                               "storing the camera poses");
 }
 
 }  // namespace
@@ -308,14 +306,18 @@ Result<Session> Store::begin_session(const std::string& participant_id, const de
     auto existing = read_session(m.db, participant_id);
     if (!existing) return existing.error();
     if (!*existing) {
+      auto next = detail::next_id(m.db, "sessions");
+      if (!next) return next.error();
+      const std::int64_t id = *next;
+      auto now = m.db.now_iso();
+      if (!now) return now.error();
       auto ins = Stmt::prepare(m.db,
-                               "INSERT INTO sessions (participant_id, study_id, software_version, status, started_at) "
-                               "SELECT id, ?, ?, 'running', ? FROM participants WHERE participant = ?",
+                               "INSERT INTO sessions (id, participant_id, study_id, software_version, status, started_at) "
+                               "SELECT ?, id, ?, ?, 'running', ? FROM participants WHERE participant = ?",
                                "creating the session");
       if (!ins) return ins.error();
-      ins->bind(1, m.study_id).bind(2, m.study.software_version).bind(3, detail::now_iso8601_utc()).bind(4, participant_id);
+      ins->bind(1, id).bind(2, m.study_id).bind(3, m.study.software_version).bind(4, *now).bind(5, participant_id);
       if (auto s = ins->run("creating the session"); !s) return s;
-      const std::int64_t id = sqlite3_last_insert_rowid(m.db.get());
       if (auto s = insert_plan(m.db, id, plan); !s) return s;
       out = Session{id, participant_id, SessionStatus::running, static_cast<int>(plan.trials.size()), 0, false, false};
       return m.take_claim(id, participant_id, options.take_over, nullptr);
@@ -344,7 +346,9 @@ Result<Session> Store::begin_session(const std::string& participant_id, const de
                              "VALUES (?, ?, ?, ?)",
                              "recording the resume");
     if (!res) return res.error();
-    res->bind(1, out.id).bind(2, detail::now_iso8601_utc()).bind(3, m.study.software_version);
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
+    res->bind(1, out.id).bind(2, *now).bind(3, m.study.software_version);
     if (out.recorded < out.planned) res->bind(4, out.recorded + 1);
     if (auto s = res->run("recording the resume"); !s) return s;
     out.resumed = true;
@@ -397,7 +401,9 @@ Status Store::begin_trial(const Session& session, int position) {
                              "WHERE session_id = ?1 AND position = ?2",
                              "recording the trial attempt");
     if (!ins) return ins.error();
-    ins->bind(1, session.id).bind(2, position).bind(3, detail::now_iso8601_utc()).bind(4, m.me.owner);
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
+    ins->bind(1, session.id).bind(2, position).bind(3, *now).bind(4, m.me.owner);
     return ins->run("recording the trial attempt");
   });
 }
@@ -449,7 +455,9 @@ Status Store::record_display(const Session& session, const DisplayInfo& d) {
                              "renderer, monitor) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
                              "recording the display");
     if (!ins) return ins.error();
-    ins->bind(1, session.id).bind(2, detail::now_iso8601_utc()).bind(3, d.kind).bind(4, d.width).bind(5, d.height);
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
+    ins->bind(1, session.id).bind(2, *now).bind(3, d.kind).bind(4, d.width).bind(5, d.height);
     ins->bind(6, d.refresh_hz).bind(7, d.renderer).bind(8, d.monitor);
     return ins->run("recording the display");
   });
@@ -477,7 +485,9 @@ Status Store::finish_session(const Session& session) {
     left->reset();
     auto up = Stmt::prepare(m.db, "UPDATE sessions SET status = 'finished', ended_at = ? WHERE id = ?", "finishing");
     if (!up) return up.error();
-    up->bind(1, detail::now_iso8601_utc()).bind(2, session.id);
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
+    up->bind(1, *now).bind(2, session.id);
     if (auto s = up->run("finishing"); !s) return s;
     auto del = Stmt::prepare(m.db, "DELETE FROM session_claims WHERE session_id = ?", "releasing the claim");
     if (!del) return del.error();
@@ -509,7 +519,9 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
                              "storing the questionnaire");
     if (!seen) return seen.error();
     if (!ins) return ins.error();
-    const std::string now = detail::now_iso8601_utc();
+    auto clock = m.db.now_iso();
+    if (!clock) return clock.error();
+    const std::string now = *clock;
     for (const auto& a : answers) {
       seen->bind(1, session.id).bind(2, a.item).bind(3, a.scope);
       if (auto r = seen->step("checking the questionnaire"); !r) return r.error();

@@ -1,17 +1,15 @@
 // Opening a study database, its protocol revisions and the participant
-// ledger (docs/store.md, invariants 1-4). open() inspects a file read-only
-// (one snapshot) before touching it, so a foreign or newer file is never
+// ledger (docs/store.md, invariants 1-4). open() inspects a database read-only
+// (one snapshot) before touching it, so a foreign or newer one is never
 // modified, and inspects it again inside its first write transaction, so
-// processes creating one file together all see it whole; every write is one
-// BEGIN IMMEDIATE transaction, which makes enrollment atomic across processes.
+// processes creating one database together all see it whole; every write is
+// one transaction holding the study's write lock (SQLite: BEGIN IMMEDIATE;
+// PostgreSQL: an advisory lock), which makes enrollment atomic across
+// processes and stations.
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
-#include <thread>
-#include <cstdio>
-#include <filesystem>
 
 #include "study/common/version.h"
 #include "study/store/detail/file_check.h"
@@ -73,15 +71,19 @@ Status validate_participant_id(const std::string& path, const std::string& id) {
 // Inserts the study row (and its factors) and makes it current.
 Result<std::int64_t> insert_study(Db& db, const StudyInfo& s) {
   const char* what = "recording the protocol";
+  auto id_or = detail::next_id(db, "studies");
+  if (!id_or) return id_or.error();
+  const std::int64_t id = *id_or;
+  auto now = db.now_iso();
+  if (!now) return now.error();
   auto st = Stmt::prepare(db,
-                          "INSERT INTO studies (protocol_id, protocol_text, protocol_sha256, software_version, "
-                          "order_rows, created_at) VALUES (?, ?, ?, ?, ?, ?)",
+                          "INSERT INTO studies (id, protocol_id, protocol_text, protocol_sha256, software_version, "
+                          "order_rows, created_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
                           what);
   if (!st) return st.error();
-  st->bind(1, s.protocol_id).bind(2, s.protocol_text).bind(3, s.protocol_sha256).bind(4, s.software_version);
-  st->bind(5, s.order_rows).bind(6, detail::now_iso8601_utc());
+  st->bind(1, id).bind(2, s.protocol_id).bind(3, s.protocol_text).bind(4, s.protocol_sha256);
+  st->bind(5, s.software_version).bind(6, s.order_rows).bind(7, *now);
   if (auto r = st->run(what); !r) return r.error();
-  const std::int64_t id = sqlite3_last_insert_rowid(db.get());
   auto f = Stmt::prepare(db, "INSERT INTO study_factors (study_id, position, name) VALUES (?, ?, ?)", what);
   if (!f) return f.error();
   for (std::size_t i = 0; i < s.factors.size(); ++i) {
@@ -196,26 +198,11 @@ Result<std::pair<std::int64_t, StudyInfo>> current_study(Db& db) {
   return std::make_pair(id, std::move(info));
 }
 
-// PRAGMA journal_mode = WAL. Switching needs an exclusive lock, and SQLite
-// answers SQLITE_BUSY at once instead of calling the busy handler, so when
-// several processes create the same file together the losers retry here
-// (until the busy timeout) and then find the file already in WAL mode.
-Result<std::optional<std::string>> set_wal(Db& db, int timeout_ms) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-  for (;;) {
-    auto mode = db.query_text("PRAGMA journal_mode = WAL", "switching to WAL mode");
-    const int code = sqlite3_errcode(db.get());
-    if (mode || (code != SQLITE_BUSY && code != SQLITE_LOCKED) || std::chrono::steady_clock::now() >= deadline)
-      return mode;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-}
-
 Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
   const char* what = "reading the participant ledger";
   auto st = Stmt::prepare(db,
-                          "SELECT enrollment_index, order_row, released_at IS NOT NULL FROM participants "
-                          "WHERE participant = ?",
+                          "SELECT enrollment_index, order_row, CASE WHEN released_at IS NULL THEN 0 ELSE 1 END "
+                          "FROM participants WHERE participant = ?",
                           what);
   if (!st) return st.error();
   st->bind(1, participant_id);
@@ -248,33 +235,24 @@ Store& Store::operator=(Store&&) noexcept = default;
 Store::~Store() = default;
 const std::string& Store::path() const { return impl_->path; }
 
-// Opens the connection and makes it a study database connection: the file is looked at
-// first (one read snapshot, nothing written), then switched to WAL and configured. `create`:
-// a missing file becomes a new database; otherwise it must exist and be a dtlab database.
-Result<std::unique_ptr<Store::Impl>> connect(const std::string& path, const OpenOptions& options, bool create) {
-  if (!create && !std::filesystem::exists(path))
-    return Error{path, 0, 0, "", "no such file; expected an existing dtlab study database", ErrorKind::not_found};
-  auto opened = Db::open(path, SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0));
+// Opens the connection and makes it a study database connection: the database is looked at
+// first (one read snapshot, nothing written), then configured for writing. `create`: a missing
+// file (or PostgreSQL schema) becomes a new database; otherwise it must be a dtlab database.
+Result<std::unique_ptr<Store::Impl>> connect(const std::string& where, const OpenOptions& options, bool create) {
+  auto opened = detail::open_connection(where, create ? detail::Access::create : detail::Access::write,
+                                        options.busy_timeout_ms);
   if (!opened) return opened.error();
-  auto impl = std::make_unique<Store::Impl>(std::move(*opened), path, options);
-  Db& db = impl->db;
-  sqlite3_busy_timeout(db.get(), options.busy_timeout_ms);
+  Db db(std::move(*opened));
+  const std::string name = db.path();
 
-  // 1. Look before touching: a foreign or newer file is refused unmodified.
+  // 1. Look before touching: a foreign or newer database is refused unmodified.
   auto state = detail::inspect(db);
   if (!state) return state.error();
-  if (auto s = detail::check_dtlab(path, *state, create); !s) return s.error();
+  if (auto s = detail::check_dtlab(db, *state, create); !s) return s.error();
 
-  // 2. Connection settings. WAL: readers never block the writer. FULL: a
-  //    committed trial survives power loss too (NORMAL only an app crash).
-  auto mode = set_wal(db, options.busy_timeout_ms);
-  if (!mode) return mode.error();
-  if (mode->value_or("") != "wal")
-    return Error{path, 0, 0, "sqlite", "cannot use WAL mode (journal_mode is \"" + mode->value_or("") + "\")",
-                 ErrorKind::environment};
-  if (auto s = db.exec("PRAGMA foreign_keys = ON; PRAGMA synchronous = FULL", "configuring the connection"); !s)
-    return s.error();
-  return impl;
+  // 2. Connection settings (docs/store.md, "Connection settings").
+  if (auto s = db.conn().configure_for_writing(options.busy_timeout_ms); !s) return s.error();
+  return std::make_unique<Store::Impl>(std::move(db), name, options);
 }
 
 // Inside the first write transaction: the file is looked at again (another process may have
@@ -282,7 +260,7 @@ Result<std::unique_ptr<Store::Impl>> connect(const std::string& path, const Open
 Status prepare_schema(Store::Impl& m, const std::string& software_version, bool allow_empty) {
   auto state = detail::inspect(m.db, /*in_transaction=*/true);
   if (!state) return state.error();
-  if (auto s = detail::check_dtlab(m.path, *state, allow_empty); !s) return s;
+  if (auto s = detail::check_dtlab(m.db, *state, allow_empty); !s) return s;
   auto version = detail::applied_schema_version(m.db);
   if (!version) return version.error();
   if (*version < kSchemaVersion)
@@ -349,6 +327,10 @@ Result<Enrollment> Store::enroll(const std::string& participant_id, const Demogr
     }
     if (existing.error().kind != ErrorKind::not_found) return existing.error();
     const char* what = "assigning an order row";
+    auto id = detail::next_id(m.db, "participants");
+    if (!id) return id.error();
+    auto now = m.db.now_iso();
+    if (!now) return now.error();
     auto next = m.db.query_int("SELECT coalesce(max(enrollment_index) + 1, 0) FROM participants", what);
     if (!next) return next.error();
     // Rule (docs/store.md, invariant 4): fewest active participants, ties to the lowest row.
@@ -366,14 +348,14 @@ Result<Enrollment> Store::enroll(const std::string& participant_id, const Demogr
     }
     const auto row = std::min_element(fill.begin(), fill.end()) - fill.begin();
     auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO participants (participant, enrollment_index, order_row, study_id, "
-                             "demographics, enrolled_at) VALUES (?, ?, ?, ?, ?, ?)",
+                             "INSERT INTO participants (id, participant, enrollment_index, order_row, study_id, "
+                             "demographics, enrolled_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
                              "enrolling");
     if (!ins) return ins.error();
-    ins->bind(1, participant_id).bind(2, next->value_or(0)).bind(3, static_cast<std::int64_t>(row));
+    ins->bind(1, *id).bind(2, participant_id).bind(3, next->value_or(0)).bind(4, static_cast<std::int64_t>(row));
     // Invalid UTF-8 in a demographic value becomes U+FFFD instead of throwing.
     const std::string demo_text = demo.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    ins->bind(4, m.study_id).bind(5, demo_text).bind(6, detail::now_iso8601_utc());
+    ins->bind(5, m.study_id).bind(6, demo_text).bind(7, *now);
     if (auto s = ins->run("enrolling"); !s) return s;
     out = Enrollment{participant_id, static_cast<int>(next->value_or(0)), static_cast<int>(row), false, true};
     return {};
@@ -412,7 +394,9 @@ Status Store::release(const std::string& participant_id) {
       if (auto c = m.take_claim(session_id, participant_id, /*take_over=*/false, nullptr); !c) return c;
       if (auto c = m.drop_claim(session_id); !c) return c;
     }
-    const std::string now = detail::now_iso8601_utc();
+    auto clock = m.db.now_iso();
+    if (!clock) return clock.error();
+    const std::string now = *clock;
     auto up = Stmt::prepare(m.db,
                             "UPDATE sessions SET status = 'abandoned', ended_at = ?1 WHERE status = 'running' AND "
                             "participant_id = (SELECT id FROM participants WHERE participant = ?2)",

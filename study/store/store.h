@@ -1,15 +1,18 @@
-// The study database (SQLite, schema v3; docs/store.md is the reference):
+// The study database (schema v3; docs/store.md is the reference) in a file
+// (SQLite, the embedded default) or on a lab's PostgreSQL server (a
+// postgresql:// URI, several stations at once):
 // participants and their order rows (the ledger), sessions, planned trials,
 // trial results with events and camera poses, questionnaire answers, and the
 // lab's decisions (exclusions, notes, pauses). This is the writing half;
 // read.h is the reading half (StudyReader, also lent by Store::read()).
 // Guarantees: a finished trial is committed in one transaction with all its
 // data, so a crash loses at most the trial in progress; enrollment is atomic
-// across processes sharing the file; a running session is claimed by the one
-// process that runs it; a session resumes with exactly the trials it would
+// across processes and stations sharing the database; a running session is
+// claimed by the one process that runs it; a session resumes with exactly the trials it would
 // have run. It never aborts on bad input or a failing disk (every failure is
-// a dtlab::Error of a kind, naming the file) and never writes to a file that
-// is not a dtlab database of a schema version it knows.
+// a dtlab::Error of a kind, naming the file or the URI without its password)
+// and never writes to a database that is not a dtlab database of a schema
+// version it knows.
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -29,6 +32,11 @@ namespace dtlab::store {
 
 inline constexpr int kSchemaVersion = 3;                 // the newest schema this build reads and writes
 inline constexpr std::int32_t kApplicationId = 0x64746c62;  // PRAGMA application_id of every dtlab database ("dtlb")
+
+// Where a study is: a file path (SQLite) or a postgresql:// / postgres:// URI (PostgreSQL; its
+// `schema` parameter names the study's schema, default public; docs/store.md, "PostgreSQL").
+bool is_server_uri(const std::string& where);  // true for a PostgreSQL URI
+std::string display_name(const std::string& where);  // what messages show: the path, or the URI without password
 
 // The study a database belongs to, as plain values (no Protocol type, so the
 // store builds on its own). Callers pass what the protocol stage computed.
@@ -132,13 +140,13 @@ struct QuestionnaireAnswer {
 
 class StudyReader;
 
-// An open study database. Move-only; one per thread (it owns one SQLite
-// connection). Any number of processes may open the same file at once.
+// An open study database. Move-only; one per thread (it owns one connection). Any number of
+// processes (on any number of stations, for a server) may open the same database at once.
 class Store {
  public:
-  // Creates the file (schema v1) or opens it. Refuses: a non-SQLite or
-  // non-dtlab file, a newer schema, and -- unless options allow it -- a
-  // protocol whose SHA-256 differs from the database's current one.
+  // Creates the database (a file, or a schema on the server) or opens it. `path` is a file or a
+  // postgresql:// URI. Refuses: a non-SQLite or non-dtlab file (or schema), a newer schema,
+  // and -- unless options allow it -- a protocol whose SHA-256 differs from the current one.
   // A protocol with a new text but the same design hash is recorded as a new revision without
   // any option; a different design needs allow_protocol_change (else a conflict Error).
   static Result<Store> open(const std::string& path, const StudyInfo& study, OpenOptions options = {});
@@ -151,7 +159,7 @@ class Store {
   Store& operator=(Store&&) noexcept;
   ~Store();
 
-  const std::string& path() const;
+  const std::string& path() const;  // the file, or the URI without its password
 
   // Reads on this connection (each call one short read transaction); valid while the Store lives.
   StudyReader& read();

@@ -1,111 +1,23 @@
-// Shared fixtures of the store tests: a 2 x 2 study, a synthetic plan (the
-// design stage is tested on its own; the store must not depend on it), a
-// deterministic trial record per (seed, participant, position), a fresh
-// temporary directory per test, and independent SQL reads through the raw
-// SQLite API (the checks never go through the code under test).
+// Shared fixtures of the store tests: the study data (study_fixtures.h), a
+// fresh temporary directory per test, child processes started at one
+// instant, a fixture that runs a test on both engines (backends.h), and
+// independent SQL reads through the engines' own C APIs (the checks never go
+// through the code under test).
 #pragma once
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <cstdio>
-#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "study/common/hash.h"
-#include "study/design/plan.h"
-#include "study/store/store.h"
+#include "tests/store/backends.h"
+#include "tests/store/study_fixtures.h"
 
 namespace dtlab::store::testing {
-
-inline StudyInfo study_info(const std::string& text = "id = \"test2x2\"\n# protocol text\n") {
-  StudyInfo s;
-  s.protocol_id = "test2x2";
-  s.protocol_text = text;
-  s.protocol_sha256 = sha256_hex(text);
-  s.software_version = "dtlab test";
-  s.order_rows = 4;
-  s.factors = {"transparency", "scenario"};
-  return s;
-}
-
-// Four conditions in the order of `row` (a cyclic Latin square), `per`
-// trials per condition; tasks T1 (count), T2 (letter), T3 (position) cycle
-// with the position.
-inline design::Plan make_plan(int index, int order_row, int per = 3) {
-  static const char* tr[] = {"off", "on", "off", "on"};
-  static const char* sc[] = {"ABSTRACT", "ABSTRACT", "WALKTHROUGH", "WALKTHROUGH"};
-  static const char* tasks[] = {"T1", "T2", "T3"};
-  design::Plan p;
-  p.protocol_id = "test2x2";
-  p.index = index;
-  p.order_row = order_row;
-  int pos = 0;
-  for (int b = 0; b < 4; ++b) {
-    const int c = (order_row + b) % 4;
-    for (int k = 0; k < per; ++k) {
-      design::PlannedTrial t;
-      t.position = ++pos;
-      t.block = b + 1;
-      t.levels = {{"transparency", tr[c]}, {"scenario", sc[c]}};
-      t.task = tasks[(pos - 1) % 3];
-      t.trial = k / 3 + 1;
-      t.seed = mix64(static_cast<std::uint64_t>(index), static_cast<std::uint64_t>(pos));
-      t.method = c % 2 ? "dt-seed" : "standard";
-      t.practice = false;
-      p.trials.push_back(std::move(t));
-    }
-  }
-  return p;
-}
-
-inline bool same_trial(const design::PlannedTrial& a, const design::PlannedTrial& b) {
-  return a.position == b.position && a.block == b.block && a.levels == b.levels && a.task == b.task &&
-         a.trial == b.trial && a.seed == b.seed && a.method == b.method && a.practice == b.practice;
-}
-
-inline std::chrono::system_clock::time_point at_ms(std::int64_t ms) {
-  return std::chrono::system_clock::time_point(std::chrono::milliseconds(ms));
-}
-
-// The record a simulated participant produces for (seed, trial); `frames`
-// poses (default: 200 + a seed-dependent number below 800).
-inline TrialRecord make_record(std::uint64_t seed, const design::PlannedTrial& t, std::optional<int> frames = {}) {
-  TrialRecord r;
-  const std::uint64_t h = mix64(seed, t.seed);
-  r.position = t.position;
-  r.scene_hash = sha256_hex("scene " + std::to_string(t.seed));
-  if (t.task == "T1") {
-    r.truth = Count{20 + static_cast<std::int64_t>(h % 20)};
-    r.answer = Count{20 + static_cast<std::int64_t>((h >> 8) % 20)};
-  } else if (t.task == "T2") {
-    r.truth = Letter{"K"};
-    r.answer = Letter{(h >> 3) % 2 ? "K" : "X"};
-  } else {
-    r.truth = Position{static_cast<double>(h % 97) - 40.25, 12.5};
-    r.answer = Position{static_cast<double>((h >> 7) % 97) - 40.25, -3.75};
-  }
-  r.completion_s = 5.0 + static_cast<double>(h % 6000) / 100.0;
-  r.started_at = at_ms(1'700'000'000'000LL + t.position * 100'000LL);
-  r.ended_at = r.started_at + std::chrono::milliseconds(static_cast<std::int64_t>(r.completion_s * 1000));
-  const int n = frames ? *frames : 200 + static_cast<int>(h % 800);
-  std::vector<double> ms;
-  for (int i = 0; i < n; ++i) {
-    const double fi = i;
-    ms.push_back(16.0 + static_cast<double>((h >> (i % 50)) % 7));
-    r.poses.push_back(CameraPose{fi / 60.0, fi * 0.5, 1.7, -fi, 0.01 * fi, -0.001 * fi});
-  }
-  r.frames = frame_stats(ms);
-  for (int i = 0; i < 20; ++i)
-    r.events.push_back(InputEvent{i * 0.25, i % 2 ? InputEvent::Kind::key_up : InputEvent::Kind::key_down,
-                                  i % 3 ? "Up" : "Left, \"quoted\"", static_cast<double>(i), 2.0 * i});
-  return r;
-}
 
 // A fresh directory under the system temp dir, removed at the end.
 class TempDir {
@@ -113,68 +25,75 @@ class TempDir {
   TempDir() {
     static int counter = 0;
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info ? info->name() : "x";
+    for (char& c : name)
+      if (c == '/') c = '-';  // a parameterized test's name: RoundTrip/SQLite
     dir_ = std::filesystem::temp_directory_path() /
-           ("dtlab-store-" + std::string(info ? info->name() : "x") + "-" + std::to_string(::getpid()) + "-" +
-            std::to_string(counter++));
+           ("dtlab-store-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
   ~TempDir() { std::filesystem::remove_all(dir_); }
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path() const { return dir_.string(); }
 
  private:
   std::filesystem::path dir_;
 };
 
-// Independent raw-SQLite reader for assertions.
-class RawDb {
- public:
-  explicit RawDb(const std::string& path, int flags = SQLITE_OPEN_READWRITE) {
-    if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) ADD_FAILURE() << "cannot open " << path;
-    sqlite3_busy_timeout(db_, 10000);
-  }
-  ~RawDb() { sqlite3_close_v2(db_); }
-  RawDb(const RawDb&) = delete;
-  RawDb& operator=(const RawDb&) = delete;
-
-  // All rows of a query, every value as text: "NULL" for NULL, reals with
-  // 17 significant digits (exact round trip), integers and text as they are.
-  std::vector<std::vector<std::string>> rows(const std::string& sql) {
-    std::vector<std::vector<std::string>> out;
-    sqlite3_stmt* st = nullptr;
-    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, &st, nullptr) != SQLITE_OK) {
-      ADD_FAILURE() << sql << ": " << sqlite3_errmsg(db_);
-      return out;
+// Forks `n` children that wait on one pipe and then run body(k); returns their exit statuses.
+template <class F>
+inline std::vector<int> race(int n, F&& body) {
+  int go[2];
+  if (::pipe(go) != 0) return {};
+  std::vector<pid_t> pids;
+  for (int k = 0; k < n; ++k) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::close(go[1]);
+      char c;
+      if (::read(go[0], &c, 1) != 1) ::_exit(90);
+      ::_exit(body(k));
     }
-    int rc;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-      std::vector<std::string> row;
-      for (int c = 0; c < sqlite3_column_count(st); ++c) {
-        if (sqlite3_column_type(st, c) == SQLITE_FLOAT) {
-          char buf[40];
-          std::snprintf(buf, sizeof buf, "%.17g", sqlite3_column_double(st, c));
-          row.emplace_back(buf);
-          continue;
-        }
-        const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(st, c));
-        row.emplace_back(t ? t : "NULL");
-      }
-      out.push_back(std::move(row));
-    }
-    if (rc != SQLITE_DONE) ADD_FAILURE() << sql << ": " << sqlite3_errmsg(db_);
-    sqlite3_finalize(st);
-    return out;
+    pids.push_back(pid);
   }
-  std::string one(const std::string& sql) {
-    auto r = rows(sql);
-    return r.empty() || r[0].empty() ? std::string("<no row>") : r[0][0];
+  ::close(go[0]);
+  const std::string start(static_cast<std::size_t>(n), 'g');
+  if (::write(go[1], start.data(), start.size()) != static_cast<ssize_t>(start.size())) ADD_FAILURE() << "barrier";
+  ::close(go[1]);
+  std::vector<int> out;
+  for (pid_t pid : pids) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    out.push_back(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
   }
-  std::int64_t count(const std::string& sql) { return std::stoll(one(sql)); }
-  int exec(const std::string& sql) { return sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr); }
-  const char* errmsg() const { return sqlite3_errmsg(db_); }
+  return out;
+}
 
- private:
-  sqlite3* db_ = nullptr;
+// Store::open that must succeed: the test stops at once (with the Error) if it does not.
+inline Store open_ok(const std::string& where, const StudyInfo& info = study_info(), OpenOptions o = {}) {
+  auto s = Store::open(where, info, o);
+  if (!s) {
+    ADD_FAILURE() << s.error().to_string();
+    std::abort();
+  }
+  return std::move(*s);
+}
+
+// A test that runs on both engines: study() is a new file (SQLite) or a new schema on the
+// test server (PostgreSQL). Instantiate with DTLAB_ON_BOTH_BACKENDS(Suite).
+class OnBothBackends : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override { DTLAB_SKIP_WITHOUT_SERVER(GetParam()); }
+  std::string study(const std::string& name = "s") const { return new_study(GetParam(), dir_.path(), name); }
+  bool pg() const { return GetParam() == Backend::postgresql; }
+  TempDir dir_;
 };
+
+#define DTLAB_ON_BOTH_BACKENDS(Suite)                                                                         \
+  INSTANTIATE_TEST_SUITE_P(, Suite,                                                                           \
+                           ::testing::Values(::dtlab::store::testing::Backend::sqlite,                        \
+                                             ::dtlab::store::testing::Backend::postgresql),                   \
+                           ::dtlab::store::testing::backend_param_name)
 
 }  // namespace dtlab::store::testing

@@ -1,10 +1,12 @@
-// Several real processes (fork) sharing one database file: they create it at
-// the same moment, enroll at the same moment, and run sessions side by side.
-// The ledger must never give one slot (enrollment index) twice, every order
-// row must follow the documented rule, and a participant id enrolled by two
-// processes at once must get one enrollment. Creating one new file from many
-// processes at once always succeeds; a running session is claimed by one
-// process, and another takes it over only once the holder is gone or expired.
+// Several real processes (fork) sharing one database, a file or a server's
+// schema (on the server each process is a "station" with its own
+// connection): they create it at the same moment, enroll at the same moment,
+// and run sessions side by side. The ledger must never give one slot
+// (enrollment index) twice, every order row must follow the documented rule,
+// and a participant id enrolled by two processes at once must get one
+// enrollment. Creating one new database from many processes at once always
+// succeeds; a running session is claimed by one process, and another takes it
+// over only once the holder is gone or expired.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -76,9 +78,13 @@ constexpr int kShared = 6;  // participant ids every child enrolls
   ::_exit(s->finish_session(*ses) ? 0 : 8);
 }
 
-TEST(Processes, ConcurrentEnrollmentNeverSharesALedgerSlot) {
-  TempDir dir;
-  const std::string path = dir.file("shared.sqlite");  // does not exist yet: created concurrently
+class Processes : public OnBothBackends {};
+class Claims : public OnBothBackends {};
+DTLAB_ON_BOTH_BACKENDS(Processes);
+DTLAB_ON_BOTH_BACKENDS(Claims);
+
+TEST_P(Processes, ConcurrentEnrollmentNeverSharesALedgerSlot) {
+  const std::string path = study("shared");  // does not exist yet: created concurrently
   int go[2], out[2];
   ASSERT_EQ(::pipe(go), 0);
   ASSERT_EQ(::pipe(out), 0);
@@ -132,54 +138,23 @@ TEST(Processes, ConcurrentEnrollmentNeverSharesALedgerSlot) {
   }
 
   RawDb db(path);
-  EXPECT_EQ(db.one("PRAGMA integrity_check"), "ok");
+  EXPECT_EQ(db.integrity(), "ok");
   EXPECT_EQ(db.count("SELECT count(DISTINCT enrollment_index) FROM participants"), total);
   EXPECT_EQ(db.count("SELECT max(enrollment_index) FROM participants"), total - 1);
   EXPECT_EQ(db.count("SELECT count(*) FROM studies"), 1);  // created once, not once per process
   EXPECT_EQ(db.count("SELECT count(*) FROM sessions WHERE status = 'finished'"), kChildren);
   EXPECT_EQ(db.count("SELECT count(*) FROM trial_results"), kChildren * 8);
   // Rows stay balanced: 54 participants over 4 rows -> 14, 14, 13, 13.
-  EXPECT_EQ(db.one("SELECT group_concat(n, ',') FROM (SELECT count(*) AS n FROM participants GROUP BY order_row "
-                   "ORDER BY order_row)"),
-            "14,14,13,13");
-}
-
-// Forks `n` children that wait on one pipe and then run body(k); returns their exit statuses.
-template <class F>
-std::vector<int> race(int n, F&& body) {
-  int go[2];
-  if (::pipe(go) != 0) return {};
-  std::vector<pid_t> pids;
-  for (int k = 0; k < n; ++k) {
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-      ::close(go[1]);
-      char c;
-      if (::read(go[0], &c, 1) != 1) ::_exit(90);
-      ::_exit(body(k));
-    }
-    pids.push_back(pid);
-  }
-  ::close(go[0]);
-  const std::string start(static_cast<std::size_t>(n), 'g');
-  if (::write(go[1], start.data(), start.size()) != static_cast<ssize_t>(start.size())) ADD_FAILURE() << "barrier";
-  ::close(go[1]);
-  std::vector<int> out;
-  for (pid_t pid : pids) {
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    out.push_back(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
-  }
-  return out;
+  EXPECT_EQ(joined(db, "SELECT count(*) FROM participants GROUP BY order_row ORDER BY order_row"), "14,14,13,13");
 }
 
 // Regression (issue 9): two processes opening a new file at once sometimes failed with "not a
 // dtlab study database (application_id 0x00000000)": the header and the schema were read in two
-// snapshots, around the other process's commit. 8 processes, 50 new files in a row.
-TEST(Processes, EightProcessesCreatingOneNewFileAllSucceed) {
-  TempDir dir;
-  for (int round = 0; round < 50; ++round) {
-    const std::string path = dir.file("new-" + std::to_string(round) + ".sqlite");
+// snapshots, around the other process's commit. 8 processes, 50 new files in a row (3 new
+// schemas on the server, where creating the schema is one transaction under the study's lock).
+TEST_P(Processes, EightProcessesCreatingOneNewDatabaseAllSucceed) {
+  for (int round = 0; round < (pg() ? 3 : 50); ++round) {
+    const std::string path = study("new-" + std::to_string(round));
     const auto codes = race(8, [&](int k) {
       OpenOptions o;
       o.busy_timeout_ms = 30000;
@@ -200,9 +175,8 @@ TEST(Processes, EightProcessesCreatingOneNewFileAllSucceed) {
 // A session begun by one live process is refused to every other process (busy, naming the
 // holder) and free again once the holder closes its Store. Both are child processes (SQLite
 // connections must not cross fork()); the parent only passes messages.
-TEST(Claims, ASecondProcessCannotRunAClaimedSession) {
-  TempDir dir;
-  const std::string path = dir.file("s.sqlite");
+TEST_P(Claims, ASecondProcessCannotRunAClaimedSession) {
+  const std::string path = study();
   const design::Plan plan = make_plan(0, 0, 1);
   int to_holder[2], from_holder[2];
   ASSERT_EQ(::pipe(to_holder), 0);
@@ -254,9 +228,8 @@ TEST(Claims, ASecondProcessCannotRunAClaimedSession) {
 // host, pid gone), and the session resumes where it was. Regression: a killed worker whose
 // parent died too stays a zombie until reaped, and kill(pid, 0) succeeds on a zombie: the
 // claim was then held "alive" and the rerun skipped the participant. Taken over before reaping.
-TEST(Claims, AClaimOfAKilledProcessIsTakenOverAtOnceEvenBeforeItIsReaped) {
-  TempDir dir;
-  const std::string path = dir.file("s.sqlite");
+TEST_P(Claims, AClaimOfAKilledProcessIsTakenOverAtOnceEvenBeforeItIsReaped) {
+  const std::string path = study();
   const design::Plan plan = make_plan(0, 0, 1);
   const pid_t pid = ::fork();
   if (pid == 0) {
@@ -291,9 +264,8 @@ TEST(Claims, AClaimOfAKilledProcessIsTakenOverAtOnceEvenBeforeItIsReaped) {
 
 // A claim from another machine holds until it expires (its heartbeat is the only sign of life);
 // the experimenter may take it over at once.
-TEST(Claims, AClaimFromAnotherHostHoldsUntilItExpires) {
-  TempDir dir;
-  const std::string path = dir.file("s.sqlite");
+TEST_P(Claims, AClaimFromAnotherHostHoldsUntilItExpires) {
+  const std::string path = study();
   const design::Plan plan = make_plan(0, 0, 1);
   {
     auto s = Store::open(path, study_info());
@@ -302,9 +274,10 @@ TEST(Claims, AClaimFromAnotherHostHoldsUntilItExpires) {
   }
   RawDb db(path);
   auto claim_until = [&](const std::string& expires) {
-    ASSERT_EQ(db.exec("INSERT OR REPLACE INTO session_claims VALUES (1, 'station-7/4242/1/x', 'station-7', 4242, "
-                      "'2026-01-01T00:00:00.000Z', '2026-01-01T00:00:00.000Z', '" + expires + "')"),
-              SQLITE_OK)
+    ASSERT_TRUE(db.exec("INSERT INTO session_claims VALUES (1, 'station-7/4242/1/x', 'station-7', 4242, "
+                        "'2026-01-01T00:00:00.000Z', '2026-01-01T00:00:00.000Z', '" + expires + "') "
+                        "ON CONFLICT (session_id) DO UPDATE SET owner = excluded.owner, host = excluded.host, "
+                        "pid = excluded.pid, expires_at = excluded.expires_at"))
         << db.errmsg();
   };
   claim_until("2999-01-01T00:00:00.000Z");
@@ -327,9 +300,8 @@ TEST(Claims, AClaimFromAnotherHostHoldsUntilItExpires) {
 
 // After a take-over the old holder's writes are refused (conflict), so two processes never
 // interleave trials of one session.
-TEST(Claims, TheOldHolderCannotRecordAfterATakeOver) {
-  TempDir dir;
-  const std::string path = dir.file("s.sqlite");
+TEST_P(Claims, TheOldHolderCannotRecordAfterATakeOver) {
+  const std::string path = study();
   const design::Plan plan = make_plan(0, 0, 1);
   auto a = Store::open(path, study_info());
   ASSERT_TRUE(a->enroll("P1"));

@@ -2,7 +2,8 @@
 // appended (who, why, when) and shows in the export's `excluded` column;
 // include takes it back without deleting anything; unknown participants or
 // trials, a missing reason and a file that is not a study database are clear
-// errors with the documented exit codes, and leave the file as it was.
+// errors with the documented exit codes, and leave the file as it was; the
+// same on a server's study (a postgresql:// URI).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -21,8 +22,7 @@ namespace {
 using namespace dtlab::store::testing;
 using dtlab::test::run_dtlab;
 
-std::string make_db(const TempDir& dir) {
-  const std::string path = dir.file("study.sqlite");
+std::string make_db(const std::string& path) {
   auto s = Store::open(path, study_info());
   EXPECT_TRUE(s);
   for (const std::string id : {"P1", "P2"}) {
@@ -44,9 +44,11 @@ std::vector<std::optional<std::string>> excluded_column(const std::string& db) {
   return out;
 }
 
-TEST(ExcludeCli, DecisionsAreAppendedAndShowInTheExport) {
-  TempDir dir;
-  const std::string db = make_db(dir);
+class ExcludeCli : public OnBothBackends {};
+DTLAB_ON_BOTH_BACKENDS(ExcludeCli);
+
+TEST_P(ExcludeCli, DecisionsAreAppendedAndShowInTheExport) {
+  const std::string db = make_db(study());
   const std::string q = "'" + db + "'";
   auto a = run_dtlab("exclude " + q + " --participant P2 --reason 'misunderstood the task' --by MK --json");
   ASSERT_EQ(a.rc, 0) << a.err;
@@ -66,9 +68,9 @@ TEST(ExcludeCli, DecisionsAreAppendedAndShowInTheExport) {
   EXPECT_FALSE((*r->exclusions())[2].exclude);
 }
 
-TEST(ExcludeCli, BadRequestsAreClearErrorsAndChangeNothing) {
-  TempDir dir;
-  const std::string db = make_db(dir);
+TEST_P(ExcludeCli, BadRequestsAreClearErrorsAndChangeNothing) {
+  const TempDir& dir = dir_;
+  const std::string db = make_db(study());
   const std::string q = "'" + db + "'";
   struct Case {
     std::string args;

@@ -1,5 +1,5 @@
-// `dtlab plan PROTOCOL --db FILE --participant ID`: the index and order row
-// come from the database's ledger, so a participant whose row was assigned
+// `dtlab plan PROTOCOL --db DB --participant ID` (DB a file or a server URI):
+// the index and order row come from the database's ledger, so a participant whose row was assigned
 // after a release gets the plan of that row, not of index mod rows. The
 // database is read, never written; an unknown participant or a database of
 // another protocol exits 1 naming the file (and both hashes).
@@ -40,11 +40,14 @@ using Outcome = dtlab::test::CliOutcome;
 
 Outcome dtlab(const TempDir&, const std::string& args) { return dtlab::test::run_dtlab(args); }
 
-TEST(PlanDb, TakesIndexAndRowFromTheLedger) {
+class PlanDb : public OnBothBackends {};
+DTLAB_ON_BOTH_BACKENDS(PlanDb);
+
+TEST_P(PlanDb, TakesIndexAndRowFromTheLedger) {
   auto p = protocol::load_protocol(kReference);
   ASSERT_TRUE(p) << p.error().to_string();
-  TempDir dir;
-  const std::string db = dir.file("study.sqlite");
+  const TempDir& dir = dir_;
+  const std::string db = study();
   {
     auto s = Store::open(db, info_of(*p));
     ASSERT_TRUE(s) << s.error().to_string();
@@ -76,7 +79,7 @@ TEST(PlanDb, TakesIndexAndRowFromTheLedger) {
 
   const Outcome unknown = dtlab(dir, "plan '" + kReference + "' --db " + quoted_db + " --participant nobody");
   EXPECT_EQ(unknown.rc, 1);
-  EXPECT_NE(unknown.err.find(db), std::string::npos) << unknown.err;
+  EXPECT_NE(unknown.err.find(display_name(db)), std::string::npos) << unknown.err;
   EXPECT_NE(unknown.err.find("unknown participant \"nobody\""), std::string::npos) << unknown.err;
 
   const Outcome both = dtlab(dir, "plan '" + kReference + "' --index 1 --db " + quoted_db + " --participant H");
@@ -85,23 +88,26 @@ TEST(PlanDb, TakesIndexAndRowFromTheLedger) {
   EXPECT_EQ(neither.rc, 2);
 }
 
-TEST(PlanDb, RefusesADatabaseOfAnotherProtocolAndNeverWritesIt) {
+TEST_P(PlanDb, RefusesADatabaseOfAnotherProtocolAndNeverWritesIt) {
   auto p = protocol::load_protocol(kReference);
   ASSERT_TRUE(p);
-  TempDir dir;
-  const std::string db = dir.file("other.sqlite");
+  const TempDir& dir = dir_;
+  const std::string db = study("other");
   {
     StudyInfo other = study_info();  // the 2x2 test protocol
     auto s = Store::open(db, other);
     ASSERT_TRUE(s);
     ASSERT_TRUE(s->enroll("H"));
   }
-  const auto before = std::filesystem::last_write_time(db);
+  const auto before = pg() ? std::filesystem::file_time_type() : std::filesystem::last_write_time(db);
   const Outcome r = dtlab(dir, "plan '" + kReference + "' --db '" + db + "' --participant H");
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find(p->sha256), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(study_info().protocol_sha256), std::string::npos) << r.err;
-  EXPECT_EQ(std::filesystem::last_write_time(db), before);
+  if (!pg()) {
+    EXPECT_EQ(std::filesystem::last_write_time(db), before);
+  }
+  EXPECT_EQ(RawDb(db).count("SELECT count(*) FROM studies"), 1);  // nothing recorded
 }
 
 }  // namespace

@@ -1,17 +1,22 @@
-// The typed reader (study/store/read.h): everything a session writes comes
-// back as plain structs from one snapshot -- revisions, ledger, sessions with
-// resumes, pauses and interruptions, plans, results, questionnaire,
-// exclusions, notes, poses and events -- and reading never writes: not to a
-// read-only file, not on read-only media (a directory this process cannot
-// write), and no -wal/-shm is left behind. Expected values come from the
-// fixtures' inputs, never from the reader itself.
+// The typed reader (study/store/read.h), on both engines: everything a
+// session writes comes back as plain structs from one snapshot -- revisions,
+// ledger, sessions with resumes, pauses and interruptions, plans, results,
+// questionnaire, exclusions, notes, poses and events, the displays and frame
+// timing of schema v3 -- and reading never writes: not to a read-only file,
+// not on read-only media (a directory this process cannot write), and no
+// -wal/-shm is left behind. Expected values come from the fixtures' inputs,
+// never from the reader itself.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "study/store/read.h"
 #include "tests/store/store_fixtures.h"
@@ -21,15 +26,6 @@ namespace {
 
 using namespace dtlab::store::testing;
 namespace fs = std::filesystem;
-
-Store open_ok(const std::string& path, const StudyInfo& info = study_info(), OpenOptions o = {}) {
-  auto s = Store::open(path, info, o);
-  if (!s) {
-    ADD_FAILURE() << s.error().to_string();
-    std::abort();
-  }
-  return std::move(*s);
-}
 
 StudyReader read_ok(const std::string& path, ReadOptions o = {}) {
   auto r = StudyReader::open(path, o);
@@ -70,9 +66,11 @@ void write_study(const std::string& path) {
   ASSERT_TRUE(s.exclude("P1", 2, "sneezed", "RA"));
 }
 
-TEST(Read, EverythingASessionWroteComesBackAsStructs) {
-  TempDir dir;
-  const std::string path = dir.file("s.sqlite");
+class Read : public OnBothBackends {};
+DTLAB_ON_BOTH_BACKENDS(Read);
+
+TEST_P(Read, EverythingASessionWroteComesBackAsStructs) {
+  const std::string path = study();
   write_study(path);
   StudyReader r = read_ok(path);
   EXPECT_EQ(r.schema_version(), kSchemaVersion);
@@ -181,9 +179,8 @@ TEST(Read, EverythingASessionWroteComesBackAsStructs) {
   EXPECT_EQ(*ok, "ok");
 }
 
-TEST(Read, ASnapshotDoesNotMoveUntilRefreshed) {
-  TempDir dir;
-  const std::string path = dir.file("s.sqlite");
+TEST_P(Read, ASnapshotDoesNotMoveUntilRefreshed) {
+  const std::string path = study();
   Store s = open_ok(path);
   ASSERT_TRUE(s.enroll("A"));
   StudyReader r = read_ok(path);
@@ -195,7 +192,7 @@ TEST(Read, ASnapshotDoesNotMoveUntilRefreshed) {
   EXPECT_EQ(s.read().ledger()->size(), 2u);
 }
 
-TEST(Read, RefusesWhatIsNotADtlabDatabaseWithItsKind) {
+TEST(ReadFile, RefusesWhatIsNotADtlabDatabaseWithItsKind) {
   TempDir dir;
   auto missing = StudyReader::open(dir.file("missing.sqlite"));
   ASSERT_FALSE(missing);
@@ -213,17 +210,75 @@ TEST(Read, RefusesWhatIsNotADtlabDatabaseWithItsKind) {
   EXPECT_NE(e.error().message.find("not a dtlab study database"), std::string::npos) << e.error().to_string();
 }
 
+// Schema v3 on both engines: the displays a session recorded (in the order recorded, NULL rate
+// kept), the per-trial warm-up frame, steady median, late frames and refresh rate as frame_stats()
+// computed them; bad display values refused by the store with the field, and by the schema itself.
+TEST_P(Read, DisplaysAndFrameTimingComeBack) {
+  const std::string path = study();
+  Store s = open_ok(path);
+  auto e = s.enroll("P1");
+  const design::Plan plan = make_plan(e->index, e->order_row, 1);
+  auto ses = s.begin_session("P1", plan);
+  ASSERT_TRUE(ses);
+  const DisplayInfo window{"window", 2560, 1440, 59.94, "4.6 / NVIDIA GeForce", "HDMI-1"};
+  ASSERT_TRUE(s.record_display(*ses, window));
+  ASSERT_TRUE(s.record_display(*ses, DisplayInfo{"headless", 800, 600, std::nullopt, "OSMesa", ""}));
+  for (const auto& [bad, field] : std::vector<std::pair<DisplayInfo, std::string>>{
+           {{"tv", 800, 600, std::nullopt, "", ""}, "display.kind"},
+           {{"window", 0, 600, std::nullopt, "", ""}, "display.size"},
+           {{"window", 800, 600, 0.0, "", ""}, "display.refresh_hz"},
+           {{"window", 800, 600, std::nan(""), "", ""}, "display.refresh_hz"}}) {
+    auto st = s.record_display(*ses, bad);
+    ASSERT_FALSE(st) << field;
+    EXPECT_EQ(st.error().field, field) << st.error().to_string();
+  }
+  const TrialRecord paced = make_record(4, plan.trials[0], 6, 59.94), single = make_record(4, plan.trials[1], 1);
+  ASSERT_TRUE(s.record_trial(*ses, paced));
+  ASSERT_TRUE(s.record_trial(*ses, single));
+
+  StudyReader r = read_ok(path);
+  auto sessions = r.sessions();
+  ASSERT_TRUE(sessions);
+  const auto& d = (*sessions)[0].displays;
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0].info.kind, "window");
+  EXPECT_EQ(d[0].info.width, 2560);
+  EXPECT_EQ(d[0].info.height, 1440);
+  EXPECT_EQ(d[0].info.refresh_hz, 59.94);
+  EXPECT_EQ(d[0].info.renderer, window.renderer);
+  EXPECT_EQ(d[0].info.monitor, "HDMI-1");
+  EXPECT_EQ(d[1].info.kind, "headless");
+  EXPECT_FALSE(d[1].info.refresh_hz);
+  EXPECT_LE(d[0].recorded_at, d[1].recorded_at);
+  auto t = r.trials("P1");
+  ASSERT_EQ(t->size(), 2u);
+  EXPECT_EQ((*t)[0].frames.first_ms, paced.frames.first_ms);
+  EXPECT_EQ((*t)[0].frames.steady_median_ms, paced.frames.steady_median_ms);
+  EXPECT_EQ((*t)[0].frames.late, paced.frames.late);
+  EXPECT_EQ((*t)[0].frames.refresh_hz, 59.94);
+  EXPECT_EQ((*t)[1].frames.first_ms, single.frames.first_ms);
+  EXPECT_FALSE((*t)[1].frames.steady_median_ms || (*t)[1].frames.late || (*t)[1].frames.refresh_hz);
+
+  // The schema's own guards, past the store: CHECKs and append-only triggers on both engines.
+  RawDb db(path);
+  const std::string insert = "INSERT INTO session_displays SELECT id, '2024-01-01T00:00:00.000Z', ";
+  for (const char* values : {"'tv', 1, 1, NULL", "'window', 0, 1, NULL", "'window', 1, 1, 0", "'window', 1, 1, -60"})
+    EXPECT_FALSE(db.exec(insert + values + ", '', '' FROM sessions")) << values;
+  EXPECT_TRUE(db.exec(insert + "'window', 1, 1, 60, '', '' FROM sessions")) << db.errmsg();
+  EXPECT_FALSE(db.exec("UPDATE session_displays SET width = 2"));
+  EXPECT_FALSE(db.exec("DELETE FROM session_displays"));
+  EXPECT_EQ(db.count("SELECT count(*) FROM session_displays"), 3);
+}
+
 // Regression (issue 12): a schema_migrations row newer than this build with user_version still
 // current was refused by the writer but read by export, analyze and plan. One check for all.
-TEST(Read, ANewerMigrationRowIsRefusedByReaderAndWriterAlike) {
-  TempDir dir;
-  const std::string path = dir.file("s.sqlite");
+TEST_P(Read, ANewerMigrationRowIsRefusedByReaderAndWriterAlike) {
+  const std::string path = study();
   { Store s = open_ok(path); }
   {
     RawDb db(path);
-    ASSERT_EQ(db.exec("INSERT INTO schema_migrations VALUES (999, 'from the future', '2030-01-01T00:00:00.000Z', "
-                      "'dtlab 9')"),
-              SQLITE_OK)
+    ASSERT_TRUE(db.exec("INSERT INTO schema_migrations VALUES (999, 'from the future', '2030-01-01T00:00:00.000Z', "
+                        "'dtlab 9')"))
         << db.errmsg();
   }
   auto r = StudyReader::open(path);
@@ -250,7 +305,7 @@ int as_nobody(F&& body) {
 
 // Regression (issue 12): reading on read-only media failed ("attempt to write a readonly
 // database"), and a read-only file in a writable directory left -wal/-shm behind.
-TEST(Read, WorksOnReadOnlyMediaAndLeavesNothingBehind) {
+TEST(ReadFile, WorksOnReadOnlyMediaAndLeavesNothingBehind) {
   TempDir dir;
   const fs::path media = fs::path(dir.file("archive"));
   fs::create_directories(media);

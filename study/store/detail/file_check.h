@@ -1,30 +1,23 @@
 // The one check every opener of a study database makes (Store::open before
-// and inside its first write transaction, StudyReader::open): is this a dtlab
-// database of a schema version this build reads, or a new empty file? The
-// header and the schema version are read in ONE read transaction, so a file
-// being created by another process at that moment reads as empty or as
-// whole, never half made. Never writes.
+// and inside its first write transaction, StudyReader::open, dtlab copy): is
+// this a dtlab database of a schema version this build reads, or a new empty
+// one? The state is read by Connection::inspect in ONE snapshot, so a
+// database being created by another process at that moment reads as empty or
+// as whole, never half made. Never writes.
 #pragma once
-#include <cstdint>
 #include <string>
 
 #include "study/common/error.h"
-#include "study/store/detail/sqlite.h"
+#include "study/store/detail/db.h"
 
 namespace dtlab::store::detail {
 
-struct FileState {
-  bool empty = true;                // no schema object at all: a new file
-  std::int64_t application_id = 0;  // PRAGMA application_id
-  int user_version = 0;             // PRAGMA user_version
-  int migrations = 0;               // max(schema_migrations.version); 0 without that table
-};
+// Reads the state; `in_transaction`: the caller holds a transaction already.
+inline Result<FileState> inspect(Db& db, bool in_transaction = false) { return db.conn().inspect(in_transaction); }
 
-// Reads the state; `in_transaction`: the caller holds a transaction already (no BEGIN here).
-Result<FileState> inspect(Db& db, bool in_transaction = false);
-
-// Refuses a non-dtlab file and a schema newer than kSchemaVersion (by user_version or by
-// schema_migrations, whichever says more); an empty file passes only when `allow_empty`.
-Status check_dtlab(const std::string& path, const FileState& s, bool allow_empty);
+// Refuses a non-dtlab database and a schema newer than kSchemaVersion (by user_version or by
+// schema_migrations, whichever says more); an empty one (or a PostgreSQL schema that does not
+// exist yet) passes only when `allow_empty`.
+Status check_dtlab(const Db& db, const FileState& s, bool allow_empty);
 
 }  // namespace dtlab::store::detail

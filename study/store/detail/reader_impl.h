@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "study/store/detail/sqlite.h"
+#include "study/store/detail/db.h"
 #include "study/store/read.h"
 
 namespace dtlab::store {

@@ -274,14 +274,15 @@ struct Migration {
   std::string (*sql)();
 };
 
-const std::vector<Migration>& migrations() {
-  static const std::vector<Migration> list = {
-      {1, "schema v1: studies, ledger, sessions, planned trials, results, events, poses, questionnaire",
-       &schema_v1},
-      {2, "schema v2: design hashes, exclusions, notes, pauses, trial attempts, session claims", &schema_v2},
-      {3, "schema v3: warm-up and late frames per trial, the display of each session", &schema_v3},
-  };
-  return list;
+const char* const kV1 = "schema v1: studies, ledger, sessions, planned trials, results, events, poses, questionnaire";
+const char* const kV2 = "schema v2: design hashes, exclusions, notes, pauses, trial attempts, session claims";
+const char* const kV3 = "schema v3: warm-up and late frames per trial, the display of each session";
+
+const std::vector<Migration>& migrations(Backend backend) {
+  static const std::vector<Migration> sqlite = {{1, kV1, &schema_v1}, {2, kV2, &schema_v2}, {3, kV3, &schema_v3}};
+  static const std::vector<Migration> postgres = {
+      {1, kV1, &pg_schema_v1}, {2, kV2, &pg_schema_v2}, {3, kV3, &pg_schema_v3}};
+  return backend == Backend::postgresql ? postgres : sqlite;
 }
 
 std::string quote_identifier(const std::string& name) {
@@ -316,27 +317,29 @@ const std::vector<std::string>& fixed_trial_columns_after_factors() {
 }
 
 Result<int> applied_schema_version(Db& db) {
-  auto has = db.query_int("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = 'schema_migrations'",
-                          "reading the schema");
+  auto has = db.conn().has_table("schema_migrations");
   if (!has) return has.error();
-  if (has->value_or(0) == 0) return 0;
+  if (!*has) return 0;
   auto v = db.query_int("SELECT max(version) FROM schema_migrations", "reading the schema version");
   if (!v) return v.error();
   return static_cast<int>(v->value_or(0));
 }
 
-Status migrate(Db& db, int from, const std::string& software_version) {
+Status migrate(Db& db, int from, const std::string& software_version, const std::map<int, AppliedMigration>& history) {
   if (from == 0) {
     const std::string sql =
-        "CREATE TABLE schema_migrations (\n"
-        "  version INTEGER PRIMARY KEY CHECK (version >= 1),\n"
-        "  description TEXT NOT NULL,\n"
-        "  applied_at TEXT NOT NULL " + iso_check("applied_at") + ",\n"
-        "  software_version TEXT NOT NULL\n"
-        ") STRICT;";
+        db.backend() == Backend::postgresql
+            ? pg_bookkeeping()
+            : "CREATE TABLE schema_migrations (\n"
+              "  version INTEGER PRIMARY KEY CHECK (version >= 1),\n"
+              "  description TEXT NOT NULL,\n"
+              "  applied_at TEXT NOT NULL " + iso_check("applied_at") + ",\n"
+              "  software_version TEXT NOT NULL\n"
+              ") STRICT;";
+    if (auto s = db.conn().create_namespace(); !s) return s;
     if (auto s = db.exec(sql, "creating schema_migrations"); !s) return s;
   }
-  for (const Migration& m : migrations()) {
+  for (const Migration& m : migrations(db.backend())) {
     if (m.version <= from) continue;
     const std::string what = "applying schema migration " + std::to_string(m.version);
     if (auto s = db.exec(m.sql(), what); !s) return s;
@@ -345,14 +348,20 @@ Status migrate(Db& db, int from, const std::string& software_version) {
                             "VALUES (?, ?, ?, ?)",
                             what);
     if (!st) return st.error();
-    st->bind(1, m.version).bind(2, m.description).bind(3, now_iso8601_utc()).bind(4, software_version);
+    AppliedMigration row{m.description, "", software_version};
+    if (auto h = history.find(m.version); h != history.end()) {
+      row = h->second;
+    } else {
+      auto now = db.now_iso();
+      if (!now) return now.error();
+      row.applied_at = *now;
+    }
+    st->bind(1, m.version).bind(2, row.description).bind(3, row.applied_at).bind(4, row.software_version);
     if (auto s = st->run(what); !s) return s;
   }
-  if (from >= 1)  // an older view lacks the newer columns; a new file gets its view with the first study
+  if (from >= 1)  // an older view lacks the newer columns; a new database gets its view with the first study
     if (auto s = create_trial_table_view(db); !s) return s;
-  return db.exec("PRAGMA application_id = " + std::to_string(kApplicationId) +
-                     "; PRAGMA user_version = " + std::to_string(kSchemaVersion),
-                 "marking the file as a dtlab database");
+  return db.conn().mark_as_dtlab(kSchemaVersion);
 }
 
 Status create_trial_table_view(Db& db) {
@@ -389,7 +398,8 @@ Status create_trial_table_view(Db& db) {
       // Design revision: 1 + the number of distinct design hashes first recorded before this one's.
       "  (SELECT count(*) FROM (SELECT 1 FROM study_designs d2 GROUP BY d2.design_sha256\n"
       "     HAVING min(d2.study_id) <= (SELECT min(d3.study_id) FROM study_designs d3\n"
-      "                                 WHERE d3.design_sha256 = sd.design_sha256))) AS design_revision,\n"
+      "                                 WHERE d3.design_sha256 = sd.design_sha256)) AS earlier)\n"
+      "    AS design_revision,\n"
       // The latest decision about the participant wins over the trial's; an inclusion reads as NULL.
       "  coalesce((SELECT CASE x.action WHEN 'exclude' THEN x.reason END FROM exclusions x\n"
       "            WHERE x.participant_id = pa.id AND x.position IS NULL ORDER BY x.id DESC LIMIT 1),\n"

@@ -1,13 +1,15 @@
-// Schema v1 of the study database and the migrations that build it, plus the
-// `trial_table` view whose columns are the export columns. docs/store.md is
-// the reference for every table, constraint and trigger defined here. Only
-// store.cpp calls these, inside its open transaction; nothing here commits.
+// The migrations that build the study database's schema on either engine,
+// plus the `trial_table` view whose columns are the export columns.
+// docs/store.md is the reference for every table, constraint and trigger
+// defined here. Only the store's open and copy call these, inside their
+// write transaction; nothing here commits.
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
 #include "study/common/error.h"
-#include "study/store/detail/sqlite.h"
+#include "study/store/detail/db.h"
 
 namespace dtlab::store::detail {
 
@@ -16,12 +18,24 @@ namespace dtlab::store::detail {
 const std::vector<std::string>& fixed_trial_columns_before_factors();
 const std::vector<std::string>& fixed_trial_columns_after_factors();
 
+// The order session_displays rows are read in, the same on both engines (neither has a rowid the
+// other keeps): by session, the time recorded, then every other column.
+inline constexpr const char* kDisplayOrder =
+    "session_id, recorded_at, kind, width, height, refresh_hz IS NULL, refresh_hz, renderer, monitor";
+
 // Highest migration applied (0 for a database without the migrations table).
 Result<int> applied_schema_version(Db& db);
 
+// A schema_migrations row as another database recorded it (dtlab copy keeps the history).
+struct AppliedMigration {
+  std::string description, applied_at, software_version;
+};
+
 // Applies every migration above `from` up to kSchemaVersion, each recorded
-// in schema_migrations. Must run inside a write transaction.
-Status migrate(Db& db, int from, const std::string& software_version);
+// in schema_migrations (with the row of `history` for its version, if any,
+// else now and `software_version`). Must run inside a write transaction.
+Status migrate(Db& db, int from, const std::string& software_version,
+               const std::map<int, AppliedMigration>& history = {});
 
 // (Re)creates the trial_table view with one column per factor named in any
 // study of the database, in order of first appearance. Inside a transaction.

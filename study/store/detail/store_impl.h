@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "study/store/detail/sqlite.h"
+#include "study/store/detail/db.h"
 #include "study/store/read.h"
 #include "study/store/store.h"
 
@@ -19,7 +19,8 @@ struct Claimant {
   std::string host;
   std::int64_t pid = 0;
   std::string start_time;  // the process's start time (Linux: /proc/self/stat field 22); "" if unknown
-  std::string owner;       // host/pid/start_time/nonce: unique per Store object
+  std::string machine;     // /etc/machine-id: tells apart stations cloned with one host name; "" if unknown
+  std::string owner;       // host/pid/start_time/nonce/machine: unique per Store object
 };
 Claimant make_claimant();
 
@@ -55,7 +56,7 @@ struct Store::Impl {
     if (st) st = tx.commit(what);
     if (!st && !tx.rollback()) {
       broken = true;
-      broken_error = Error{path, 0, 0, "sqlite",
+      broken_error = Error{path, 0, 0, "database",
                            "the store is in the ERROR state: a ROLLBACK failed after \"" + st.error().message +
                                "\"; committed trials are safe; close and reopen the database to recover",
                            ErrorKind::environment};

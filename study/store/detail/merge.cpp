@@ -1,0 +1,587 @@
+// Merging a study into a database that holds it already (copy.h; docs/store.md,
+// "Copying and merging"): a station's offline file into the lab's server.
+// What may change and what may not: a participant's enrollment index, order
+// row and trial seeds are their plan (seeds derive from the index,
+// design/seeds.h), so a participant with a stored session keeps their ledger
+// slot, and the merge is refused if DST gave that slot to someone else; a
+// participant enrolled but never started has no plan yet and takes DST's next
+// free slot and the order row DST's rule gives. A participant in both must
+// hold the same data in both (DST may lack the session, or have more);
+// decisions are merged when one side's list continues the other's. Every
+// check runs before the first row is written; the caller's one transaction
+// makes the merge whole or nothing. Never changes a row DST holds.
+#include <algorithm>
+#include <map>
+#include <tuple>
+
+#include "study/store/detail/copy_rows.h"
+#include "study/store/detail/schema.h"
+#include "study/store/store.h"
+
+namespace dtlab::store::detail {
+namespace {
+
+std::string text(const Value& v) {
+  if (const auto* s = std::get_if<std::string>(&v)) return *s;
+  if (const auto* n = std::get_if<std::int64_t>(&v)) return std::to_string(*n);
+  return "";
+}
+std::int64_t num(const Value& v) {
+  if (const auto* n = std::get_if<std::int64_t>(&v)) return *n;
+  if (const auto* d = std::get_if<double>(&v)) return static_cast<std::int64_t>(*d);
+  return 0;
+}
+
+Error refuse(const Db& dst, const std::string& field, const std::string& why) {
+  return Error{dst.path(), 0, 0, field, why + "; the merge is refused and nothing was written", ErrorKind::conflict};
+}
+
+struct StudyRow {
+  Row row;  // as copied_tables() lists the columns of `studies`
+  std::vector<std::string> factors;
+  std::string design;
+  std::int64_t id() const { return num(row[0]); }
+  std::string sha() const { return text(row[3]); }
+  std::int64_t order_rows() const { return num(row[5]); }
+};
+
+Result<std::vector<StudyRow>> read_studies(Db& db, bool v2, const CopyOptions& options) {
+  std::vector<StudyRow> out;
+  Status st = each_row(db, "SELECT id, protocol_id, protocol_text, protocol_sha256, software_version, order_rows, "
+                           "created_at FROM studies ORDER BY id",
+                       {}, [&](Row& r) -> Status {
+                         out.push_back(StudyRow{std::move(r), {}, ""});
+                         return {};
+                       });
+  if (!st) return st.error();
+  for (StudyRow& s : out) {
+    st = each_row(db, "SELECT name FROM study_factors WHERE study_id = ? ORDER BY position", {s.id()}, [&](Row& r) -> Status {
+      s.factors.push_back(text(r[0]));
+      return {};
+    });
+    if (!st) return st.error();
+    if (v2) {
+      auto d = Stmt::prepare(db, "SELECT design_sha256 FROM study_designs WHERE study_id = ?", "reading the designs");
+      if (!d) return d.error();
+      d->bind(1, s.id());
+      auto has = d->step("reading the designs");
+      if (!has) return has.error();
+      if (*has) s.design = d->text(0);
+    }
+    if (s.design.empty() && options.design_hash_of) s.design = options.design_hash_of(text(s.row[2])).value_or("");
+  }
+  return out;
+}
+
+struct Person {
+  Row row;  // as copied_tables() lists the columns of `participants`
+  std::optional<std::int64_t> session;
+  std::int64_t id() const { return num(row[0]); }
+  std::string name() const { return text(row[1]); }
+  std::int64_t index() const { return num(row[2]); }
+  std::int64_t order_row() const { return num(row[3]); }
+  bool released() const { return !std::holds_alternative<std::monostate>(row[7]); }
+};
+
+Result<std::vector<Person>> read_ledger(Db& db) {
+  std::vector<Person> out;
+  Status st = each_row(db,
+                       "SELECT p.id, p.participant, p.enrollment_index, p.order_row, p.study_id, p.demographics, "
+                       "p.enrolled_at, p.released_at, s.id FROM participants p LEFT JOIN sessions s ON "
+                       "s.participant_id = p.id ORDER BY p.enrollment_index",
+                       {}, [&](Row& r) -> Status {
+                         Person p;
+                         if (!std::holds_alternative<std::monostate>(r[8])) p.session = num(r[8]);
+                         r.pop_back();
+                         p.row = std::move(r);
+                         out.push_back(std::move(p));
+                         return {};
+                       });
+  if (!st) return st.error();
+  return out;
+}
+
+// The select list of `table`'s copied columns in a database of schema `version`, each prefixed
+// with `alias` (a column that version lacks reads as NULL).
+std::string columns_of(const char* table, const std::string& alias, int version = kSchemaVersion) {
+  for (const TableSpec& t : copied_tables())
+    if (std::string(t.name) == table) return t.select_list(version, alias);
+  return "";
+}
+const std::vector<std::string>& spec_columns(const char* table) {
+  for (const TableSpec& t : copied_tables())
+    if (std::string(t.name) == table) return t.columns;
+  static const std::vector<std::string> none;
+  return none;
+}
+
+// The rows of a session's tables, keyed by the session's own ids: selects per table, reading a
+// database of schema `version`.
+struct SessionQueries {
+  std::string session, planned, levels, results, events, poses, resumes, answers, pauses, attempts, displays;
+};
+SessionQueries session_queries(int version) {
+  return {
+      "SELECT " + columns_of("sessions", "s") + " FROM sessions s WHERE s.id = ?",
+      "SELECT " + columns_of("planned_trials", "p") + " FROM planned_trials p WHERE p.session_id = ? ORDER BY p.position",
+      "SELECT " + columns_of("planned_levels", "l") +
+          " FROM planned_levels l JOIN planned_trials p ON p.id = l.planned_trial_id WHERE p.session_id = ? "
+          "ORDER BY p.position, l.factor_position",
+      "SELECT " + columns_of("trial_results", "r", version) +
+          " FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id WHERE p.session_id = ? "
+          "ORDER BY p.position",
+      "SELECT " + columns_of("input_events", "e") +
+          " FROM input_events e JOIN planned_trials p ON p.id = e.trial_id WHERE p.session_id = ? ORDER BY p.position, e.seq",
+      "SELECT " + columns_of("camera_poses", "c") +
+          " FROM camera_poses c JOIN planned_trials p ON p.id = c.trial_id WHERE p.session_id = ? "
+          "ORDER BY p.position, c.frame",
+      "SELECT " + columns_of("session_resumes", "x") +
+          " FROM session_resumes x WHERE x.session_id = ? ORDER BY x.resumed_at, x.next_position IS NULL, x.next_position",
+      "SELECT " + columns_of("questionnaire_answers", "q") +
+          " FROM questionnaire_answers q WHERE q.session_id = ? ORDER BY q.item, q.scope",
+      "SELECT " + columns_of("session_pauses", "x") +
+          " FROM session_pauses x WHERE x.session_id = ? ORDER BY x.paused_at, x.resumed_at",
+      "SELECT " + columns_of("trial_attempts", "a") +
+          " FROM trial_attempts a WHERE a.session_id = ? ORDER BY a.position, a.attempt",
+      "SELECT " + columns_of("session_displays", "x") + " FROM session_displays x WHERE x.session_id = ? ORDER BY " +
+          kDisplayOrder,
+  };
+}
+
+// Everything recorded in a session that schema `version` records, with its ids replaced (the
+// session's and planned trials' by positions, the study's by its protocol hash): two databases
+// hold the same session exactly when these are equal at SRC's version (what an older SRC could
+// not record is not compared). Also counts the recorded trials.
+Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, int version,
+                                                const std::map<std::int64_t, std::string>& sha, int* recorded) {
+  std::vector<std::string> out;
+  std::map<std::int64_t, std::int64_t> position;  // planned trial id -> position
+  const SessionQueries q = session_queries(version);
+  auto add = [&](const std::string& sql, const char* tag, int id_column, bool by_trial) -> Status {
+    return each_row(db, sql, {session}, [&](Row& r) -> Status {
+      if (by_trial) r[static_cast<std::size_t>(id_column)] = position[num(r[static_cast<std::size_t>(id_column)])];
+      else if (id_column >= 0) r[static_cast<std::size_t>(id_column)] = std::int64_t{0};
+      out.push_back(tag + canonical(r));
+      return {};
+    });
+  };
+  Status st = each_row(db, q.session, {session}, [&](Row& r) -> Status {
+    r[0] = r[1] = std::int64_t{0};
+    r[2] = sha.count(num(r[2])) ? sha.at(num(r[2])) : std::string("?");
+    out.push_back("S" + canonical(r));
+    return {};
+  });
+  if (!st) return st.error();
+  st = each_row(db, q.planned, {session}, [&](Row& r) -> Status {
+    position[num(r[0])] = num(r[2]);
+    r[0] = r[1] = std::int64_t{0};
+    out.push_back("P" + canonical(r));
+    return {};
+  });
+  if (!st) return st.error();
+  const std::size_t before = out.size();
+  for (const auto& [sql, tag, column, by_trial] :
+       std::vector<std::tuple<std::string, const char*, int, bool>>{{q.levels, "L", 0, true},
+                                                                    {q.results, "R", 0, true},
+                                                                    {q.events, "E", 0, true},
+                                                                    {q.poses, "C", 0, true},
+                                                                    {q.resumes, "X", 0, false},
+                                                                    {q.answers, "Q", 0, false}}) {
+    if (auto s = add(sql, tag, column, by_trial); !s) return s.error();
+  }
+  if (version >= 2)
+    for (const auto& [sql, tag] : std::vector<std::pair<std::string, const char*>>{{q.pauses, "U"}, {q.attempts, "A"}})
+      if (auto s = add(sql, tag, 0, false); !s) return s.error();
+  if (version >= 3)
+    if (auto s = add(q.displays, "D", 0, false); !s) return s.error();
+  *recorded = static_cast<int>(std::count_if(out.begin() + static_cast<std::ptrdiff_t>(before), out.end(),
+                                             [](const std::string& s) { return s[0] == 'R'; }));
+  return out;
+}
+
+// The decisions (or notes) about one participant (nullopt: about the study), without ids.
+Result<std::vector<Row>> decisions_about(Db& db, const char* table, std::optional<std::int64_t> participant) {
+  std::vector<Row> out;
+  const std::string where = participant ? "participant_id = ?" : "participant_id IS NULL";
+  const std::string sql = "SELECT " + columns_of(table, std::string(table)) + " FROM " + table + " WHERE " + where +
+                          " ORDER BY id";
+  Status st = each_row(db, sql, participant ? Row{*participant} : Row{}, [&](Row& r) -> Status {
+    out.push_back(std::move(r));
+    return {};
+  });
+  if (!st) return st.error();
+  return out;
+}
+
+bool same_content(const Row& a, const Row& b) {  // ignoring id and participant_id (columns 0, 1)
+  return std::equal(a.begin() + 2, a.end(), b.begin() + 2, b.end());
+}
+
+class Merger {
+ public:
+  Merger(Db& src, int src_version, Db& dst, const CopyOptions& o, CopySummary& sum)
+      : src_(src), dst_(dst), src_version_(src_version), v2_(src_version >= 2), options_(o), sum_(sum) {}
+
+  Status run();
+
+ private:
+  using Slots = std::map<std::int64_t, const Person*>;  // DST ledger slots after the merge
+  Status map_studies();
+  Status plan_ledger();
+  Status plan_present(const Person& p, const Person& q);
+  void plan_free_slots(const std::vector<const Person*>& renumber, Slots& used);
+  Status check_no_gaps(const Slots& used) const;
+  Status append_revisions();
+  Status write_participants();
+  Status import_session(std::int64_t src_session, std::int64_t dst_participant);
+  Status merge_decisions(const char* table, std::optional<std::int64_t> src_pid, std::optional<std::int64_t> dst_pid);
+  Result<std::int64_t> next(const char* table);
+  std::string src_name(std::optional<std::int64_t> pid) const;
+
+  Db& src_;
+  Db& dst_;
+  int src_version_;
+  bool v2_;
+  const CopyOptions& options_;
+  CopySummary& sum_;
+  std::vector<StudyRow> src_studies_, dst_studies_;
+  std::map<std::int64_t, std::int64_t> study_;  // SRC study id -> DST study id
+  std::map<std::int64_t, std::string> src_sha_, dst_sha_;
+  std::vector<StudyRow> append_;               // SRC revisions DST lacks (same design)
+  std::vector<Person> src_ledger_, dst_ledger_;
+  struct Plan {
+    const Person* person;
+    std::optional<std::int64_t> existing;  // DST's participant row when DST has them already
+    std::int64_t index = 0, order_row = 0;
+    bool import_session = false;
+  };
+  std::vector<Plan> plans_;
+  std::map<std::string, std::int64_t> next_ids_;
+};
+
+Status Merger::run() {
+  if (auto s = map_studies(); !s) return s;
+  if (auto s = plan_ledger(); !s) return s;
+  if (auto s = write_participants(); !s) return s;
+  return create_trial_table_view(dst_);
+}
+
+std::string Merger::src_name(std::optional<std::int64_t> pid) const {
+  for (const Person& p : src_ledger_)
+    if (pid && p.id() == *pid) return p.name();
+  return "";
+}
+
+Result<std::int64_t> Merger::next(const char* table) {
+  auto it = next_ids_.find(table);
+  if (it == next_ids_.end()) {
+    auto id = next_id(dst_, table);
+    if (!id) return id.error();
+    it = next_ids_.emplace(table, *id).first;
+  }
+  return it->second++;
+}
+
+Status Merger::map_studies() {
+  auto s = read_studies(src_, v2_, options_);
+  if (!s) return s.error();
+  auto d = read_studies(dst_, true, options_);
+  if (!d) return d.error();
+  src_studies_ = std::move(*s);
+  dst_studies_ = std::move(*d);
+  if (dst_studies_.empty()) return refuse(dst_, "studies", "DST records no protocol");
+  const StudyRow& current = dst_studies_.back();
+  for (const StudyRow& r : dst_studies_) dst_sha_[r.id()] = r.sha();
+  for (const StudyRow& r : src_studies_) {
+    src_sha_[r.id()] = r.sha();
+    auto same = std::find_if(dst_studies_.begin(), dst_studies_.end(), [&](const StudyRow& x) { return x.sha() == r.sha(); });
+    if (same != dst_studies_.end()) {
+      if (same->order_rows() != r.order_rows() || same->factors != r.factors)
+        return refuse(dst_, "studies", "protocol " + r.sha() + " has other order rows or factors in SRC than in DST");
+      study_[r.id()] = same->id();
+      continue;
+    }
+    if (r.design.empty() || r.design != current.design)
+      return refuse(dst_, "studies.design_sha256",
+                    "SRC was recorded under protocol " + r.sha().substr(0, 12) + " (design " +
+                        (r.design.empty() ? std::string("unknown") : r.design.substr(0, 12)) +
+                        "), DST runs design " + (current.design.empty() ? std::string("unknown") : current.design.substr(0, 12)) +
+                        ": a study of another design cannot be merged into it");
+    append_.push_back(r);
+  }
+  return {};
+}
+
+Status Merger::plan_ledger() {
+  auto s = read_ledger(src_);
+  if (!s) return s.error();
+  auto d = read_ledger(dst_);
+  if (!d) return d.error();
+  src_ledger_ = std::move(*s);
+  dst_ledger_ = std::move(*d);
+  std::map<std::string, const Person*> dst_by_name;
+  Slots used;
+  for (const Person& q : dst_ledger_) {
+    dst_by_name[q.name()] = &q;
+    used[q.index()] = &q;
+  }
+  std::vector<const Person*> renumber;
+  for (const Person& p : src_ledger_) {
+    if (auto it = dst_by_name.find(p.name()); it != dst_by_name.end()) {
+      if (auto st = plan_present(p, *it->second); !st) return st;
+      continue;
+    }
+    if (!p.session) {  // no plan yet: takes DST's next free slot below
+      renumber.push_back(&p);
+      continue;
+    }
+    if (auto it = used.find(p.index()); it != used.end())
+      return refuse(dst_, "participants.enrollment_index",
+                    "participant \"" + p.name() + "\" ran the plan of ledger slot " + std::to_string(p.index()) +
+                        " (order row " + std::to_string(p.order_row()) + "), which DST gives to participant \"" +
+                        it->second->name() + "\"; another slot would give other trial seeds (design/seeds.h)");
+    used[p.index()] = &p;
+    plans_.push_back(Plan{&p, std::nullopt, p.index(), p.order_row(), true});
+  }
+  plan_free_slots(renumber, used);
+  return check_no_gaps(used);
+}
+
+// A participant DST holds already: the same enrollment (a never-started one may have been given
+// another slot by an earlier merge), and the same session or none in DST.
+Status Merger::plan_present(const Person& p, const Person& q) {
+  const std::string who = "participant \"" + p.name() + "\"";
+  Row a = p.row, b = q.row;
+  a[0] = b[0] = std::int64_t{0};
+  a[4] = src_sha_[num(a[4])];
+  b[4] = dst_sha_[num(b[4])];
+  if (!p.session) a[2] = b[2] = a[3] = b[3] = std::int64_t{0};
+  if (a != b)
+    return refuse(dst_, "participants",
+                  who + " is in both with different enrollments (SRC: slot " + std::to_string(p.index()) + ", row " +
+                      std::to_string(p.order_row()) + ", enrolled " + text(p.row[6]) +
+                      (p.released() ? ", released" : "") + "; DST: slot " + std::to_string(q.index()) + ", row " +
+                      std::to_string(q.order_row()) + ", enrolled " + text(q.row[6]) +
+                      (q.released() ? ", released" : "") + ")");
+  Plan plan{&p, q.id(), q.index(), q.order_row(), false};
+  if (p.session && q.session) {
+    int in_src = 0, in_dst = 0;
+    auto rs = session_record(src_, *p.session, src_version_, src_sha_, &in_src);
+    if (!rs) return rs.error();
+    auto rd = session_record(dst_, *q.session, src_version_, dst_sha_, &in_dst);  // what both schemas record
+    if (!rd) return rd.error();
+    if (*rs != *rd)
+      return refuse(dst_, "sessions",
+                    who + " has a session in both that differs (SRC: " + std::to_string(in_src) +
+                        " trials recorded, DST: " + std::to_string(in_dst) + "); sessions are not merged trial by trial");
+  }
+  plan.import_session = p.session && !q.session;
+  if (!plan.import_session) ++sum_.unchanged;
+  plans_.push_back(plan);
+  return {};
+}
+
+// Enrolled, never started: the lowest free slot and the row DST's rule gives (invariant 4).
+void Merger::plan_free_slots(const std::vector<const Person*>& renumber, Slots& used) {
+  const std::int64_t rows = dst_studies_.back().order_rows();
+  std::vector<std::int64_t> fill(static_cast<std::size_t>(rows), 0);
+  auto count_active = [&](std::int64_t row, bool released) {
+    if (!released && row >= 0 && row < rows) ++fill[static_cast<std::size_t>(row)];
+  };
+  for (const Person& q : dst_ledger_) count_active(q.order_row(), q.released());
+  for (const Plan& p : plans_)
+    if (!p.existing) count_active(p.order_row, p.person->released());
+  std::int64_t free_slot = 0;
+  for (const Person* p : renumber) {
+    while (used.count(free_slot)) ++free_slot;
+    const auto row = std::min_element(fill.begin(), fill.end()) - fill.begin();
+    used[free_slot] = p;
+    count_active(row, p->released());
+    plans_.push_back(Plan{p, std::nullopt, free_slot, row, false});
+    if (free_slot != p->index() || row != p->order_row())
+      sum_.changes.push_back("participant \"" + p->name() + "\" (enrolled, never started): ledger slot " +
+                             std::to_string(p->index()) + " -> " + std::to_string(free_slot) + ", order row " +
+                             std::to_string(p->order_row()) + " -> " + std::to_string(row));
+    ++sum_.renumbered;
+  }
+}
+
+Status Merger::check_no_gaps(const Slots& used) const {
+  std::string gaps;
+  std::int64_t expect = 0;
+  for (const auto& [index, who] : used) {
+    for (; expect < index; ++expect) gaps += (gaps.empty() ? "" : ", ") + std::to_string(expect);
+    expect = index + 1;
+  }
+  if (gaps.empty()) return {};
+  return refuse(dst_, "participants.enrollment_index",
+                "the merge would leave ledger slot(s) " + gaps +
+                    " empty: participants who ran a plan keep their slot, and slots are given without gaps "
+                    "(docs/store.md, invariant 3)");
+}
+
+// SRC's texts of DST's design that DST lacks, recorded as revisions (as Store::open would).
+Status Merger::append_revisions() {
+  const std::int64_t was_current = dst_studies_.back().id();
+  for (const StudyRow& r : append_) {
+    auto id = next("studies");
+    if (!id) return id.error();
+    Row row = r.row;
+    row[0] = *id;
+    std::vector<Row> factors;
+    for (std::size_t i = 0; i < r.factors.size(); ++i)
+      factors.push_back({*id, static_cast<std::int64_t>(i + 1), r.factors[i]});
+    for (const auto& [table, rows] : std::vector<std::pair<const char*, std::vector<Row>>>{
+             {"studies", {row}}, {"study_factors", factors}, {"study_designs", {{*id, r.design}}}})
+      if (auto s = dst_.conn().insert_rows(table, spec_columns(table), rows, "adding a protocol revision"); !s) return s;
+    study_[r.id()] = *id;
+    ++sum_.revisions;
+    sum_.changes.push_back("protocol text " + r.sha().substr(0, 12) + " added as a revision of DST's design (DST's "
+                           "current text was study " + std::to_string(was_current) + ")");
+  }
+  return {};
+}
+
+Status Merger::write_participants() {
+  if (auto s = append_revisions(); !s) return s;
+  for (Plan& p : plans_) {
+    std::optional<std::int64_t> dst_pid = p.existing;
+    if (!dst_pid) {
+      auto id = next("participants");
+      if (!id) return id.error();
+      Row row = p.person->row;
+      row[0] = *id;
+      row[2] = p.index;
+      row[3] = p.order_row;
+      row[4] = study_.at(num(row[4]));
+      if (auto s = dst_.conn().insert_rows("participants", spec_columns("participants"), {row}, "adding a participant"); !s)
+        return s;
+      dst_pid = *id;
+      ++sum_.participants;
+    }
+    if (p.import_session)
+      if (auto s = import_session(*p.person->session, *dst_pid); !s) return s;
+    if (v2_) {  // a participant new to DST has no decisions there: all of SRC's are added
+      if (auto s = merge_decisions("exclusions", p.person->id(), *dst_pid); !s) return s;
+      if (auto s = merge_decisions("notes", p.person->id(), *dst_pid); !s) return s;
+    }
+  }
+  return v2_ ? merge_decisions("notes", std::nullopt, std::nullopt) : Status{};
+}
+
+Status Merger::import_session(std::int64_t src_session, std::int64_t dst_participant) {
+  const SessionQueries q = session_queries(src_version_);
+  auto session = next("sessions");
+  if (!session) return session.error();
+  std::optional<Row> final_state;
+  std::map<std::int64_t, std::int64_t> trial;  // SRC planned trial id -> DST
+  auto copy = [&](const std::string& sql, const char* table, auto&& map) -> Status {
+    RowSink sink(dst_, table, spec_columns(table));
+    Status st = each_row(src_, sql, {src_session}, [&](Row& r) -> Status {
+      if (auto s = map(r); !s) return s;
+      return sink.add(std::move(r));
+    });
+    if (!st) return st;
+    if (auto s = sink.finish(); !s) return s;
+    if (std::string(table) == "trial_results") sum_.trials += static_cast<int>(sink.count());
+    return {};
+  };
+  auto by_session = [&](Row& r) -> Status {
+    r[0] = *session;
+    return {};
+  };
+  auto by_trial = [&](Row& r) -> Status {
+    r[0] = trial.at(num(r[0]));
+    return {};
+  };
+  Status st = copy(q.session, "sessions", [&](Row& r) -> Status {
+    r[0] = *session;
+    r[1] = dst_participant;
+    r[2] = study_.at(num(r[2]));
+    if (text(r[4]) != "running") {
+      final_state = Row{r[4], r[6]};
+      r[4] = std::string("running");
+      r[6] = std::monostate{};
+    }
+    return {};
+  });
+  if (!st) return st;
+  st = copy(q.planned, "planned_trials", [&](Row& r) -> Status {
+    auto id = next("planned_trials");
+    if (!id) return id.error();
+    trial[num(r[0])] = *id;
+    r[0] = *id;
+    r[1] = *session;
+    return {};
+  });
+  if (!st) return st;
+  for (const auto& [sql, table] : std::vector<std::pair<std::string, const char*>>{
+           {q.levels, "planned_levels"}, {q.results, "trial_results"}, {q.events, "input_events"}, {q.poses, "camera_poses"}})
+    if (auto s = copy(sql, table, by_trial); !s) return s;
+  for (const auto& [sql, table] : std::vector<std::pair<std::string, const char*>>{
+           {q.resumes, "session_resumes"}, {q.answers, "questionnaire_answers"}})
+    if (auto s = copy(sql, table, by_session); !s) return s;
+  if (v2_)
+    for (const auto& [sql, table] :
+         std::vector<std::pair<std::string, const char*>>{{q.pauses, "session_pauses"}, {q.attempts, "trial_attempts"}})
+      if (auto s = copy(sql, table, by_session); !s) return s;
+  if (src_version_ >= 3)
+    if (auto s = copy(q.displays, "session_displays", by_session); !s) return s;
+  ++sum_.sessions;
+  if (!final_state) return {};
+  auto fin = Stmt::prepare(dst_, "UPDATE sessions SET status = ?, ended_at = ? WHERE id = ?", "finishing the session");
+  if (!fin) return fin.error();
+  fin->bind(1, (*final_state)[0]).bind(2, (*final_state)[1]).bind(3, *session);
+  return fin->run("finishing the session");
+}
+
+// Exclusions: the latest decision holds, so one side's list must continue the other's (the
+// longer one wins; a fork is refused). Notes: SRC's notes DST lacks are added.
+Status Merger::merge_decisions(const char* table, std::optional<std::int64_t> src_pid,
+                               std::optional<std::int64_t> dst_pid) {
+  const bool notes = std::string(table) == "notes";
+  auto from = decisions_about(src_, table, src_pid);
+  if (!from) return from.error();
+  auto d = decisions_about(dst_, table, dst_pid);
+  if (!d) return d.error();
+  const std::vector<Row> have = std::move(*d);
+  std::vector<Row> add;
+  if (notes) {
+    std::vector<bool> matched(have.size(), false);
+    for (const Row& r : *from) {
+      auto it = std::find_if(have.begin(), have.end(), [&](const Row& h) {
+        return !matched[static_cast<std::size_t>(&h - have.data())] && same_content(h, r);
+      });
+      if (it != have.end()) matched[static_cast<std::size_t>(it - have.begin())] = true;
+      else add.push_back(r);
+    }
+  } else {
+    const std::size_t common = std::min(from->size(), have.size());
+    for (std::size_t i = 0; i < common; ++i)
+      if (!same_content((*from)[i], have[i]))
+        return refuse(dst_, "exclusions",
+                      "the exclusion decisions about participant \"" + src_name(src_pid) +
+                          "\" differ in SRC and DST (each has decisions the other lacks), so which one holds would depend "
+                          "on the merge");
+    add.assign(from->begin() + static_cast<std::ptrdiff_t>(common), from->end());
+  }
+  std::vector<Row> rows;
+  for (Row r : add) {
+    auto id = next(table);
+    if (!id) return id.error();
+    r[0] = *id;
+    r[1] = dst_pid ? Value{*dst_pid} : Value{};
+    rows.push_back(std::move(r));
+  }
+  (notes ? sum_.notes : sum_.decisions) += static_cast<int>(rows.size());
+  return dst_.conn().insert_rows(table, spec_columns(table), rows, std::string("adding ") + table);
+}
+
+}  // namespace
+
+Status merge_study(Db& src, int src_version, Db& dst, const CopyOptions& options, CopySummary& summary) {
+  Merger m(src, src_version, dst, options, summary);
+  return m.run();
+}
+
+}  // namespace dtlab::store::detail
