@@ -457,6 +457,15 @@ Status Store::record_display(const Session& session, const DisplayInfo& d) {
     if (!ins) return ins.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
+    // Rows are read in recorded_at order (detail::kDisplayOrder): a display recorded in the same
+    // millisecond as the session's last one is stamped a millisecond later, so the order read is
+    // the order recorded on both engines.
+    auto last = m.db.query_text(
+        "SELECT max(recorded_at) FROM session_displays WHERE session_id = " + std::to_string(session.id),
+        "reading the session's displays");
+    if (!last) return last.error();
+    if (last->has_value() && **last >= *now)
+      if (const auto t = detail::parse_iso8601_utc(**last)) now = detail::iso8601_utc(*t + std::chrono::milliseconds(1));
     ins->bind(1, session.id).bind(2, *now).bind(3, d.kind).bind(4, d.width).bind(5, d.height);
     ins->bind(6, d.refresh_hz).bind(7, d.renderer).bind(8, d.monitor);
     return ins->run("recording the display");

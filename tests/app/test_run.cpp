@@ -300,8 +300,16 @@ TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
     ::kill(pid, SIGKILL);
     ::waitpid(pid, &status, 0);
     ++kills;
+    // Killed before the schema's transaction committed, the file holds no table yet (nothing was
+    // saved; the rerun creates the schema). Anything else must be a sound study.
     if (fs::exists(killed)) {
-      EXPECT_EQ(*reader(killed).integrity_check(), "ok") << "after kill " << kills;
+      auto r = store::StudyReader::open(killed.string());
+      if (r) {
+        EXPECT_EQ(*r->integrity_check(), "ok") << "after kill " << kills;
+      } else {
+        EXPECT_NE(r.error().message.find("no session was ever started"), std::string::npos)
+            << "after kill " << kills << ": " << r.error().to_string();
+      }
     }
   }
   if (final_rc < 0) final_rc = wait_exit(start_run(killed, log, {"--script", kScript}));

@@ -174,8 +174,11 @@ TEST(SimulateCli, KilledAtIncreasingDelaysResumesToTheUninterruptedResult) {
     // Increasing delays: early kills land in enrollment and plan creation, later ones mid-trial.
     if (kill_after(c, std::chrono::milliseconds(150 + 350 * round))) {
       ++kills;
-      if (fs::exists(crashed)) {
-        EXPECT_EQ(integrity(crashed), "ok") << "after kill " << kills;
+      // Killed before the schema's transaction committed, the file holds no table yet: nothing
+      // was saved, and the rerun creates the schema. Anything else must be a sound study.
+      const std::string state = fs::exists(crashed) ? integrity(crashed) : "ok";
+      if (state.find("no session was ever started") == std::string::npos) {
+        EXPECT_EQ(state, "ok") << "after kill " << kills;
       }
     } else {
       rc = WIFEXITED(c.status) ? WEXITSTATUS(c.status) : 128 + WTERMSIG(c.status);

@@ -19,7 +19,9 @@ const std::vector<std::string>& fixed_trial_columns_before_factors();
 const std::vector<std::string>& fixed_trial_columns_after_factors();
 
 // The order session_displays rows are read in, the same on both engines (neither has a rowid the
-// other keeps): by session, the time recorded, then every other column.
+// other keeps): by session, the time recorded (distinct within a session: Store::record_display
+// stamps a display recorded in the same millisecond as the last one a millisecond later), then
+// every other column.
 inline constexpr const char* kDisplayOrder =
     "session_id, recorded_at, kind, width, height, refresh_hz IS NULL, refresh_hz, renderer, monitor";
 
