@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <map>
 #include <set>
 
@@ -20,20 +19,10 @@ namespace dtlab::store {
 
 using detail::Db;
 using detail::Stmt;
+using detail::parse_seed;
+using detail::parse_status;
 
 namespace {
-
-std::uint64_t parse_seed(const std::string& s) {
-  std::uint64_t v = 0;
-  std::from_chars(s.data(), s.data() + s.size(), v);  // the schema guarantees 1-20 digits
-  return v;
-}
-
-SessionStatus parse_status(const std::string& s) {
-  if (s == "finished") return SessionStatus::finished;
-  if (s == "abandoned") return SessionStatus::abandoned;
-  return SessionStatus::running;
-}
 
 InputEvent::Kind parse_kind(const std::string& s) {
   using K = InputEvent::Kind;

@@ -3,9 +3,9 @@
 // one transaction holding its result, scores, events and poses, and the next
 // trial is always derived from the database, never from memory, so resuming
 // after a crash runs exactly the trials the session would have run.
-#include <charconv>
 #include <cmath>
 
+#include "study/store/detail/schema.h"
 #include "study/store/detail/store_impl.h"
 #include "study/store/detail/time.h"
 #include "study/store/store.h"
@@ -16,20 +16,10 @@ namespace {
 using detail::Db;
 using detail::Stmt;
 using detail::Value;
+using detail::parse_seed;
+using detail::parse_status;
 
 std::string seed_text(std::uint64_t seed) { return std::to_string(seed); }
-
-std::uint64_t parse_seed(const std::string& s) {
-  std::uint64_t v = 0;
-  std::from_chars(s.data(), s.data() + s.size(), v);  // the schema guarantees 1-20 digits
-  return v;
-}
-
-SessionStatus parse_status(const std::string& s) {
-  if (s == "finished") return SessionStatus::finished;
-  if (s == "abandoned") return SessionStatus::abandoned;
-  return SessionStatus::running;
-}
 
 std::string describe(const Session& s) { return "session " + std::to_string(s.id) + " (" + s.participant_id + ")"; }
 

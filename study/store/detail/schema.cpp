@@ -6,6 +6,7 @@
 #include "study/store/detail/schema.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <string_view>
 
@@ -14,6 +15,18 @@
 #include "study/store/store.h"
 
 namespace dtlab::store::detail {
+
+std::uint64_t parse_seed(const std::string& s) {
+  std::uint64_t v = 0;
+  std::from_chars(s.data(), s.data() + s.size(), v);  // the schema guarantees 1-20 digits
+  return v;
+}
+
+SessionStatus parse_status(const std::string& s) {
+  if (s == "finished") return SessionStatus::finished;
+  if (s == "abandoned") return SessionStatus::abandoned;
+  return SessionStatus::running;
+}
 
 std::string iso_check(std::string_view column) {
   return std::string("CHECK (") + std::string(column) + " GLOB " + kIsoGlob + ")";

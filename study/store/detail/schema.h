@@ -4,14 +4,21 @@
 // defined here. Only the store's open and copy call these, inside their
 // write transaction; nothing here commits.
 #pragma once
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "study/common/error.h"
 #include "study/store/detail/db.h"
+#include "study/store/store.h"
 
 namespace dtlab::store::detail {
+
+// Stored values read back: a seed column (decimal text, 1-20 digits by the schema's CHECK) and a
+// session status ("running", "finished", "abandoned", as to_string(SessionStatus) writes them).
+std::uint64_t parse_seed(const std::string& s);
+SessionStatus parse_status(const std::string& s);
 
 // The fixed columns of trial_table, in order; the factor columns go after
 // "block". A factor may not be named like one of these (case-insensitive).
