@@ -233,26 +233,27 @@ void ScriptPlayer::leave() {
   instance_ = ~0ULL;
 }
 
+void ScriptPlayer::begin_step(Clock::time_point now) {
+  phase_ = 0;
+  step_start_ = now;
+  moved_ = 0;
+  seen_.reset();
+}
+
 Status ScriptPlayer::tick(const std::string& screen, std::uint64_t instance, const ItemBoxes& items,
                           Clock::time_point now) {
   if (instance != instance_) {
     instance_ = instance;
     section_ = script_.for_screen(screen);
     next_ = 0;
-    phase_ = 0;
-    step_start_ = now;
-    moved_ = 0;
-    seen_.reset();
+    begin_step(now);
   }
   if (!section_) return {};
   Status error;
   while (next_ < section_->steps.size()) {
     if (!step(section_->steps[next_], items, now, error)) return error;  // waiting (or failed)
     ++next_;
-    phase_ = 0;
-    step_start_ = now;
-    moved_ = 0;
-    seen_.reset();
+    begin_step(now);
   }
   return {};
 }

@@ -80,6 +80,7 @@ class ScriptPlayer {
 
  private:
   bool step(const ScriptStep& s, const ItemBoxes& items, Clock::time_point now, Status& error);
+  void begin_step(Clock::time_point now);  // the per-step state, fresh for the next step
   void key(int key, bool down);
   void button(int button, bool down);
 

@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "study/common/version.h"
@@ -27,12 +25,6 @@ Error bad(const protocol::Protocol& p, std::string field, std::string message) {
 // An error about a planned trial that does not fit the protocol (no protocol key to point at).
 Error plan_error(const protocol::Protocol& p, std::string field, std::string message) {
   return Error{p.source_path, 0, 0, std::move(field), std::move(message)};
-}
-
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 std::string task_field(const protocol::Scenario& s, const protocol::Task& t) {
