@@ -127,13 +127,15 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   sum.plan = design::make_plan(p, sum.enrollment.index, sum.enrollment.order_row);
 
   // A finished session is left alone; an abandoned one is the store's to refuse.
+  const auto found_finished = [&](const Result<store::Session>& s) {
+    if (!s || s->status != store::SessionStatus::finished) return false;
+    sum.already_finished = sum.finished = true;
+    sum.trials_recorded = s->recorded;
+    return true;
+  };
   if (!sum.enrollment.newly_enrolled) {
     auto existing = store.session(participant_id);
-    if (existing && existing->status == store::SessionStatus::finished) {
-      sum.already_finished = sum.finished = true;
-      sum.trials_recorded = existing->recorded;
-      return sum;
-    }
+    if (found_finished(existing)) return sum;
     if (!existing && existing.error().kind != ErrorKind::not_found) return existing.error();
   }
 
@@ -141,6 +143,9 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   if (!prepared) return prepared.error();
 
   auto begun = store.begin_session(participant_id, sum.plan);
+  // Another process may have finished the session since the check above (the store refuses to
+  // resume a finished session): that is the same as finding it finished.
+  if (!begun && begun.error().kind == ErrorKind::conflict && found_finished(store.session(participant_id))) return sum;
   if (!begun) return begun.error();
   const store::Session session = begun.value();
   sum.resumed = session.resumed;
