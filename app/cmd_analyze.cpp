@@ -1,7 +1,7 @@
 // `dtlab analyze DB --out DIR [--revision all|latest|N] [--with-excluded]
-// [--json]`: the study report (analysis/report, docs/report.md): report.md, a
-// self-contained index.html with inline SVG plots, report.json, trials.csv
-// and per-analysis CSVs in DIR. Never modifies the database. Progress goes to
+// [--no-paths] [--json]`: the study report (analysis/report, docs/report.md):
+// report.md, a self-contained index.html with inline SVG plots, report.json,
+// trials.csv, per-analysis CSVs and the walked-path figures (study/replay) in DIR. Never modifies the database. Progress goes to
 // stderr; exit 1 for a database that cannot be analysed, 3 for an
 // environment failure (I/O, database, gnuplot).
 #include <CLI/CLI.hpp>
@@ -14,6 +14,7 @@
 #include "app/commands.h"
 #include "app/database_arg.h"
 #include "study/common/text.h"
+#include "app/report_paths.h"
 
 namespace dtlab::app {
 
@@ -26,6 +27,7 @@ struct AnalyzeArgs {
   double frame_threshold_ms = 1000.0 / 30;
   std::string revision = "all";
   bool with_excluded = false;
+  bool no_paths = false;
   bool json = false;
   bool quiet = false;
 };
@@ -36,6 +38,7 @@ void run_analyze(const AnalyzeArgs& a) {
   options.frame_threshold_ms = a.frame_threshold_ms;
   options.revision = a.revision;
   options.with_excluded = a.with_excluded;
+  if (!a.no_paths) options.path_figure = replay_path_figures();
   auto progress = [&a](const std::string& step) {
     if (!a.quiet) std::cerr << "dtlab analyze: " << step << "\n";
   };
@@ -70,7 +73,8 @@ void add_analyze_command(CLI::App& root) {
       "Write the study report of a study database into DIR: report.md and a self-contained index.html (tables in "
       "the article's Table III layout, RM ANOVA and Friedman tests per task and overall, accuracy, speed-accuracy, "
       "questionnaire, position effects, frame-time audit, gnuplot figures inline), report.json with every number, "
-      "trials.csv (as dtlab export) and per-analysis CSVs. Exit 1: not a dtlab database or nothing to analyse; "
+      "trials.csv (as dtlab export), per-analysis CSVs and, where camera poses were recorded, each participant's "
+      "walked paths per WALKTHROUGH task (paths/*.svg, linked from the report). Exit 1: not a dtlab database or nothing to analyse; "
       "3: I/O, database or gnuplot failure");
   cmd->add_option("database", args->db, std::string(kDatabaseHelp) + ", written by dtlab run or dtlab simulate")
       ->required()
@@ -88,6 +92,9 @@ void add_analyze_command(CLI::App& root) {
   cmd->add_flag("--with-excluded", args->with_excluded,
                 "Keep excluded participants and trials (dtlab exclude) in the analysis; by default they are left out "
                 "and listed with their reasons");
+  cmd->add_flag("--no-paths", args->no_paths,
+                "Do not draw the walked-path figures (each regenerates the trials' buildings: a few seconds for a "
+                "large study)");
   cmd->add_flag("--json", args->json,
                 "Print {database, out, files, participants, trials, tests, excluded_trials, revisions, simulated, "
                 "warnings}");

@@ -24,6 +24,7 @@
 #include "study/common/file.h"
 #include "study/common/text.h"
 #include "study/protocol/protocol.h"
+#include "app/report_paths.h"
 #include "study/session/mapping.h"
 #include "study/session/runnable.h"
 #include "study/sim/summary.h"
@@ -101,8 +102,11 @@ void run_demo(DemoArgs a) {
   });
   if (!exported) fail(exit_code(exported.error()), exported.error().to_string());
   const fs::path report_dir = dir / "report";
-  auto rep = report::write_report(*reader, report_dir.string(),
-                                  [](const std::string& step) { std::cerr << "dtlab demo: report: " << step << "\n"; });
+  report::ReportOptions options;
+  options.path_figure = replay_path_figures();
+  auto rep = report::write_report(
+      *reader, report_dir.string(), [](const std::string& step) { std::cerr << "dtlab demo: report: " << step << "\n"; },
+      options);
   if (!rep) fail(exit_code(rep.error()), rep.error().to_string());
   for (const auto& w : rep->warnings) std::cerr << "dtlab demo: report: warning: " << w << "\n";
   const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);

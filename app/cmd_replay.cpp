@@ -67,12 +67,8 @@ void run_replay(const ReplayArgs& a) {
   if (!st) fail(exit_code(st.error()), st.error().to_string());
   const scene::Scene& s = trial->scene;
   if (s.plan) {
-    replay::WalkedPath path;
-    path.label = "trial " + std::to_string(a.trial) + " (" + trial->row.planned.task + ")";
-    path.poses = trial->poses;
-    if (s.task == scene::Task::T3) path.target = s.answer.position;
-    if (trial->row.answer)
-      if (const auto* p = std::get_if<store::Position>(&*trial->row.answer)) path.answer = glm::vec2(p->x, p->z);
+    const replay::WalkedPath path = replay::walked_path(
+        s, trial->row.answer, trial->poses, "trial " + std::to_string(a.trial) + " (" + trial->row.planned.task + ")");
     const std::string svg = replay::path_svg(*s.plan, s.camera.position, {path}, 640,
                                              a.participant + ", " + path.label);
     Status w = write_file_atomically((std::filesystem::path(a.out) / "path.svg").string(), [&](std::ostream& o) {

@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cctype>
 #include <charconv>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -63,9 +65,53 @@ nlohmann::json design_json(const Design& d) {
   return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.reference}};
 }
 
+// A participant ID or task ID as part of a file name: letters, digits, '-' and '_' kept, the rest '_'.
+std::string file_safe(const std::string& s) {
+  std::string out;
+  for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  return out.empty() ? "_" : out;
+}
+
+// The walked-path figures of every analysed participant and WALKTHROUGH task whose trials have
+// recorded poses, drawn by options.path_figure; none without that function.
+struct DrawnPaths {
+  std::vector<std::pair<PathFigure, std::string>> figures;  // with the SVG text
+  std::vector<std::string> left_out;                        // "participant trial N: why"
+};
+Result<DrawnPaths> draw_paths(store::StudyReader& reader, const Context& ctx) {
+  DrawnPaths out;
+  if (!ctx.options.path_figure) return out;
+  std::vector<std::pair<std::string, bool>> walk_tasks;  // task id, whether answers mark a position
+  for (const auto& scenario : ctx.data.protocol.scenarios)
+    for (const auto& task : scenario.tasks)
+      if (task.scene.kind == protocol::ScenarioKind::walkthrough)
+        walk_tasks.emplace_back(task.id, task.type == protocol::TaskType::find_unique);
+  for (const auto& p : ctx.data.participants) {
+    if (std::find(ctx.subjects.begin(), ctx.subjects.end(), p.id) == ctx.subjects.end()) continue;
+    for (const auto& [task, marks] : walk_tasks) {
+      std::vector<int> positions;
+      for (const auto& t : ctx.data.trials)
+        if (t.participant == p.id && t.task == task && ctx.analysed(t)) positions.push_back(t.position);
+      if (positions.empty()) continue;
+      auto drawn = ctx.options.path_figure(reader, p.id, positions, p.id + ", task " + task + ": walked paths" +
+                                                             (marks ? " (o target, x marked answer)" : ""));
+      if (!drawn) return drawn.error();
+      for (const auto& why : drawn->left_out) out.left_out.push_back(p.id + " " + why);
+      if (drawn->svg.empty()) continue;
+      char index[16];
+      std::snprintf(index, sizeof index, "%02d", p.index + 1);  // enrollment order from 1
+      PathFigure f{p.id, task, static_cast<int>(positions.size()),
+                   "paths/" + std::string(index) + "-" + file_safe(p.id) + "-" + file_safe(task) + ".svg"};
+      out.figures.emplace_back(std::move(f), std::move(drawn->svg));
+    }
+  }
+  return out;
+}
+
 // The report of one design revision into `out`.
-Result<ReportSummary> write_one(const StudyData& data, const fs::path& out, const std::string& tidy,
-                                const std::string& gnuplot, const ProgressFn& say, const ReportOptions& options) {
+Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& data, const fs::path& out,
+                                const std::string& tidy, const std::string& gnuplot, const ProgressFn& say,
+                                const ReportOptions& options) {
   const Design design = make_design(data.protocol);
   Context ctx(data, design, options);
   for (const auto& p : data.participants) {
@@ -105,6 +151,12 @@ Result<ReportSummary> write_one(const StudyData& data, const fs::path& out, cons
   section_position(ctx);
   say("frame-time audit");
   section_frames(ctx);
+  if (options.path_figure) say("walked paths");
+  auto paths = draw_paths(reader, ctx);
+  if (!paths) return paths.error();
+  std::vector<PathFigure> path_figures;
+  for (const auto& [f, svg] : paths->figures) path_figures.push_back(f);
+  section_paths(ctx, path_figures, paths->left_out);
   section_notes(ctx);
 
   say("drawing " + std::to_string(ctx.plots.size()) + " figures with " + gnuplot);
@@ -166,6 +218,11 @@ Result<ReportSummary> write_one(const StudyData& data, const fs::path& out, cons
       {"index.html", render_html(ctx.doc, *svg)},
   };
   for (const auto& [name, content] : ctx.csv) files.push_back({name, content});
+  if (!paths->figures.empty()) {
+    fs::create_directories(out / "paths", ec);
+    if (ec) return output_error(out / "paths", "cannot create the directory: " + ec.message());
+  }
+  for (const auto& [f, svg] : paths->figures) files.push_back({f.file, svg});
   for (const auto& [name, content] : files) {
     if (auto s = write_whole(out / name, content); !s) return s.error();
     sum.files.push_back(name);
@@ -249,7 +306,7 @@ Result<ReportSummary> write_report(store::StudyReader& reader, const std::string
     auto data = read_study(reader, k, options.with_excluded);
     if (!data) return data.error();
     const bool separate = chosen->size() > 1;
-    auto one = write_one(*data, separate ? out / ("revision-" + std::to_string(k)) : out, tidy.str(), gnuplot,
+    auto one = write_one(reader, *data, separate ? out / ("revision-" + std::to_string(k)) : out, tidy.str(), gnuplot,
                          separate ? ProgressFn([&](const std::string& step) {
                            say("revision " + std::to_string(k) + ": " + step);
                          })

@@ -6,7 +6,8 @@
 // task and overall, and writes report.md, a self-contained index.html (inline
 // CSS and SVG, no script, no external reference), report.json (every number
 // the tables show), the SVG plots (gnuplot, run as a subprocess), trials.csv
-// and per-analysis CSVs. A database holding several design revisions gets one
+// and per-analysis CSVs; with a path-figure function, the walked path of each
+// participant's WALKTHROUGH trials per task (paths/*.svg). A database holding several design revisions gets one
 // report per revision (each says so at the top). Guarantees: the database is
 // never modified; every failure is an Error of a kind (never an abort).
 #pragma once
@@ -20,12 +21,25 @@
 
 namespace dtlab::report {
 
+// A walked-path figure as drawn: the SVG ("" when there is nothing to draw) and the trials left
+// out of it, each with why (e.g. "trial 7: this build generates another scene").
+struct PathDrawing {
+  std::string svg;
+  std::vector<std::string> left_out;
+};
+// Draws the walked paths of a participant's recorded trials `positions` (all of one WALKTHROUGH task).
+using PathFigureFn = std::function<Result<PathDrawing>(store::StudyReader& reader, const std::string& participant,
+                                                       const std::vector<int>& positions, const std::string& title)>;
+
 struct ReportOptions {
   std::string gnuplot;                       // gnuplot executable; "" = $DTLAB_GNUPLOT, else "gnuplot" on PATH
   double frame_threshold_ms = 1000.0 / 30;   // frame-time audit: a trial is "slow" when its p95 frame time exceeds this
   std::uint64_t seed = 1;                    // seed of Monte Carlo exact p-values (Friedman with many blocks)
   std::string revision = "all";              // design revision(s): "all" (each its own report), "latest", or "N"
   bool with_excluded = false;                // keep excluded participants and trials in the analysis
+  // Draws path figures (paths/*.svg, linked from a "Walked paths" section); empty: none. The report
+  // never links rendering, so the app passes one built on study/replay's trials_path_svg.
+  PathFigureFn path_figure;
 };
 
 struct ReportSummary {

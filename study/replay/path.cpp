@@ -39,7 +39,7 @@ double walked_distance(const std::vector<store::CameraPose>& poses) {
   return d;
 }
 
-std::string path_svg(const scene::FloorPlan& plan, glm::vec3 start, const std::vector<WalkedPath>& paths, int side,
+PathPanel path_panel(const scene::FloorPlan& plan, glm::vec3 start, const std::vector<WalkedPath>& paths, int side,
                      const std::string& title) {
   const double margin = 24, legend = 22.0 * static_cast<double>(paths.size()) + (title.empty() ? 0 : 26);
   const double cells = std::max(plan.width, plan.height);
@@ -49,9 +49,11 @@ std::string path_svg(const scene::FloorPlan& plan, glm::vec3 start, const std::v
   auto Y = [&](double world_z) { return num(top + world_z / plan.cell_size * cell); };
   auto cx = [&](double c) { return num(margin + c * cell); };
   auto cy = [&](double c) { return num(top + c * cell); };
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(side) + "\" height=\"" +
-                  num(top + plan.height * cell + margin) + "\" font-family=\"sans-serif\" font-size=\"14\">\n";
-  s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const bool key = side >= 480;  // the marker key fits beside the label; narrower panels leave it to the title
+  PathPanel panel;
+  panel.width = side;
+  panel.height = top + plan.height * cell + margin;
+  std::string& s = panel.markup;
   double ly = margin * 0.6;
   if (!title.empty()) {
     s += "<text x=\"" + num(margin) + "\" y=\"" + num(ly + 12) + "\" font-size=\"16\">" + escape(title) + "</text>\n";
@@ -110,12 +112,59 @@ std::string path_svg(const scene::FloorPlan& plan, glm::vec3 start, const std::v
            "\" stroke-width=\"3\"/>\n";
     }
     s += "<text x=\"" + num(margin) + "\" y=\"" + num(ly + 14) + "\" fill=\"" + colour + "\">" + escape(p.label) +
-         ": walked " + num(walked_distance(p.poses)) + " units" + (p.target ? ", o target" : "") +
-         (p.answer ? ", x answer" : "") + "</text>\n";
+         ": walked " + num(walked_distance(p.poses)) + " units" +
+         (key ? std::string(p.target ? ", o target" : "") + (p.answer ? ", x answer" : "") : "") + "</text>\n";
     ly += 22;
+  }
+  return panel;
+}
+
+std::string path_svg(const scene::FloorPlan& plan, glm::vec3 start, const std::vector<WalkedPath>& paths, int side,
+                     const std::string& title) {
+  return panels_svg({path_panel(plan, start, paths, side, title)}, 1, "");
+}
+
+std::string panels_svg(const std::vector<PathPanel>& panels, int columns, const std::string& title) {
+  const double gap = 8, head = title.empty() ? 0 : 34;
+  columns = std::max(1, columns);
+  std::vector<double> row_height;  // each row as tall as its tallest panel
+  double width = 0;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    const std::size_t row = i / static_cast<std::size_t>(columns);
+    if (row == row_height.size()) row_height.push_back(0);
+    row_height[row] = std::max(row_height[row], panels[i].height);
+    width = std::max(width, static_cast<double>(i % static_cast<std::size_t>(columns) + 1) * (panels[i].width + gap) - gap);
+  }
+  double height = head;
+  for (double h : row_height) height += h + gap;
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(std::max(width, 1.0)) + "\" height=\"" +
+                  num(std::max(height - (row_height.empty() ? 0 : gap), 1.0)) +
+                  "\" font-family=\"sans-serif\" font-size=\"14\">\n";
+  s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  if (!title.empty()) s += "<text x=\"12\" y=\"24\" font-size=\"18\">" + escape(title) + "</text>\n";
+  double y = head, x = 0;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    const std::size_t col = i % static_cast<std::size_t>(columns);
+    if (col == 0 && i > 0) y += row_height[i / static_cast<std::size_t>(columns) - 1] + gap;
+    x = col == 0 ? 0 : x + panels[i - 1].width + gap;
+    const bool moved = x != 0 || y != 0;
+    if (moved) s += "<g transform=\"translate(" + num(x) + "," + num(y) + ")\">\n";
+    s += panels[i].markup;
+    if (moved) s += "</g>\n";
   }
   s += "</svg>\n";
   return s;
+}
+
+WalkedPath walked_path(const scene::Scene& scene, const std::optional<store::Answer>& answer,
+                       std::vector<store::CameraPose> poses, std::string label) {
+  WalkedPath path;
+  path.label = std::move(label);
+  path.poses = std::move(poses);
+  if (scene.task == scene::Task::T3) path.target = scene.answer.position;
+  if (answer)
+    if (const auto* p = std::get_if<store::Position>(&*answer)) path.answer = glm::vec2(p->x, p->z);
+  return path;
 }
 
 }  // namespace dtlab::replay

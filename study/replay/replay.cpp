@@ -2,41 +2,62 @@
 #include "study/replay/replay.h"
 
 #include <algorithm>
+#include <map>
 
 #include "study/render/camera.h"
 
 namespace dtlab::replay {
 
+namespace {
+
+Error no_trial(const store::StudyReader& reader, const std::string& participant, int position, std::size_t recorded) {
+  return Error{reader.path(), 0, 0, "trial",
+               "participant \"" + participant + "\" has no recorded trial " + std::to_string(position) + " (" +
+                   std::to_string(recorded) + " recorded; trials are numbered from 1 as in dtlab plan)",
+               ErrorKind::not_found};
+}
+
+// The protocol revision a recorded trial ran under.
+Result<protocol::Protocol> trial_protocol(store::StudyReader& reader, const std::vector<store::Revision>& revisions,
+                                          const store::TrialRow& row) {
+  const auto rev = std::find_if(revisions.begin(), revisions.end(),
+                                [&](const store::Revision& r) { return r.study_id == row.study_id; });
+  if (rev == revisions.end())
+    return Error{reader.path(), 0, 0, "studies", "the trial's protocol revision is missing", ErrorKind::internal};
+  return protocol::load_protocol_text(rev->protocol_text, reader.path() + " (recorded protocol)");
+}
+
+// The trial's scene generated again; conflict when its hash is not the recorded one.
+Result<scene::Scene> regenerate(const store::StudyReader& reader, const protocol::Protocol& p, const store::TrialRow& row) {
+  auto setup = session::trial_setup(p, row.planned);
+  if (!setup) return setup.error();
+  auto sc = session::trial_scene(setup.value(), row.planned);
+  if (!sc) return sc.error();
+  if (sc->hash != row.scene_hash)
+    return Error{reader.path(), 0, 0, "scene_hash",
+                 "the regenerated scene of trial " + std::to_string(row.planned.position) + " has hash " +
+                     sc->hash.substr(0, 12) + "..., the recorded one " + row.scene_hash.substr(0, 12) +
+                     "...: this build generates other scenes than the one that ran the session",
+                 ErrorKind::conflict};
+  return sc;
+}
+
+}  // namespace
+
 Result<RecordedTrial> load_trial(store::StudyReader& reader, const std::string& participant, int position) {
   auto rows = reader.trials(participant);
   if (!rows) return rows.error();
   const auto row = std::find_if(rows->begin(), rows->end(), [&](const store::TrialRow& r) { return r.planned.position == position; });
-  if (row == rows->end())
-    return Error{reader.path(), 0, 0, "trial",
-                 "participant \"" + participant + "\" has no recorded trial " + std::to_string(position) + " (" +
-                     std::to_string(rows->size()) + " recorded; trials are numbered from 1 as in dtlab plan)",
-                 ErrorKind::not_found};
+  if (row == rows->end()) return no_trial(reader, participant, position, rows->size());
   auto revisions = reader.revisions();
   if (!revisions) return revisions.error();
-  const auto rev = std::find_if(revisions->begin(), revisions->end(),
-                                [&](const store::Revision& r) { return r.study_id == row->study_id; });
-  if (rev == revisions->end())
-    return Error{reader.path(), 0, 0, "studies", "the trial's protocol revision is missing", ErrorKind::internal};
-  auto p = protocol::load_protocol_text(rev->protocol_text, reader.path() + " (recorded protocol)");
+  auto p = trial_protocol(reader, *revisions, *row);
   if (!p) return p.error();
   RecordedTrial t;
   t.protocol = std::move(p.value());
   t.row = *row;
-  auto setup = session::trial_setup(t.protocol, row->planned);
-  if (!setup) return setup.error();
-  auto sc = session::trial_scene(setup.value(), row->planned);
+  auto sc = regenerate(reader, t.protocol, *row);
   if (!sc) return sc.error();
-  if (sc->hash != row->scene_hash)
-    return Error{reader.path(), 0, 0, "scene_hash",
-                 "the regenerated scene of trial " + std::to_string(position) + " has hash " + sc->hash.substr(0, 12) +
-                     "..., the recorded one " + row->scene_hash.substr(0, 12) +
-                     "...: this build generates other scenes than the one that ran the session",
-                 ErrorKind::conflict};
   t.scene = std::move(sc.value());
   auto poses = reader.poses(participant, position);
   if (!poses) return poses.error();
@@ -49,6 +70,44 @@ Result<RecordedTrial> load_trial(store::StudyReader& reader, const std::string& 
   for (const auto& s : *sessions)
     if (s.participant == participant && !s.displays.empty()) t.display = s.displays.back().info;
   return t;
+}
+
+Result<PathFigure> trials_path_svg(store::StudyReader& reader, const std::string& participant,
+                                   const std::vector<int>& positions, const std::string& title) {
+  PathFigure figure;
+  auto rows = reader.trials(participant);
+  if (!rows) return rows.error();
+  auto revisions = reader.revisions();
+  if (!revisions) return revisions.error();
+  std::map<std::int64_t, protocol::Protocol> protocols;  // by study_id: parsed once
+  std::vector<PathPanel> panels;
+  for (int position : positions) {
+    const auto row = std::find_if(rows->begin(), rows->end(),
+                                  [&](const store::TrialRow& r) { return r.planned.position == position; });
+    if (row == rows->end()) return no_trial(reader, participant, position, rows->size());
+    auto poses = reader.poses(participant, position);
+    if (!poses && poses.error().kind != ErrorKind::not_found) return poses.error();
+    if (!poses || poses->empty()) continue;
+    auto known = protocols.find(row->study_id);
+    if (known == protocols.end()) {
+      auto p = trial_protocol(reader, *revisions, *row);
+      if (!p) return p.error();
+      known = protocols.emplace(row->study_id, std::move(p.value())).first;
+    }
+    auto sc = regenerate(reader, known->second, *row);
+    if (!sc && sc.error().kind == ErrorKind::conflict) {
+      figure.left_out.push_back("trial " + std::to_string(position) +
+                                ": this build generates another scene than the one recorded (scene hash differs)");
+      continue;
+    }
+    if (!sc) return sc.error();
+    if (!sc->plan) continue;  // not a WALKTHROUGH trial: no floor plan to walk on
+    const std::string label = "trial " + std::to_string(position) + ", " + row->planned.method;
+    panels.push_back(path_panel(*sc->plan, sc->camera.position,
+                                {walked_path(*sc, row->answer, std::move(poses.value()), label)}, 360));
+  }
+  if (!panels.empty()) figure.svg = panels_svg(panels, 3, title);
+  return figure;
 }
 
 render::Camera pose_camera(const scene::Scene& scene, const store::CameraPose& pose, int width, int height) {

@@ -18,6 +18,7 @@
 #include "study/render/render.h"
 #include "study/scene/scene.h"
 #include "study/session/mapping.h"
+#include "study/replay/path.h"
 #include "study/store/read.h"
 
 namespace dtlab::replay {
@@ -36,6 +37,17 @@ struct RecordedTrial {
 // not_found (no such participant or recorded trial), conflict (the regenerated scene's hash
 // differs from the recorded one: another build generates other scenes).
 Result<RecordedTrial> load_trial(store::StudyReader& reader, const std::string& participant, int position);
+
+// The walked paths of a participant's recorded `positions` as one SVG: a panel per WALKTHROUGH
+// trial with recorded poses (each on its own building's plan; label "trial N, method"), three
+// panels a row, under `title`; svg "" when none has poses. A trial whose scene this build
+// generates differently (hash mismatch) is left out with the reason, not drawn on a wrong plan.
+struct PathFigure {
+  std::string svg;
+  std::vector<std::string> left_out;  // "trial N: why"
+};
+Result<PathFigure> trials_path_svg(store::StudyReader& reader, const std::string& participant,
+                                   const std::vector<int>& positions, const std::string& title);
 
 // The camera of a recorded pose for a width x height view of the trial's scene.
 render::Camera pose_camera(const scene::Scene& scene, const store::CameraPose& pose, int width, int height);

@@ -274,6 +274,34 @@ TEST_F(RunPilot, ReplayReproducesTheLoggedPosesAndRendersWhatDtlabRenderDraws) {
   EXPECT_LT(diff.pixels_off_pct, 0.5);
 }
 
+// The report of the scripted session links one walked-path figure per WALKTHROUGH task, drawn from
+// the recorded poses on each trial's regenerated building: a line per trial, T3's target and answer.
+TEST_F(RunPilot, TheReportLinksTheWalkedPathsOfEachWalkthroughTask) {
+  ASSERT_EQ(rc, 0);
+  const fs::path out = *dir / "report";
+  const auto rep = dtlab::test::run_dtlab("analyze '" + db->string() + "' --out '" + out.string() + "' --quiet");
+  ASSERT_EQ(rep.rc, 0) << rep.err;
+  auto r = reader(*db);
+  const auto recorded = r.trials();
+  ASSERT_TRUE(recorded);
+  std::map<std::string, std::size_t> trials;  // per task
+  for (const auto& t : *recorded) ++trials[t.planned.task];
+  const std::string html = slurp(out / "index.html");
+  for (const char* task : {"T3", "T4"}) {
+    SCOPED_TRACE(task);
+    const std::string file = std::string("paths/01-pilot-01-") + task + ".svg";
+    const std::string svg = slurp(out / file);
+    ASSERT_FALSE(svg.empty());
+    std::size_t lines = 0, crosses = 0;
+    for (auto i = svg.find("<polyline"); i != std::string::npos; i = svg.find("<polyline", i + 1)) ++lines;
+    for (auto i = svg.find("<path d="); i != std::string::npos; i = svg.find("<path d=", i + 1)) ++crosses;
+    EXPECT_EQ(lines, trials[task]) << "one walked line per trial";
+    EXPECT_EQ(crosses, std::string(task) == "T3" ? trials[task] : 0u) << "T3's marked answers";
+    EXPECT_NE(html.find("<a href=\"" + file + "\">"), std::string::npos);
+  }
+  EXPECT_FALSE(fs::exists(out / "paths/01-pilot-01-T1.svg")) << "ABSTRACT tasks have no floor plan";
+}
+
 // kill -9 at several moments of a scripted session; each rerun with the same script continues.
 // The file stays intact after every kill, and the end result equals the uninterrupted run's.
 TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {

@@ -25,6 +25,7 @@ struct Table {
   std::vector<std::string> notes;                         // printed under the table
   int text_columns = 1;                                   // leading columns of text (left-aligned); the rest are numbers
   bool last_is_text = false;                              // the last column is text too (e.g. a reading)
+  std::vector<std::string> links;                         // optional, per row: the last cell links to this relative path
   bool is_text(size_t column) const {
     return static_cast<int>(column) < text_columns || (last_is_text && column + 1 == header.size());
   }

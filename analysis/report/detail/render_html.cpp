@@ -1,7 +1,7 @@
 // index.html from the Document: one self-contained page. CSS is inline in
 // <style>, every figure's SVG is inline, there is no script and no URL to
 // fetch, so the page reads the same offline, from a mail attachment or an
-// archive. Tables follow the booktabs look of a journal (rules above and
+// archive (the only links go to files beside it: the walked-path figures). Tables follow the booktabs look of a journal (rules above and
 // below, numbers right-aligned in tabular figures).
 #include <sstream>
 
@@ -105,11 +105,15 @@ std::string render_html(const Document& doc, const std::map<std::string, std::st
           o << (t->is_text(c) ? "<th class=\"text\">" : "<th>") << text_html(t->header[c])
             << "</th>";
         o << "</tr>\n</thead>\n<tbody>\n";
-        for (const auto& row : t->rows) {
+        for (size_t r = 0; r < t->rows.size(); ++r) {
+          const auto& row = t->rows[r];
           o << "<tr>";
-          for (size_t c = 0; c < row.size(); ++c)
-            o << (t->is_text(c) ? "<td class=\"text\">" : "<td>") << text_html(row[c])
-              << "</td>";
+          for (size_t c = 0; c < row.size(); ++c) {
+            const bool link = c + 1 == row.size() && r < t->links.size() && !t->links[r].empty();
+            o << (t->is_text(c) ? "<td class=\"text\">" : "<td>");
+            if (link) o << "<a href=\"" << html_escape(t->links[r]) << "\">";
+            o << text_html(row[c]) << (link ? "</a>" : "") << "</td>";
+          }
           o << "</tr>\n";
         }
         o << "</tbody>\n</table>\n";

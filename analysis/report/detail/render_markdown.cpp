@@ -59,9 +59,13 @@ std::string render_markdown(const Document& doc) {
         o << "\n|";
         for (size_t c = 0; c < header.size(); ++c) o << (t->is_text(c) ? ":---|" : "---:|");
         o << "\n";
-        for (const auto& row : t->rows) {
+        for (size_t r = 0; r < t->rows.size(); ++r) {
+          const auto& row = t->rows[r];
           o << "|";
-          for (const auto& cell : row) o << " " << md(cell, true) << " |";
+          for (size_t c = 0; c < row.size(); ++c) {
+            const bool link = c + 1 == row.size() && r < t->links.size() && !t->links[r].empty();
+            o << " " << (link ? "[" + md(row[c], true) + "](" + t->links[r] + ")" : md(row[c], true)) << " |";
+          }
           o << "\n";
         }
         o << "\n";

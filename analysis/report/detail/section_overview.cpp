@@ -181,7 +181,8 @@ void section_notes(Context& ctx) {
          "tables, machine-readable), `trials.csv` (the tidy one-row-per-trial table, as `dtlab export` writes "
          "it), `completion_time_means.csv` and `accuracy_means.csv` (the participant x condition values every "
          "test used), `tests.csv` (one row per test), `questionnaire.csv`, `frames.csv`, and `figures/` (each "
-         "figure's SVG, its data and the gnuplot script `report.gp` that draws them).");
+         "figure's SVG, its data and the gnuplot script `report.gp` that draws them)" +
+         std::string(ctx.json.contains("path_figures") ? ", and `paths/` (the walked-path figures)" : "") + ".");
   ctx.doc.sections.push_back(std::move(s));
 }
 

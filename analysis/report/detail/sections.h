@@ -66,6 +66,15 @@ void section_position(Context& ctx);        // position in the session, order ro
 void section_frames(Context& ctx);          // frame-time audit per condition
 void section_notes(Context& ctx);           // what the report does not say; files written
 
+// A walked-path figure written beside the report (report.cpp draws them through ReportOptions::path_figure).
+struct PathFigure {
+  std::string participant, task;
+  int trials = 0;    // analysed trials of the task the figure was asked for
+  std::string file;  // relative to the report's directory, e.g. "paths/03-P03-T3.svg"
+};
+// The table linking them, and the trials left out of them ("participant trial N: why"; also a warning).
+void section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out);
+
 // --- plots shared by the sections (section_time.cpp) -------------------------------------------
 // Bars per row (x groups) and primary level (series), SD error bars (the article's Figs. 9 and 10).
 PlotSpec bar_plot(const Context& ctx, const std::vector<std::pair<std::string, const TestReport*>>& rows,

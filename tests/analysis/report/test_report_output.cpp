@@ -192,6 +192,83 @@ TEST(ReportEdge, PositionTestsAndBalanceOfTheLatinSquare) {
   EXPECT_EQ(find_effect(j.at("position").at("order_row"), "order_row").at("df1").get<double>(), 3);
 }
 
+// The walked-path figures: the report asks its path-figure function once per analysed participant
+// and WALKTHROUGH task (T3, T4 of the reference protocol; never T1, T2) with exactly that task's
+// analysed trials, writes what it returns under paths/, links each from a table, and leaves out
+// the figures the function found no poses for.
+TEST(ReportPaths, OneFigurePerParticipantAndWalkthroughTaskIsWrittenAndLinked) {
+  TempDir dir;
+  build_small_reference(dir.file("s.sqlite"), 2);
+  std::vector<std::string> asked;  // "participant task"
+  ReportOptions options;
+  options.path_figure = [&](store::StudyReader& reader, const std::string& participant,
+                            const std::vector<int>& positions, const std::string& title) -> Result<PathDrawing> {
+    const auto trials = reader.trials(participant);
+    EXPECT_TRUE(trials);
+    std::string task;
+    std::vector<int> expected;
+    for (const auto& t : *trials)
+      if (t.planned.position == positions.front()) task = t.planned.task;
+    for (const auto& t : *trials)
+      if (t.planned.task == task && !t.planned.practice) expected.push_back(t.planned.position);
+    EXPECT_EQ(positions, expected) << participant << " " << task;
+    asked.push_back(participant + " " + task);
+    if (asked.size() == 4) return PathDrawing{};  // the last participant's T4: no poses recorded
+    PathDrawing d{"<svg xmlns=\"http://www.w3.org/2000/svg\"><text>" + title + "</text></svg>\n", {}};
+    if (asked.size() == 2) d.left_out.push_back("trial 99: this build generates another scene");
+    return d;
+  };
+  auto r = write_report(dir.file("s.sqlite"), dir.file("out"), {}, options);
+  ASSERT_TRUE(r) << r.error().to_string();
+  ASSERT_EQ(asked.size(), 4u);
+  EXPECT_EQ(asked[0].substr(asked[0].size() - 2), "T3");
+  EXPECT_EQ(asked[1].substr(asked[1].size() - 2), "T4");
+  const std::string participant = asked[0].substr(0, asked[0].size() - 3);
+  const std::string first = "paths/01-" + participant + "-T3.svg";
+  const std::string text = read_text(dir.file("out/" + first));
+  EXPECT_NE(text.find(participant + ", task T3: walked paths"), std::string::npos) << text;
+  std::size_t svgs = 0;
+  for (const auto& f : r->files) svgs += f.rfind("paths/", 0) == 0;
+  EXPECT_EQ(svgs, 3u);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.file("out/paths")), fs::directory_iterator()), 3);
+  EXPECT_FALSE(fs::exists(dir.file("out/paths/02-" + asked[3].substr(0, asked[3].size() - 3) + "-T4.svg")));
+  const std::string html = read_text(dir.file("out/index.html"));
+  EXPECT_EQ(count(html, "<a href=\"paths/"), 3u);
+  EXPECT_NE(html.find("<a href=\"" + first + "\">" + first + "</a>"), std::string::npos);
+  const std::string md = read_text(dir.file("out/report.md"));
+  EXPECT_NE(md.find("## Walked paths"), std::string::npos);
+  EXPECT_EQ(count(md, "](paths/"), 3u);
+  const auto j = nlohmann::json::parse(read_text(dir.file("out/report.json")));
+  ASSERT_EQ(j.at("path_figures").size(), 3u);
+  EXPECT_EQ(j.at("path_figures")[0].at("file"), first);
+  EXPECT_GT(j.at("path_figures")[0].at("trials").get<int>(), 0);
+  // A trial left out of a figure is said under the table and among the warnings.
+  EXPECT_NE(md.find("Not drawn: 1 trial, e.g. " + participant + " trial 99: this build generates another scene."),
+            std::string::npos);
+  ASSERT_EQ(j.at("path_figures_left_out").size(), 1u);
+  bool warned = false;
+  for (const auto& w : r->warnings) warned = warned || w.find("walked paths: 1 trial not drawn") == 0;
+  EXPECT_TRUE(warned);
+}
+
+TEST(ReportPaths, NoFunctionNoSectionAndItsErrorsStopTheReport) {
+  TempDir dir;
+  build_small_reference(dir.file("s.sqlite"), 2);
+  auto plain = write_report(dir.file("s.sqlite"), dir.file("plain"));
+  ASSERT_TRUE(plain) << plain.error().to_string();
+  EXPECT_EQ(read_text(dir.file("plain/report.md")).find("Walked paths"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir.file("plain/paths")));
+  ReportOptions options;
+  options.path_figure = [](store::StudyReader& reader, const std::string&, const std::vector<int>&,
+                           const std::string&) -> Result<PathDrawing> {
+    return Error{reader.path(), 0, 0, "sqlite", "disk I/O error", ErrorKind::environment};
+  };
+  auto r = write_report(dir.file("s.sqlite"), dir.file("out"), {}, options);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().kind, ErrorKind::environment);
+  EXPECT_NE(r.error().to_string().find("disk I/O error"), std::string::npos);
+}
+
 TEST(ReportErrors, NotADatabaseIsAnInputError) {
   TempDir dir;
   std::ofstream(dir.file("x.sqlite")) << "hello, not a database\n";

@@ -1,0 +1,44 @@
+// Walked paths: one figure per participant and WALKTHROUGH task, each trial's
+// recorded eye positions on its building's floor plan with the target and
+// the marked answer (drawn by the app's path-figure function, ReportOptions),
+// linked from a table. A reader sees how each person searched: straight to
+// the target, room by room, or lost. Listed only where poses were recorded.
+#include "analysis/report/detail/sections.h"
+
+namespace dtlab::report::detail {
+
+void section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out) {
+  if (figures.empty() && left_out.empty()) return;
+  Section s{"paths", "Walked paths", 2, {}};
+  s.text("Where each participant walked in the WALKTHROUGH tasks: one figure per participant and task, a floor "
+         "plan per trial (each trial has its own building) with the recorded eye positions as a line, the start "
+         "cell, the target (circle, T3-like tasks), the position the participant marked (cross) and the distance "
+         "walked. The figures are SVG files beside this page.");
+  Table t;
+  t.id = "table-paths";
+  t.caption = "Walked-path figures per participant and task.";
+  t.header = {"Participant", "Task", "Trials", "Figure"};
+  t.text_columns = 2;
+  t.last_is_text = true;
+  nlohmann::json list = nlohmann::json::array();
+  for (const PathFigure& f : figures) {
+    t.rows.push_back({f.participant, f.task, std::to_string(f.trials), f.file});
+    t.links.push_back(f.file);
+    list.push_back({{"participant", f.participant}, {"task", f.task}, {"trials", f.trials}, {"file", f.file}});
+  }
+  if (!left_out.empty()) {
+    // A scene generated differently by this build would put the path on the wrong building.
+    ctx.warnings.push_back("walked paths: " + std::to_string(left_out.size()) + " trial" +
+                           (left_out.size() == 1 ? "" : "s") + " not drawn (" + left_out.front() +
+                           (left_out.size() > 1 ? "; ..." : "") + ")");
+    t.notes.push_back("Not drawn: " + std::to_string(left_out.size()) + " trial" + (left_out.size() == 1 ? "" : "s") +
+                      ", e.g. " + left_out.front() + ".");
+  }
+  if (!t.rows.empty()) s.add(std::move(t));
+  else s.text(t.notes.front());
+  ctx.json["path_figures"] = std::move(list);
+  ctx.json["path_figures_left_out"] = left_out;
+  ctx.doc.sections.push_back(std::move(s));
+}
+
+}  // namespace dtlab::report::detail
