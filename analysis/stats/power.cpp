@@ -35,8 +35,9 @@ void wilson(ResampledPower& r) {
   r.power = ph;
   const double centre = (ph + z * z / (2 * m)) / (1 + z * z / m);
   const double half = z / (1 + z * z / m) * std::sqrt(ph * (1 - ph) / m + z * z / (4 * m * m));
-  r.ci_low = std::max(0.0, centre - half);
-  r.ci_high = std::min(1.0, centre + half);
+  // At 0 or R rejections the bound is exactly 0 or 1 (centre -+ half rounds a few ulps inside).
+  r.ci_low = r.rejections == 0 ? 0.0 : std::max(0.0, centre - half);
+  r.ci_high = ph == 1 ? 1.0 : std::min(1.0, centre + half);
 }
 
 // F(1 - alpha; df1, df2) from P(F > f) = I_y(df2/2, df1/2), y = df2 / (df2 + df1 f).

@@ -70,7 +70,7 @@ TEST(Planning, ResamplingIsSeededAndIndependentOfTheThreadCount) {
   build_statsmodels_2x2(dir.file("s.sqlite"));
   PlanningOptions o;
   o.sizes = {4, 16};
-  o.replications = 200;
+  o.replications = 60;
   o.seed = 5;
   o.threads = 1;
   std::size_t calls = 0, last_total = 0;
@@ -92,7 +92,7 @@ TEST(Planning, ResamplingIsSeededAndIndependentOfTheThreadCount) {
     for (std::size_t k = 0; k < 2; ++k) {
       const auto& a = one->effects[i].at[k].resampled;
       EXPECT_EQ(a.rejections, two->effects[i].at[k].resampled.rejections) << i << " " << k;
-      EXPECT_EQ(a.replications, 200u);
+      EXPECT_EQ(a.replications, 60u);
       if (std::isfinite(a.power)) {
         EXPECT_LE(a.ci_low, a.power);
         EXPECT_GE(a.ci_high, a.power);
@@ -136,11 +136,11 @@ TEST(PowerCli, JsonTextAndExitCodes) {
   TempDir dir;
   build_statsmodels_t1(dir.file("s.sqlite"));
   const std::string db = dir.file("s.sqlite");
-  const auto r = test::run_dtlab("power " + db + " --participants 6,10 --replications 100 --jobs 2 --json");
+  const auto r = test::run_dtlab("power " + db + " --participants 6,10 --replications 40 --jobs 2 --json");
   ASSERT_EQ(r.rc, 0) << r.err;
   const json j = json::parse(r.out);
   EXPECT_EQ(j.at("sizes"), json({6, 10}));
-  EXPECT_EQ(j.at("replications"), 100);
+  EXPECT_EQ(j.at("replications"), 40);
   EXPECT_EQ(j.at("participants"), 8);
   const json& t1 = planned(j.at("effects"), "T1", "completion time", "transparency");
   // R 4.2.2: power.t.test(n = 6, delta = sqrt(22.4 / 8), sd = 1, type = "paired", strict = TRUE)$power -> 0.9009394
@@ -150,12 +150,12 @@ TEST(PowerCli, JsonTextAndExitCodes) {
   EXPECT_LE(resampled, 1.0);
   EXPECT_LE(number(t1.at("power")[0].at("resampled_ci95_low")), resampled);
   EXPECT_NE(r.err.find("dtlab power: resampled"), std::string::npos) << "progress on stderr";
-  const auto same = test::run_dtlab("power " + db + " --participants 6,10 --replications 100 --jobs 1 --json --quiet");
+  const auto same = test::run_dtlab("power " + db + " --participants 6,10 --replications 40 --jobs 1 --json --quiet");
   ASSERT_EQ(same.rc, 0) << same.err;
   EXPECT_EQ(json::parse(same.out).at("effects"), j.at("effects")) << "the thread count changes nothing";
   EXPECT_TRUE(same.err.empty()) << same.err;
 
-  const auto text = test::run_dtlab("power " + db + " --replications 50 --quiet");
+  const auto text = test::run_dtlab("power " + db + " --replications 20 --quiet");
   ASSERT_EQ(text.rc, 0) << text.err;
   EXPECT_NE(text.out.find("T1, completion time: transparency"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("smallest n for 80% power: 6 (analytic)"), std::string::npos) << text.out;

@@ -225,6 +225,15 @@ TEST(Power, ResamplingIsTheSameOnAnyNumberOfThreads) {
   EXPECT_GT(one[1].power, one[0].power) << "the larger difference is found more often";
   const auto other_seed = power_by_resampling(pilot.size(), 12, 2, test, 400, 100, 0.05, 2);
   EXPECT_NE(other_seed[0].rejections * 1000 + other_seed[1].rejections, one[0].rejections * 1000 + one[1].rejections);
+  // Every or no replication rejecting: power 1 or 0 with the Wilson bound exactly 1 or 0, the other inside.
+  const ResampleTest always = [](const std::vector<std::size_t>&) { return std::vector<double>{0.0, 1.0}; };
+  const auto ends = power_by_resampling(5, 3, 2, always, 50, 1, 0.05, 2);
+  EXPECT_EQ(ends[0].power, 1.0);
+  EXPECT_EQ(ends[0].ci_high, 1.0);
+  EXPECT_LT(ends[0].ci_low, 1.0);
+  EXPECT_EQ(ends[1].power, 0.0);
+  EXPECT_EQ(ends[1].ci_low, 0.0);
+  EXPECT_GT(ends[1].ci_high, 0.0);
   // Degenerate inputs: no participant or no replication gives NaN power, never a division by zero.
   EXPECT_TRUE(std::isnan(power_by_resampling(0, 12, 1, test, 10, 1).front().power));
   EXPECT_TRUE(std::isnan(power_by_resampling(5, 12, 1, test, 0, 1).front().power));
