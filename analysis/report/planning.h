@@ -1,15 +1,11 @@
-// Power planning from a pilot study (`dtlab power DB`, docs/stats.md "Power"):
-// for every effect of the repeated-measures ANOVAs the study report runs
-// (completion time and accuracy, per task and over all tasks), the power at
-// each planned number of participants, (1) by resampling the pilot's
-// participants with replacement and rerunning the report's own test R times
-// (share of p < alpha, 95% Wilson interval), and (2) analytically from the
-// observed effect (1-df effects: noncentral t with d_z = sqrt(F / N); more df:
-// noncentral F with lambda = F df1 n / N and the observed Greenhouse-Geisser
-// epsilon, as G*Power), with the smallest n reaching 80% and 90%. The report's
-// "Planning the next study" section is this code with R = 0 (analytic only).
-// Guarantees: reads the database only (never writes); deterministic for a
-// seed whatever the number of threads; errors as the report's.
+// Power planning from a pilot study (`dtlab power DB`; formulas in
+// docs/stats.md "Power"): for every effect of the report's completion-time and
+// accuracy RM ANOVAs, the power at each planned number of participants by
+// resampling the pilot's participants and rerunning the report's own test
+// (95% Wilson interval), and analytically from the observed effect, with the
+// smallest n for 80% and 90%. The report's "Planning the next study" section
+// is this code without resampling. Guarantees: reads the database only;
+// deterministic for a seed whatever the number of threads; errors as the report's.
 #pragma once
 #include <nlohmann/json.hpp>
 
