@@ -32,6 +32,7 @@
 #include "analysis/stats/rm_anova.h"
 #include "analysis/stats/select.h"
 #include "app/commands.h"
+#include "app/stats_input.h"
 
 namespace dtlab::app {
 namespace {
@@ -39,12 +40,12 @@ namespace {
 using json = nlohmann::ordered_json;
 namespace st = dtlab::stats;
 
-struct StatsOptions {
-  std::string data, dv, subject, exact = "auto", alternative = "two-sided", aggregate = "none", factor;
-  std::vector<std::string> within, between, observed, where;
+// Every option of the four tests; the table-reading ones are StatsInput's (stats_input.h).
+struct StatsOptions : StatsInput {
+  std::string exact = "auto", alternative = "two-sided", factor;
+  std::vector<std::string> observed;
   std::uint64_t seed = 1;
-  bool wide = false, json = false, posthoc = false, no_correct = false;
-  bool exclude_practice = false, include_practice = false, with_excluded = false;
+  bool json = false, posthoc = false, no_correct = false;
   bool simple_effects = false, within_ci = false, normality = false;
 };
 
@@ -55,16 +56,7 @@ struct Followups {
   std::optional<st::ShapiroWilkResult> normality;
 };
 
-// What the row selection did, for the output.
-struct Loaded {
-  st::LongData data;
-  st::SelectionReport selection;
-};
-
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab stats: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
+[[noreturn]] void fail(int code, const std::string& message) { stats_fail(code, message); }
 
 std::string fmt(double v) {
   if (std::isnan(v)) return "NA";
@@ -120,55 +112,7 @@ st::ExactOptions parse_exact(const StatsOptions& o) {
   return e;
 }
 
-st::RowSelection parse_selection(const StatsOptions& o) {
-  st::RowSelection s;
-  if (o.exclude_practice && o.include_practice) fail(kExitUsage, "--exclude-practice and --include-practice exclude each other");
-  s.practice = o.exclude_practice ? st::Practice::exclude : o.include_practice ? st::Practice::include : st::Practice::automatic;
-  s.with_excluded = o.with_excluded;
-  for (const auto& w : o.where) {
-    auto c = st::parse_row_condition(w);
-    if (!c) fail(kExitUsage, c.error().to_string());
-    s.where.push_back(*c);
-  }
-  return s;
-}
-
-// Reads the CSV, selects rows and assigns the roles; on failure prints file:line:column and throws.
-Loaded load(const StatsOptions& o, bool groups_design) {
-  const st::RowSelection selection = parse_selection(o);
-  st::Aggregate aggregate = st::Aggregate::none;
-  if (o.aggregate == "mean") aggregate = st::Aggregate::mean;
-  else if (o.aggregate == "median") aggregate = st::Aggregate::median;
-  else if (o.aggregate != "none") fail(kExitUsage, "--aggregate must be none, mean or median, got " + st::quote_text(o.aggregate));
-  auto table = st::read_csv_file(o.data);
-  if (!table) fail(table.error().line == 0 && table.error().message.rfind("cannot open", 0) == 0 ? kExitFailure : kExitInvalid,
-                   table.error().to_string());
-  auto report = st::select_rows(*table, selection);
-  if (!report) fail(kExitInvalid, report.error().to_string());
-  Result<st::LongData> data = Error{};
-  if (o.wide) {
-    st::WideRoles w;
-    w.subject = o.subject;
-    w.dv = o.dv.empty() ? "value" : o.dv;
-    if (groups_design) {
-      w.conditions_are_groups = true;
-      w.factor = o.between.empty() ? "group" : o.between.front();
-    } else {
-      w.between = o.between;
-      if (o.within.size() > 1) fail(kExitUsage, "--wide takes one within factor name (its columns are the conditions)");
-      w.factor = o.within.empty() ? "condition" : o.within.front();
-    }
-    data = st::long_data_from_wide_csv(*table, w);
-  } else {
-    if (o.dv.empty()) fail(kExitUsage, "--dv COL is required (or --wide)");
-    st::ColumnRoles roles{o.dv, groups_design ? std::string() : o.subject, groups_design ? std::vector<std::string>{} : o.within,
-                          o.between};
-    data = st::long_data_from_csv(*table, roles);
-  }
-  if (!data) fail(kExitInvalid, data.error().to_string());
-  data->aggregate = aggregate;
-  return {std::move(data).value(), *report};
-}
+Loaded load(const StatsOptions& o, bool groups_design) { return load_stats_input(o, groups_design); }
 
 void warn(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "dtlab stats: warning: " << w << "\n";
@@ -532,12 +476,15 @@ void add_common(CLI::App* cmd, StatsOptions& o) {
   cmd->add_flag("--wide", o.wide, "One row per subject, one column per condition (empty cell = missing)");
   cmd->add_option("--where", o.where, "Keep rows where COL=VALUE (or COL!=VALUE); repeatable, all must hold");
   cmd->add_flag("--exclude-practice", o.exclude_practice,
-                "Leave out rows with practice = 1 (the default for a dtlab export)");
-  cmd->add_flag("--include-practice", o.include_practice, "Keep practice rows of a dtlab export");
+                "Leave out rows whose practice column is 1/true/yes. This is the default for a dtlab export (a CSV "
+                "with the columns practice, trial_seed and protocol_sha256); the output's Rows line says which rule "
+                "applied");
+  cmd->add_flag("--include-practice", o.include_practice, "Keep the practice rows of a dtlab export");
   cmd->add_flag("--with-excluded", o.with_excluded,
                 "Keep rows with a non-empty 'excluded' column (left out by default)");
   cmd->add_option("--aggregate", o.aggregate,
-                  "none|mean|median: several rows per subject and cell are an error (none) or reduced to one")
+                  "none|mean|median: several rows per subject and cell (e.g. the trials of a dtlab export) are an "
+                  "error naming both lines (none), or reduced to their mean or median")
       ->capture_default_str();
   cmd->add_flag("--json", o.json, "Print one JSON object (see README, Statistics)");
 }

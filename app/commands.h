@@ -53,6 +53,7 @@ void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one t
 void add_exclude_command(CLI::App& root);  // `dtlab exclude|include DB --participant ID [--trial N] --reason R`
 void add_copy_command(CLI::App& root);  // `dtlab copy SRC DST`: a whole study between databases (file, server), or a merge
 void add_analyze_command(CLI::App& root);  // `dtlab analyze DB --out DIR`: study report (report.md, index.html, JSON, CSV)
+void add_power_command(CLI::App& root);  // `dtlab power DB --participants 8,12,16`: power planning from a pilot, --json
 void add_simulate_command(CLI::App& root);  // `dtlab simulate PROTOCOL --participants N --db FILE`: simulated participants, headless
 void add_demo_command(CLI::App& root);  // `dtlab demo [--out DIR]`: the reference study simulated end to end, then its report
 void add_run_command(CLI::App& root);  // `dtlab run PROTOCOL --db FILE`: a person's session in a window (app/run)

@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   dtlab::app::add_simulate_command(root);
   dtlab::app::add_demo_command(root);
   dtlab::app::add_analyze_command(root);
+  dtlab::app::add_power_command(root);
   dtlab::app::add_run_command(root);
   dtlab::app::add_replay_command(root);
 

@@ -8,7 +8,6 @@
 
 #include <chrono>
 #include <cctype>
-#include <charconv>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -114,12 +113,7 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
                                 const ReportOptions& options) {
   const Design design = make_design(data.protocol);
   Context ctx(data, design, options);
-  for (const auto& p : data.participants) {
-    long long n = 0;
-    for (const auto& t : data.trials) n += t.participant == p.id && ctx.analysed(t) ? 1 : 0;
-    if (n) ctx.subjects.push_back(p.id);
-    ctx.analysed_trials += n;
-  }
+  collect_subjects(ctx);
   if (ctx.analysed_trials == 0)
     return Error{data.path, 0, 0, "trial_table",
                  "no recorded trial to analyse in design revision " + std::to_string(data.design_revision) + " (" +
@@ -151,6 +145,8 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   section_position(ctx);
   say("frame-time audit");
   section_frames(ctx);
+  say("planning the next study");
+  section_planning(ctx);
   if (options.path_figure) say("walked paths");
   auto paths = draw_paths(reader, ctx);
   if (!paths) return paths.error();
@@ -229,27 +225,6 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   }
   for (const auto& f : figure_files) sum.files.push_back(f);
   return sum;
-}
-
-// Which design revisions `spec` ("all", "latest", "N") names, of `count`.
-Result<std::vector<int>> chosen_revisions(const std::string& spec, int count, const std::string& path) {
-  if (spec == "all" || spec.empty()) {
-    std::vector<int> all;
-    for (int k = 1; k <= count; ++k) all.push_back(k);
-    return all;
-  }
-  if (spec == "latest") return std::vector<int>{count};
-  int k = 0;
-  const auto [ptr, ec] = std::from_chars(spec.data(), spec.data() + spec.size(), k);
-  if (ec != std::errc() || ptr != spec.data() + spec.size() || k < 1)
-    return Error{path, 0, 0, "revision", "\"" + spec + "\": expected all, latest or a revision number 1.." +
-                                             std::to_string(count)};
-  if (k > count)
-    return Error{path, 0, 0, "revision",
-                 "there is no design revision " + spec + "; the database has " + std::to_string(count) +
-                     (count == 1 ? " (revision 1)" : " (revisions 1.." + std::to_string(count) + ")"),
-                 ErrorKind::not_found};
-  return std::vector<int>{k};
 }
 
 // out/index.html and out/report.md when several design revisions got a report each.

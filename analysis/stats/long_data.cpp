@@ -5,15 +5,10 @@
 #include <cctype>
 #include <optional>
 
+#include "analysis/stats/select.h"  // column_list
+
 namespace dtlab::stats {
 namespace {
-
-std::string column_list(const CsvTable& t) {
-  std::string s;
-  for (size_t i = 0; i < t.header.size() && i < 40; ++i) s += (i ? ", " : "") + name_for_message(t.header[i]);
-  if (t.header.size() > 40) s += ", and " + std::to_string(t.header.size() - 40) + " more";
-  return s;
-}
 
 Result<int> find_column(const CsvTable& t, const std::string& name, const char* role) {
   const int c = t.column(name);

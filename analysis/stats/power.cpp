@@ -7,8 +7,11 @@
 #include <boost/math/special_functions/beta.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
+#include <utility>
 
 #include "analysis/stats/detail/friedman_exact.h"  // SplitMixStream
 
@@ -20,6 +23,22 @@ namespace {
 namespace bm = boost::math;
 using detail::Policy;  // errors become NaN/inf values, never exceptions
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The share of rejections among the defined replications and its 95% Wilson interval.
+void wilson(ResampledPower& r) {
+  const double m = static_cast<double>(r.replications - r.undefined);
+  if (m == 0) {
+    r.power = r.ci_low = r.ci_high = kNaN;
+    return;
+  }
+  const double ph = static_cast<double>(r.rejections) / m, z = 1.959963984540054;
+  r.power = ph;
+  const double centre = (ph + z * z / (2 * m)) / (1 + z * z / m);
+  const double half = z / (1 + z * z / m) * std::sqrt(ph * (1 - ph) / m + z * z / (4 * m * m));
+  // At 0 or R rejections the bound is exactly 0 or 1 (centre -+ half rounds a few ulps inside).
+  r.ci_low = r.rejections == 0 ? 0.0 : std::max(0.0, centre - half);
+  r.ci_high = ph == 1 ? 1.0 : std::min(1.0, centre + half);
+}
 
 // F(1 - alpha; df1, df2) from P(F > f) = I_y(df2/2, df1/2), y = df2 / (df2 + df1 f).
 double f_critical(double alpha, double df1, double df2) {
@@ -96,35 +115,56 @@ double smallest_n(const std::function<double(double)>& power_at, double target) 
   return hi;
 }
 
+std::vector<ResampledPower> power_by_resampling(std::size_t participants, std::size_t n, std::size_t hypotheses,
+                                                const ResampleTest& test, std::size_t replications,
+                                                std::uint64_t seed, double alpha, unsigned threads) {
+  std::vector<ResampledPower> out(hypotheses);
+  for (auto& r : out) r.replications = replications;
+  if (participants == 0 || n == 0 || replications == 0) {
+    for (auto& r : out) r.power = r.ci_low = r.ci_high = kNaN;
+    return out;
+  }
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::size_t>(threads, replications));
+  // counts[t][h]: {rejections, undefined} of thread t; summed in thread order (integers: order-free anyway).
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> counts(threads, std::vector<std::pair<std::size_t, std::size_t>>(hypotheses));
+  auto work = [&](unsigned t) {
+    std::vector<std::size_t> draw(n);
+    for (std::size_t b = t; b < replications; b += threads) {
+      detail::SplitMixStream rng(seed ^ (0x9E3779B97F4A7C15ULL * (b + 1)));
+      for (auto& i : draw) i = static_cast<std::size_t>(rng.below(participants));
+      const std::vector<double> p = test(draw);
+      for (std::size_t h = 0; h < hypotheses; ++h) {
+        const double ph = h < p.size() ? p[h] : kNaN;
+        if (std::isnan(ph)) ++counts[t][h].second;
+        else if (ph < alpha) ++counts[t][h].first;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+  for (std::size_t h = 0; h < hypotheses; ++h) {
+    for (unsigned t = 0; t < threads; ++t) {
+      out[h].rejections += counts[t][h].first;
+      out[h].undefined += counts[t][h].second;
+    }
+    wilson(out[h]);
+  }
+  return out;
+}
+
 ResampledPower power_by_resampling(const std::vector<std::vector<double>>& rows, std::size_t n,
                                    const std::function<double(const std::vector<std::vector<double>>&)>& test,
                                    std::size_t replications, std::uint64_t seed, double alpha) {
-  ResampledPower r;
-  r.replications = replications;
-  if (rows.empty() || n == 0 || replications == 0) {
-    r.power = r.ci_low = r.ci_high = kNaN;
-    return r;
-  }
-  detail::SplitMixStream rng(seed);
-  std::vector<std::vector<double>> sample(n);
-  for (std::size_t b = 0; b < replications; ++b) {
-    for (auto& row : sample) row = rows[rng.below(rows.size())];
-    const double p = test(sample);
-    if (std::isnan(p)) ++r.undefined;
-    else if (p < alpha) ++r.rejections;
-  }
-  const double m = static_cast<double>(replications - r.undefined);
-  if (m == 0) {
-    r.power = r.ci_low = r.ci_high = kNaN;
-    return r;
-  }
-  const double ph = static_cast<double>(r.rejections) / m, z = 1.959963984540054;
-  r.power = ph;
-  const double centre = (ph + z * z / (2 * m)) / (1 + z * z / m);
-  const double half = z / (1 + z * z / m) * std::sqrt(ph * (1 - ph) / m + z * z / (4 * m * m));
-  r.ci_low = std::max(0.0, centre - half);
-  r.ci_high = std::min(1.0, centre + half);
-  return r;
+  const ResampleTest one = [&](const std::vector<std::size_t>& draw) {
+    std::vector<std::vector<double>> sample;
+    sample.reserve(draw.size());
+    for (std::size_t i : draw) sample.push_back(rows[i]);
+    return std::vector<double>{test(sample)};
+  };
+  return power_by_resampling(rows.size(), n, 1, one, replications, seed, alpha, 1).front();
 }
 
 }  // namespace dtlab::stats

@@ -21,13 +21,15 @@
 // Resampling power: draw n participants with replacement from the pilot's
 //   rows, run the test (a callback returning p), count p < alpha; R
 //   replications give the estimate and a 95% Wilson interval (Monte Carlo error).
-//   Seeded (SplitMix64), reproducible.
+//   Seeded (SplitMix64, one stream per replication), reproducible whatever the
+//   number of threads.
 // Validated against: R 4.2.2 power.t.test and pf(ncp = ) (an independent
 //   noncentral F), pingouin's power_rm_anova documentation examples (tested
 //   there against G*Power), and convergence of the resampling power to the
 //   analytic power on normal data (tests).
 #pragma once
 #include <cstdint>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -66,5 +68,19 @@ struct ResampledPower {
 ResampledPower power_by_resampling(const std::vector<std::vector<double>>& rows, std::size_t n,
                                    const std::function<double(const std::vector<std::vector<double>>&)>& test,
                                    std::size_t replications, std::uint64_t seed, double alpha = 0.05);
+
+// A test run on one resample: `draw` holds n indices into the pilot's
+// participants (with repeats); returns one p per hypothesis (NaN = undefined).
+// Called from several threads at once: it must not touch shared mutable state.
+using ResampleTest = std::function<std::vector<double>(const std::vector<std::size_t>& draw)>;
+
+// The power of every hypothesis `test` returns (`hypotheses` of them) at n of
+// `participants` drawn with replacement, from R replications on `threads`
+// threads (0 = one per processor). Replication b draws from its own stream
+// seeded by (seed, b), so the result depends on the seed, never on the
+// thread count.
+std::vector<ResampledPower> power_by_resampling(std::size_t participants, std::size_t n, std::size_t hypotheses,
+                                                const ResampleTest& test, std::size_t replications,
+                                                std::uint64_t seed, double alpha = 0.05, unsigned threads = 1);
 
 }  // namespace dtlab::stats

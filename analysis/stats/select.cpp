@@ -16,6 +16,13 @@ std::string rows_text(std::size_t n) { return std::to_string(n) + (n == 1 ? " ro
 
 }  // namespace
 
+std::string column_list(const CsvTable& t) {
+  std::string s;
+  for (size_t i = 0; i < t.header.size() && i < 40; ++i) s += (i ? ", " : "") + name_for_message(t.header[i]);
+  if (t.header.size() > 40) s += ", and " + std::to_string(t.header.size() - 40) + " more";
+  return s;
+}
+
 Result<RowCondition> parse_row_condition(std::string_view text) {
   const std::size_t eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0 || (eq == 1 && text[0] == '!'))
@@ -34,8 +41,7 @@ Result<SelectionReport> select_rows(CsvTable& t, const RowSelection& sel) {
   for (const auto& c : sel.where) {
     const int col = t.column(c.column);
     if (col < 0)
-      return Error{t.file, 1, 0, name_for_message(c.column), "no such column for --where; the header has " +
-                                                                 std::to_string(t.header.size()) + " columns"};
+      return Error{t.file, 1, 0, name_for_message(c.column), "no such column for --where; the header has: " + column_list(t)};
     where_cols.push_back(col);
   }
   const int practice = t.column("practice"), excluded = t.column("excluded");
@@ -43,7 +49,7 @@ Result<SelectionReport> select_rows(CsvTable& t, const RowSelection& sel) {
   r.excluded_column = excluded >= 0;
   r.dtlab_export = practice >= 0 && t.column("trial_seed") >= 0 && t.column("protocol_sha256") >= 0;
   if (sel.practice == Practice::exclude && practice < 0)
-    return Error{t.file, 1, 0, "practice", "--exclude-practice needs a column named practice; the table has none"};
+    return Error{t.file, 1, 0, "practice", "--exclude-practice needs a column named practice; the header has: " + column_list(t)};
   r.practice_excluded = practice >= 0 && (sel.practice == Practice::exclude ||
                                           (sel.practice == Practice::automatic && r.dtlab_export));
 

@@ -49,6 +49,9 @@ struct SelectionReport {
   std::vector<std::string> notes;  // one sentence per rule that applied, naming the option that undoes it
 };
 
+// The header's column names for a message ("a, b, c"; the first 40, then "and N more").
+std::string column_list(const CsvTable& table);
+
 // Removes from `table` the rows the selection leaves out; an unknown column or
 // an unreadable practice cell is an Error (file, line, column).
 Result<SelectionReport> select_rows(CsvTable& table, const RowSelection& selection);

@@ -30,6 +30,15 @@ void Context::add_figure(Section& s, PlotSpec p, const std::string& caption) {
   plots.push_back(std::move(p));
 }
 
+void collect_subjects(Context& ctx) {
+  for (const auto& p : ctx.data.participants) {
+    long long n = 0;
+    for (const auto& t : ctx.data.trials) n += t.participant == p.id && ctx.analysed(t) ? 1 : 0;
+    if (n) ctx.subjects.push_back(p.id);
+    ctx.analysed_trials += n;
+  }
+}
+
 const TestReport& Context::add_test(const std::string& section, TestReport r) {
   if (r.anova)
     tests += static_cast<int>(r.anova->effects.size());

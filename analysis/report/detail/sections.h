@@ -2,7 +2,8 @@
 // the Context, runs its tests and adds to the Context: document sections,
 // report.json entries, plots and CSV files. The order in report.cpp is the
 // order of a paper's results: data and method, completion time, accuracy,
-// speed-accuracy, questionnaire, position effects, frame-time audit.
+// speed-accuracy, questionnaire, position effects, frame-time audit, then planning
+// the next study.
 // Sections never write files and never touch the database.
 #pragma once
 #include <nlohmann/json.hpp>
@@ -64,6 +65,7 @@ void section_speed_accuracy(Context& ctx);  // time vs error per condition and p
 void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test
 void section_position(Context& ctx);        // position in the session, order rows of the counterbalancing
 void section_frames(Context& ctx);          // frame-time audit per condition
+void section_planning(Context& ctx);        // planning the next study: analytic power of every ANOVA effect
 void section_notes(Context& ctx);           // what the report does not say; files written
 
 // A walked-path figure written beside the report (report.cpp draws them through ReportOptions::path_figure).
@@ -84,6 +86,8 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
                            const std::string& id, const std::string& ylabel);
 
 // --- helpers shared by the sections (section_common.cpp) ---------------------------------------
+// Fills ctx.subjects (participants with analysed trials, enrollment order) and ctx.analysed_trials.
+void collect_subjects(Context& ctx);
 // The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.
 std::string tests_csv(const Context& ctx);
 // Notes for a test's table: n, excluded participants, warnings of the statistics library.

@@ -4,6 +4,7 @@
 #include "analysis/report/detail/study_data.h"
 
 #include <algorithm>
+#include <charconv>
 #include <map>
 #include <set>
 #include <tuple>
@@ -181,6 +182,26 @@ Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with
     return std::tie(order[a.participant], a.item, a.scope) < std::tie(order[b.participant], b.item, b.scope);
   });
   return d;
+}
+
+Result<std::vector<int>> chosen_revisions(const std::string& spec, int count, const std::string& path) {
+  if (spec == "all" || spec.empty()) {
+    std::vector<int> all;
+    for (int k = 1; k <= count; ++k) all.push_back(k);
+    return all;
+  }
+  if (spec == "latest") return std::vector<int>{count};
+  int k = 0;
+  const auto [ptr, ec] = std::from_chars(spec.data(), spec.data() + spec.size(), k);
+  if (ec != std::errc() || ptr != spec.data() + spec.size() || k < 1)
+    return Error{path, 0, 0, "revision", "\"" + spec + "\": expected all, latest or a revision number 1.." +
+                                             std::to_string(count)};
+  if (k > count)
+    return Error{path, 0, 0, "revision",
+                 "there is no design revision " + spec + "; the database has " + std::to_string(count) +
+                     (count == 1 ? " (revision 1)" : " (revisions 1.." + std::to_string(count) + ")"),
+                 ErrorKind::not_found};
+  return std::vector<int>{k};
 }
 
 }  // namespace dtlab::report::detail

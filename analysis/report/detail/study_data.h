@@ -81,6 +81,9 @@ struct StudyData {
 // The 1-based design revisions of the database, with their latest revision row each.
 Result<std::vector<store::Revision>> design_revisions(store::StudyReader& reader);
 
+// Which design revisions `spec` ("all", "latest", "N") names, of `count` (messages name `path`).
+Result<std::vector<int>> chosen_revisions(const std::string& spec, int count, const std::string& path);
+
 // Reads design revision `revision` (1-based) of the database. Excluded participants and trials
 // are dropped from `trials` and `answers` unless `with_excluded`.
 Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with_excluded);

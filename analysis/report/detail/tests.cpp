@@ -86,12 +86,16 @@ const std::vector<stats::Descriptives>* TestReport::marginal_of(int f) const {
   return nullptr;
 }
 
+Result<stats::RmAnovaResult> rm_anova_of(const CellMatrix& m, const Design& d, const std::vector<size_t>& kept) {
+  return stats::rm_anova(long_data(m, d, kept, "y"));
+}
+
 TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
                         std::string scope) {
   TestReport r;
   if (!begin_report(r, m, "rm-anova", std::move(measure), std::move(unit), std::move(scope))) return r;
   const auto data = long_data(m, d, r.kept, "y");
-  auto res = stats::rm_anova(data);
+  auto res = stats::rm_anova(data);  // = rm_anova_of(m, d, r.kept); the data serve the post-hoc tests too
   if (!res) {
     r.not_tested = res.error().message;
     return r;

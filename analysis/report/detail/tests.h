@@ -50,6 +50,8 @@ struct TestReport {
 
 TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
                         std::string scope);
+// The repeated-measures ANOVA run_rm_anova runs, alone: over the `kept` subjects of m (power planning reruns it).
+Result<stats::RmAnovaResult> rm_anova_of(const CellMatrix& m, const Design& d, const std::vector<size_t>& kept);
 TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
                         std::string scope, std::uint64_t seed);
 

@@ -186,8 +186,8 @@ Result<Slots> fill_slots(const LongData& data, const CellDesign& d, const Rows& 
       return Error{data.source, line, 0, "",
                    "subject " + quote_text(rows.subjects.names[s]) + " has a second row for the cell " + d.cell_label(c) +
                        " (the first is at " + data.where(slots.first[k]) +
-                       "): expected one value per subject and cell; filter the rows or choose an aggregation "
-                       "(mean or median of the rows)"};
+                       "): expected one value per subject and cell; select rows (dtlab stats --where) or reduce them "
+                       "to their mean or median (--aggregate mean|median)"};
     if (slots.first[k] == kNone) slots.first[k] = r;
     ++slots.count[k];
     repeated = repeated || slots.count[k] > 1;

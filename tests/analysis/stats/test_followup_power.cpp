@@ -112,6 +112,22 @@ TEST(Power, PairedTEqualsPowerTTest) {
   EXPECT_TRUE(std::isnan(smallest_n([](double) { return 0.5; }, 0.8)));
 }
 
+// A published G*Power example: the G*Power 3.1 manual, "t test: Means - difference between two dependent
+// means (matched pairs)", replicating Cohen (1969, p. 48): 50 IQ-matched pairs, d = 0.4 between two
+// independent means, correlation 0.55 between the pairs, so d_z = 0.4 / sqrt(2 (1 - 0.55)) = 0.421637;
+// two-sided alpha = .05: G*Power prints power 0.832114 (Cohen's table: 0.84).
+// R 4.2.2: power.t.test(n = 50, delta = 0.4 / sqrt(2 * (1 - 0.55)), sd = 1, type = "paired", strict = TRUE)$power
+//   -> 0.832114498894766 (G*Power counts both tails, as strict = TRUE)
+TEST(Power, PairedTAsTheGPowerManualExample) {
+  const double dz = 0.4 / std::sqrt(2 * (1 - 0.55));
+  EXPECT_NEAR(dz, 0.421637, 1e-6);
+  EXPECT_NEAR(power_paired_t(50, dz, 1, 0.05, Alternative::two_sided, true), 0.832114, 1e-6);
+  EXPECT_NEAR(power_paired_t(50, dz, 1, 0.05, Alternative::two_sided, true), 0.832114498894766, 1e-9);
+  // The same test as a 1-df repeated-measures effect: F = t^2, lambda = n d_z^2, df (1, n - 1).
+  // R 4.2.2: pf(qf(0.95, 1, 49), 1, 49, ncp = 50 * 0.4^2 / (2 * 0.45), lower.tail = FALSE) -> 0.832114498894766
+  EXPECT_NEAR(power_noncentral_f(50 * dz * dz, 1, 49), 0.832114498894766, 1e-9);
+}
+
 // G*Power's "ANOVA: Repeated measures, within factors": lambda = f^2 n m eps / (1 - rho),
 // df1 = (m - 1) eps, df2 = (n - 1) df1. Reference: R 4.2.2
 //   pf(qf(1 - alpha, df1, df2), df1, df2, ncp = lambda, lower.tail = FALSE)
@@ -176,6 +192,93 @@ TEST(Power, ResamplingConvergesToTheAnalyticPower) {
   EXPECT_GE(sim.ci_high, sim.power);
   const ResampledPower again = power_by_resampling(pilot, n, test, 2000, 7);
   EXPECT_EQ(again.rejections, sim.rejections) << "seeded: reproducible";
+}
+
+// Several hypotheses at once, on several threads: the same numbers for 1 and 2 threads (each replication
+// has its own stream), and the one-hypothesis overload is the same computation.
+TEST(Power, ResamplingIsTheSameOnAnyNumberOfThreads) {
+  std::mt19937_64 gen(11);
+  std::normal_distribution<double> z(0.0, 1.0);
+  std::vector<std::vector<double>> pilot;
+  for (int i = 0; i < 30; ++i) {
+    const double base = z(gen);
+    pilot.push_back({base, base + 0.4 + z(gen), base + 0.8 + z(gen)});
+  }
+  const ResampleTest test = [&](const std::vector<std::size_t>& draw) {
+    std::vector<double> a, b, c;
+    for (std::size_t i : draw) {
+      a.push_back(pilot[i][0]);
+      b.push_back(pilot[i][1]);
+      c.push_back(pilot[i][2]);
+    }
+    return std::vector<double>{paired_t(b, a).p, paired_t(c, a).p};
+  };
+  const auto one = power_by_resampling(pilot.size(), 12, 2, test, 400, 99, 0.05, 1);
+  const auto two = power_by_resampling(pilot.size(), 12, 2, test, 400, 99, 0.05, 2);
+  ASSERT_EQ(one.size(), 2u);
+  for (std::size_t h = 0; h < 2; ++h) {
+    EXPECT_EQ(one[h].rejections, two[h].rejections) << h;
+    EXPECT_EQ(one[h].replications, 400u);
+    EXPECT_GE(one[h].power, one[h].ci_low);
+    EXPECT_LE(one[h].power, one[h].ci_high);
+  }
+  EXPECT_GT(one[1].power, one[0].power) << "the larger difference is found more often";
+  const auto other_seed = power_by_resampling(pilot.size(), 12, 2, test, 400, 100, 0.05, 2);
+  EXPECT_NE(other_seed[0].rejections * 1000 + other_seed[1].rejections, one[0].rejections * 1000 + one[1].rejections);
+  // Every or no replication rejecting: power 1 or 0 with the Wilson bound exactly 1 or 0, the other inside.
+  const ResampleTest always = [](const std::vector<std::size_t>&) { return std::vector<double>{0.0, 1.0}; };
+  const auto ends = power_by_resampling(5, 3, 2, always, 50, 1, 0.05, 2);
+  EXPECT_EQ(ends[0].power, 1.0);
+  EXPECT_EQ(ends[0].ci_high, 1.0);
+  EXPECT_LT(ends[0].ci_low, 1.0);
+  EXPECT_EQ(ends[1].power, 0.0);
+  EXPECT_EQ(ends[1].ci_low, 0.0);
+  EXPECT_GT(ends[1].ci_high, 0.0);
+  // Degenerate inputs: no participant or no replication gives NaN power, never a division by zero.
+  EXPECT_TRUE(std::isnan(power_by_resampling(0, 12, 1, test, 10, 1).front().power));
+  EXPECT_TRUE(std::isnan(power_by_resampling(5, 12, 1, test, 0, 1).front().power));
+}
+
+// A three-level within effect: resampling a large pilot drawn from a normal model with compound symmetry
+// (sphericity holds, so the uncorrected F test is exact) converges to the analytic noncentral-F power of
+// the pilot's observed effect, lambda = F df1 n / N. Tolerance: 4 Monte Carlo SEs of R = 1000 replications.
+TEST(Power, ResamplingAThreeLevelEffectConvergesToTheNoncentralF) {
+  std::mt19937_64 gen(20261202);
+  std::normal_distribution<double> z(0.0, 1.0);
+  const std::size_t N = 3000;
+  std::vector<std::vector<double>> pilot;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double base = 5 * z(gen);
+    pilot.push_back({base + z(gen), base + 0.5 + z(gen), base + 0.9 + z(gen)});
+  }
+  const auto anova_of = [&](const std::vector<std::size_t>& rows) {
+    LongData d;
+    d.within.push_back({"level", {}});
+    std::vector<double> y;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      for (std::size_t c = 0; c < 3; ++c) {
+        d.subject.push_back("s" + std::to_string(k));
+        d.within[0].level.push_back("c" + std::to_string(c));
+        y.push_back(pilot[rows[k]][c]);
+      }
+    d.dv = Measurements::from_doubles(std::move(y));
+    return rm_anova(d);
+  };
+  std::vector<std::size_t> everyone(N);
+  for (std::size_t i = 0; i < N; ++i) everyone[i] = i;
+  const auto observed = anova_of(everyone);
+  ASSERT_TRUE(observed.ok());
+  const Effect& e = observed->effects.front();
+  const std::size_t n = 15;
+  const double analytic = power_noncentral_f(e.F * e.df1 * n / N, 2, 2 * (n - 1.0));
+  const ResampleTest test = [&](const std::vector<std::size_t>& draw) {
+    const auto r = anova_of(draw);
+    return std::vector<double>{r ? r->effects.front().p : std::nan("")};
+  };
+  const auto sim = power_by_resampling(N, n, 1, test, 1000, 3, 0.05, 2).front();
+  EXPECT_NEAR(sim.power, analytic, 4 * std::sqrt(analytic * (1 - analytic) / 1000)) << "analytic " << analytic;
+  EXPECT_GT(analytic, 0.3);
+  EXPECT_LT(analytic, 0.9);
 }
 
 // Post-hoc rows carry mean difference, SE, CI, t, df, p, Holm p and d_z.

@@ -290,8 +290,17 @@ TEST(StatsCli, RowSelectionIsStatedAndUndoable) {
   ASSERT_EQ(median.rc, 0) << median.err;
   const CliRun bad = dtlab(base + " --where nosuch=1");
   EXPECT_EQ(bad.rc, 1);
-  EXPECT_NE(bad.err.find("nosuch: no such column for --where"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("nosuch: no such column for --where; the header has: participant, session, transparency"),
+            std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find(file + ":1"), std::string::npos) << "names the file and the header line: " << bad.err;
+  const CliRun no_practice = dtlab("stats rm-anova --data " + data("md_12.1.csv") +
+                                   " --dv rt --subject id --within angle,noise --exclude-practice");
+  EXPECT_EQ(no_practice.rc, 1);
+  EXPECT_NE(no_practice.err.find("--exclude-practice needs a column named practice; the header has: "),
+            std::string::npos) << no_practice.err;
+  EXPECT_NE(repeats.err.find("--aggregate mean|median"), std::string::npos) << repeats.err;
   EXPECT_EQ(dtlab(base + " --where =x").rc, 2);
+  EXPECT_EQ(dtlab(base + " --exclude-practice --include-practice").rc, 2);
   EXPECT_EQ(dtlab(base + " --aggregate mode").rc, 2);
 }
 

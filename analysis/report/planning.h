@@ -1,0 +1,74 @@
+// Power planning from a pilot study (`dtlab power DB`; formulas in
+// docs/stats.md "Power"): for every effect of the report's completion-time and
+// accuracy RM ANOVAs, the power at each planned number of participants by
+// resampling the pilot's participants and rerunning the report's own test
+// (95% Wilson interval), and analytically from the observed effect, with the
+// smallest n for 80% and 90%. The report's "Planning the next study" section
+// is this code without resampling. Guarantees: reads the database only;
+// deterministic for a seed whatever the number of threads; errors as the report's.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/stats/power.h"
+#include "study/common/error.h"
+#include "study/store/read.h"
+
+namespace dtlab::report {
+
+struct PlanningOptions {
+  std::vector<int> sizes = {8, 12, 16, 24, 32};  // participants of the next study, each >= 2
+  std::size_t replications = 1000;               // resamples per size; 0 = analytic power only
+  double alpha = 0.05;
+  std::uint64_t seed = 1;
+  unsigned threads = 0;                          // 0 = one per processor
+  std::string revision = "latest";               // design revision: "latest" or "N"
+  bool with_excluded = false;                    // keep excluded participants and trials
+  // Called after each (effect test, size) is resampled: done and total of those steps.
+  std::function<void(std::size_t done, std::size_t total)> progress;
+};
+
+struct PowerAt {
+  int n = 0;
+  stats::ResampledPower resampled;  // NaN power when not resampled (replications 0)
+  double analytic = 0;              // NaN when the effect has no finite F
+};
+
+// One effect of one of the report's ANOVAs.
+struct PlannedEffect {
+  std::string section;   // "time" or "accuracy"
+  std::string measure;   // "completion time", "relative error (per trial)", ...
+  std::string scope;     // task id, "overall", ...
+  std::string effect;    // "transparency", "transparency:scenario"
+  std::size_t pilot_n = 0;
+  double df1 = 0, df2 = 0, F = 0, p = 0;  // the pilot's test (p: GG-corrected when df1 > 1)
+  double eta_p2 = 0, epsilon = 1;         // observed partial eta squared; GG epsilon (1 for 1-df effects)
+  double dz = 0;                          // 1-df effects: sqrt(F / N), the standardized paired difference
+  std::vector<PowerAt> at;                // one per planned size
+  double n80 = 0, n90 = 0;                // analytic smallest n reaching 80% / 90% (NaN: none up to 10^7)
+  int resampled_n80 = 0, resampled_n90 = 0;  // smallest planned size whose resampled power reaches it; 0: none
+};
+
+struct PowerPlan {
+  std::string database;
+  int design_revision = 1;
+  std::size_t participants = 0;  // participants with analysed trials
+  PlanningOptions options;       // as used (progress dropped)
+  std::vector<PlannedEffect> effects;
+  std::vector<std::string> not_planned;  // tests that could not be planned, with the reason
+};
+
+// The plan as JSON (NaN as null): {database, design_revision, participants, sizes, replications,
+// alpha, seed, effects: [...], not_planned}.
+nlohmann::json to_json(const PowerPlan& plan);
+
+// Plans from the study `reader` reads (its design revision options.revision).
+// Bad options (a size below 2, alpha outside (0, 1)) are input Errors.
+Result<PowerPlan> plan_power(store::StudyReader& reader, const PlanningOptions& options);
+
+}  // namespace dtlab::report
