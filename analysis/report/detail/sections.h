@@ -77,10 +77,15 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
 // --- helpers shared by the sections (section_common.cpp) ---------------------------------------
 // The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.
 std::string tests_csv(const Context& ctx);
+// Paired comparisons (post-hoc or simple effects): n, mean difference, SE, 95% CI, t, df, p, Holm p, d_z.
+Table comparison_table(const std::vector<stats::Comparison>& list, const std::string& id, const std::string& caption,
+                       const std::string& unit);
 // Notes for a test's table: n, excluded participants, warnings of the statistics library.
 std::vector<std::string> test_notes(const TestReport& r);
-// The rows of a full ANOVA table for a TestReport (effect, df, F, p, GG/HF, η²).
-Table anova_table(const TestReport& r, const Design& d, const std::string& id, const std::string& caption);
+// The full ANOVA table of a TestReport (df, GG-corrected where ε < 1, MSE, F, APA p, ηp² with
+// its 90% CI, ηG², Mauchly's W and p, both epsilons), under it one APA sentence per effect, and
+// for each followed-up interaction its simple effects and an interaction plot (within-subject CIs).
+void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string& id, const std::string& caption);
 // "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
 std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
 // A CSV line from fields (quoted as the export quotes them).

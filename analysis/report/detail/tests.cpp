@@ -8,6 +8,8 @@
 #include <limits>
 
 #include "analysis/report/detail/format.h"
+#include "analysis/stats/apa.h"
+#include "analysis/stats/json.h"
 
 namespace dtlab::report::detail {
 namespace {
@@ -71,6 +73,45 @@ void paired_effect(TestReport& r, const CellMatrix& m, const Design& d) {
   }
 }
 
+// The p an interaction is judged by: Greenhouse-Geisser corrected where ε < 1, as the tables print it.
+double reported_p(const stats::Effect& e) {
+  return stats::applied_correction(e, stats::Correction::greenhouse_geisser) == stats::Correction::none ? e.p : e.p_gg;
+}
+
+// Simple effects and within-subject CIs of every two-way within interaction with p < kFollowUpAlpha.
+void follow_up(TestReport& r, const stats::LongData& data) {
+  for (const auto& e : r.anova->effects) {
+    const auto colon = e.name.find(':');
+    if (colon == std::string::npos || e.name.find(':', colon + 1) != std::string::npos) continue;
+    if (!(reported_p(e) < kFollowUpAlpha)) continue;
+    InteractionFollowUp f{e.name, e.name.substr(0, colon), e.name.substr(colon + 1), {}, {}};
+    stats::LongData sub = data;
+    sub.within.clear();
+    for (const auto& w : data.within)
+      if (w.name == f.a || w.name == f.b) sub.within.push_back(w);
+    if (sub.within.size() != 2 || !data.between.empty()) continue;  // a between factor: not followed up
+    sub.aggregate = stats::Aggregate::mean;  // each participant's mean over the other within factors
+    auto simple = stats::simple_effects(sub, f.a, f.b);
+    auto ci = stats::within_subject_intervals(sub, 0.95);
+    if (!simple || !ci) {
+      r.warnings.push_back("follow-up of " + e.name + " not computed: " +
+                           (simple ? ci.error().message : simple.error().message));
+      continue;
+    }
+    f.simple = std::move(*simple);
+    f.intervals = std::move(*ci);
+    r.followups.push_back(std::move(f));
+  }
+}
+
+// Shapiro-Wilk of the residuals of the within-subject model.
+void normality(TestReport& r, const stats::LongData& data) {
+  auto res = stats::anova_residuals(data);
+  if (!res) return;
+  for (const auto& e : res->residuals) r.residuals.push_back(e.value);
+  r.normality = stats::shapiro_wilk(r.residuals);
+}
+
 }  // namespace
 
 const stats::Effect* TestReport::effect(const std::string& name) const {
@@ -99,6 +140,10 @@ TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measur
   r.warnings = res->warnings;
   r.anova = std::move(*res);
   if (r.kept.size() < 2) r.not_tested = "one participant: no error variance, F is undefined";
+  if (r.kept.size() >= 2) {
+    follow_up(r, data);
+    normality(r, data);
+  }
   for (size_t k = 0; k < m.factors.size(); ++k) {
     const auto& f = d.factor(m.factors[k]);
     if (f.levels.size() < 3 || r.kept.size() < 2) continue;
@@ -142,12 +187,9 @@ nlohmann::json to_json(const stats::Descriptives& d) {
 }
 
 nlohmann::json to_json(const stats::Effect& e) {
-  return {{"effect", e.name},       {"df1", num(e.df1)},          {"df2", num(e.df2)},
-          {"ss", num(e.ss)},        {"ss_error", num(e.ss_error)}, {"F", num(e.F)},
-          {"p", num(e.p)},          {"log10_p", num(e.log10_p)},  {"eta_p2", num(e.eta_p2)},
-          {"eta_g2", num(e.eta_g2)}, {"mauchly_W", num(e.mauchly_W)}, {"mauchly_p", num(e.mauchly_p)},
-          {"gg_epsilon", num(e.gg_epsilon)}, {"hf_epsilon", num(e.hf_epsilon)}, {"p_gg", num(e.p_gg)},
-          {"log10_p_gg", num(e.log10_p_gg)}, {"p_hf", num(e.p_hf)},     {"log10_p_hf", num(e.log10_p_hf)}};
+  nlohmann::json j = stats::effect_json<nlohmann::json>(e);
+  j["apa"] = effect_sentence(e);
+  return j;
 }
 
 nlohmann::json to_json(const TestReport& r, const Design& d) {
@@ -205,12 +247,7 @@ nlohmann::json to_json(const TestReport& r, const Design& d) {
   if (!r.posthoc.empty()) {
     json ph = json::object();
     for (const auto& [factor, list] : r.posthoc) {
-      json arr = json::array();
-      for (const auto& c : list)
-        arr.push_back({{"a", c.a}, {"b", c.b}, {"test", c.test}, {"estimate", num(c.estimate)},
-                       {"statistic", num(c.statistic)}, {"df", num(c.df)}, {"p", num(c.p)},
-                       {"p_holm", num(c.p_holm)}});
-      ph[factor] = arr;
+      ph[factor] = stats::comparisons_json<json>(list);
     }
     j["posthoc"] = ph;
   }
@@ -228,25 +265,53 @@ nlohmann::json to_json(const TestReport& r, const Design& d) {
                    {"p", num(p.t.p)},
                    {"dz", num(p.dz)}};
   }
+  if (!r.followups.empty()) {
+    json fj = json::array();
+    for (const auto& f : r.followups) fj.push_back(to_json(f));
+    j["followups"] = fj;
+  }
+  if (r.normality)
+    j["shapiro_wilk_residuals"] = {{"n", r.normality->n}, {"W", num(r.normality->W)}, {"p", num(r.normality->p)},
+                                   {"warnings", r.normality->warnings}};
   j["not_tested"] = r.not_tested.empty() ? json(nullptr) : json(r.not_tested);
   j["warnings"] = r.warnings;
   return j;
 }
 
+nlohmann::json to_json(const InteractionFollowUp& f) {
+  using nlohmann::json;
+  json simple = json::array();
+  for (const auto& se : f.simple.rows) {
+    json row{{"factor", se.factor}, {"at_factor", se.at_factor}, {"at_level", se.at_level},
+             {"test", se.test},     {"n", se.n},                 {"p", num(se.p)},
+             {"p_holm", num(se.p_holm)}};
+    if (se.test == "paired t")
+      row["contrast"] = stats::comparison_json<json>(se.contrast);
+    else
+      row["anova"] = to_json(se.anova);
+    simple.push_back(row);
+  }
+  json cells = json::array();
+  for (const auto& c : f.intervals) {
+    json levels = json::object();
+    for (const auto& [factor, level] : c.levels) levels[factor] = level;
+    cells.push_back({{"levels", levels}, {"n", c.n}, {"mean", num(c.mean)}, {"se_within", num(c.se)},
+                     {"ci95_low", num(c.ci_low)}, {"ci95_high", num(c.ci_high)}});
+  }
+  return {{"effect", f.effect},
+          {"simple_effects", simple},
+          {"cell_means_within_ci", cells},
+          {"ci_method", "Cousineau (2005) with Morey's (2008) correction"}};
+}
+
 std::string effect_sentence(const stats::Effect& e) {
-  std::string s = "F(" + df_text(e.df1) + ", " + df_text(e.df2) + ") = " + f_text(e.F) + ", p = " +
-                  p_text(e.p, e.log10_p);
-  if (e.df1 > 1 && std::isfinite(e.gg_epsilon))
-    s += " (Greenhouse-Geisser ε = " + fixed(e.gg_epsilon, 3) + ", p = " + p_text(e.p_gg, e.log10_p_gg) + ")";
-  s += ", η²p = " + fixed(e.eta_p2, 3);
-  return s;
+  return stats::apa_effect(e, stats::Correction::greenhouse_geisser);
 }
 
 std::string friedman_sentence(const stats::FriedmanResult& f) {
-  std::string s = "χ²(" + df_text(f.df) + ") = " + fixed(f.Q, 2) + ", p = " + p_text(f.p, f.log10_p);
-  if (std::isfinite(f.p_exact)) s += " (exact p = " + p_text(f.p_exact, std::log10(f.p_exact)) + ")";
-  s += ", Kendall's W = " + fixed(f.kendall_W, 3) + ", n = " + std::to_string(f.n);
-  return s;
+  std::string s = "χ²(" + stats::apa_df(f.df) + ") = " + stats::apa_number(f.Q) + ", " + stats::apa_p(f.p);
+  if (std::isfinite(f.p_exact)) s += " (exact " + stats::apa_p(f.p_exact) + ")";
+  return s + ", Kendall's W = " + stats::apa_bounded(f.kendall_W) + ", n = " + std::to_string(f.n);
 }
 
 }  // namespace dtlab::report::detail

@@ -27,6 +27,17 @@ struct PairedEffect {
   double dz = 0;                    // Cohen's d_z = mean difference / SD of the differences
 };
 
+// The follow-up of a two-way interaction of within factors with p < .05 (GG-corrected
+// where ε < 1): simple effects (stats::simple_effects) and the Cousineau-Morey 95%
+// within-subject CIs of the a x b cell means (each participant's values first averaged
+// over the other within factors).
+struct InteractionFollowUp {
+  std::string effect;                          // "transparency:scenario"
+  std::string a, b;                            // its two factors, ANOVA order
+  stats::SimpleEffects simple;                 // a at each level of b, then b at each level of a
+  std::vector<stats::CellInterval> intervals;  // a x b cells, b varying fastest
+};
+
 struct TestReport {
   std::string measure, unit, scope;          // e.g. "completion time", "s", "T1"
   std::string test;                          // "rm-anova" or "friedman"
@@ -39,6 +50,9 @@ struct TestReport {
   std::optional<stats::FriedmanResult> friedman;
   std::map<std::string, std::vector<stats::Comparison>> posthoc;  // factor name -> Holm-corrected pairs
   std::optional<PairedEffect> paired;       // two-level primary factor among m->factors
+  std::vector<InteractionFollowUp> followups;  // significant two-way within interactions (rm-anova)
+  std::optional<stats::ShapiroWilkResult> normality;  // Shapiro-Wilk of the ANOVA residuals (rm-anova)
+  std::vector<double> residuals;            // those residuals (subject-major), for a Q-Q plot
   std::string not_tested;                   // why no test ran ("" when one did)
   std::vector<std::string> warnings;        // from the statistics library
 
@@ -56,8 +70,14 @@ TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measur
 nlohmann::json to_json(const stats::Descriptives& d);
 nlohmann::json to_json(const stats::Effect& e);
 nlohmann::json to_json(const TestReport& r, const Design& d);
+nlohmann::json to_json(const InteractionFollowUp& f);
 
-// "F(1, 15) = 7.54, p = 0.0142, η²p = 0.33" for an effect; "Q(1) = ..., p = ..., W = ..." for Friedman.
+// The significance level at which an interaction is followed up.
+inline constexpr double kFollowUpAlpha = 0.05;
+
+// The APA sentence of an effect, Greenhouse-Geisser corrected where ε < 1 (stats::apa_effect):
+// "F(1, 15) = 20.09, p < .001, ηp² = .57, 90% CI [.25, .74]"; for Friedman
+// "χ²(1) = 6.25, p = .012 (exact p = .021), Kendall's W = .39, n = 16".
 std::string effect_sentence(const stats::Effect& e);
 std::string friedman_sentence(const stats::FriedmanResult& f);
 

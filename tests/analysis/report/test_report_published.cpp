@@ -58,6 +58,94 @@ TEST_F(Statsmodels2x2, OverallTwoByTwoMatchesEzAnova) {
   EXPECT_TRUE(a.at("mauchly_W").is_null());
 }
 
+// The significant transparency x scenario interaction (A:D above) is followed up. R 4.2.2 on the
+// participant x condition means (A x D means over B):
+//   d <- read.csv("statsmodels_anova_rm.csv"); m <- aggregate(DV ~ id + A + D, d, mean)
+//   w <- function(a, dd) m$DV[m$A == a & m$D == dd]          (ordered by id; A a = off, D a = abstract)
+//   t.test(w("a", dd), w("b", dd), paired = TRUE); mean(x) / sd(x) for d_z; p.adjust(p, "holm") per factor
+TEST_F(Statsmodels2x2, SignificantInteractionGetsSimpleEffectsAsRPairedT) {
+  const auto& t = find_test(*report, "completion_time", "overall");
+  ASSERT_EQ(t.at("followups").size(), 1u);
+  const auto& f = t.at("followups")[0];
+  EXPECT_EQ(f.at("effect"), "transparency:scenario");
+  const auto& rows = f.at("simple_effects");
+  ASSERT_EQ(rows.size(), 4u);
+  struct Expected {
+    const char *factor, *at;
+    double est, se, lo, hi, t, p, p_holm, dz;
+  };
+  const Expected ex[] = {
+      // transparency at scenario = abstract: t.test(w("a","a"), w("b","a"), paired = TRUE)
+      {"transparency", "abstract", -6, 0.947008657207207, -8.23931963730048, -3.76068036269952, -6.33573933494379,
+       0.000390526338119925, 0.000781052676239851, -2.24002212378455},
+      // at walkthrough: t.test(w("a","b"), w("b","b"), paired = TRUE)
+      {"transparency", "walkthrough", -0.375, 1.46579722606386, -3.84105966866803, 3.09105966866804,
+       -0.25583347637176, 0.80543441381912, 0.80543441381912, -0.0904507929984999},
+      // scenario at transparency = off: t.test(w("a","a"), w("a","b"), paired = TRUE)
+      {"scenario", "off", 1, 1.06159508617181, -1.51027348613359, 3.51027348613359, 0.941978738434139,
+       0.377567540455956, 0.377567540455956, 0.333039776840164},
+      // at on: t.test(w("b","a"), w("b","b"), paired = TRUE)
+      {"scenario", "on", 6.625, 1.00876614087911, 4.2396471190916, 9.0103528809084, 6.56742899224049,
+       0.000313680006667667, 0.000627360013335334, 2.32193678768719},
+  };
+  for (size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    const auto& r = rows[i];
+    EXPECT_EQ(r.at("factor"), ex[i].factor);
+    EXPECT_EQ(r.at("at_level"), ex[i].at);
+    EXPECT_EQ(r.at("test"), "paired t");
+    const auto& c = r.at("contrast");
+    expect_rel(num(c.at("estimate")), ex[i].est, 1e-12);
+    expect_rel(num(c.at("se")), ex[i].se, 1e-12);
+    expect_rel(num(c.at("ci_low")), ex[i].lo, 1e-12);
+    expect_rel(num(c.at("ci_high")), ex[i].hi, 1e-12);
+    expect_rel(num(c.at("statistic")), ex[i].t, 1e-12);
+    EXPECT_EQ(num(c.at("df")), 7);
+    expect_rel(num(r.at("p")), ex[i].p, 1e-10);
+    expect_rel(num(r.at("p_holm")), ex[i].p_holm, 1e-10);
+    expect_rel(num(c.at("dz")), ex[i].dz, 1e-12);
+  }
+  // Cousineau-Morey 95% CIs, the formula of Morey (2008) in R:
+  //   Y <- cbind(w("a","a"), w("a","b"), w("b","a"), w("b","b")); N <- 8; C <- 4
+  //   Z <- Y - rowMeans(Y) + mean(Y); se <- apply(Z, 2, sd) / sqrt(N) * sqrt(C / (C - 1))
+  //   colMeans(Y) -> 9 8 15 8.375; colMeans(Y) -/+ qt(0.975, N - 1) * se
+  const auto& cells = f.at("cell_means_within_ci");
+  ASSERT_EQ(cells.size(), 4u);
+  const double mean[] = {9, 8, 15, 8.375};
+  const double se[] = {0.534657798634053, 1.11276228998882, 0.885740487003648, 0.816483924322609};
+  const double lo[] = {7.73573520304671, 5.36873530283451, 12.9055565638136, 6.44432231151111};
+  const double hi[] = {10.2642647969533, 10.6312646971655, 17.0944434361864, 10.3056776884889};
+  for (size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    expect_rel(num(cells[i].at("mean")), mean[i], 1e-13);
+    expect_rel(num(cells[i].at("se_within")), se[i], 1e-12);
+    expect_rel(num(cells[i].at("ci95_low")), lo[i], 1e-12);
+    expect_rel(num(cells[i].at("ci95_high")), hi[i], 1e-12);
+  }
+  EXPECT_EQ(cells[1].at("levels").at("transparency"), "off");
+  EXPECT_EQ(cells[1].at("levels").at("scenario"), "walkthrough");
+  // One-factor tests have no interaction to follow up.
+  EXPECT_FALSE(find_test(*report, "completion_time", "T1").contains("followups"));
+}
+
+// Every ANOVA row carries what a paper prints: MSE, the eta_p2 interval and an APA sentence.
+// R 4.2.2: summary(aov(DV ~ A * D + Error(factor(id) / (A * D)), m)) -> A:D Residuals 7 20.3576388889 2.908234127
+//   F <- 63.28125 / (20.3576388888889 / 7)
+//   g <- function(t) uniroot(function(l) pf(F, 1, 7, ncp = l) - t, c(0, 10 * F + 100), tol = 1e-13)$root
+//   l <- g(0.95); h <- g(0.05); l / (l + 9) -> 0.300447241267373; h / (h + 9) -> 0.850683725625452
+TEST_F(Statsmodels2x2, AnovaRowsCarryMseAndAnApaSentence) {
+  const auto& ad = find_effect(find_test(*report, "completion_time", "overall"), "transparency:scenario");
+  expect_rel(num(ad.at("mse")), 2.90823412698413, 1e-12);
+  expect_rel(num(ad.at("eta_p2")), 0.756600797077383, 1e-12);
+  // R's pnbeta stops at an error of 1e-9 (errmax), so the bounds agree to about 1e-8.
+  expect_rel(num(ad.at("eta_p2_ci90_low")), 0.300447241267373, 1e-8);
+  expect_rel(num(ad.at("eta_p2_ci90_high")), 0.850683725625452, 1e-8);
+  EXPECT_EQ(ad.at("apa"), "F(1, 7) = 21.76, p = .002, ηp² = .76, 90% CI [.30, .85]");
+  // tests.csv holds the same sentence and the exact MSE.
+  const std::string csv = read_text(dir->file("out/tests.csv"));
+  EXPECT_NE(csv.find("F(1, 7) = 21.76, p = .002, ηp² = .76, 90% CI [.30, .85]"), std::string::npos);
+}
+
 TEST_F(Statsmodels2x2, TableThreeRowsCarryTheOverallEffectAndTheArticle) {
   const auto& rows = report->at("completion_time").at("table");
   ASSERT_EQ(rows.size(), 5u);  // T1..T4 and all tasks
