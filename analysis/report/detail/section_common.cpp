@@ -3,6 +3,7 @@
 // writes. Formatting only; the numbers come from analysis/stats.
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/sections.h"
@@ -35,7 +36,7 @@ void Context::add_figure(Section& s, PlotSpec p, const std::string& caption) {
 const TestReport& Context::add_test(const std::string& section, TestReport r) {
   if (r.anova)
     tests += static_cast<int>(r.anova->effects.size());
-  else if (r.friedman)
+  else if (r.friedman || r.wilcoxon)
     ++tests;
   reports.push_back(std::move(r));
   report_section.push_back(section);
@@ -289,28 +290,61 @@ std::string matrix_csv_rows(const CellMatrix& m, const Design& d, const std::str
 }
 
 std::string tests_csv(const Context& ctx) {
-  std::string out = csv_line({"section", "measure", "unit", "scope", "test", "effect", "n", "df1", "df2",
-                              "statistic", "p", "log10_p", "p_exact", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf",
-                              "eta_p2", "eta_g2", "kendall_W", "mse", "mauchly_W", "mauchly_p", "df1_gg", "df2_gg",
-                              "df1_hf", "df2_hf", "eta_p2_ci90_low", "eta_p2_ci90_high", "apa"});
+  const std::vector<std::string> columns = {
+      "section", "measure", "unit", "scope", "test", "effect", "n", "df1", "df2", "statistic", "p", "log10_p",
+      "p_exact", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf", "eta_p2", "eta_g2", "kendall_W", "mse", "mauchly_W",
+      "mauchly_p", "df1_gg", "df2_gg", "df1_hf", "df2_hf", "eta_p2_ci90_low", "eta_p2_ci90_high", "apa"};
+  std::string out = csv_line(columns);
+  // One line from column -> text; columns not given are NA.
+  auto line = [&](const std::map<std::string, std::string>& fields) {
+    std::vector<std::string> row;
+    for (const auto& c : columns) {
+      const auto it = fields.find(c);
+      row.push_back(it == fields.end() ? "NA" : it->second);
+    }
+    return csv_line(row);
+  };
   auto v = [](double x) { return csv_number(x); };
   for (size_t i = 0; i < ctx.reports.size(); ++i) {
     const TestReport& r = ctx.reports[i];
-    const std::string n = std::to_string(r.kept.size());
+    std::map<std::string, std::string> base{{"section", ctx.report_section[i]}, {"measure", r.measure},
+                                            {"unit", r.unit}, {"scope", r.scope},
+                                            {"n", std::to_string(r.kept.size())}};
+    std::string factors;
+    for (int fi : r.m->factors) factors += (factors.empty() ? "" : ":") + ctx.design.factor(fi).name;
     if (r.anova)
-      for (const auto& e : r.anova->effects)
-        out += csv_line({ctx.report_section[i], r.measure, r.unit, r.scope, "rm-anova", e.name, n, v(e.df1), v(e.df2),
-                         v(e.F), v(e.p), v(e.log10_p), "NA", v(e.gg_epsilon), v(e.p_gg), v(e.hf_epsilon), v(e.p_hf),
-                         v(e.eta_p2), v(e.eta_g2), "NA", v(e.mse), v(e.mauchly_W), v(e.mauchly_p),
-                         v(e.df1_gg), v(e.df2_gg), v(e.df1_hf), v(e.df2_hf), v(e.eta_p2_ci_low),
-                         v(e.eta_p2_ci_high), effect_sentence(e)});
+      for (const auto& e : r.anova->effects) {
+        auto f = base;
+        f.insert({{"test", "rm-anova"}, {"effect", e.name}, {"df1", v(e.df1)}, {"df2", v(e.df2)},
+                  {"statistic", v(e.F)}, {"p", v(e.p)}, {"log10_p", v(e.log10_p)},
+                  {"gg_epsilon", v(e.gg_epsilon)}, {"p_gg", v(e.p_gg)}, {"hf_epsilon", v(e.hf_epsilon)},
+                  {"p_hf", v(e.p_hf)}, {"eta_p2", v(e.eta_p2)}, {"eta_g2", v(e.eta_g2)}, {"mse", v(e.mse)},
+                  {"mauchly_W", v(e.mauchly_W)}, {"mauchly_p", v(e.mauchly_p)}, {"df1_gg", v(e.df1_gg)},
+                  {"df2_gg", v(e.df2_gg)}, {"df1_hf", v(e.df1_hf)}, {"df2_hf", v(e.df2_hf)},
+                  {"eta_p2_ci90_low", v(e.eta_p2_ci_low)}, {"eta_p2_ci90_high", v(e.eta_p2_ci_high)},
+                  {"apa", effect_sentence(e)}});
+        out += line(f);
+      }
+    if (r.normality) {
+      auto f = base;
+      f.insert({{"test", "shapiro-wilk"}, {"effect", "residuals"}, {"statistic", v(r.normality->W)}, {"p", v(r.normality->p)},
+                {"apa", "W = " + stats::apa_bounded(r.normality->W, 3) + ", " + stats::apa_p(r.normality->p)}});
+      out += line(f);
+    }
     if (r.friedman) {
-      const auto& f = *r.friedman;
-      std::string effect;
-      for (int fi : r.m->factors) effect += (effect.empty() ? "" : ":") + ctx.design.factor(fi).name;
-      out += csv_line({ctx.report_section[i], r.measure, r.unit, r.scope, "friedman", effect, n, v(f.df), "NA", v(f.Q),
-                       v(f.p), v(f.log10_p), v(f.p_exact), "NA", "NA", "NA", "NA", "NA", "NA", v(f.kendall_W), "NA", "NA",
-                       "NA", "NA", "NA", "NA", "NA", "NA", "NA", friedman_sentence(f)});
+      const auto& x = *r.friedman;
+      auto f = base;
+      f.insert({{"test", "friedman"}, {"effect", factors}, {"df1", v(x.df)}, {"statistic", v(x.Q)}, {"p", v(x.p)},
+                {"log10_p", v(x.log10_p)}, {"p_exact", v(x.p_exact)}, {"kendall_W", v(x.kendall_W)},
+                {"apa", friedman_sentence(x)}});
+      out += line(f);
+    }
+    if (r.wilcoxon) {
+      const auto& w = *r.wilcoxon;
+      auto f = base;
+      f.insert({{"test", "wilcoxon"}, {"effect", factors}, {"statistic", v(w.V)}, {"p", v(w.p)},
+                {"log10_p", v(w.log10_p)}, {"p_exact", v(w.p_exact)}, {"apa", wilcoxon_sentence(w)}});
+      out += line(f);
     }
   }
   return out;

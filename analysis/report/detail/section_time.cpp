@@ -252,30 +252,10 @@ void section_time(Context& ctx) {
                                  ": paired t tests on the participants' marginal means, Holm-corrected.",
                              "s"));
 
-  // Robustness: completion times are skewed; Friedman's rank test of the same participant x condition means
-  // does not assume normality or sphericity.
-  Table ft;
-  ft.id = "table-time-friedman";
-  ft.caption = "Robustness check: Friedman's rank test of the same participant x condition means of completion "
-               "time (no normality or sphericity assumed).";
-  ft.header = {"Task", "Cells", "n", "χ²", "df", "p", "exact p", "Kendall's W"};
-  nlohmann::json jf = nlohmann::json::array();
-  for (const auto& [label, r] : rows) {
-    const auto& f = ctx.add_test("time", run_friedman(*r->m, d, "completion time (ranks)", "s", r->scope, ctx.options.seed));
-    jf.push_back(to_json(f, d));
-    if (!f.friedman) {
-      ft.rows.push_back({label, std::to_string(r->m->cells()), std::to_string(f.kept.size()), kDash, kDash, kDash, kDash,
-                         kDash});
-      continue;
-    }
-    const auto& x = *f.friedman;
-    ft.rows.push_back({label, std::to_string(x.k), std::to_string(x.n), fixed(x.Q, 2), df_text(x.df),
-                       p_text(x.p), std::isfinite(x.p_exact) ? p_text(x.p_exact) : kDash,
-                       bounded(x.kendall_W)});
-  }
-  ft.notes.push_back("The test compares all cells of the row at once (over all tasks: every condition). Exact p: the "
-                     "permutation distribution of the within-participant ranks, where it can be enumerated.");
-  s.add(ft);
+  // Robustness and assumptions (section_time_checks.cpp).
+  nlohmann::json jranks = nlohmann::json::array();
+  add_rank_tests(ctx, s, rows, jranks);
+  add_normality(ctx, s, rows, "time");
 
   // Descriptives of every cell.
   Table dt;
@@ -294,7 +274,7 @@ void section_time(Context& ctx) {
                      "t(0.975, n − 1) SE.");
   s.add(dt);
 
-  ctx.json["completion_time"] = {{"table", jrows}, {"tests", jtests}, {"friedman", jf}};
+  ctx.json["completion_time"] = {{"table", jrows}, {"tests", jtests}, {"rank_tests", jranks}};
   ctx.csv["completion_time_means.csv"] = means_csv;
   ctx.doc.sections.push_back(std::move(s));
 }

@@ -74,6 +74,15 @@ PlotSpec bar_plot(const Context& ctx, const std::vector<std::pair<std::string, c
 PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::string, const TestReport*>>& rows,
                            const std::string& id, const std::string& ylabel);
 
+// --- checks beside the completion-time ANOVAs (section_time_checks.cpp) ---------------------------
+// Rank tests of each factor of each row on its marginal means (Wilcoxon for 2 levels, else Friedman);
+// their test objects are appended to `out`.
+void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
+                    nlohmann::json& out);
+// Shapiro-Wilk of each row's ANOVA residuals (a table) and their normal Q-Q plots (one figure).
+void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
+                   const std::string& measure);
+
 // --- helpers shared by the sections (section_common.cpp) ---------------------------------------
 // The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.
 std::string tests_csv(const Context& ctx);

@@ -180,6 +180,24 @@ TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measur
   return r;
 }
 
+TestReport run_rank_test(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
+                         std::string scope, std::uint64_t seed) {
+  if (m.factors.size() != 1 || m.cells() != 2)
+    return run_friedman(m, d, std::move(measure), std::move(unit), std::move(scope), seed);
+  TestReport r;
+  if (!begin_report(r, m, "wilcoxon", std::move(measure), std::move(unit), std::move(scope))) return r;
+  std::vector<double> x, y;
+  for (size_t s : r.kept) {
+    x.push_back(m.value[s][0]);
+    y.push_back(m.value[s][1]);
+  }
+  stats::WilcoxonOptions wo;
+  wo.exact.seed = seed;
+  r.wilcoxon = stats::wilcoxon_signed_rank(x, y, wo);
+  r.warnings = r.wilcoxon->warnings;
+  return r;
+}
+
 nlohmann::json to_json(const stats::Descriptives& d) {
   return {{"n", d.n},           {"mean", num(d.mean)},     {"sd", num(d.sd)},         {"se", num(d.se)},
           {"ci_low", num(d.ci_low)}, {"ci_high", num(d.ci_high)}, {"median", num(d.median)},
@@ -243,6 +261,12 @@ nlohmann::json to_json(const TestReport& r, const Design& d) {
                      {"k", f.k},
                      {"treatments", f.treatments},
                      {"mean_ranks", f.mean_ranks}};
+  }
+  if (r.wilcoxon) {
+    j["wilcoxon"] = stats::wilcoxon_json<json>(*r.wilcoxon);
+    j["wilcoxon"]["x"] = m.cell_names[0];
+    j["wilcoxon"]["y"] = m.cell_names[1];
+    j["wilcoxon"]["rank_biserial"] = num(rank_biserial(*r.wilcoxon));
   }
   if (!r.posthoc.empty()) {
     json ph = json::object();
@@ -312,6 +336,17 @@ std::string friedman_sentence(const stats::FriedmanResult& f) {
   std::string s = "χ²(" + stats::apa_df(f.df) + ") = " + stats::apa_number(f.Q) + ", " + stats::apa_p(f.p);
   if (std::isfinite(f.p_exact)) s += " (exact " + stats::apa_p(f.p_exact) + ")";
   return s + ", Kendall's W = " + stats::apa_bounded(f.kendall_W) + ", n = " + std::to_string(f.n);
+}
+
+double rank_biserial(const stats::WilcoxonResult& w) {
+  const double n = static_cast<double>(w.n);
+  return w.n == 0 ? kNaN : 4 * w.V / (n * (n + 1)) - 1;
+}
+
+std::string wilcoxon_sentence(const stats::WilcoxonResult& w) {
+  std::string s = stats::apa_wilcoxon(w);
+  if (w.method != "exact" && std::isfinite(w.p_exact)) s += " (exact " + stats::apa_p(w.p_exact) + ")";
+  return s + ", r_rb = " + stats::apa_bounded(rank_biserial(w)) + ", n = " + std::to_string(w.n);
 }
 
 }  // namespace dtlab::report::detail

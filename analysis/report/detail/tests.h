@@ -48,6 +48,7 @@ struct TestReport {
   std::vector<std::vector<stats::Descriptives>> marginals;  // [factor entry][level], over kept subjects
   std::optional<stats::RmAnovaResult> anova;
   std::optional<stats::FriedmanResult> friedman;
+  std::optional<stats::WilcoxonResult> wilcoxon;  // test "wilcoxon": first level (x) vs second (y)
   std::map<std::string, std::vector<stats::Comparison>> posthoc;  // factor name -> Holm-corrected pairs
   std::optional<PairedEffect> paired;       // two-level primary factor among m->factors
   std::vector<InteractionFollowUp> followups;  // significant two-way within interactions (rm-anova)
@@ -66,6 +67,11 @@ TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measur
                         std::string scope);
 TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
                         std::string scope, std::uint64_t seed);
+// The rank test of a one-factor matrix (marginal_matrix): two levels, the Wilcoxon signed-rank
+// test of the first level against the second (R's wilcox.test(x, y, paired = TRUE) defaults);
+// more levels, Friedman's test.
+TestReport run_rank_test(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
+                         std::string scope, std::uint64_t seed);
 
 nlohmann::json to_json(const stats::Descriptives& d);
 nlohmann::json to_json(const stats::Effect& e);
@@ -77,8 +83,12 @@ inline constexpr double kFollowUpAlpha = 0.05;
 
 // The APA sentence of an effect, Greenhouse-Geisser corrected where ε < 1 (stats::apa_effect):
 // "F(1, 15) = 20.09, p < .001, ηp² = .57, 90% CI [.25, .74]"; for Friedman
-// "χ²(1) = 6.25, p = .012 (exact p = .021), Kendall's W = .39, n = 16".
+// "χ²(1) = 6.25, p = .012 (exact p = .021), Kendall's W = .39, n = 16"; for Wilcoxon
+// "V = 120, p < .001, r_rb = .76, n = 16" (matched-pairs rank-biserial correlation).
 std::string effect_sentence(const stats::Effect& e);
 std::string friedman_sentence(const stats::FriedmanResult& f);
+std::string wilcoxon_sentence(const stats::WilcoxonResult& w);
+// Matched-pairs rank-biserial correlation (Kerby 2014): (T+ − T−) / (T+ + T−) = 4 V / (n (n + 1)) − 1.
+double rank_biserial(const stats::WilcoxonResult& w);
 
 }  // namespace dtlab::report::detail

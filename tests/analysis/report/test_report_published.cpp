@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "tests/analysis/report/studies.h"
 
@@ -144,6 +145,40 @@ TEST_F(Statsmodels2x2, AnovaRowsCarryMseAndAnApaSentence) {
   // tests.csv holds the same sentence and the exact MSE.
   const std::string csv = read_text(dir->file("out/tests.csv"));
   EXPECT_NE(csv.find("F(1, 7) = 21.76, p = .002, ηp² = .76, 90% CI [.30, .85]"), std::string::npos);
+}
+
+// Assumptions and robustness of the completion-time ANOVAs, R 4.2.2 on the same means (m, w as above):
+//   Y <- cbind(w("a","a"), w("a","b"), w("b","a"), w("b","b")); N <- 8; C <- 4
+//   E <- Y - rowMeans(Y) - matrix(colMeans(Y), N, C, byrow = TRUE) + mean(Y)
+//   shapiro.test(as.vector(t(E))) -> W = 0.9785979843233, p-value = 0.757904229139
+//   T1 (D = a, transparency only): t1 <- aggregate(DV ~ id + A, subset(d, D == "a"), mean), E1 likewise
+//   shapiro.test(as.vector(t(E1))) -> W = 0.9837808556494, p-value = 0.986457546127
+//   wilcox.test((w("a","a") + w("a","b")) / 2, (w("b","a") + w("b","b")) / 2, paired = TRUE) -> V = 3, p = 0.0390625
+//   wilcox.test((w("a","a") + w("b","a")) / 2, (w("a","b") + w("b","b")) / 2, paired = TRUE) -> V = 35, p = 0.015625
+TEST_F(Statsmodels2x2, ResidualNormalityAndRankTestsPerFactorAsR) {
+  const auto& overall = find_test(*report, "completion_time", "overall").at("shapiro_wilk_residuals");
+  EXPECT_EQ(overall.at("n"), 32);
+  expect_rel(num(overall.at("W")), 0.9785979843233, 1e-9);
+  expect_rel(num(overall.at("p")), 0.757904229139, 1e-6);
+  const auto& t1 = find_test(*report, "completion_time", "T1").at("shapiro_wilk_residuals");
+  EXPECT_EQ(t1.at("n"), 16);
+  expect_rel(num(t1.at("W")), 0.9837808556494, 1e-9);
+  expect_rel(num(t1.at("p")), 0.986457546127, 1e-6);
+  // Over all tasks each design factor gets its own rank test on its marginal means (never one 4-cell test).
+  std::map<std::string, std::pair<double, double>> seen;  // factor -> (V, p)
+  for (const auto& t : report->at("completion_time").at("rank_tests")) {
+    ASSERT_EQ(t.at("test"), "wilcoxon") << t.at("scope");
+    if (t.at("scope") == "overall")
+      seen[t.at("factors")[0].get<std::string>()] = {num(t.at("wilcoxon").at("V")), num(t.at("wilcoxon").at("p"))};
+  }
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen["transparency"].first, 3);
+  expect_rel(seen["transparency"].second, 0.0390625, 1e-12);
+  EXPECT_EQ(seen["scenario"].first, 35);
+  expect_rel(seen["scenario"].second, 0.015625, 1e-12);
+  const std::string csv = read_text(dir->file("out/tests.csv"));
+  EXPECT_NE(csv.find("time,completion time,s,overall,shapiro-wilk,residuals,8,"), std::string::npos);
+  EXPECT_NE(csv.find("time,completion time (ranks),s,overall,wilcoxon,scenario,8,NA,NA,35,"), std::string::npos);
 }
 
 TEST_F(Statsmodels2x2, TableThreeRowsCarryTheOverallEffectAndTheArticle) {
