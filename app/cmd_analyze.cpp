@@ -26,6 +26,7 @@ struct AnalyzeArgs {
   double frame_threshold_ms = 1000.0 / 30;
   std::string revision = "all";
   bool with_excluded = false;
+  bool log_time = false;
   bool json = false;
   bool quiet = false;
 };
@@ -36,6 +37,7 @@ void run_analyze(const AnalyzeArgs& a) {
   options.frame_threshold_ms = a.frame_threshold_ms;
   options.revision = a.revision;
   options.with_excluded = a.with_excluded;
+  options.log_time = a.log_time;
   auto progress = [&a](const std::string& step) {
     if (!a.quiet) std::cerr << "dtlab analyze: " << step << "\n";
   };
@@ -88,6 +90,10 @@ void add_analyze_command(CLI::App& root) {
   cmd->add_flag("--with-excluded", args->with_excluded,
                 "Keep excluded participants and trials (dtlab exclude) in the analysis; by default they are left out "
                 "and listed with their reasons");
+  cmd->add_flag("--log-time", args->log_time,
+                "Also analyse log completion times (per participant and condition, the mean of the trials' log "
+                "seconds: geometric means, ratios between levels), reported beside the analysis in seconds, never "
+                "instead of it");
   cmd->add_flag("--json", args->json,
                 "Print {database, out, files, participants, trials, tests, excluded_trials, revisions, simulated, "
                 "warnings}");

@@ -26,6 +26,7 @@ struct ReportOptions {
   std::uint64_t seed = 1;                    // seed of Monte Carlo exact p-values (Friedman with many blocks)
   std::string revision = "all";              // design revision(s): "all" (each its own report), "latest", or "N"
   bool with_excluded = false;                // keep excluded participants and trials in the analysis
+  bool log_time = false;                     // also analyse log completion times, beside the seconds
 };
 
 struct ReportSummary {

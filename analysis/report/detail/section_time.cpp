@@ -17,11 +17,11 @@ namespace {
 
 std::optional<double> time_of(const TrialRow& t) { return t.time_s; }
 
-// Mean over the condition's tasks of the per-task means; NaN unless every
-// task of the condition's scenario has a trial (no silent re-weighting).
-Reducer overall_time(const Design& d) {
-  return [&d](const std::vector<const TrialRow*>& ts) {
-    const double v = mean_of_task_means(time_of)(ts);
+}  // namespace
+
+Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field) {
+  return [&d, field](const std::vector<const TrialRow*>& ts) {
+    const double v = mean_of_task_means(field)(ts);
     std::set<std::string> tasks;
     for (const TrialRow* t : ts) tasks.insert(t->task);
     if (ts.empty() || static_cast<int>(tasks.size()) < d.tasks_in(d.scenario_of(*ts.front())))
@@ -29,6 +29,8 @@ Reducer overall_time(const Design& d) {
     return v;
   };
 }
+
+namespace {
 
 std::string difference_text(const TestReport& r, int decimals) {
   if (!r.paired) return kDash;
@@ -155,7 +157,7 @@ void section_time(Context& ctx) {
     jtests.push_back(to_json(r, d));
     means_csv += matrix_csv_rows(m, d, "completion_time_s", task.id);
   }
-  const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d));
+  const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, time_of));
   const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "completion time", "s", "overall"));
   ctx.time["overall"] = &overall;
   rows.push_back({"All tasks", &overall});
@@ -255,7 +257,8 @@ void section_time(Context& ctx) {
   // Robustness and assumptions (section_time_checks.cpp).
   nlohmann::json jranks = nlohmann::json::array();
   add_rank_tests(ctx, s, rows, jranks);
-  add_normality(ctx, s, rows, "time");
+  add_normality(ctx, s, rows, "time", false);
+  if (ctx.options.log_time) add_log_time(ctx, s);
 
   // Descriptives of every cell.
   Table dt;

@@ -29,7 +29,8 @@ double quantile7(const std::vector<double>& sorted, double p) {
 }
 
 // One panel per row: sorted residuals against normal quantiles (qqnorm) and the line through the quartiles (qqline).
-PlotSpec qq_plot(const std::vector<std::pair<std::string, const TestReport*>>& rows, const std::string& id) {
+PlotSpec qq_plot(const std::vector<std::pair<std::string, const TestReport*>>& rows, const std::string& id,
+                 const std::string& ylabel) {
   std::string dat, cmd;
   int panels = 0;
   for (const auto& [label, r] : rows) {
@@ -59,7 +60,7 @@ PlotSpec qq_plot(const std::vector<std::pair<std::string, const TestReport*>>& r
   p.width = 280 * cols + 60;
   p.height = 260 * std::max(rows_n, 1) + 40;
   p.commands = "set multiplot layout " + std::to_string(std::max(rows_n, 1)) + "," + std::to_string(cols) +
-               "\nunset key\nset xlabel 'normal quantile'\nset ylabel 'residual (s)'\n" + cmd + "unset multiplot\n";
+               "\nunset key\nset xlabel 'normal quantile'\nset ylabel " + gp_quote(ylabel) + "\n" + cmd + "unset multiplot\n";
   return p;
 }
 
@@ -107,10 +108,11 @@ void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::s
 }
 
 void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                   const std::string& measure) {
+                   const std::string& measure, bool log_scale) {
   Table t;
   t.id = "table-" + measure + "-normality";
-  t.caption = "Normality of the ANOVA residuals: Shapiro-Wilk test per task and over all tasks.";
+  t.caption = std::string("Normality of the ANOVA residuals") + (log_scale ? " (log completion time)" : "") +
+              ": Shapiro-Wilk test per task and over all tasks.";
   t.header = {"Task", "n", "Residuals", "W", "p"};
   for (const auto& [label, r] : rows) {
     if (!r->normality) continue;
@@ -124,9 +126,73 @@ void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::st
                     "residuals are not normal: read the rank tests beside the ANOVA (and the log-scale analysis, "
                     "`dtlab analyze --log-time`).");
   s.add(t);
-  ctx.add_figure(s, qq_plot(rows, "fig-" + measure + "-qq"),
-                 "Normal Q-Q plots of the ANOVA residuals per task: sorted residuals against normal quantiles (R's "
+  ctx.add_figure(s, qq_plot(rows, "fig-" + measure + "-qq", log_scale ? "residual (log s)" : "residual (s)"),
+                 std::string("Normal Q-Q plots of the ANOVA residuals") + (log_scale ? " of log completion time" : "") +
+                     " per task: sorted residuals against normal quantiles (R's "
                  "qqnorm), with the line through the quartiles (qqline).");
+}
+
+void add_log_time(Context& ctx, Section& s) {
+  const Design& d = ctx.design;
+  const auto& primary = d.factor(d.primary);
+  const bool two = primary.levels.size() == 2;
+  auto log_time = [](const TrialRow& t) -> std::optional<double> {
+    if (!(t.time_s > 0)) return std::nullopt;  // NaN (no time) or not positive
+    return std::log(t.time_s);
+  };
+  std::vector<std::pair<std::string, const TestReport*>> rows;
+  nlohmann::json jtests = nlohmann::json::array();
+  for (const auto& task : d.tasks) {
+    const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.task == task.id; }, mean_of(log_time));
+    rows.push_back({task.id, &ctx.add_test("time", run_rm_anova(m, d, "log completion time", "log s", task.id))});
+  }
+  const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, log_time));
+  const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "log completion time", "log s", "overall"));
+  rows.push_back({"All tasks", &overall});
+
+  s.text("Log completion times (--log-time). Completion times are skewed to the right; on the log scale a "
+         "difference between conditions is a ratio of times. The same ANOVAs on the participants' mean log times:");
+  Table t;
+  t.id = "table-time-log";
+  t.caption = "Completion time on the log scale (--log-time): geometric means (s) per level of " + primary.name +
+              " and the repeated-measures ANOVA of the participants' mean log times, beside the analysis in seconds.";
+  t.header = {"Task"};
+  for (size_t l = 0; l < primary.levels.size(); ++l)
+    t.header.push_back("GM " + d.level_label(d.primary, static_cast<int>(l)));
+  t.header.insert(t.header.end(), {"n", "F", "df", "p", "ηp²"});
+  if (two) t.header.push_back("ratio " + primary.levels[1] + " / " + primary.levels[0] + " [95% CI]");
+  for (const auto& [label, r] : rows) {
+    jtests.push_back(to_json(*r, d));
+    std::vector<std::string> row = {label};
+    const auto* mg = r->marginal_of(d.primary);
+    for (size_t l = 0; l < primary.levels.size(); ++l) row.push_back(mg ? fixed(std::exp((*mg)[l].mean), 2) : kDash);
+    row.push_back(std::to_string(r->kept.size()));
+    const stats::Effect* e = r->effect(primary.name);
+    const bool gg = e && stats::applied_correction(*e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
+    row.push_back(e ? f_text(e->F) : kDash);
+    row.push_back(!e ? kDash : gg ? df_text(e->df1_gg) + ", " + df_text(e->df2_gg) : df_text(e->df1) + ", " + df_text(e->df2));
+    row.push_back(e ? p_text(gg ? e->p_gg : e->p) : kDash);
+    row.push_back(e ? bounded(e->eta_p2) : kDash);
+    if (two)
+      row.push_back(r->paired ? fixed(std::exp(r->paired->t.mean_difference), 2) + " " +
+                                    stats::apa_interval(std::exp(r->paired->t.ci_low), std::exp(r->paired->t.ci_high), false)
+                              : kDash);
+    t.rows.push_back(std::move(row));
+  }
+  t.notes.push_back("Each participant's value per condition is the mean of the natural logs of their trial times (a "
+                    "trial without a positive time is left out); over all tasks, the mean of the per-task means. GM: "
+                    "geometric mean, exp of the mean over participants. Ratio: exp of the mean paired difference of "
+                    "the logs, with its 95% CI (paired t), e.g. 0.80 = 20% faster. Log times make skewed times more "
+                    "symmetric; the analysis in seconds above stays the primary one.");
+  s.add(t);
+  for (const auto& [label, r] : rows)
+    if (const stats::Effect* e = r->effect(primary.name))
+      s.text(label + ", log scale: " + primary.name + " " + effect_sentence(*e) + ".");
+  add_anova(ctx, s, overall, "table-time-log-anova-overall",
+            "Repeated-measures ANOVA of log completion time over all tasks (participant x condition means of the "
+            "per-task mean log times).");
+  add_normality(ctx, s, rows, "time-log", true);
+  ctx.json["completion_time_log"] = {{"tests", jtests}};
 }
 
 }  // namespace dtlab::report::detail

@@ -81,7 +81,13 @@ void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::s
                     nlohmann::json& out);
 // Shapiro-Wilk of each row's ANOVA residuals (a table) and their normal Q-Q plots (one figure).
 void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                   const std::string& measure);
+                   const std::string& measure, bool log_scale);
+
+// --log-time: ANOVAs of log completion times per task and overall, a table beside the seconds'.
+void add_log_time(Context& ctx, Section& s);
+// Mean over the condition's tasks of the per-task means of `field`; NaN unless every task of the
+// condition's scenario has a trial (no silent re-weighting). (section_time.cpp)
+Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field);
 
 // --- helpers shared by the sections (section_common.cpp) ---------------------------------------
 // The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.

@@ -181,6 +181,38 @@ TEST_F(Statsmodels2x2, ResidualNormalityAndRankTestsPerFactorAsR) {
   EXPECT_NE(csv.find("time,completion time (ranks),s,overall,wilcoxon,scenario,8,NA,NA,35,"), std::string::npos);
 }
 
+// --log-time analyses the participants' mean log times beside the seconds. R 4.2.2:
+//   m <- aggregate(log(DV) ~ id + A + D, d, mean); summary(aov(y ~ A * D + Error(factor(id) / (A * D)), m))
+//   -> A F = 4.56659 p = 0.069948; D F = 26.84208 p = 0.0012796; A:D F = 3.53936 p = 0.10197
+//   x <- on - off of the A marginal means; exp(mean(x)), exp(t.test(x)$conf.int)
+//   -> ratio 1.33735998534624 [0.969504525675173, 1.84478946001798]
+TEST(ReportPublished, LogTimeIsAnalysedBesideTheSecondsAsR) {
+  TempDir dir;
+  build_statsmodels_2x2(dir.file("s.sqlite"));
+  ReportOptions options;
+  options.log_time = true;
+  const auto report = run_report(dir.file("s.sqlite"), dir.file("out"), options);
+  const nlohmann::json* overall = nullptr;
+  for (const auto& t : report.at("completion_time_log").at("tests"))
+    if (t.at("scope") == "overall") overall = &t;
+  ASSERT_NE(overall, nullptr);
+  EXPECT_EQ(overall->at("measure"), "log completion time");
+  expect_rel(num(find_effect(*overall, "transparency").at("F")), 4.56659, 1e-5);
+  expect_rel(num(find_effect(*overall, "transparency").at("p")), 0.069948, 1e-4);
+  expect_rel(num(find_effect(*overall, "scenario").at("F")), 26.84208, 1e-6);
+  expect_rel(num(find_effect(*overall, "transparency:scenario").at("F")), 3.53936, 1e-5);
+  EXPECT_FALSE(overall->contains("followups"));  // p = .10: not followed up
+  const auto& paired = overall->at("paired");
+  expect_rel(std::exp(num(paired.at("mean_difference"))), 1.33735998534624, 1e-12);
+  expect_rel(std::exp(num(paired.at("ci_low"))), 0.969504525675173, 1e-12);
+  expect_rel(std::exp(num(paired.at("ci_high"))), 1.84478946001798, 1e-12);
+  // The seconds stay the primary analysis.
+  expect_rel(num(find_effect(find_test(report, "completion_time", "overall"), "transparency").at("F")), 8.7650709, 1e-7);
+  const std::string md = read_text(dir.file("out/report.md"));
+  EXPECT_NE(md.find("Completion time on the log scale"), std::string::npos);
+  EXPECT_NE(md.find("| All tasks | "), std::string::npos);
+}
+
 TEST_F(Statsmodels2x2, TableThreeRowsCarryTheOverallEffectAndTheArticle) {
   const auto& rows = report->at("completion_time").at("table");
   ASSERT_EQ(rows.size(), 5u);  // T1..T4 and all tasks
