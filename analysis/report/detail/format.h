@@ -21,6 +21,7 @@ std::string bounded(double v, int decimals = 2);      // ".57", "1.00", "-.12"; 
 std::string f_text(double f);                         // F with 2 decimals (3 below 1)
 std::string df_text(double df);                       // "15" or "12.47" (GG-corrected df)
 std::string integer(long long v);
+std::string count_of(long long n, const std::string& noun);  // "1 participant", "16 participants"
 std::string percent(double share, int decimals = 1);  // 0.125 -> "12.5%"
 
 nlohmann::json num(double v);

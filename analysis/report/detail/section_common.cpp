@@ -232,7 +232,7 @@ Table comparison_table(const std::vector<stats::Comparison>& list, const std::st
 
 std::vector<std::string> test_notes(const TestReport& r) {
   std::vector<std::string> notes;
-  std::string n = "n = " + std::to_string(r.kept.size()) + " participants";
+  std::string n = "n = " + count_of(static_cast<long long>(r.kept.size()), "participant");
   if (!r.excluded.empty()) {
     n += "; excluded (listwise deletion, a cell without a value): ";
     for (size_t i = 0; i < r.excluded.size(); ++i) n += (i ? "; " : "") + r.excluded[i];
