@@ -71,10 +71,10 @@ Table anova_table(const TestReport& r, const std::string& id, const std::string&
       const bool gg = stats::applied_correction(e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
       std::vector<std::string> row = {
           effect_label(e.name),
-          gg ? df_text(e.df1_gg) + ", " + df_text(e.df2_gg) + " (GG)" : df_text(e.df1) + ", " + df_text(e.df2),
+          df_cell(e) + (gg ? " (GG)" : ""),
           stats::apa_number(e.mse, std::fabs(e.mse) < 1 ? 4 : 2),
           f_text(e.F),
-          p_text(gg ? e.p_gg : e.p),
+          p_text(reported_p(e)),
           bounded(e.eta_p2),
           std::isnan(e.eta_p2_ci_low) ? kDash : stats::apa_interval(e.eta_p2_ci_low, e.eta_p2_ci_high, true),
           bounded(e.eta_g2)};
@@ -124,9 +124,7 @@ Table simple_effects_table(const InteractionFollowUp& f, const std::string& id, 
       const auto& e = se.anova;
       const bool gg = stats::applied_correction(e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
       for (const auto& x : {std::string(kDash), std::string(kDash), std::string(kDash), std::string(kDash),
-                            "F = " + f_text(e.F),
-                            gg ? df_text(e.df1_gg) + ", " + df_text(e.df2_gg) + " (GG)"
-                               : df_text(e.df1) + ", " + df_text(e.df2),
+                            "F = " + f_text(e.F), df_cell(e) + (gg ? " (GG)" : ""),
                             p_text(se.p), p_text(se.p_holm), "ηp² = " + bounded(e.eta_p2)})
         row.push_back(x);
     }
@@ -212,6 +210,17 @@ void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string&
                    "confidence intervals (Cousineau 2005 with Morey's 2008 correction; they show the precision of "
                    "comparisons within participants, not of the means themselves).");
   }
+}
+
+std::string df_cell(const stats::Effect& e) {
+  if (stats::applied_correction(e, stats::Correction::greenhouse_geisser) == stats::Correction::none)
+    return df_text(e.df1) + ", " + df_text(e.df2);
+  return df_text(e.df1_gg) + ", " + df_text(e.df2_gg);
+}
+
+std::vector<std::string> effect_cells(const stats::Effect* e) {
+  if (!e) return {kDash, kDash, kDash, kDash};
+  return {f_text(e->F), df_cell(*e), p_text(reported_p(*e)), bounded(e->eta_p2)};
 }
 
 Table comparison_table(const std::vector<stats::Comparison>& list, const std::string& id, const std::string& caption,

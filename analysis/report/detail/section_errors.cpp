@@ -27,19 +27,13 @@ struct Row {
 
 // "F(1, 15) = 1.82" (df Greenhouse-Geisser corrected where ε < 1, as the p beside it) or "χ²(1) = 0.11".
 std::string statistic_text(const TestReport& r, const std::string& factor) {
-  if (const stats::Effect* e = r.effect(factor)) {
-    const bool gg = stats::applied_correction(*e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
-    return "F(" + df_text(gg ? e->df1_gg : e->df1) + ", " + df_text(gg ? e->df2_gg : e->df2) + ") = " + f_text(e->F);
-  }
+  if (const stats::Effect* e = r.effect(factor)) return "F(" + df_cell(*e) + ") = " + f_text(e->F);
   if (r.friedman) return "χ²(" + df_text(r.friedman->df) + ") = " + fixed(r.friedman->Q, 2);
   return kDash;
 }
 
 std::string p_of(const TestReport& r, const std::string& factor) {
-  if (const stats::Effect* e = r.effect(factor)) {
-    const bool gg = stats::applied_correction(*e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
-    return p_text(gg ? e->p_gg : e->p);
-  }
+  if (const stats::Effect* e = r.effect(factor)) return p_text(reported_p(*e));
   if (r.friedman) {
     std::string s = p_text(r.friedman->p);
     if (std::isfinite(r.friedman->p_exact)) s += " (exact " + p_text(r.friedman->p_exact) + ")";

@@ -183,11 +183,7 @@ void section_time(Context& ctx) {
     for (const auto& c : primary_cells(*r, d, 2)) row.push_back(c);
     row.push_back(std::to_string(r->kept.size()));
     const stats::Effect* e = r->effect(primary.name);
-    const bool gg = e && stats::applied_correction(*e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
-    row.push_back(e ? f_text(e->F) : kDash);
-    row.push_back(!e ? kDash : gg ? df_text(e->df1_gg) + ", " + df_text(e->df2_gg) : df_text(e->df1) + ", " + df_text(e->df2));
-    row.push_back(e ? p_text(gg ? e->p_gg : e->p) : kDash);
-    row.push_back(e ? bounded(e->eta_p2) : kDash);
+    for (auto& c : effect_cells(e)) row.push_back(std::move(c));
     if (two) row.push_back(difference_text(*r, 2));
     nlohmann::json jr{{"scope", r->scope}, {"label", row[0]}, {"n", r->kept.size()}};
     if (e) jr["effect"] = to_json(*e);

@@ -168,11 +168,7 @@ void add_log_time(Context& ctx, Section& s) {
     for (size_t l = 0; l < primary.levels.size(); ++l) row.push_back(mg ? fixed(std::exp((*mg)[l].mean), 2) : kDash);
     row.push_back(std::to_string(r->kept.size()));
     const stats::Effect* e = r->effect(primary.name);
-    const bool gg = e && stats::applied_correction(*e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
-    row.push_back(e ? f_text(e->F) : kDash);
-    row.push_back(!e ? kDash : gg ? df_text(e->df1_gg) + ", " + df_text(e->df2_gg) : df_text(e->df1) + ", " + df_text(e->df2));
-    row.push_back(e ? p_text(gg ? e->p_gg : e->p) : kDash);
-    row.push_back(e ? bounded(e->eta_p2) : kDash);
+    for (auto& c : effect_cells(e)) row.push_back(std::move(c));
     if (two)
       row.push_back(r->paired ? fixed(std::exp(r->paired->t.mean_difference), 2) + " " +
                                     stats::apa_interval(std::exp(r->paired->t.ci_low), std::exp(r->paired->t.ci_high), false)

@@ -92,6 +92,10 @@ Reducer overall_time(const Design& d, const std::function<std::optional<double>(
 // --- helpers shared by the sections (section_common.cpp) ---------------------------------------
 // The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.
 std::string tests_csv(const Context& ctx);
+// An effect's df as a cell: "1, 15", or Greenhouse-Geisser corrected where ε < 1 ("2.39, 35.89").
+std::string df_cell(const stats::Effect& e);
+// F, df, p and ηp² of the effect as table cells (df and p as above); four dashes for nullptr.
+std::vector<std::string> effect_cells(const stats::Effect* e);
 // Paired comparisons (post-hoc or simple effects): n, mean difference, SE, 95% CI, t, df, p, Holm p, d_z.
 Table comparison_table(const std::vector<stats::Comparison>& list, const std::string& id, const std::string& caption,
                        const std::string& unit);

@@ -73,10 +73,13 @@ void paired_effect(TestReport& r, const CellMatrix& m, const Design& d) {
   }
 }
 
-// The p an interaction is judged by: Greenhouse-Geisser corrected where ε < 1, as the tables print it.
+}  // namespace
+
 double reported_p(const stats::Effect& e) {
   return stats::applied_correction(e, stats::Correction::greenhouse_geisser) == stats::Correction::none ? e.p : e.p_gg;
 }
+
+namespace {
 
 // Simple effects and within-subject CIs of every two-way within interaction with p < kFollowUpAlpha.
 void follow_up(TestReport& r, const stats::LongData& data) {

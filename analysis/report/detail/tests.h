@@ -78,6 +78,9 @@ nlohmann::json to_json(const stats::Effect& e);
 nlohmann::json to_json(const TestReport& r, const Design& d);
 nlohmann::json to_json(const InteractionFollowUp& f);
 
+// The p the report prints and judges an effect by: Greenhouse-Geisser corrected where ε < 1.
+double reported_p(const stats::Effect& e);
+
 // The significance level at which an interaction is followed up.
 inline constexpr double kFollowUpAlpha = 0.05;
 
