@@ -109,22 +109,22 @@ Table simple_effects_table(const InteractionFollowUp& f, const std::string& id, 
   t.caption = "Simple effects of the " + f.a + " × " + f.b + " interaction on " + what +
               ": each factor at each level of the other, Holm-corrected within each factor.";
   const std::string u = unit.empty() ? "" : " (" + unit + ")";
-  t.header = {"Effect of", "At", "n", "Difference", "M diff" + u, "SE", "95% CI", "Statistic", "df", "p",
+  t.header = {"Effect of", "At", "Difference", "n", "M diff" + u, "SE", "95% CI", "Statistic", "df", "p",
               "p (Holm)", "Effect size"};
-  t.text_columns = 2;
+  t.text_columns = 3;
   for (const auto& se : f.simple.rows) {
-    std::vector<std::string> row = {se.factor, se.at_factor + " = " + se.at_level, std::to_string(se.n)};
+    std::vector<std::string> row = {se.factor, se.at_factor + " = " + se.at_level};
     if (se.test == "paired t") {
       const auto& c = se.contrast;
-      for (const auto& x : {c.a + " − " + c.b, fixed(c.estimate, 2), fixed(c.se, 2),
+      for (const auto& x : {c.a + " − " + c.b, std::to_string(se.n), fixed(c.estimate, 2), fixed(c.se, 2),
                             stats::apa_interval(c.ci_low, c.ci_high, false), "t = " + fixed(c.statistic, 2),
                             df_text(c.df), p_text(se.p), p_text(se.p_holm), "d_z = " + fixed(c.dz, 2)})
         row.push_back(x);
     } else {
       const auto& e = se.anova;
       const bool gg = stats::applied_correction(e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
-      for (const auto& x : {std::string(kDash), std::string(kDash), std::string(kDash), std::string(kDash),
-                            "F = " + f_text(e.F), df_cell(e) + (gg ? " (GG)" : ""),
+      for (const auto& x : {std::string("all levels"), std::to_string(se.n), std::string(kDash), std::string(kDash),
+                            std::string(kDash), "F = " + f_text(e.F), df_cell(e) + (gg ? " (GG)" : ""),
                             p_text(se.p), p_text(se.p_holm), "ηp² = " + bounded(e.eta_p2)})
         row.push_back(x);
     }
@@ -302,7 +302,8 @@ std::string tests_csv(const Context& ctx) {
   const std::vector<std::string> columns = {
       "section", "measure", "unit", "scope", "test", "effect", "n", "df1", "df2", "statistic", "p", "log10_p",
       "p_exact", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf", "eta_p2", "eta_g2", "kendall_W", "mse", "mauchly_W",
-      "mauchly_p", "df1_gg", "df2_gg", "df1_hf", "df2_hf", "eta_p2_ci90_low", "eta_p2_ci90_high", "apa"};
+      "mauchly_p", "df1_gg", "df2_gg", "df1_hf", "df2_hf", "eta_p2_ci90_low", "eta_p2_ci90_high", "p_holm",
+      "estimate", "se", "ci_low", "ci_high", "dz", "apa"};
   std::string out = csv_line(columns);
   // One line from column -> text; columns not given are NA.
   auto line = [&](const std::map<std::string, std::string>& fields) {
@@ -332,6 +333,28 @@ std::string tests_csv(const Context& ctx) {
                   {"df2_gg", v(e.df2_gg)}, {"df1_hf", v(e.df1_hf)}, {"df2_hf", v(e.df2_hf)},
                   {"eta_p2_ci90_low", v(e.eta_p2_ci_low)}, {"eta_p2_ci90_high", v(e.eta_p2_ci_high)},
                   {"apa", effect_sentence(e)}});
+        out += line(f);
+      }
+    for (const auto& fu : r.followups)
+      for (const auto& se : fu.simple.rows) {
+        auto f = base;
+        f["n"] = std::to_string(se.n);
+        f["test"] = "simple effect (" + se.test + ")";
+        f["effect"] = se.factor + " at " + se.at_factor + " = " + se.at_level;
+        f["p"] = v(se.p);
+        f["p_holm"] = v(se.p_holm);
+        if (se.test == "paired t") {
+          const auto& c = se.contrast;
+          f.insert({{"df1", v(c.df)}, {"statistic", v(c.statistic)}, {"estimate", v(c.estimate)}, {"se", v(c.se)},
+                    {"ci_low", v(c.ci_low)}, {"ci_high", v(c.ci_high)}, {"dz", v(c.dz)},
+                    {"apa", "t(" + stats::apa_df(c.df) + ") = " + stats::apa_number(c.statistic) + ", " +
+                                stats::apa_p(se.p) + " (Holm " + stats::apa_p(se.p_holm) + "), d_z = " +
+                                stats::apa_number(c.dz)}});
+        } else {
+          const auto& e = se.anova;
+          f.insert({{"df1", v(e.df1)}, {"df2", v(e.df2)}, {"statistic", v(e.F)}, {"gg_epsilon", v(e.gg_epsilon)},
+                    {"p_gg", v(e.p_gg)}, {"eta_p2", v(e.eta_p2)}, {"apa", effect_sentence(e)}});
+        }
         out += line(f);
       }
     if (r.normality) {

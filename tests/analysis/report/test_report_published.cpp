@@ -125,6 +125,11 @@ TEST_F(Statsmodels2x2, SignificantInteractionGetsSimpleEffectsAsRPairedT) {
   }
   EXPECT_EQ(cells[1].at("levels").at("transparency"), "off");
   EXPECT_EQ(cells[1].at("levels").at("scenario"), "walkthrough");
+  // tests.csv has a row per simple effect with the exact t, p and Holm p.
+  const std::string csv = read_text(dir->file("out/tests.csv"));
+  EXPECT_NE(csv.find("time,completion time,s,overall,simple effect (paired t),transparency at scenario = abstract,8,7,NA,"
+                     "-6.33573933494"),
+            std::string::npos);
   // One-factor tests have no interaction to follow up.
   EXPECT_FALSE(find_test(*report, "completion_time", "T1").contains("followups"));
 }
