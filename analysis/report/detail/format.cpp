@@ -45,7 +45,7 @@ std::string bounded(double v, int decimals) { return std::isnan(v) ? kDash : sta
 std::string f_text(double f) {
   if (std::isnan(f)) return kDash;
   if (std::isinf(f)) return "∞";
-  return fixed(f, std::fabs(f) < 1 ? 3 : 2);
+  return fixed(f, 2);
 }
 
 std::string df_text(double df) {

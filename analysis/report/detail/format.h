@@ -18,7 +18,7 @@ std::string fixed(double v, int decimals);            // "12.35"; kDash for NaN;
 std::string mean_sd(double mean, double sd, int decimals);  // "56.26 (38.72)"; sd NaN -> "56.26 (—)"
 std::string p_text(double p);                         // a table cell: ".024", "< .001", "> .999"; kDash for NaN
 std::string bounded(double v, int decimals = 2);      // ".57", "1.00", "-.12"; kDash for NaN (eta², ε, W, r)
-std::string f_text(double f);                         // F with 2 decimals (3 below 1)
+std::string f_text(double f);                         // F with 2 decimals (APA), "∞", kDash for NaN
 std::string df_text(double df);                       // "15" or "12.47" (GG-corrected df)
 std::string integer(long long v);
 std::string count_of(long long n, const std::string& noun);  // "1 participant", "16 participants"

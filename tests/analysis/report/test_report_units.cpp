@@ -76,6 +76,7 @@ TEST(Format, PValuesInApaStyle) {
   EXPECT_EQ(bounded(std::nan("")), "—");
   EXPECT_EQ(fixed(-0.0001, 2), "0.00");
   EXPECT_EQ(mean_sd(56.256, 38.72, 2), "56.26 (38.72)");
+  EXPECT_EQ(f_text(0.7164), "0.72");  // APA: F with two decimals, as in the sentences
   EXPECT_EQ(df_text(15), "15");
   EXPECT_EQ(df_text(12.4671), "12.47");
   EXPECT_TRUE(num(std::nan("")).is_null());
