@@ -1,6 +1,9 @@
 // Helpers shared by the report sections: the Context's bookkeeping, the full
-// ANOVA table, notes under a test's table, and the CSV rows every section
-// writes. Formatting only; the numbers come from analysis/stats.
+// ANOVA table in APA style with its sentences, the follow-up of significant
+// interactions (simple-effects table, interaction plot), paired-comparison
+// tables, notes under a test's table, and the CSV rows every section writes
+// (tests.csv exact, never rounded). Formatting only; the numbers come from
+// analysis/stats.
 #include <algorithm>
 #include <cmath>
 #include <map>

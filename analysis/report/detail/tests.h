@@ -2,7 +2,9 @@
 // needs: per cell and per level descriptives over the participants the test
 // keeps, the test itself (analysis/stats), Holm post-hoc comparisons for
 // factors with more than two levels, and for a two-level primary factor the
-// paired difference with its 95% CI and Cohen's d_z. Missing data: listwise
+// paired difference with its 95% CI and Cohen's d_z; for ANOVAs also the
+// follow-up of each significant two-way interaction and Shapiro-Wilk of the
+// residuals; rank tests (Wilcoxon, Friedman). Missing data: listwise
 // deletion, done here so the report can name each excluded participant and
 // cell. A test that cannot run (no complete participant) is reported with
 // its reason, never as an error of the whole report.

@@ -318,7 +318,14 @@ TEST(ReportPublished, OneFactorFourLevelsWithMissingCellsMatchesPingouin) {
   // Holm post-hoc for a four-level factor: 6 pairs, Holm p never below the raw p.
   const auto& ph = t.at("posthoc").at("week");
   ASSERT_EQ(ph.size(), 6u);
-  for (const auto& c : ph) EXPECT_GE(num(c.at("p_holm")), num(c.at("p")));
+  for (const auto& c : ph) {
+    EXPECT_GE(num(c.at("p_holm")), num(c.at("p")));
+    // Each row also has the paired difference's SE, 95% CI and d_z (values checked in test_stats against R).
+    EXPECT_LT(num(c.at("ci_low")), num(c.at("estimate")));
+    EXPECT_GT(num(c.at("ci_high")), num(c.at("estimate")));
+    EXPECT_NEAR(num(c.at("statistic")), num(c.at("estimate")) / num(c.at("se")), 1e-9 * std::fabs(num(c.at("statistic"))));
+    EXPECT_FALSE(c.at("dz").is_null());
+  }
   // Incomplete sessions are reported as such.
   bool warned = false;
   for (const auto& w : report.at("warnings")) warned = warned || w.get<std::string>().rfind("W07: session running", 0) == 0;
