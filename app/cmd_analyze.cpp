@@ -28,6 +28,7 @@ struct AnalyzeArgs {
   std::string revision = "all";
   bool with_excluded = false;
   bool no_paths = false;
+  bool log_time = false;
   bool json = false;
   bool quiet = false;
 };
@@ -39,6 +40,7 @@ void run_analyze(const AnalyzeArgs& a) {
   options.revision = a.revision;
   options.with_excluded = a.with_excluded;
   if (!a.no_paths) options.path_figure = replay_path_figures();
+  options.log_time = a.log_time;
   auto progress = [&a](const std::string& step) {
     if (!a.quiet) std::cerr << "dtlab analyze: " << step << "\n";
   };
@@ -95,6 +97,10 @@ void add_analyze_command(CLI::App& root) {
   cmd->add_flag("--no-paths", args->no_paths,
                 "Do not draw the walked-path figures (each regenerates the trials' buildings: a few seconds for a "
                 "large study)");
+  cmd->add_flag("--log-time", args->log_time,
+                "Also analyse log completion times (per participant and condition, the mean of the trials' log "
+                "seconds: geometric means, ratios between levels), reported beside the analysis in seconds, never "
+                "instead of it");
   cmd->add_flag("--json", args->json,
                 "Print {database, out, files, participants, trials, tests, excluded_trials, revisions, simulated, "
                 "warnings}");

@@ -40,6 +40,7 @@ struct ReportOptions {
   // Draws path figures (paths/*.svg, linked from a "Walked paths" section); empty: none. The report
   // never links rendering, so the app passes one built on study/replay's trials_path_svg.
   PathFigureFn path_figure;
+  bool log_time = false;                     // also analyse log completion times, beside the seconds
 };
 
 struct ReportSummary {

@@ -17,14 +17,14 @@ std::string fixed(double v, int decimals) {
   return s;
 }
 
-Correction effective(const Effect& e, Correction c) {
+}  // namespace
+
+Correction applied_correction(const Effect& e, Correction c) {
   if (!e.within || e.df1 <= 1 || std::isnan(e.gg_epsilon) || e.gg_epsilon >= 1.0) return Correction::none;
   if (c == Correction::automatic) return e.mauchly_p < 0.05 ? Correction::greenhouse_geisser : Correction::none;
   if (c == Correction::huynh_feldt && (std::isnan(e.hf_epsilon) || e.hf_epsilon >= 1.0)) return Correction::none;
   return c;
 }
-
-}  // namespace
 
 std::string apa_p_value(double p) {
   if (std::isnan(p)) return "= NA";
@@ -66,7 +66,7 @@ std::string apa_interval(double low, double high, bool bounded, int decimals) {
 }
 
 std::string apa_effect(const Effect& e, Correction correction) {
-  const Correction c = effective(e, correction);
+  const Correction c = applied_correction(e, correction);
   double df1 = e.df1, df2 = e.df2, p = e.p, eps = 1.0;
   if (c == Correction::greenhouse_geisser) {
     df1 = e.df1_gg, df2 = e.df2_gg, p = e.p_gg, eps = e.gg_epsilon;

@@ -34,6 +34,10 @@ std::string apa_number(double v, int decimals = 2);   // "20.09", "-1.28", "∞"
 std::string apa_df(double df);                        // "15", "5.13"
 std::string apa_interval(double low, double high, bool bounded, int decimals = 2);  // "[.30, .71]"
 
+// The correction `correction` comes to for e: none unless e is a within
+// effect with df1 > 1 and a defined epsilon below 1 (HF: min(1, HF) below 1).
+Correction applied_correction(const Effect& e, Correction correction);
+
 // The sentence for one ANOVA effect (see above); `correction` applies to
 // within effects with df1 > 1 and a defined epsilon.
 std::string apa_effect(const Effect& e, Correction correction = Correction::greenhouse_geisser);

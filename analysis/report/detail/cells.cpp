@@ -103,6 +103,35 @@ std::vector<double> marginal(const CellMatrix& m, size_t k, int level) {
   return out;
 }
 
+CellMatrix marginal_matrix(const CellMatrix& m, size_t k) {
+  CellMatrix out;
+  out.factors = {m.factors[k]};
+  out.subjects = m.subjects;
+  int levels = 0;
+  for (size_t c = 0; c < m.cells(); ++c) levels = std::max(levels, m.level(c, k) + 1);
+  for (int l = 0; l < levels; ++l) {
+    out.cell_levels.push_back({l});
+    for (size_t c = 0; c < m.cells(); ++c)
+      if (m.level(c, k) == l) {
+        std::string name = m.cell_names[c];  // "off/abstract": the k-th part
+        for (size_t i = 0; i < k; ++i) name = name.substr(name.find('/') + 1);
+        out.cell_names.push_back(name.substr(0, name.find('/')));
+        break;
+      }
+  }
+  out.value.assign(m.subjects.size(), std::vector<double>(static_cast<size_t>(levels), kNaN));
+  out.trials.assign(m.subjects.size(), std::vector<int>(static_cast<size_t>(levels), 0));
+  for (int l = 0; l < levels; ++l) {
+    const auto v = marginal(m, k, l);
+    for (size_t s = 0; s < m.subjects.size(); ++s) {
+      out.value[s][static_cast<size_t>(l)] = v[s];
+      for (size_t c = 0; c < m.cells(); ++c)
+        if (m.level(c, k) == l) out.trials[s][static_cast<size_t>(l)] += m.trials[s][c];
+    }
+  }
+  return out;
+}
+
 stats::LongData long_data(const CellMatrix& m, const Design& design, const std::vector<size_t>& kept,
                           const std::string& dv) {
   stats::LongData d;

@@ -49,6 +49,10 @@ CellMatrix aggregate(const StudyData& data, const Design& design, const std::vec
 // k (a marginal mean); NaN when any of those cells is missing.
 std::vector<double> marginal(const CellMatrix& m, size_t k, int level);
 
+// The matrix of factor entry k alone: per subject, its marginal means (one cell per level of
+// that factor; NaN where a cell averaged over is missing; trials summed).
+CellMatrix marginal_matrix(const CellMatrix& m, size_t k);
+
 // The rows of `kept` subjects as long data for analysis/stats (one row per
 // subject x cell, levels named by the protocol), dv named `dv`.
 stats::LongData long_data(const CellMatrix& m, const Design& design, const std::vector<size_t>& kept,

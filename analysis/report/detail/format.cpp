@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/stats/apa.h"
+
 namespace dtlab::report::detail {
 namespace {
 
@@ -32,36 +34,18 @@ std::string mean_sd(double mean, double sd, int decimals) {
   return fixed(mean, decimals) + " (" + fixed(sd, decimals) + ")";
 }
 
-std::string p_text(double p, double log10_p) {
+std::string p_text(double p) {
   if (std::isnan(p)) return kDash;
-  if (p >= 1) return "1";
-  if (p >= 1e-4) return printf_text("%.3g", p);
-  std::string s;
-  if (p > 0) {
-    s = printf_text("%.2e", p);
-  } else if (std::isfinite(log10_p)) {
-    // p underflowed below the smallest double; its log is still exact.
-    const double e = std::floor(log10_p);
-    s = printf_text("%.2f", std::pow(10.0, log10_p - e)) + "e" + printf_text("%.0f", e);
-  } else {
-    return "0";
-  }
-  if (log10_p < -6 && std::isfinite(log10_p)) s += " (log10 p = " + printf_text("%.2f", log10_p) + ")";
-  return s;
+  const std::string s = stats::apa_p_value(p);
+  return s.rfind("= ", 0) == 0 ? s.substr(2) : s;
 }
 
-std::string p_short(double p, double log10_p) {
-  if (p > 0 || std::isnan(p)) {
-    const std::string full = p_text(p, log10_p);
-    return full.substr(0, full.find(" (log10"));
-  }
-  return p_text(p, log10_p);
-}
+std::string bounded(double v, int decimals) { return std::isnan(v) ? kDash : stats::apa_bounded(v, decimals); }
 
 std::string f_text(double f) {
   if (std::isnan(f)) return kDash;
   if (std::isinf(f)) return "∞";
-  return fixed(f, std::fabs(f) < 1 ? 3 : 2);
+  return fixed(f, 2);
 }
 
 std::string df_text(double df) {
@@ -71,6 +55,10 @@ std::string df_text(double df) {
 }
 
 std::string integer(long long v) { return std::to_string(v); }
+
+std::string count_of(long long n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
 
 std::string percent(double share, int decimals) {
   if (std::isnan(share)) return kDash;

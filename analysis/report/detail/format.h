@@ -1,8 +1,9 @@
 // Numbers as the report prints them, and as report.json stores them. Text:
-// fixed decimals, "—" for undefined values; p-values exact (3 significant
-// digits, scientific below 1e-4, with log10 p below 1e-6 so that p-values
-// that underflow stay readable). JSON: round-trip doubles, NaN as null,
-// infinities as "Infinity"/"-Infinity" (the convention of `dtlab stats`).
+// fixed decimals, "—" for undefined values; p-values in APA style (".002",
+// "< .001", "> .999"; analysis/stats/apa.h), statistics bounded by 1 (eta
+// squared, epsilon, W) without a leading zero. Rounding is for text only:
+// JSON and CSV keep round-trip doubles, NaN as null, infinities as
+// "Infinity"/"-Infinity" (the convention of `dtlab stats`).
 // Pure functions; never locale-dependent.
 #pragma once
 #include <nlohmann/json.hpp>
@@ -15,12 +16,12 @@ inline constexpr const char* kDash = "—";  // undefined value in a table
 
 std::string fixed(double v, int decimals);            // "12.35"; kDash for NaN; "∞"/"−∞" for infinities
 std::string mean_sd(double mean, double sd, int decimals);  // "56.26 (38.72)"; sd NaN -> "56.26 (—)"
-std::string p_text(double p, double log10_p);         // "0.0240", "3.91e-05", "2.1e-12 (log10 p = -11.68)"
-std::string p_short(double p, double log10_p);        // the same without the log10 part, for narrow table cells
-                                                      // (kept when p underflowed: "6.31e-346 (log10 p = -345.20)")
-std::string f_text(double f);                         // F with 2 decimals (3 below 1)
+std::string p_text(double p);                         // a table cell: ".024", "< .001", "> .999"; kDash for NaN
+std::string bounded(double v, int decimals = 2);      // ".57", "1.00", "-.12"; kDash for NaN (eta², ε, W, r)
+std::string f_text(double f);                         // F with 2 decimals (APA), "∞", kDash for NaN
 std::string df_text(double df);                       // "15" or "12.47" (GG-corrected df)
 std::string integer(long long v);
+std::string count_of(long long n, const std::string& noun);  // "1 participant", "16 participants"
 std::string percent(double share, int decimals = 1);  // 0.125 -> "12.5%"
 
 nlohmann::json num(double v);

@@ -1,10 +1,16 @@
 // Helpers shared by the report sections: the Context's bookkeeping, the full
-// ANOVA table, notes under a test's table, and the CSV rows every section
-// writes. Formatting only; the numbers come from analysis/stats.
+// ANOVA table in APA style with its sentences, the follow-up of significant
+// interactions (simple-effects table, interaction plot), paired-comparison
+// tables, notes under a test's table, and the CSV rows every section writes
+// (tests.csv exact, never rounded). Formatting only; the numbers come from
+// analysis/stats.
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/sections.h"
+#include "analysis/stats/apa.h"
 #include "study/store/export.h"
 
 namespace dtlab::report::detail {
@@ -42,58 +48,212 @@ void collect_subjects(Context& ctx) {
 const TestReport& Context::add_test(const std::string& section, TestReport r) {
   if (r.anova)
     tests += static_cast<int>(r.anova->effects.size());
-  else if (r.friedman)
+  else if (r.friedman || r.wilcoxon)
     ++tests;
   reports.push_back(std::move(r));
   report_section.push_back(section);
   return reports.back();
 }
 
-Table anova_table(const TestReport& r, const Design& d, const std::string& id, const std::string& caption) {
-  (void)d;
+namespace {
+
+// "transparency:scenario" as a paper writes it: "transparency × scenario".
+std::string effect_label(const std::string& name) {
+  std::string out;
+  for (char c : name) out += c == ':' ? std::string(" × ") : std::string(1, c);
+  return out;
+}
+
+Table anova_table(const TestReport& r, const std::string& id, const std::string& caption) {
   Table t;
   t.id = id;
   t.caption = caption;
-  bool sphericity = false;
-  if (r.anova)
-    for (const auto& e : r.anova->effects) sphericity = sphericity || e.df1 > 1;
-  t.header = {"Effect", "df1", "df2", "SS", "F", "p", "log10 p", "η²p", "η²G"};
-  if (sphericity)
-    for (const char* h : {"Mauchly W", "Mauchly p", "ε GG", "p GG", "ε HF", "p HF"}) t.header.push_back(h);
+  bool sphericity = false, corrected = false;
   if (r.anova)
     for (const auto& e : r.anova->effects) {
-      std::vector<std::string> row = {e.name,  df_text(e.df1),           df_text(e.df2),
-                                      fixed(e.ss, 3), f_text(e.F),       p_short(e.p, e.log10_p),
-                                      fixed(e.log10_p, 2), fixed(e.eta_p2, 3), fixed(e.eta_g2, 3)};
-      if (sphericity) {
-        if (e.df1 > 1) {
-          for (const auto& s : {fixed(e.mauchly_W, 3), p_short(e.mauchly_p, std::log10(e.mauchly_p)),
-                                fixed(e.gg_epsilon, 3), p_short(e.p_gg, e.log10_p_gg), fixed(e.hf_epsilon, 3),
-                                p_short(e.p_hf, e.log10_p_hf)})
-            row.push_back(s);
-        } else {
-          for (const char* s : {"—", "—", "1", "= p", "1", "= p"}) row.push_back(s);
-        }
-      }
+      sphericity = sphericity || std::isfinite(e.mauchly_W) || (e.within && e.df1 > 1 && e.gg_epsilon < 1);
+      corrected = corrected || stats::applied_correction(e, stats::Correction::greenhouse_geisser) !=
+                                   stats::Correction::none;
+    }
+  t.header = {"Effect", "df", "MSE", "F", "p", "ηp²", "ηp² 90% CI", "ηG²"};
+  if (sphericity)
+    for (const char* h : {"Mauchly's W", "p (Mauchly)", "ε GG", "ε HF"}) t.header.push_back(h);
+  if (r.anova)
+    for (const auto& e : r.anova->effects) {
+      const bool gg = stats::applied_correction(e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
+      std::vector<std::string> row = {
+          effect_label(e.name),
+          df_cell(e) + (gg ? " (GG)" : ""),
+          stats::apa_number(e.mse, std::fabs(e.mse) < 1 ? 4 : 2),
+          f_text(e.F),
+          p_text(reported_p(e)),
+          bounded(e.eta_p2),
+          std::isnan(e.eta_p2_ci_low) ? kDash : stats::apa_interval(e.eta_p2_ci_low, e.eta_p2_ci_high, true),
+          bounded(e.eta_g2)};
+      if (sphericity)
+        for (const auto& c : {bounded(e.mauchly_W, 3), p_text(e.mauchly_p), bounded(e.gg_epsilon, 3),
+                              bounded(e.hf_epsilon, 3)})
+          row.push_back(c);
       t.rows.push_back(std::move(row));
     }
   t.notes = test_notes(r);
-  if (r.anova) {
-    if (sphericity)
-      t.notes.push_back(
-          "Sphericity: Mauchly's test with car's chi-square approximation; Greenhouse-Geisser and Huynh-Feldt "
-          "epsilons correct the df of effects with more than 1 df (HF may exceed 1 and is used as min(1, HF)). "
-          "Effects with 1 df (two levels) satisfy sphericity trivially (ε = 1).");
-    else
-      t.notes.push_back("Sphericity holds trivially: every effect has 1 df (two levels), so ε = 1 and no "
-                        "correction applies.");
+  if (!r.anova) return t;
+  t.notes.push_back("df: numerator, denominator; MSE: mean square of the effect's error term; p in APA style "
+                    "(exact values in report.json and tests.csv). ηp²: partial eta squared, with its 90% "
+                    "confidence interval from the noncentral F (Steiger 2004); ηG²: generalized eta squared "
+                    "(Olejnik & Algina 2003).");
+  if (sphericity)
+    t.notes.push_back(std::string("Sphericity: Mauchly's test (W, p) and the Greenhouse-Geisser (GG) and Huynh-Feldt "
+                                  "(HF, may exceed 1) epsilons of each within effect with more than 1 df. ") +
+                      (corrected ? "Where ε GG < 1, df and p are Greenhouse-Geisser corrected (df × ε, marked GG). "
+                                 : "") +
+                      "Effects with 1 df (two levels) satisfy sphericity trivially (ε = 1).");
+  else
+    t.notes.push_back("Sphericity holds trivially: every within effect has 1 df (two levels), so ε = 1 and no "
+                      "correction applies.");
+  return t;
+}
+// Simple effects of one interaction: paired t rows (difference first − second level) or one-way RM ANOVA rows.
+Table simple_effects_table(const InteractionFollowUp& f, const std::string& id, const std::string& what,
+                           const std::string& unit) {
+  Table t;
+  t.id = id;
+  t.caption = "Simple effects of the " + f.a + " × " + f.b + " interaction on " + what +
+              ": each factor at each level of the other, Holm-corrected within each factor.";
+  const std::string u = unit.empty() ? "" : " (" + unit + ")";
+  t.header = {"Effect of", "At", "Difference", "n", "M diff" + u, "SE", "95% CI", "Statistic", "df", "p",
+              "p (Holm)", "Effect size"};
+  t.text_columns = 3;
+  for (const auto& se : f.simple.rows) {
+    std::vector<std::string> row = {se.factor, se.at_factor + " = " + se.at_level};
+    if (se.test == "paired t") {
+      const auto& c = se.contrast;
+      for (const auto& x : {c.a + " − " + c.b, std::to_string(se.n), fixed(c.estimate, 2), fixed(c.se, 2),
+                            stats::apa_interval(c.ci_low, c.ci_high, false), "t = " + fixed(c.statistic, 2),
+                            df_text(c.df), p_text(se.p), p_text(se.p_holm), "d_z = " + fixed(c.dz, 2)})
+        row.push_back(x);
+    } else {
+      const auto& e = se.anova;
+      const bool gg = stats::applied_correction(e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
+      for (const auto& x : {std::string("all levels"), std::to_string(se.n), std::string(kDash), std::string(kDash),
+                            std::string(kDash), "F = " + f_text(e.F), df_cell(e) + (gg ? " (GG)" : ""),
+                            p_text(se.p), p_text(se.p_holm), "ηp² = " + bounded(e.eta_p2)})
+        row.push_back(x);
+    }
+    t.rows.push_back(std::move(row));
   }
+  t.notes.push_back("Each participant's values are first averaged over the other within factors. Two levels: "
+                    "paired t test (M diff: mean of the paired differences, first level minus second, with its SE "
+                    "and 95% CI; d_z = M diff / SD of the differences). More levels: one-way repeated-measures ANOVA "
+                    "of the subset (df and p Greenhouse-Geisser corrected where ε < 1). p (Holm): Holm-corrected "
+                    "within the tests of one factor.");
+  for (const auto& w : f.simple.warnings) t.notes.push_back("Statistics: " + w);
+  return t;
+}
+
+// Cell means of a x b with Cousineau-Morey 95% CIs: x = levels of the factor `x`, one line per level of the other.
+PlotSpec interaction_plot(const Design& d, const InteractionFollowUp& f, const std::string& id,
+                          const std::string& ylabel) {
+  const bool primary_is_b = d.factor(d.primary).name == f.b;
+  const std::string x = primary_is_b ? f.b : f.a, line = primary_is_b ? f.a : f.b;
+  std::vector<std::string> xl, ll;  // level names in order of appearance
+  auto add = [](std::vector<std::string>& v, const std::string& s) {
+    if (std::find(v.begin(), v.end(), s) == v.end()) v.push_back(s);
+  };
+  auto level_of = [](const stats::CellInterval& c, const std::string& factor) {
+    for (const auto& [name, level] : c.levels)
+      if (name == factor) return level;
+    return std::string();
+  };
+  for (const auto& c : f.intervals) {
+    add(xl, level_of(c, x));
+    add(ll, level_of(c, line));
+  }
+  std::string dat = "# x index, mean, CI low, CI high (Cousineau-Morey 95%); one block per level of " + line + "\n";
+  bool any = false;
+  for (size_t j = 0; j < ll.size(); ++j) {
+    dat += "# " + line + " = " + ll[j] + "\n";
+    for (size_t i = 0; i < xl.size(); ++i)
+      for (const auto& c : f.intervals)
+        if (level_of(c, x) == xl[i] && level_of(c, line) == ll[j]) {
+          const double dodge = (static_cast<double>(j) - (static_cast<double>(ll.size()) - 1) / 2) * 0.04;
+          dat += gp_value(static_cast<double>(i) + dodge) + " " + gp_value(c.mean) + " " + gp_value(c.ci_low) + " " +
+                 gp_value(c.ci_high) + "\n";
+          any = any || std::isfinite(c.mean);
+        }
+    dat += "\n\n";
+  }
+  PlotSpec p;
+  p.id = id;
+  p.empty = !any;
+  p.width = 560;
+  p.height = 400;
+  p.data[id + ".dat"] = dat;
+  std::string c = "set xtics (";
+  for (size_t i = 0; i < xl.size(); ++i) c += (i ? ", " : "") + gp_quote(xl[i]) + " " + std::to_string(i);
+  c += ")\nset xrange [-0.4:" + std::to_string(xl.size() - 1) + ".4]\nset xlabel " + gp_quote(x) +
+       "\nset ylabel " + gp_quote(ylabel) + "\nset key above center horizontal title " + gp_quote(line) + "\nplot ";
+  for (size_t j = 0; j < ll.size(); ++j)
+    c += std::string(j ? ", " : "") + gp_quote(id + ".dat") + " index " + std::to_string(j) +
+         " using 1:2:3:4 with yerrorlines lw 2 pt 7 ps 1 lc rgb '" + series_color(j) + "' title " + gp_quote(ll[j]);
+  p.commands = c + "\n";
+  return p;
+}
+
+}  // namespace
+
+void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string& id, const std::string& caption) {
+  s.add(anova_table(r, id, caption));
+  if (!r.anova || r.anova->effects.empty()) return;
+  Callout c{"note", "In the text (APA style; Greenhouse-Geisser corrected where ε < 1)", {}};
+  for (const auto& e : r.anova->effects)
+    if (std::isfinite(e.F)) c.items.push_back(effect_label(e.name) + ": " + effect_sentence(e) + ".");
+  if (!c.items.empty()) s.add(c);
+  const std::string what = r.measure + (r.scope.empty() ? "" : ", " + r.scope);
+  const std::string ylabel = r.measure + (r.unit.empty() ? "" : " (" + r.unit + ")");
+  for (const auto& f : r.followups) {
+    const std::string stem = id + "-" + f.a + "-" + f.b;
+    s.text("The " + f.a + " × " + f.b + " interaction is significant (p < " + stats::apa_bounded(kFollowUpAlpha) +
+           "), so each factor's effect is tested at each "
+           "level of the other (simple effects).");
+    s.add(simple_effects_table(f, "table-simple-" + stem.substr(stem.find('-') + 1), what, r.unit));
+    ctx.add_figure(s, interaction_plot(ctx.design, f, "fig-interaction-" + stem.substr(stem.find('-') + 1), ylabel),
+                   "The " + f.a + " × " + f.b + " interaction, " + what + ": cell means with within-subject 95% "
+                   "confidence intervals (Cousineau 2005 with Morey's 2008 correction; they show the precision of "
+                   "comparisons within participants, not of the means themselves).");
+  }
+}
+
+std::string df_cell(const stats::Effect& e) {
+  if (stats::applied_correction(e, stats::Correction::greenhouse_geisser) == stats::Correction::none)
+    return df_text(e.df1) + ", " + df_text(e.df2);
+  return df_text(e.df1_gg) + ", " + df_text(e.df2_gg);
+}
+
+std::vector<std::string> effect_cells(const stats::Effect* e) {
+  if (!e) return {kDash, kDash, kDash, kDash};
+  return {f_text(e->F), df_cell(*e), p_text(reported_p(*e)), bounded(e->eta_p2)};
+}
+
+Table comparison_table(const std::vector<stats::Comparison>& list, const std::string& id, const std::string& caption,
+                       const std::string& unit) {
+  Table t;
+  t.id = id;
+  t.caption = caption;
+  const std::string u = unit.empty() ? "" : " (" + unit + ")";
+  t.header = {"Comparison", "n", "M diff" + u, "SE", "95% CI", "t", "df", "p", "p (Holm)", "d_z"};
+  for (const auto& c : list)
+    t.rows.push_back({c.a + " − " + c.b, std::to_string(c.n), fixed(c.estimate, 2), fixed(c.se, 2),
+                      stats::apa_interval(c.ci_low, c.ci_high, false), (c.test == "wilcoxon" ? "V = " : "") +
+                      fixed(c.statistic, 2), df_text(c.df), p_text(c.p), p_text(c.p_holm), fixed(c.dz, 2)});
+  t.notes.push_back("M diff: mean of the paired differences (first level minus second) with its SE and 95% CI; d_z: "
+                    "M diff / SD of the differences. p (Holm): Holm-corrected over the comparisons of the table.");
   return t;
 }
 
 std::vector<std::string> test_notes(const TestReport& r) {
   std::vector<std::string> notes;
-  std::string n = "n = " + std::to_string(r.kept.size()) + " participants";
+  std::string n = "n = " + count_of(static_cast<long long>(r.kept.size()), "participant");
   if (!r.excluded.empty()) {
     n += "; excluded (listwise deletion, a cell without a value): ";
     for (size_t i = 0; i < r.excluded.size(); ++i) n += (i ? "; " : "") + r.excluded[i];
@@ -151,24 +311,84 @@ std::string matrix_csv_rows(const CellMatrix& m, const Design& d, const std::str
 }
 
 std::string tests_csv(const Context& ctx) {
-  std::string out = csv_line({"section", "measure", "unit", "scope", "test", "effect", "n", "df1", "df2",
-                              "statistic", "p", "log10_p", "p_exact", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf",
-                              "eta_p2", "eta_g2", "kendall_W"});
+  const std::vector<std::string> columns = {
+      "section", "measure", "unit", "scope", "test", "effect", "n", "df1", "df2", "statistic", "p", "log10_p",
+      "p_exact", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf", "eta_p2", "eta_g2", "kendall_W", "mse", "mauchly_W",
+      "mauchly_p", "df1_gg", "df2_gg", "df1_hf", "df2_hf", "eta_p2_ci90_low", "eta_p2_ci90_high", "p_holm",
+      "estimate", "se", "ci_low", "ci_high", "dz", "apa"};
+  std::string out = csv_line(columns);
+  // One line from column -> text; columns not given are NA.
+  auto line = [&](const std::map<std::string, std::string>& fields) {
+    std::vector<std::string> row;
+    for (const auto& c : columns) {
+      const auto it = fields.find(c);
+      row.push_back(it == fields.end() ? "NA" : it->second);
+    }
+    return csv_line(row);
+  };
   auto v = [](double x) { return csv_number(x); };
   for (size_t i = 0; i < ctx.reports.size(); ++i) {
     const TestReport& r = ctx.reports[i];
-    const std::string n = std::to_string(r.kept.size());
+    std::map<std::string, std::string> base{{"section", ctx.report_section[i]}, {"measure", r.measure},
+                                            {"unit", r.unit}, {"scope", r.scope},
+                                            {"n", std::to_string(r.kept.size())}};
+    std::string factors;
+    for (int fi : r.m->factors) factors += (factors.empty() ? "" : ":") + ctx.design.factor(fi).name;
     if (r.anova)
-      for (const auto& e : r.anova->effects)
-        out += csv_line({ctx.report_section[i], r.measure, r.unit, r.scope, "rm-anova", e.name, n, v(e.df1), v(e.df2),
-                         v(e.F), v(e.p), v(e.log10_p), "NA", v(e.gg_epsilon), v(e.p_gg), v(e.hf_epsilon), v(e.p_hf),
-                         v(e.eta_p2), v(e.eta_g2), "NA"});
+      for (const auto& e : r.anova->effects) {
+        auto f = base;
+        f.insert({{"test", "rm-anova"}, {"effect", e.name}, {"df1", v(e.df1)}, {"df2", v(e.df2)},
+                  {"statistic", v(e.F)}, {"p", v(e.p)}, {"log10_p", v(e.log10_p)},
+                  {"gg_epsilon", v(e.gg_epsilon)}, {"p_gg", v(e.p_gg)}, {"hf_epsilon", v(e.hf_epsilon)},
+                  {"p_hf", v(e.p_hf)}, {"eta_p2", v(e.eta_p2)}, {"eta_g2", v(e.eta_g2)}, {"mse", v(e.mse)},
+                  {"mauchly_W", v(e.mauchly_W)}, {"mauchly_p", v(e.mauchly_p)}, {"df1_gg", v(e.df1_gg)},
+                  {"df2_gg", v(e.df2_gg)}, {"df1_hf", v(e.df1_hf)}, {"df2_hf", v(e.df2_hf)},
+                  {"eta_p2_ci90_low", v(e.eta_p2_ci_low)}, {"eta_p2_ci90_high", v(e.eta_p2_ci_high)},
+                  {"apa", effect_sentence(e)}});
+        out += line(f);
+      }
+    for (const auto& fu : r.followups)
+      for (const auto& se : fu.simple.rows) {
+        auto f = base;
+        f["n"] = std::to_string(se.n);
+        f["test"] = "simple effect (" + se.test + ")";
+        f["effect"] = se.factor + " at " + se.at_factor + " = " + se.at_level;
+        f["p"] = v(se.p);
+        f["p_holm"] = v(se.p_holm);
+        if (se.test == "paired t") {
+          const auto& c = se.contrast;
+          f.insert({{"df1", v(c.df)}, {"statistic", v(c.statistic)}, {"estimate", v(c.estimate)}, {"se", v(c.se)},
+                    {"ci_low", v(c.ci_low)}, {"ci_high", v(c.ci_high)}, {"dz", v(c.dz)},
+                    {"apa", "t(" + stats::apa_df(c.df) + ") = " + stats::apa_number(c.statistic) + ", " +
+                                stats::apa_p(se.p) + " (Holm " + stats::apa_p(se.p_holm) + "), d_z = " +
+                                stats::apa_number(c.dz)}});
+        } else {
+          const auto& e = se.anova;
+          f.insert({{"df1", v(e.df1)}, {"df2", v(e.df2)}, {"statistic", v(e.F)}, {"gg_epsilon", v(e.gg_epsilon)},
+                    {"p_gg", v(e.p_gg)}, {"eta_p2", v(e.eta_p2)}, {"apa", effect_sentence(e)}});
+        }
+        out += line(f);
+      }
+    if (r.normality) {
+      auto f = base;
+      f.insert({{"test", "shapiro-wilk"}, {"effect", "residuals"}, {"statistic", v(r.normality->W)}, {"p", v(r.normality->p)},
+                {"apa", "W = " + stats::apa_bounded(r.normality->W, 3) + ", " + stats::apa_p(r.normality->p)}});
+      out += line(f);
+    }
     if (r.friedman) {
-      const auto& f = *r.friedman;
-      std::string effect;
-      for (int fi : r.m->factors) effect += (effect.empty() ? "" : ":") + ctx.design.factor(fi).name;
-      out += csv_line({ctx.report_section[i], r.measure, r.unit, r.scope, "friedman", effect, n, v(f.df), "NA", v(f.Q),
-                       v(f.p), v(f.log10_p), v(f.p_exact), "NA", "NA", "NA", "NA", "NA", "NA", v(f.kendall_W)});
+      const auto& x = *r.friedman;
+      auto f = base;
+      f.insert({{"test", "friedman"}, {"effect", factors}, {"df1", v(x.df)}, {"statistic", v(x.Q)}, {"p", v(x.p)},
+                {"log10_p", v(x.log10_p)}, {"p_exact", v(x.p_exact)}, {"kendall_W", v(x.kendall_W)},
+                {"apa", friedman_sentence(x)}});
+      out += line(f);
+    }
+    if (r.wilcoxon) {
+      const auto& w = *r.wilcoxon;
+      auto f = base;
+      f.insert({{"test", "wilcoxon"}, {"effect", factors}, {"statistic", v(w.V)}, {"p", v(w.p)},
+                {"log10_p", v(w.log10_p)}, {"p_exact", v(w.p_exact)}, {"apa", wilcoxon_sentence(w)}});
+      out += line(f);
     }
   }
   return out;

@@ -25,25 +25,26 @@ struct Row {
   int decimals = 3;
 };
 
+// "F(1, 15) = 1.82" (df Greenhouse-Geisser corrected where ε < 1, as the p beside it) or "χ²(1) = 0.11".
 std::string statistic_text(const TestReport& r, const std::string& factor) {
-  if (const stats::Effect* e = r.effect(factor)) return "F(" + df_text(e->df1) + ", " + df_text(e->df2) + ") = " + f_text(e->F);
+  if (const stats::Effect* e = r.effect(factor)) return "F(" + df_cell(*e) + ") = " + f_text(e->F);
   if (r.friedman) return "χ²(" + df_text(r.friedman->df) + ") = " + fixed(r.friedman->Q, 2);
   return kDash;
 }
 
-std::string p_of(const TestReport& r, const std::string& factor, bool gg) {
-  if (const stats::Effect* e = r.effect(factor)) return gg ? p_short(e->p_gg, e->log10_p_gg) : p_short(e->p, e->log10_p);
+std::string p_of(const TestReport& r, const std::string& factor) {
+  if (const stats::Effect* e = r.effect(factor)) return p_text(reported_p(*e));
   if (r.friedman) {
-    std::string s = p_short(r.friedman->p, r.friedman->log10_p);
-    if (std::isfinite(r.friedman->p_exact)) s += " (exact " + p_short(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")";
+    std::string s = p_text(r.friedman->p);
+    if (std::isfinite(r.friedman->p_exact)) s += " (exact " + p_text(r.friedman->p_exact) + ")";
     return s;
   }
   return kDash;
 }
 
 std::string effect_size_text(const TestReport& r, const std::string& factor) {
-  if (const stats::Effect* e = r.effect(factor)) return "η²p = " + fixed(e->eta_p2, 3);
-  if (r.friedman) return "W = " + fixed(r.friedman->kendall_W, 3);
+  if (const stats::Effect* e = r.effect(factor)) return "ηp² = " + bounded(e->eta_p2);
+  if (r.friedman) return "W = " + bounded(r.friedman->kendall_W);
   return kDash;
 }
 
@@ -165,7 +166,7 @@ void section_errors(Context& ctx) {
     for (const auto& c : primary_cells(r, d, row.decimals)) cells.push_back(c);
     cells.push_back(std::to_string(r.kept.size()));
     cells.push_back(statistic_text(r, primary.name));
-    cells.push_back(p_of(r, primary.name, !two));
+    cells.push_back(p_of(r, primary.name));
     cells.push_back(effect_size_text(r, primary.name));
     if (two) {
       cells.push_back(r.paired ? fixed(r.paired->t.mean_difference, row.decimals) + " [" +
@@ -192,10 +193,10 @@ void section_errors(Context& ctx) {
   if (d.reference) t.groups = {{"this study", static_cast<int>(ours)}, {"article (VII.2)", 4}};
   t.notes.push_back(d.tasks_note() + " Relative error is a proportion (0 = exact count); proportion correct is 0..1; distance is in "
                     "world units. Test: repeated-measures ANOVA (F) or Friedman's test (χ², with the exact "
-                    "permutation p in parentheses when computed). Effect size: partial η² or Kendall's W.");
+                    "permutation p in parentheses when computed). p in APA style (exact values in report.json). Effect size: partial η² (ηp²) or Kendall's W.");
   if (!two)
-    t.notes.push_back("p of F tests is Greenhouse-Geisser corrected (" + std::to_string(primary.levels.size()) +
-                      " levels).");
+    t.notes.push_back("df and p of F tests are Greenhouse-Geisser corrected where ε < 1 (" +
+                      std::to_string(primary.levels.size()) + " levels).");
   else
     t.notes.push_back("Δ: mean paired difference " + primary.levels[1] + " − " + primary.levels[0] +
                       " with its 95% CI (paired t); negative = smaller error / fewer correct with " + primary.levels[1] +
@@ -212,8 +213,8 @@ void section_errors(Context& ctx) {
   }
   for (const auto& row : rows)
     if (row.r->m->factors.size() > 1 && row.r->anova)
-      s.add(anova_table(*row.r, d, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
-                        "Repeated-measures ANOVA of " + row.measure + ", " + row.label + "."));
+      add_anova(ctx, s, *row.r, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
+                        "Repeated-measures ANOVA of " + row.measure + ", " + row.label + ".");
   ctx.json["accuracy"] = {{"table", jrows}, {"tests", jtests}};
   ctx.csv["accuracy_means.csv"] = csv;
   ctx.doc.sections.push_back(std::move(s));

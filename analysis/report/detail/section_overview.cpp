@@ -85,7 +85,7 @@ void section_overview(Context& ctx) {
             " order rows). Tasks: ";
   std::vector<std::string> tasks;
   for (const auto& t : d.tasks)
-    tasks.push_back(d.task_label(t) + " in " + t.scenario + ", " + std::to_string(t.trials) + " trials per condition");
+    tasks.push_back(d.task_label(t) + " in " + t.scenario + ", " + count_of(t.trials, "trial") + " per condition");
   s.text(design + join(tasks, "; ") + ". Primary factor of the tables: " + d.factor(d.primary).name + ".");
 
   std::vector<std::string> warnings;
@@ -154,20 +154,25 @@ void section_overview(Context& ctx) {
          "errors, or the proportion of correct answers, ...); the tests then treat participants as the units, as "
          "the article did (its F(1, 15) come from 16 participants). Practice trials are excluded.");
   m.text("Repeated-measures ANOVA (analysis/stats, following R's afex::aov_car and car::Anova with type III sums of "
-         "squares): F, its df, the exact p, partial and generalized η². For effects with more than 1 df, Mauchly's "
-         "test and the Greenhouse-Geisser and Huynh-Feldt corrections are given; effects with 1 df (two levels) "
-         "satisfy sphericity trivially. For a factor of two levels the F test equals the paired t test (F = t²), "
+         "squares): F, its df, MSE, p, partial η² with its 90% confidence interval (noncentral F) and generalized "
+         "η². For effects with more than 1 df, Mauchly's test and the Greenhouse-Geisser and Huynh-Feldt epsilons "
+         "are given, and df and p are Greenhouse-Geisser corrected where ε < 1; effects with 1 df (two levels) "
+         "satisfy sphericity trivially. A two-way interaction with p < .05 is followed up by simple effects (each "
+         "factor at each level of the other, Holm-corrected) and an interaction plot with within-subject 95% CIs "
+         "(Cousineau-Morey). The residuals of each completion-time ANOVA get the Shapiro-Wilk test and a Q-Q plot. For a factor of two levels the F test equals the paired t test (F = t²), "
          "and the tables add the mean paired difference with its 95% CI and Cohen's d_z. Factors with more than "
          "two levels get Holm-corrected pairwise paired t tests.");
   m.text("Friedman's test (R's friedman.test: mid-ranks for ties with the tie correction) for correctness "
          "proportions and ratings, with Kendall's W and, where it can be enumerated, the exact permutation p; "
-         "pairwise Wilcoxon signed-rank tests with Holm correction for more than two levels.");
+         "pairwise Wilcoxon signed-rank tests with Holm correction for more than two levels. As a robustness check "
+         "of the completion-time ANOVAs, each factor is tested by ranks on its own marginal means: the Wilcoxon "
+         "signed-rank test for two levels, Friedman's test for more.");
   m.text("Missing data: a participant without a value in some cell of a test (no trial recorded, or no answer "
          "given) is left out of that test only (listwise deletion, as afex and friedman.test do); every table names "
          "the participants it left out and the cells they lacked. Descriptives in a test's table are over the "
          "participants the test kept.");
-  m.text("p-values are exact two-sided tail probabilities from Boost.Math (never rounded to 0; below 1e-6 "
-         "they are printed with their log10). The statistics library is validated against NIST StRD certified "
+  m.text("p-values are two-sided tail probabilities from Boost.Math, printed in APA style (p = .002, p < .001); "
+         "report.json and the CSV files keep them exact (never rounded to 0, with their log10). The statistics library is validated against NIST StRD certified "
          "values and R (README, \"Statistics\"); the repeated-measures correlation against R's rmcorr.");
   ctx.doc.sections.push_back(std::move(m));
 }

@@ -189,6 +189,10 @@ void section_position(Context& ctx) {
                            fixed(last, 2) + " at the last).";
     if (!verdict.empty()) s.text(verdict);
     s.add(t);
+    if (e && levels > 2)
+      add_anova(ctx, s, r, by_block ? "table-position-block-anova" : "table-position-repetition-anova",
+                std::string("Repeated-measures ANOVA of relative time by ") +
+                    (by_block ? "block position." : "repetition inside a task set."));
     jp[by_block ? "block" : "repetition"] = {{"levels", jl}, {"test", to_json(r, pd.design)}};
   }
 
@@ -228,8 +232,8 @@ void section_position(Context& ctx) {
              "(harmless, it is between participants); an interaction of order_row with a within factor says the "
              "effect of that factor depends on the order (asymmetric transfer), which counterbalancing cannot "
              "remove.");
-      s.add(anova_table(kr, d, "table-position-order", "Mixed ANOVA of completion time over all tasks with the order "
-                                                        "row as between-subject factor (s)."));
+      add_anova(ctx, s, kr, "table-position-order", "Mixed ANOVA of completion time over all tasks with the order "
+                                                        "row as between-subject factor (s).");
       jp["order_row"] = to_json(kr, d);
     } else {
       s.text("Order rows: not tested (" + std::to_string(rows_seen.size()) + " order row(s) among " +

@@ -159,12 +159,12 @@ void section_questionnaire(Context& ctx) {
         for (const auto& c : primary_cells(r, d, 2)) row.push_back(c);
         row.push_back(std::to_string(r.kept.size()));
         row.push_back(r.friedman ? fixed(r.friedman->Q, 2) + " (" + df_text(r.friedman->df) + ")" : kDash);
-        row.push_back(r.friedman ? p_short(r.friedman->p, r.friedman->log10_p) +
+        row.push_back(r.friedman ? p_text(r.friedman->p) +
                                        (std::isfinite(r.friedman->p_exact)
-                                            ? " (exact " + p_short(r.friedman->p_exact, std::log10(r.friedman->p_exact)) + ")"
+                                            ? " (exact " + p_text(r.friedman->p_exact) + ")"
                                             : "")
                                  : kDash);
-        row.push_back(r.friedman ? fixed(r.friedman->kendall_W, 3) : kDash);
+        row.push_back(r.friedman ? bounded(r.friedman->kendall_W) : kDash);
         if (d.reference && scope == "overall")
           row.insert(row.end(), {mean_sd(article::kRatingOverall.off_mean, article::kRatingOverall.off_sd, 2),
                                  mean_sd(article::kRatingOverall.on_mean, article::kRatingOverall.on_sd, 2),
@@ -260,7 +260,7 @@ void section_questionnaire(Context& ctx) {
         const auto st = stats::sign_test(second, first);
         row[4] = "sign test: " + std::to_string(st.positive) + " for " + options[1] + ", " +
                  std::to_string(st.negative) + " for " + options[0];
-        row[5] = p_text(st.p, st.log10_p);
+        row[5] = p_text(st.p);
         ji["sign_test"] = {{"n", st.n}, {"for_" + options[1], st.positive}, {"for_" + options[0], st.negative},
                            {"p", num(st.p)}, {"log10_p", num(st.log10_p)}};
         ++ctx.tests;

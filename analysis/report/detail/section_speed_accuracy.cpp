@@ -141,9 +141,9 @@ void section_speed_accuracy(Context& ctx) {
     }
     const RmCorr rc = rm_corr(group, x, y);
     c.rows.push_back({task.id, error_name(task.type), std::to_string(rc.n), std::to_string(rc.groups),
-                      fixed(rc.r, 3),
-                      std::isfinite(rc.ci_low) ? "[" + fixed(rc.ci_low, 2) + ", " + fixed(rc.ci_high, 2) + "]" : kDash, df_text(rc.df),
-                      p_text(rc.p, rc.log10_p), fixed(10 * rc.slope, task.type == TaskType::find_unique ? 2 : 4)});
+                      bounded(rc.r),
+                      std::isfinite(rc.ci_low) ? stats::apa_interval(rc.ci_low, rc.ci_high, true) : kDash, df_text(rc.df),
+                      p_text(rc.p), fixed(10 * rc.slope, task.type == TaskType::find_unique ? 2 : 4)});
     jr["rmcorr"] = {{"n", rc.n}, {"groups", rc.groups}, {"r", num(rc.r)}, {"df", num(rc.df)}, {"p", num(rc.p)},
                     {"ci_low", num(rc.ci_low)}, {"ci_high", num(rc.ci_high)}, {"slope_per_s", num(rc.slope)}};
     ++ctx.tests;

@@ -17,11 +17,11 @@ namespace {
 
 std::optional<double> time_of(const TrialRow& t) { return t.time_s; }
 
-// Mean over the condition's tasks of the per-task means; NaN unless every
-// task of the condition's scenario has a trial (no silent re-weighting).
-Reducer overall_time(const Design& d) {
-  return [&d](const std::vector<const TrialRow*>& ts) {
-    const double v = mean_of_task_means(time_of)(ts);
+}  // namespace
+
+Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field) {
+  return [&d, field](const std::vector<const TrialRow*>& ts) {
+    const double v = mean_of_task_means(field)(ts);
     std::set<std::string> tasks;
     for (const TrialRow* t : ts) tasks.insert(t->task);
     if (ts.empty() || static_cast<int>(tasks.size()) < d.tasks_in(d.scenario_of(*ts.front())))
@@ -29,6 +29,8 @@ Reducer overall_time(const Design& d) {
     return v;
   };
 }
+
+namespace {
 
 std::string difference_text(const TestReport& r, int decimals) {
   if (!r.paired) return kDash;
@@ -155,7 +157,7 @@ void section_time(Context& ctx) {
     jtests.push_back(to_json(r, d));
     means_csv += matrix_csv_rows(m, d, "completion_time_s", task.id);
   }
-  const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d));
+  const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, time_of));
   const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "completion time", "s", "overall"));
   ctx.time["overall"] = &overall;
   rows.push_back({"All tasks", &overall});
@@ -169,9 +171,7 @@ void section_time(Context& ctx) {
                "of " + primary.name + " (the article's Table III layout).";
   t3.header = {"Task"};
   for (size_t l = 0; l < primary.levels.size(); ++l) t3.header.push_back(d.level_label(d.primary, static_cast<int>(l)));
-  t3.header.insert(t3.header.end(), {"n", "F", "df", "p"});
-  if (!two) t3.header.push_back("p (GG)");
-  t3.header.push_back("η²p");
+  t3.header.insert(t3.header.end(), {"n", "F", "df", "p", "ηp²"});
   if (two)
     t3.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
   const size_t ours = t3.header.size();
@@ -183,11 +183,7 @@ void section_time(Context& ctx) {
     for (const auto& c : primary_cells(*r, d, 2)) row.push_back(c);
     row.push_back(std::to_string(r->kept.size()));
     const stats::Effect* e = r->effect(primary.name);
-    row.push_back(e ? f_text(e->F) : kDash);
-    row.push_back(e ? df_text(e->df1) + ", " + df_text(e->df2) : kDash);
-    row.push_back(e ? p_short(e->p, e->log10_p) : kDash);
-    if (!two) row.push_back(e ? p_short(e->p_gg, e->log10_p_gg) : kDash);
-    row.push_back(e ? fixed(e->eta_p2, 3) : kDash);
+    for (auto& c : effect_cells(e)) row.push_back(std::move(c));
     if (two) row.push_back(difference_text(*r, 2));
     nlohmann::json jr{{"scope", r->scope}, {"label", row[0]}, {"n", r->kept.size()}};
     if (e) jr["effect"] = to_json(*e);
@@ -201,13 +197,14 @@ void section_time(Context& ctx) {
   }
   if (d.reference) t3.groups = {{"this study", static_cast<int>(ours)}, {"article (Table III, VII.1)", 4}};
   t3.notes.push_back(d.tasks_note() + " n: participants with a value in every condition of the row (others are "
-                     "excluded, listwise). p: exact two-sided p of the F test (log10 p in the text below when tiny).");
+                     "excluded, listwise). F, df, p: the repeated-measures ANOVA's test of " + primary.name + " (p in APA style; exact "
+                     "values in report.json and tests.csv); ηp²: partial eta squared.");
   if (two)
     t3.notes.push_back("Δ: mean paired difference of the participants' means, " + primary.levels[1] + " minus " +
                        primary.levels[0] + ", with its 95% confidence interval (paired t). With two levels, "
                        "sphericity holds trivially and the F test equals the paired t test (F = t²).");
   else
-    t3.notes.push_back("p (GG): Greenhouse-Geisser corrected p (sphericity is not assumed with " +
+    t3.notes.push_back("df and p are Greenhouse-Geisser corrected where ε < 1 (sphericity is not assumed with " +
                        std::to_string(primary.levels.size()) + " levels).");
   if (d.reference)
     t3.notes.push_back("Article: the values printed in Elmqvist, Assarsson & Tsigas (2008), Table III and VII.1 "
@@ -224,9 +221,10 @@ void section_time(Context& ctx) {
     std::string line = (d.task(r->scope) ? d.task_label(*d.task(r->scope)) : label) + ": " + primary.name + " " +
                        effect_sentence(*e);
     if (r->paired && std::isfinite(r->paired->t.mean_difference))
-      line += "; " + primary.levels[1] + " − " + primary.levels[0] + " = " + fixed(r->paired->t.mean_difference, 2) +
-              " s [95% CI " + fixed(r->paired->t.ci_low, 2) + ", " + fixed(r->paired->t.ci_high, 2) +
-              "], Cohen's d_z = " + fixed(r->paired->dz, 2);
+      line += "; " + primary.levels[1] + " − " + primary.levels[0] + ": M = " +
+              stats::apa_number(r->paired->t.mean_difference) + " s, 95% CI " +
+              stats::apa_interval(r->paired->t.ci_low, r->paired->t.ci_high, false) + ", d_z = " +
+              stats::apa_number(r->paired->dz);
     s.text(line + ".");
   }
 
@@ -238,50 +236,25 @@ void section_time(Context& ctx) {
                      " (grey lines, one per participant) and the mean over participants (black).");
 
   // Full ANOVA tables: over all tasks always; per task when more than one factor varies in it.
-  s.add(anova_table(overall, d, "table-time-anova-overall",
+  add_anova(ctx, s, overall, "table-time-anova-overall",
                     "Repeated-measures ANOVA of completion time over all tasks (participant x condition means of the "
-                    "per-task means, s)."));
+                    "per-task means, s).");
   for (const auto& [label, r] : rows) {
     if (r == &overall || r->m->factors.size() < 2) continue;
-    s.add(anova_table(*r, d, "table-time-anova-" + r->scope, "Repeated-measures ANOVA of completion time, " + label + "."));
+    add_anova(ctx, s, *r, "table-time-anova-" + r->scope, "Repeated-measures ANOVA of completion time, " + label + ".");
   }
   for (const auto& [label, r] : rows)
-    for (const auto& [factor, list] : r->posthoc) {
-      Table ph;
-      ph.id = "table-time-posthoc-" + r->scope + "-" + factor;
-      ph.caption = "Post-hoc comparisons of completion time between the levels of " + factor + ", " + label +
-                   ": paired t tests on the participants' marginal means, Holm-corrected.";
-      ph.header = {"Comparison", "Mean difference (s)", "t", "df", "p", "p (Holm)"};
-      for (const auto& c : list)
-        ph.rows.push_back({c.a + " − " + c.b, fixed(c.estimate, 2), fixed(c.statistic, 2), df_text(c.df),
-                           p_text(c.p, std::log10(c.p)), p_text(c.p_holm, std::log10(c.p_holm))});
-      s.add(ph);
-    }
+    for (const auto& [factor, list] : r->posthoc)
+      s.add(comparison_table(list, "table-time-posthoc-" + r->scope + "-" + factor,
+                             "Post-hoc comparisons of completion time between the levels of " + factor + ", " + label +
+                                 ": paired t tests on the participants' marginal means, Holm-corrected.",
+                             "s"));
 
-  // Robustness: completion times are skewed; Friedman's rank test of the same participant x condition means
-  // does not assume normality or sphericity.
-  Table ft;
-  ft.id = "table-time-friedman";
-  ft.caption = "Robustness check: Friedman's rank test of the same participant x condition means of completion "
-               "time (no normality or sphericity assumed).";
-  ft.header = {"Task", "Cells", "n", "χ²", "df", "p", "exact p", "Kendall's W"};
-  nlohmann::json jf = nlohmann::json::array();
-  for (const auto& [label, r] : rows) {
-    const auto& f = ctx.add_test("time", run_friedman(*r->m, d, "completion time (ranks)", "s", r->scope, ctx.options.seed));
-    jf.push_back(to_json(f, d));
-    if (!f.friedman) {
-      ft.rows.push_back({label, std::to_string(r->m->cells()), std::to_string(f.kept.size()), kDash, kDash, kDash, kDash,
-                         kDash});
-      continue;
-    }
-    const auto& x = *f.friedman;
-    ft.rows.push_back({label, std::to_string(x.k), std::to_string(x.n), fixed(x.Q, 2), df_text(x.df),
-                       p_short(x.p, x.log10_p), std::isfinite(x.p_exact) ? p_short(x.p_exact, std::log10(x.p_exact)) : kDash,
-                       fixed(x.kendall_W, 3)});
-  }
-  ft.notes.push_back("The test compares all cells of the row at once (over all tasks: every condition). Exact p: the "
-                     "permutation distribution of the within-participant ranks, where it can be enumerated.");
-  s.add(ft);
+  // Robustness and assumptions (section_time_checks.cpp).
+  nlohmann::json jranks = nlohmann::json::array();
+  add_rank_tests(ctx, s, rows, jranks);
+  add_normality(ctx, s, rows, "time", false);
+  if (ctx.options.log_time) add_log_time(ctx, s);
 
   // Descriptives of every cell.
   Table dt;
@@ -300,7 +273,7 @@ void section_time(Context& ctx) {
                      "t(0.975, n − 1) SE.");
   s.add(dt);
 
-  ctx.json["completion_time"] = {{"table", jrows}, {"tests", jtests}, {"friedman", jf}};
+  ctx.json["completion_time"] = {{"table", jrows}, {"tests", jtests}, {"rank_tests", jranks}};
   ctx.csv["completion_time_means.csv"] = means_csv;
   ctx.doc.sections.push_back(std::move(s));
 }

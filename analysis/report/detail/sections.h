@@ -85,15 +85,39 @@ PlotSpec bar_plot(const Context& ctx, const std::vector<std::pair<std::string, c
 PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::string, const TestReport*>>& rows,
                            const std::string& id, const std::string& ylabel);
 
+// --- checks beside the completion-time ANOVAs (section_time_checks.cpp) ---------------------------
+// Rank tests of each factor of each row on its marginal means (Wilcoxon for 2 levels, else Friedman);
+// their test objects are appended to `out`.
+void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
+                    nlohmann::json& out);
+// Shapiro-Wilk of each row's ANOVA residuals (a table) and their normal Q-Q plots (one figure).
+void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
+                   const std::string& measure, bool log_scale);
+
+// --log-time: ANOVAs of log completion times per task and overall, a table beside the seconds'.
+void add_log_time(Context& ctx, Section& s);
+// Mean over the condition's tasks of the per-task means of `field`; NaN unless every task of the
+// condition's scenario has a trial (no silent re-weighting). (section_time.cpp)
+Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field);
+
 // --- helpers shared by the sections (section_common.cpp) ---------------------------------------
 // Fills ctx.subjects (participants with analysed trials, enrollment order) and ctx.analysed_trials.
 void collect_subjects(Context& ctx);
 // The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.
 std::string tests_csv(const Context& ctx);
+// An effect's df as a cell: "1, 15", or Greenhouse-Geisser corrected where ε < 1 ("2.39, 35.89").
+std::string df_cell(const stats::Effect& e);
+// F, df, p and ηp² of the effect as table cells (df and p as above); four dashes for nullptr.
+std::vector<std::string> effect_cells(const stats::Effect* e);
+// Paired comparisons (post-hoc or simple effects): n, mean difference, SE, 95% CI, t, df, p, Holm p, d_z.
+Table comparison_table(const std::vector<stats::Comparison>& list, const std::string& id, const std::string& caption,
+                       const std::string& unit);
 // Notes for a test's table: n, excluded participants, warnings of the statistics library.
 std::vector<std::string> test_notes(const TestReport& r);
-// The rows of a full ANOVA table for a TestReport (effect, df, F, p, GG/HF, η²).
-Table anova_table(const TestReport& r, const Design& d, const std::string& id, const std::string& caption);
+// The full ANOVA table of a TestReport (df, GG-corrected where ε < 1, MSE, F, APA p, ηp² with
+// its 90% CI, ηG², Mauchly's W and p, both epsilons), under it one APA sentence per effect, and
+// for each followed-up interaction its simple effects and an interaction plot (within-subject CIs).
+void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string& id, const std::string& caption);
 // "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
 std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
 // A CSV line from fields (quoted as the export quotes them).

@@ -8,6 +8,8 @@
 #include <limits>
 
 #include "analysis/report/detail/format.h"
+#include "analysis/stats/apa.h"
+#include "analysis/stats/json.h"
 
 namespace dtlab::report::detail {
 namespace {
@@ -73,6 +75,48 @@ void paired_effect(TestReport& r, const CellMatrix& m, const Design& d) {
 
 }  // namespace
 
+double reported_p(const stats::Effect& e) {
+  return stats::applied_correction(e, stats::Correction::greenhouse_geisser) == stats::Correction::none ? e.p : e.p_gg;
+}
+
+namespace {
+
+// Simple effects and within-subject CIs of every two-way within interaction with p < kFollowUpAlpha.
+void follow_up(TestReport& r, const stats::LongData& data) {
+  for (const auto& e : r.anova->effects) {
+    const auto colon = e.name.find(':');
+    if (colon == std::string::npos || e.name.find(':', colon + 1) != std::string::npos) continue;
+    if (!(reported_p(e) < kFollowUpAlpha)) continue;
+    InteractionFollowUp f{e.name, e.name.substr(0, colon), e.name.substr(colon + 1), {}, {}};
+    stats::LongData sub = data;
+    sub.within.clear();
+    for (const auto& w : data.within)
+      if (w.name == f.a || w.name == f.b) sub.within.push_back(w);
+    if (sub.within.size() != 2 || !data.between.empty()) continue;  // a between factor: not followed up
+    sub.aggregate = stats::Aggregate::mean;  // each participant's mean over the other within factors
+    auto simple = stats::simple_effects(sub, f.a, f.b);
+    auto ci = stats::within_subject_intervals(sub, 0.95);
+    if (!simple || !ci) {
+      r.warnings.push_back("follow-up of " + e.name + " not computed: " +
+                           (simple ? ci.error().message : simple.error().message));
+      continue;
+    }
+    f.simple = std::move(*simple);
+    f.intervals = std::move(*ci);
+    r.followups.push_back(std::move(f));
+  }
+}
+
+// Shapiro-Wilk of the residuals of the within-subject model.
+void normality(TestReport& r, const stats::LongData& data) {
+  auto res = stats::anova_residuals(data);
+  if (!res) return;
+  for (const auto& e : res->residuals) r.residuals.push_back(e.value);
+  r.normality = stats::shapiro_wilk(r.residuals);
+}
+
+}  // namespace
+
 const stats::Effect* TestReport::effect(const std::string& name) const {
   if (!anova) return nullptr;
   for (const auto& e : anova->effects)
@@ -103,6 +147,10 @@ TestReport run_rm_anova(const CellMatrix& m, const Design& d, std::string measur
   r.warnings = res->warnings;
   r.anova = std::move(*res);
   if (r.kept.size() < 2) r.not_tested = "one participant: no error variance, F is undefined";
+  if (r.kept.size() >= 2) {
+    follow_up(r, data);
+    normality(r, data);
+  }
   for (size_t k = 0; k < m.factors.size(); ++k) {
     const auto& f = d.factor(m.factors[k]);
     if (f.levels.size() < 3 || r.kept.size() < 2) continue;
@@ -139,6 +187,24 @@ TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measur
   return r;
 }
 
+TestReport run_rank_test(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
+                         std::string scope, std::uint64_t seed) {
+  if (m.factors.size() != 1 || m.cells() != 2)
+    return run_friedman(m, d, std::move(measure), std::move(unit), std::move(scope), seed);
+  TestReport r;
+  if (!begin_report(r, m, "wilcoxon", std::move(measure), std::move(unit), std::move(scope))) return r;
+  std::vector<double> x, y;
+  for (size_t s : r.kept) {
+    x.push_back(m.value[s][0]);
+    y.push_back(m.value[s][1]);
+  }
+  stats::WilcoxonOptions wo;
+  wo.exact.seed = seed;
+  r.wilcoxon = stats::wilcoxon_signed_rank(x, y, wo);
+  r.warnings = r.wilcoxon->warnings;
+  return r;
+}
+
 nlohmann::json to_json(const stats::Descriptives& d) {
   return {{"n", d.n},           {"mean", num(d.mean)},     {"sd", num(d.sd)},         {"se", num(d.se)},
           {"ci_low", num(d.ci_low)}, {"ci_high", num(d.ci_high)}, {"median", num(d.median)},
@@ -146,12 +212,9 @@ nlohmann::json to_json(const stats::Descriptives& d) {
 }
 
 nlohmann::json to_json(const stats::Effect& e) {
-  return {{"effect", e.name},       {"df1", num(e.df1)},          {"df2", num(e.df2)},
-          {"ss", num(e.ss)},        {"ss_error", num(e.ss_error)}, {"F", num(e.F)},
-          {"p", num(e.p)},          {"log10_p", num(e.log10_p)},  {"eta_p2", num(e.eta_p2)},
-          {"eta_g2", num(e.eta_g2)}, {"mauchly_W", num(e.mauchly_W)}, {"mauchly_p", num(e.mauchly_p)},
-          {"gg_epsilon", num(e.gg_epsilon)}, {"hf_epsilon", num(e.hf_epsilon)}, {"p_gg", num(e.p_gg)},
-          {"log10_p_gg", num(e.log10_p_gg)}, {"p_hf", num(e.p_hf)},     {"log10_p_hf", num(e.log10_p_hf)}};
+  nlohmann::json j = stats::effect_json<nlohmann::json>(e);
+  j["apa"] = effect_sentence(e);
+  return j;
 }
 
 nlohmann::json to_json(const TestReport& r, const Design& d) {
@@ -206,15 +269,16 @@ nlohmann::json to_json(const TestReport& r, const Design& d) {
                      {"treatments", f.treatments},
                      {"mean_ranks", f.mean_ranks}};
   }
+  if (r.wilcoxon) {
+    j["wilcoxon"] = stats::wilcoxon_json<json>(*r.wilcoxon);
+    j["wilcoxon"]["x"] = m.cell_names[0];
+    j["wilcoxon"]["y"] = m.cell_names[1];
+    j["wilcoxon"]["rank_biserial"] = num(rank_biserial(*r.wilcoxon));
+  }
   if (!r.posthoc.empty()) {
     json ph = json::object();
     for (const auto& [factor, list] : r.posthoc) {
-      json arr = json::array();
-      for (const auto& c : list)
-        arr.push_back({{"a", c.a}, {"b", c.b}, {"test", c.test}, {"estimate", num(c.estimate)},
-                       {"statistic", num(c.statistic)}, {"df", num(c.df)}, {"p", num(c.p)},
-                       {"p_holm", num(c.p_holm)}});
-      ph[factor] = arr;
+      ph[factor] = stats::comparisons_json<json>(list);
     }
     j["posthoc"] = ph;
   }
@@ -232,25 +296,64 @@ nlohmann::json to_json(const TestReport& r, const Design& d) {
                    {"p", num(p.t.p)},
                    {"dz", num(p.dz)}};
   }
+  if (!r.followups.empty()) {
+    json fj = json::array();
+    for (const auto& f : r.followups) fj.push_back(to_json(f));
+    j["followups"] = fj;
+  }
+  if (r.normality)
+    j["shapiro_wilk_residuals"] = {{"n", r.normality->n}, {"W", num(r.normality->W)}, {"p", num(r.normality->p)},
+                                   {"warnings", r.normality->warnings}};
   j["not_tested"] = r.not_tested.empty() ? json(nullptr) : json(r.not_tested);
   j["warnings"] = r.warnings;
   return j;
 }
 
+nlohmann::json to_json(const InteractionFollowUp& f) {
+  using nlohmann::json;
+  json simple = json::array();
+  for (const auto& se : f.simple.rows) {
+    json row{{"factor", se.factor}, {"at_factor", se.at_factor}, {"at_level", se.at_level},
+             {"test", se.test},     {"n", se.n},                 {"p", num(se.p)},
+             {"p_holm", num(se.p_holm)}};
+    if (se.test == "paired t")
+      row["contrast"] = stats::comparison_json<json>(se.contrast);
+    else
+      row["anova"] = to_json(se.anova);
+    simple.push_back(row);
+  }
+  json cells = json::array();
+  for (const auto& c : f.intervals) {
+    json levels = json::object();
+    for (const auto& [factor, level] : c.levels) levels[factor] = level;
+    cells.push_back({{"levels", levels}, {"n", c.n}, {"mean", num(c.mean)}, {"se_within", num(c.se)},
+                     {"ci95_low", num(c.ci_low)}, {"ci95_high", num(c.ci_high)}});
+  }
+  return {{"effect", f.effect},
+          {"simple_effects", simple},
+          {"cell_means_within_ci", cells},
+          {"ci_method", "Cousineau (2005) with Morey's (2008) correction"}};
+}
+
 std::string effect_sentence(const stats::Effect& e) {
-  std::string s = "F(" + df_text(e.df1) + ", " + df_text(e.df2) + ") = " + f_text(e.F) + ", p = " +
-                  p_text(e.p, e.log10_p);
-  if (e.df1 > 1 && std::isfinite(e.gg_epsilon))
-    s += " (Greenhouse-Geisser ε = " + fixed(e.gg_epsilon, 3) + ", p = " + p_text(e.p_gg, e.log10_p_gg) + ")";
-  s += ", η²p = " + fixed(e.eta_p2, 3);
-  return s;
+  return stats::apa_effect(e, stats::Correction::greenhouse_geisser);
 }
 
 std::string friedman_sentence(const stats::FriedmanResult& f) {
-  std::string s = "χ²(" + df_text(f.df) + ") = " + fixed(f.Q, 2) + ", p = " + p_text(f.p, f.log10_p);
-  if (std::isfinite(f.p_exact)) s += " (exact p = " + p_text(f.p_exact, std::log10(f.p_exact)) + ")";
-  s += ", Kendall's W = " + fixed(f.kendall_W, 3) + ", n = " + std::to_string(f.n);
-  return s;
+  std::string s = "χ²(" + stats::apa_df(f.df) + ") = " + stats::apa_number(f.Q) + ", " + stats::apa_p(f.p);
+  if (std::isfinite(f.p_exact)) s += " (exact " + stats::apa_p(f.p_exact) + ")";
+  return s + ", Kendall's W = " + stats::apa_bounded(f.kendall_W) + ", n = " + std::to_string(f.n);
+}
+
+double rank_biserial(const stats::WilcoxonResult& w) {
+  const double n = static_cast<double>(w.n);
+  return w.n == 0 ? kNaN : 4 * w.V / (n * (n + 1)) - 1;
+}
+
+std::string wilcoxon_sentence(const stats::WilcoxonResult& w) {
+  std::string s = stats::apa_wilcoxon(w);
+  if (w.method != "exact" && std::isfinite(w.p_exact)) s += " (exact " + stats::apa_p(w.p_exact) + ")";
+  return s + ", r_rb = " + stats::apa_bounded(rank_biserial(w)) + ", n = " + std::to_string(w.n);
 }
 
 }  // namespace dtlab::report::detail

@@ -237,8 +237,8 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-nlohmann::json run_report(const std::string& db, const std::string& out) {
-  auto r = write_report(db, out);
+nlohmann::json run_report(const std::string& db, const std::string& out, const ReportOptions& options) {
+  auto r = write_report(db, out, {}, options);
   if (!r) {
     ADD_FAILURE() << r.error().to_string();
     throw std::runtime_error("write_report failed");

@@ -42,7 +42,7 @@ void build_reference_participants(const std::string& path, const std::vector<std
                                   const std::string& protocol_text, bool allow_change = false);
 
 // Runs write_report into `out` (gnuplot from PATH); fails the test on error.
-nlohmann::json run_report(const std::string& db, const std::string& out);
+nlohmann::json run_report(const std::string& db, const std::string& out, const ReportOptions& options = {});
 
 // The test of `section` ("completion_time", "accuracy") with this scope and measure ("" = any).
 const nlohmann::json& find_test(const nlohmann::json& report, const std::string& section, const std::string& scope,

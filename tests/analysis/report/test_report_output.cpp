@@ -74,7 +74,9 @@ TEST_F(ReportOutput, HtmlReadsLikeAResultsSection) {
   for (const char* text : {"Completion time", "Table III layout", "Standard (off)", "DynTrans (on)",
                            "T1 (count targets)", "F(1, 7)", "Sphericity holds trivially", "Method of analysis",
                            "listwise deletion", "Speed and accuracy", "Frame-time audit", "Questionnaire",
-                           "Position effects", "Simulated participants", "article (Table III, VII.1)"})
+                           "Position effects", "Simulated participants", "article (Table III, VII.1)",
+                           // APA tables: Mauchly and both epsilons of the 4-level block position, GG-corrected df
+                           "Mauchly's W", "ε GG", "ε HF", "MSE", "ηp² 90% CI", "ηG²", "(GG)", "In the text (APA style"})
     EXPECT_NE(html->find(text), std::string::npos) << text;
   EXPECT_TRUE(summary->simulated);
 }

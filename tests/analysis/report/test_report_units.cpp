@@ -58,23 +58,25 @@ TEST(RmCorr, DegenerateCasesAreUndefinedNotCrashes) {
   EXPECT_NEAR(c.r, 1.0, 1e-12);
 }
 
-TEST(Format, PValuesStayExactAndReadable) {
+// APA 7th ed., 6.36: p to three decimals without a leading zero, "< .001" below; the exact value
+// stays in report.json (an underflowed p of 0 included).
+TEST(Format, PValuesInApaStyle) {
   struct Case {
-    double p, log10_p;
+    double p;
     const char* text;
   };
   const Case cases[] = {
-      {0.0240, std::log10(0.0240), "0.024"},
-      {0.797, std::log10(0.797), "0.797"},
-      {3.905263e-04, std::log10(3.905263e-04), "0.000391"},
-      {1.007549e-05, std::log10(1.007549e-05), "1.01e-05"},
-      {2.1e-12, std::log10(2.1e-12), "2.10e-12 (log10 p = -11.68)"},
-      {0.0, -345.2, "6.31e-346 (log10 p = -345.20)"},  // underflowed p: only its log is finite
-      {std::nan(""), std::nan(""), "—"},
+      {0.0240, ".024"},     {0.797, ".797"},   {0.0017, ".002"},   {0.0010004, ".001"},
+      {3.905263e-04, "< .001"}, {2.1e-12, "< .001"}, {0.0, "< .001"}, {0.9996, "> .999"},
+      {1.0, "> .999"},      {std::nan(""), "—"},
   };
-  for (const auto& c : cases) EXPECT_EQ(p_text(c.p, c.log10_p), c.text) << c.p;
+  for (const auto& c : cases) EXPECT_EQ(p_text(c.p), c.text) << c.p;
+  EXPECT_EQ(bounded(0.4921), ".49");
+  EXPECT_EQ(bounded(-0.4951, 3), "-.495");
+  EXPECT_EQ(bounded(std::nan("")), "—");
   EXPECT_EQ(fixed(-0.0001, 2), "0.00");
   EXPECT_EQ(mean_sd(56.256, 38.72, 2), "56.26 (38.72)");
+  EXPECT_EQ(f_text(0.7164), "0.72");  // APA: F with two decimals, as in the sentences
   EXPECT_EQ(df_text(15), "15");
   EXPECT_EQ(df_text(12.4671), "12.47");
   EXPECT_TRUE(num(std::nan("")).is_null());
