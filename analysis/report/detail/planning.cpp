@@ -15,9 +15,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool planned_section(const std::string& section) { return section == "time" || section == "accuracy"; }
 
-// The p the report states for an effect: Greenhouse-Geisser corrected when it has more than one df.
-double reported_p(const stats::Effect& e) { return e.df1 > 1 ? e.p_gg : e.p; }
-
 double analytic_power(const PlannedEffect& pe, const stats::Effect& e, double n, double alpha) {
   if (!std::isfinite(e.F) || pe.pilot_n < 2) return kNaN;
   if (e.df1 == 1) return stats::power_paired_t(n, pe.dz, 1.0, alpha, stats::Alternative::two_sided, /*strict=*/true);
