@@ -156,6 +156,7 @@ Result<ReportSummary> write_one(const StudyData& data, const fs::path& out, cons
   std::vector<std::string> figure_files;
   for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
   j["figures"] = figure_files;
+  j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
 
   say("writing " + out.string());
   std::vector<std::pair<std::string, std::string>> files = {
@@ -164,13 +165,15 @@ Result<ReportSummary> write_one(const StudyData& data, const fs::path& out, cons
       {"report.json", j.dump(2) + "\n"},
       {"report.md", render_markdown(ctx.doc)},
       {"index.html", render_html(ctx.doc, *svg)},
+      {"report.tex", render_latex(ctx.doc)},
   };
   for (const auto& [name, content] : ctx.csv) files.push_back({name, content});
   for (const auto& [name, content] : files) {
     if (auto s = write_whole(out / name, content); !s) return s.error();
     sum.files.push_back(name);
   }
-  for (const auto& f : figure_files) sum.files.push_back(f);
+  for (const auto& p : ctx.plots)
+    for (const char* ext : {".svg", ".png", ".pdf"}) sum.files.push_back("figures/" + p.id + ext);
   return sum;
 }
 

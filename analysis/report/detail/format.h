@@ -22,6 +22,8 @@ std::string f_text(double f);                         // F with 2 decimals (3 be
 std::string df_text(double df);                       // "15" or "12.47" (GG-corrected df)
 std::string integer(long long v);
 std::string percent(double share, int decimals = 1);  // 0.125 -> "12.5%"
+// A count with its noun in agreement: counted(1, "trial") = "1 trial", counted(3, "trial") = "3 trials".
+std::string counted(long long n, const std::string& noun);
 
 nlohmann::json num(double v);
 std::string csv_number(double v);  // shortest round-trip text; "NA" for NaN, "Inf"/"-Inf" (R's spelling)  // NaN -> null, +-inf -> "Infinity"/"-Infinity"
