@@ -159,7 +159,7 @@ std::string Design::published_note(const std::vector<std::string>& measures) con
   return label + ": the values printed in " + rr.source +
          (open == std::string::npos ? "" : ", " + group.substr(open + 2, group.size() - open - 3)) +
          (rr.participants > 0 ? " (" + std::to_string(rr.participants) + " participants" : " (") +
-         (rr.participants > 0 ? "; " : "") + "F and p as printed there), declared in the protocol's "
+         (rr.participants > 0 ? "; " : "") + "tests as printed there), declared in the protocol's "
          "[reference_results]. Quoted for comparison, not computed here.";
 }
 

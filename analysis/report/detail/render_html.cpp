@@ -34,6 +34,8 @@ th, td { padding: .25rem .6rem; text-align: right; white-space: nowrap; vertical
 th { white-space: normal; min-width: 3.2rem; vertical-align: bottom; }
 th.text, td.text { text-align: left; white-space: normal; }
 td.text { min-width: 4rem; max-width: 26rem; }
+figure.table.wide table { font-size: 12px; }
+figure.table.wide th, figure.table.wide td { padding: .2rem .35rem; }
 thead tr:last-child th { border-bottom: 1px solid var(--rule); }
 thead tr.groups th { border-bottom: 1px solid var(--light); text-align: center; font-weight: 600; color: var(--muted); }
 tbody tr:nth-child(even) { background: #fafafb; }

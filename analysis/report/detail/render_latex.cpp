@@ -26,6 +26,7 @@ constexpr const char* kPreamble = R"tex(\documentclass[10pt]{article}
 \usepackage{textcomp}
 \usepackage{amssymb}
 \setlength{\LTcapwidth}{\linewidth}
+\setlength{\emergencystretch}{3em}  % long file names in \texttt never stick out of the margin
 % A table no wider than the text: scaled down when wider, never up.
 \newcommand{\fitwidth}[1]{\resizebox{\ifdim\width>\linewidth\linewidth\else\width\fi}{!}{#1}}
 \newcommand{\tablenotes}[1]{\par\smallskip\begin{minipage}{\linewidth}\footnotesize #1\end{minipage}}

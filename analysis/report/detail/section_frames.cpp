@@ -74,7 +74,7 @@ void section_frames(Context& ctx) {
          "render cost as well as the condition's effect on the participant.");
 
   std::vector<ConditionFrames> conds;
-  std::set<std::string> renderers;
+  std::set<std::string> renderers, simulated_sizes;
   bool simulated_frames = false;
   for (const auto& cond : d.protocol->conditions) {
     ConditionFrames c;
@@ -101,8 +101,11 @@ void section_frames(Context& ctx) {
       c.hz.push_back(tr.refresh_hz.value_or(kAssumedHz));
       if (!tr.display_kind.empty()) c.displays.insert(display_text(tr));
       if (!tr.renderer.empty()) renderers.insert(tr.renderer);
-      simulated_frames = simulated_frames ||
-                         std::find(ctx.simulated.begin(), ctx.simulated.end(), tr.participant) != ctx.simulated.end();
+      if (std::find(ctx.simulated.begin(), ctx.simulated.end(), tr.participant) != ctx.simulated.end()) {
+        simulated_frames = true;
+        if (tr.display_width > 0)
+          simulated_sizes.insert(std::to_string(tr.display_width) + " × " + std::to_string(tr.display_height));
+      }
     }
     conds.push_back(std::move(c));
   }
@@ -184,13 +187,12 @@ void section_frames(Context& ctx) {
     }
     s.add(t);
     if (simulated_frames) {
-      std::set<std::string> sizes;
-      for (const auto& c : conds) sizes.insert(c.displays.begin(), c.displays.end());
       std::string size_list;
-      for (const auto& x : sizes) size_list += (size_list.empty() ? "" : ", ") + x;
-      bool soft = std::any_of(renderers.begin(), renderers.end(), [](const std::string& r) { return software(r); });
-      s.text("Simulated frames: the simulated participants' trials were rendered " +
-             (size_list.empty() ? std::string("offscreen") : size_list + " pixels") +
+      for (const auto& x : simulated_sizes) size_list += (size_list.empty() ? "" : ", ") + x;
+      const bool soft =
+          std::any_of(renderers.begin(), renderers.end(), [](const std::string& r) { return software(r); });
+      s.text("Simulated frames: the simulated participants' trials were rendered offscreen" +
+             (size_list.empty() ? std::string() : " at " + size_list + " pixels") +
              (soft ? ", by a software rasterizer on the CPU" : "") +
              ". Their frame rates measure this machine's rendering at that size, not what a participant's screen "
              "would show; they say nothing about fluency in a real session.");

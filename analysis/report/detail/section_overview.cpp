@@ -187,11 +187,12 @@ void section_notes(Context& ctx) {
     s.text("The values of " + published_source(ctx) + ", where shown, are printed values the protocol declares "
            "([reference_results]) and quotes for comparison; they are labelled \"" +
            ctx.data.protocol.reference_results->label + "\" and never enter a computation.");
-  s.text("Files beside this page: `report.md` (the same tables in Markdown), `report.json` (every number of the "
+  s.text("Files beside this page: `report.md` (the same tables in Markdown), `report.tex` (the same in LaTeX: "
+         "booktabs tables, `pdflatex report.tex`), `report.json` (every number of the "
          "tables, machine-readable), `trials.csv` (the tidy one-row-per-trial table, as `dtlab export` writes "
          "it), `completion_time_means.csv` and `accuracy_means.csv` (the participant x condition values every "
          "test used), `tests.csv` (one row per test), `questionnaire.csv`, `frames.csv`, and `figures/` (each "
-         "figure's SVG, its data and the gnuplot script `report.gp` that draws them).");
+         "figure's SVG, PNG and PDF, its data and the gnuplot script `report.gp` that draws them).");
   ctx.doc.sections.push_back(std::move(s));
 }
 
