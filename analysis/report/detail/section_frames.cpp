@@ -58,25 +58,17 @@ struct ConditionFrames {
   double fps() const { const double m = median(rate_ms); return m > 0 ? 1000 / m : NAN; }
 };
 
-}  // namespace
+struct Gathered {
+  std::vector<ConditionFrames> conds;            // one per protocol condition, in order
+  std::set<std::string> renderers;               // every renderer string of the analysed trials
+  std::set<std::string> simulated_sizes;         // "160 × 120": framebuffers of simulated participants' trials
+  bool simulated_frames = false;                 // a simulated participant's trial has frames
+};
 
-void section_frames(Context& ctx) {
-  const Design& d = ctx.design;
-  const double threshold = ctx.options.frame_threshold_ms;
-  const double min_fps = 1000 / threshold;
-  Section s{"frames", "Frame-time audit", 2, {}};
-  s.text("Rendering speed per condition, from the frame times recorded with every trial. The median frame rate "
-         "is over the trials' median frame time after their first frame; the first frame of a trial (scene upload "
-         "and first present: warm-up) is reported apart. A frame is late when it took more than 1.5 display "
-         "intervals, i.e. missed a refresh (" + fixed(kAssumedHz, 0) + " Hz where the display's rate is unknown). A "
-         "trial is slow when its 95th-percentile frame time exceeds " + fixed(threshold, 1) + " ms (" +
-         fixed(min_fps, 0) + " fps). If conditions render at different speeds, completion time may measure "
-         "render cost as well as the condition's effect on the participant.");
-
-  std::vector<ConditionFrames> conds;
-  std::set<std::string> renderers, simulated_sizes;
-  bool simulated_frames = false;
-  for (const auto& cond : d.protocol->conditions) {
+// The frame statistics of the analysed trials, per condition.
+Gathered gather(const Context& ctx, double threshold) {
+  Gathered g;
+  for (const auto& cond : ctx.design.protocol->conditions) {
     ConditionFrames c;
     c.name = cond.name;
     for (const auto& tr : ctx.data.trials) {
@@ -100,15 +92,61 @@ void section_frames(Context& ctx) {
       }
       c.hz.push_back(tr.refresh_hz.value_or(kAssumedHz));
       if (!tr.display_kind.empty()) c.displays.insert(display_text(tr));
-      if (!tr.renderer.empty()) renderers.insert(tr.renderer);
+      if (!tr.renderer.empty()) g.renderers.insert(tr.renderer);
       if (std::find(ctx.simulated.begin(), ctx.simulated.end(), tr.participant) != ctx.simulated.end()) {
-        simulated_frames = true;
+        g.simulated_frames = true;
         if (tr.display_width > 0)
-          simulated_sizes.insert(std::to_string(tr.display_width) + " × " + std::to_string(tr.display_height));
+          g.simulated_sizes.insert(std::to_string(tr.display_width) + " × " + std::to_string(tr.display_height));
       }
     }
-    conds.push_back(std::move(c));
+    g.conds.push_back(std::move(c));
   }
+
+  return g;
+}
+
+// The sentence that labels simulated frames with their size and renderer.
+std::string simulated_text(const Gathered& g) {
+  std::string size_list;
+  for (const auto& x : g.simulated_sizes) size_list += (size_list.empty() ? "" : ", ") + x;
+  const bool soft = std::any_of(g.renderers.begin(), g.renderers.end(), [](const std::string& r) { return software(r); });
+  return "Simulated frames: the simulated participants' trials were rendered offscreen" +
+         (size_list.empty() ? std::string() : " at " + size_list + " pixels") +
+         (soft ? ", by a software rasterizer on the CPU" : "") +
+         ". Their frame rates measure this machine's rendering at that size, not what a participant's screen "
+         "would show; they say nothing about fluency in a real session.";
+}
+
+// The audit's warnings also at the top of the report (the data section), where a reader starts.
+void warn_at_top(Context& ctx, const std::vector<std::string>& warnings) {
+  if (warnings.empty()) return;
+  for (const auto& w : warnings) ctx.warnings.push_back("frame-time audit: " + w);
+  for (auto& sec : ctx.doc.sections)
+    if (sec.id == "data") {
+      std::vector<std::string> items = warnings;
+      items.push_back("See the frame-time audit (#frames) before reading completion-time differences as the "
+                      "conditions' effect on the participants.");
+      sec.blocks.insert(sec.blocks.begin(), Callout{"warning", "Render cost may confound completion time", items});
+    }
+}
+
+}  // namespace
+
+void section_frames(Context& ctx) {
+  const double threshold = ctx.options.frame_threshold_ms;
+  const double min_fps = 1000 / threshold;
+  Section s{"frames", "Frame-time audit", 2, {}};
+  s.text("Rendering speed per condition, from the frame times recorded with every trial. The median frame rate "
+         "is over the trials' median frame time after their first frame; the first frame of a trial (scene upload "
+         "and first present: warm-up) is reported apart. A frame is late when it took more than 1.5 display "
+         "intervals, i.e. missed a refresh (" + fixed(kAssumedHz, 0) + " Hz where the display's rate is unknown). A "
+         "trial is slow when its 95th-percentile frame time exceeds " + fixed(threshold, 1) + " ms (" +
+         fixed(min_fps, 0) + " fps). If conditions render at different speeds, completion time may measure "
+         "render cost as well as the condition's effect on the participant.");
+
+  const Gathered g = gather(ctx, threshold);
+  const auto& conds = g.conds;
+  const auto& renderers = g.renderers;
 
   Table t;
   t.id = "table-frames";
@@ -186,34 +224,14 @@ void section_frames(Context& ctx) {
       t.notes.push_back("Renderer: " + list + ".");
     }
     s.add(t);
-    if (simulated_frames) {
-      std::string size_list;
-      for (const auto& x : simulated_sizes) size_list += (size_list.empty() ? "" : ", ") + x;
-      const bool soft =
-          std::any_of(renderers.begin(), renderers.end(), [](const std::string& r) { return software(r); });
-      s.text("Simulated frames: the simulated participants' trials were rendered offscreen" +
-             (size_list.empty() ? std::string() : " at " + size_list + " pixels") +
-             (soft ? ", by a software rasterizer on the CPU" : "") +
-             ". Their frame rates measure this machine's rendering at that size, not what a participant's screen "
-             "would show; they say nothing about fluency in a real session.");
-    }
+    if (g.simulated_frames) s.text(simulated_text(g));
     if (warnings.empty())
       s.text("Every condition rendered at a median of at least " + fixed(min_fps, 0) + " fps and the conditions' "
              "median frame rates are within " + fixed(100 * (kRateSpread - 1), 0) + "% of each other.");
     else
       s.add(Callout{"warning", "Render cost may confound completion time", warnings});
   }
-  if (!warnings.empty()) {
-    // Also at the top of the report, where a reader starts.
-    for (const auto& w : warnings) ctx.warnings.push_back("frame-time audit: " + w);
-    for (auto& sec : ctx.doc.sections)
-      if (sec.id == "data") {
-        std::vector<std::string> items = warnings;
-        items.push_back("See the frame-time audit (#frames) before reading completion-time differences as the "
-                        "conditions' effect on the participants.");
-        sec.blocks.insert(sec.blocks.begin(), Callout{"warning", "Render cost may confound completion time", items});
-      }
-  }
+  warn_at_top(ctx, warnings);
   ctx.json["frames"] = {{"threshold_ms", threshold},     {"min_fps", min_fps},
                         {"rate_spread", kRateSpread},     {"trials_with_frames", with_frames},
                         {"warnings", warnings},           {"below_display", below},
