@@ -60,7 +60,9 @@ nlohmann::json design_json(const Design& d) {
     t.push_back({{"id", task.id}, {"type", std::string(protocol::to_string(task.type))}, {"scenario", task.scenario},
                  {"trials", task.trials}, {"factors", varying}});
   }
-  return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.reference}};
+  return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.article_names},
+          {"published_results", d.reference ? nlohmann::json(d.protocol->reference_results->source)
+                                            : nlohmann::json(nullptr)}};
 }
 
 // The report of one design revision into `out`.

@@ -208,9 +208,11 @@ TEST(ReportOtherProtocol, NamesNoOtherStudyAndWarnsAboutSlowSimulatedFrames) {
   for (const char* file : {"out/index.html", "out/report.md", "out/report.json", "out/report.tex"}) {
     std::string text = lower(read_text(dir.file(file)));
     if (text.rfind("\\documentclass[10pt]{article}", 0) == 0) text.erase(0, text.find('\n'));  // LaTeX's class
-    for (const char* banned : {"article", "elmqvist", "table iii", "dyntrans", "published"})
+    for (const char* banned : {"article", "elmqvist", "table iii", "dyntrans", "cf. "})
       EXPECT_EQ(text.find(banned), std::string::npos) << file << ": " << banned;
   }
+  EXPECT_TRUE(j.at("design").at("published_results").is_null());
+  EXPECT_FALSE(j.at("design").at("reference_design").get<bool>());
   const std::string md = read_text(dir.file("out/report.md"));
   EXPECT_EQ(md.find("this study"), std::string::npos);  // no column group beside a published one
   // Frames: on {500, 100, 100} ms: warm-up 500 ms apart, then 10 fps; off 100 fps: 10 times as fast.

@@ -69,6 +69,8 @@ TEST_F(Statsmodels2x2, TableThreeRowsCarryTheOverallEffectAndTheArticle) {
   EXPECT_EQ(num(rows[3].at("published").at("mean").at("off")), 140.0);
   EXPECT_EQ(rows[3].at("published").at("F"), "48.61");
   EXPECT_EQ(rows[3].at("published").at("label"), "article");
+  EXPECT_EQ(report->at("design").at("published_results"), "Elmqvist, Assarsson & Tsigas (2008)");
+  EXPECT_TRUE(report->at("design").at("reference_design").get<bool>());
 }
 
 TEST_F(Statsmodels2x2, AccuracyMeasuresFollowTheirDefinitions) {
