@@ -56,7 +56,7 @@ void run_analyze(const AnalyzeArgs& a) {
                      {"simulated", sum->simulated}, {"warnings", sum->warnings}};
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cerr << "dtlab analyze: wrote " << a.out << "/index.html and report.md (" << count(sum->participants, "participant")
+    std::cerr << "dtlab analyze: wrote " << a.out << "/index.html, report.md and report.tex (" << count(sum->participants, "participant")
               << ", " << count(sum->trials, "trial") << ", " << count(sum->tests, "test")
               << (sum->excluded_trials ? ", " + count(sum->excluded_trials, "excluded trial") +
                                              (a.with_excluded ? " kept" : " left out")
@@ -72,11 +72,14 @@ void add_analyze_command(CLI::App& root) {
   auto args = std::make_shared<AnalyzeArgs>();
   auto* cmd = root.add_subcommand(
       "analyze",
-      "Write the study report of a study database into DIR: report.md and a self-contained index.html (tables in "
-      "the article's Table III layout, RM ANOVA and Friedman tests per task and overall, accuracy, speed-accuracy, "
-      "questionnaire, position effects, frame-time audit, gnuplot figures inline), report.json with every number, "
-      "trials.csv (as dtlab export), per-analysis CSVs and, where camera poses were recorded, each participant's "
-      "walked paths per WALKTHROUGH task (paths/*.svg, linked from the report). Exit 1: not a dtlab database or nothing to analyse; "
+      "Write the study report of a study database into DIR: report.md, a self-contained index.html that prints "
+      "whole on A4/Letter, and report.tex (LaTeX, booktabs): RM ANOVA in APA style with follow-ups, rank tests and "
+      "Shapiro-Wilk per task and overall, accuracy, speed-accuracy, questionnaire, position effects, frame-time "
+      "audit (warns when render cost may confound completion time), power for the next study, published values "
+      "beside ours only when the protocol declares them ([reference_results]); figures as SVG, PNG and PDF "
+      "(gnuplot with cairo); report.json with every number, trials.csv (as dtlab export), per-analysis CSVs and, "
+      "where camera poses were recorded, each participant's walked paths per WALKTHROUGH task (paths/*.svg). "
+      "Exit 1: not a dtlab database or nothing to analyse; "
       "3: I/O, database or gnuplot failure");
   cmd->add_option("database", args->db, std::string(kDatabaseHelp) + ", written by dtlab run or dtlab simulate")
       ->required()
@@ -85,7 +88,8 @@ void add_analyze_command(CLI::App& root) {
       ->required();
   cmd->add_option("--gnuplot", args->gnuplot, "gnuplot executable (default: $DTLAB_GNUPLOT, else gnuplot on PATH)");
   cmd->add_option("--frame-threshold-ms", args->frame_threshold_ms,
-                  "Frame-time audit: a trial is slow when its 95th-percentile frame time exceeds this (default 33.3)")
+                  "Frame-time audit: a trial is slow when its 95th-percentile frame time exceeds this, and a condition "
+                  "whose median frame rate is below 1000 / this is warned about (default 33.3 = 30 fps)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--revision", args->revision,
                   "Design revision to analyse when the protocol's design was changed mid-study "

@@ -117,7 +117,7 @@ void run_demo(DemoArgs a) {
   std::cout << "  protocol  " << protocol_path.string() << "\n"
             << "  database  " << store::display_name(a.run.db) << "\n"
             << "  table     " << csv.string() << "\n"
-            << "  report    " << (report_dir / "index.html").string() << " (and report.md)\n";
+            << "  report    " << (report_dir / "index.html").string() << " (and report.md, report.tex)\n";
   std::cout << "Completion times are simulated seconds from the agent model (docs/sim.md), not measurements of "
                "people.\n";
 }
@@ -136,7 +136,7 @@ void add_demo_command(CLI::App& root) {
       "of people");
   cmd->footer(
       "Writes DIR/elmqvist2008.toml, DIR/elmqvist2008.sqlite (or --db), DIR/elmqvist2008.csv and DIR/report/ (index.html, "
-      "report.md, report.json, CSVs, figures). Progress on stderr; a per-task summary and the paths on stdout.\n"
+      "report.md, report.tex, report.json, CSVs, figures as SVG, PNG and PDF). Progress on stderr; a per-task summary and the paths on stdout.\n"
       "Exit status: 0 done, 1 invalid input (DIR holds another protocol's files, left untouched), 2 bad command "
       "line, 3 environment (GL, database, fork, gnuplot, I/O), 130 interrupted (rerun to resume).");
   cmd->add_option("--out", a->out, "Output directory (created if missing)")->capture_default_str();

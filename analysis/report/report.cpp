@@ -61,7 +61,9 @@ nlohmann::json design_json(const Design& d) {
     t.push_back({{"id", task.id}, {"type", std::string(protocol::to_string(task.type))}, {"scenario", task.scenario},
                  {"trials", task.trials}, {"factors", varying}});
   }
-  return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.reference}};
+  return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.article_names},
+          {"published_results", d.reference ? nlohmann::json(d.protocol->reference_results->source)
+                                            : nlohmann::json(nullptr)}};
 }
 
 // A participant ID or task ID as part of a file name: letters, digits, '-' and '_' kept, the rest '_'.
@@ -204,6 +206,7 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   std::vector<std::string> figure_files;
   for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
   j["figures"] = figure_files;
+  j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
 
   say("writing " + out.string());
   std::vector<std::pair<std::string, std::string>> files = {
@@ -212,6 +215,7 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
       {"report.json", j.dump(2) + "\n"},
       {"report.md", render_markdown(ctx.doc)},
       {"index.html", render_html(ctx.doc, *svg)},
+      {"report.tex", render_latex(ctx.doc)},
   };
   for (const auto& [name, content] : ctx.csv) files.push_back({name, content});
   if (!paths->figures.empty()) {
@@ -223,7 +227,8 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
     if (auto s = write_whole(out / name, content); !s) return s.error();
     sum.files.push_back(name);
   }
-  for (const auto& f : figure_files) sum.files.push_back(f);
+  for (const auto& p : ctx.plots)
+    for (const char* ext : {".svg", ".png", ".pdf"}) sum.files.push_back("figures/" + p.id + ext);
   return sum;
 }
 

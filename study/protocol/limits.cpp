@@ -45,6 +45,9 @@ constexpr std::array kDocumented{
     ints("questionnaire", "pairs", kPairs),
     ints("demographics", "range", kDemographicRange),
     ints("demographics", "options", kDemographicOptions),
+    ints("reference_results", "participants", kReferenceParticipants),
+    numbers("reference_results", "mean", kReferenceMean),
+    numbers("reference_results", "sd", kReferenceSd),
 };
 
 }  // namespace

@@ -65,12 +65,17 @@ inline constexpr Ints kPairs{1, 20};
 // [demographics.*].
 inline constexpr Ints kDemographicRange{0, 1000000};  // an integer field's accepted values
 inline constexpr Ints kDemographicOptions{2, 64};     // entries of a choice field's options
+// [reference_results].
+inline constexpr Ints kReferenceParticipants{1, 100000};
+inline constexpr Numbers kReferenceMean{-1e9, 1e9};
+inline constexpr Numbers kReferenceSd{0, 1e9};
 
 // One documented range: the section of docs/protocol.md, the key as its table writes it, and
 // the closed interval (integers up to 2^53 are exact in a double; master_seed's 2^63-1 is rounded).
 struct Documented {
   std::string_view section;  // "top level", "session", "training", "factors", "order", "scenarios",
-                             // "tasks", "rendering", "questionnaire"
+                             // "tasks", "rendering", "questionnaire",
+                             // "demographics", "reference_results"
   std::string_view key;      // as the table's first column writes it, e.g. "objects"
   double min;
   double max;

@@ -159,6 +159,27 @@ struct DemographicField {
   std::vector<std::string> options;  // choice: the accepted answers
 };
 
+// --- published results to compare with (optional) -------------------------------------
+
+// One published row: a measure's mean and SD per level of the compared factor (the
+// rendering factor, else the first factor), or one value for the whole study, and the
+// test as printed. Quoted for comparison only: never enters a computation.
+struct ReferenceResult {
+  std::string measure;            // "time", "accuracy", or a questionnaire item id
+  std::string scope = "overall";  // a task id, "overall", or "counting" (the counting tasks pooled)
+  std::string location;           // where the source prints it, e.g. "Table III" ("" = not said)
+  bool per_level = true;          // false: mean and sd hold one value for the whole study
+  std::vector<double> mean, sd;   // per level of the compared factor, in its level order (or one value)
+  std::string F, p;               // as printed ("" = not printed)
+};
+
+struct ReferenceResults {
+  std::string source;               // the citation, e.g. "Elmqvist, Assarsson & Tsigas (2008)"
+  std::string label = "published";  // the heading of its columns, e.g. "article"
+  int participants = 0;             // n behind the published tests (0 = not given)
+  std::vector<ReferenceResult> results;  // in file order
+};
+
 struct Protocol {
   std::string source_path;  // as given to load_protocol
   std::string source_text;  // the file's bytes, recorded by the store
@@ -180,7 +201,12 @@ struct Protocol {
   std::vector<Rendering> renderings;  // in file order
   std::vector<QuestionnaireItem> questionnaire;  // in file order
   std::vector<DemographicField> demographics;    // in file order; asked at enrollment
+  std::optional<ReferenceResults> reference_results;  // [reference_results]; not part of the design
 };
+
+// The factor whose levels [reference_results] values are given per: the rendering factor, else the
+// first factor; -1 when the protocol has no factor.
+int compared_factor(const Protocol& p);
 
 // Checks a participant's demographic answers against the protocol's fields (required ones
 // present, integers in range, choices among the options, no unknown field); the Error names

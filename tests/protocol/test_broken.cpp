@@ -206,6 +206,31 @@ const Case kCases[] = {
      "needs factor"},
     {"key of another item type", {{29, "[questionnaire.c]\ntype = \"choice\"\nprompt = \"x\"\nfactor = \"scenario\"\npairs = 3"}},
      33, "questionnaire.c.pairs", "applies only to type = \"depth-test\""},
+    // published results: measures, scopes and levels the protocol declares
+    {"published result of an unknown measure",
+     {{29, "[reference_results]\nsource = \"x\"\n[[reference_results.results]]\nmeasure = \"speed\"\n"
+           "mean = { off = 1, on = 2 }\nsd = { off = 1, on = 1 }"}},
+     32, "reference_results.results[0].measure", "expected one of \"time\", \"accuracy\""},
+    {"published result of an unknown task",
+     {{29, "[reference_results]\nsource = \"x\"\n[[reference_results.results]]\nmeasure = \"time\"\n"
+           "scope = \"T9\"\nmean = { off = 1, on = 2 }\nsd = { off = 1, on = 1 }"}},
+     33, "reference_results.results[0].scope", "\"T1\", \"T4\""},
+    {"published mean without a level",
+     {{29, "[reference_results]\nsource = \"x\"\n[[reference_results.results]]\nmeasure = \"time\"\n"
+           "mean = { off = 1 }\nsd = { off = 1, on = 1 }"}},
+     33, "reference_results.results[0].mean.on", "missing required key"},
+    {"published mean of an unknown level",
+     {{29, "[reference_results]\nsource = \"x\"\n[[reference_results.results]]\nmeasure = \"time\"\n"
+           "mean = { off = 1, on = 2, half = 3 }\nsd = { off = 1, on = 1 }"}},
+     33, "reference_results.results[0].mean.half", "unknown key"},
+    {"published sd below zero",
+     {{29, "[reference_results]\nsource = \"x\"\n[[reference_results.results]]\nmeasure = \"time\"\n"
+           "mean = { off = 1, on = 2 }\nsd = { off = -1, on = 1 }"}},
+     34, "reference_results.results[0].sd.off", "out of range"},
+    {"published results without source",
+     {{29, "[reference_results]\n[[reference_results.results]]\nmeasure = \"time\"\n"
+           "mean = { off = 1, on = 2 }\nsd = { off = 1, on = 1 }"}},
+     29, "reference_results.source", "missing required key"},
     // TOML syntax errors carry line and column, and the field they are in
     {"unquoted string", {{12, "scheme = latin-square"}}, 12, "order.scheme", "TOML syntax error"},
     {"duplicate key", {{4, "master_seed = 7\nmaster_seed = 8"}}, 5, "master_seed", "TOML syntax error"},

@@ -62,7 +62,11 @@ INSTANTIATE_TEST_SUITE_P(
                       Edit{"description", "description = \"A quick", "description = \"A very quick"},
                       Edit{"prompt", "prompt = \"Overall", "prompt = \"All in all"},
                       Edit{"target_participants", "participants = 4", "participants = 8"},
-                      Edit{"key_order", "a0 = 0.1\naT = 0.3", "aT = 0.3\na0 = 0.1"}),
+                      Edit{"key_order", "a0 = 0.1\naT = 0.3", "aT = 0.3\na0 = 0.1"},
+                      Edit{"published_results", "[demographics.age]",
+                           "[reference_results]\nsource = \"A & B (2020)\"\n[[reference_results.results]]\n"
+                           "measure = \"time\"\nmean = { off = 60, on = 30 }\nsd = { off = 9, on = 8 }\n"
+                           "F = \"12.1\"\np = \"< .01\"\n[demographics.age]"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 INSTANTIATE_TEST_SUITE_P(

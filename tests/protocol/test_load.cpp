@@ -173,6 +173,44 @@ method = "standard"
 method = "dt-fast"
 )";
 
+// The article's results as the reference protocol declares them (Elmqvist, Assarsson & Tsigas 2008,
+// Table III and section VII), checked against the printed values.
+TEST(ReferenceProtocol, DeclaresTheArticlesResults) {
+  const auto r = load_protocol(kReference);
+  ASSERT_TRUE(r.ok()) << r.error().to_string();
+  ASSERT_TRUE(r->reference_results.has_value());
+  const ReferenceResults& rr = *r->reference_results;
+  EXPECT_EQ(rr.source, "Elmqvist, Assarsson & Tsigas (2008)");
+  EXPECT_EQ(rr.label, "article");
+  EXPECT_EQ(rr.participants, 16);
+  EXPECT_EQ(compared_factor(*r), 0);  // transparency: means are given as {off, on}
+  auto find = [&](const std::string& measure, const std::string& scope) -> const ReferenceResult* {
+    for (const auto& x : rr.results)
+      if (x.measure == measure && x.scope == scope) return &x;
+    return nullptr;
+  };
+  const ReferenceResult* t4 = find("time", "T4");  // Table III: T4 140.0 (61.75) vs 40.80 (24.16), F = 48.61
+  ASSERT_NE(t4, nullptr);
+  EXPECT_EQ(t4->mean, (std::vector<double>{140.0, 40.80}));
+  EXPECT_EQ(t4->sd, (std::vector<double>{61.75, 24.16}));
+  EXPECT_EQ(t4->F, "48.61");
+  EXPECT_EQ(t4->p, "< .01");
+  EXPECT_EQ(t4->location, "Table III");
+  const ReferenceResult* pref = find("preference", "overall");  // VII.3: .94 (.25)
+  ASSERT_NE(pref, nullptr);
+  EXPECT_FALSE(pref->per_level);
+  EXPECT_EQ(pref->mean, std::vector<double>{0.94});
+  const ReferenceResult* abstract = find("rating", "abstract");  // per scenario only p < .05
+  ASSERT_NE(abstract, nullptr);
+  EXPECT_TRUE(abstract->mean.empty());
+  EXPECT_EQ(abstract->p, "< .05 (Friedman)");
+  EXPECT_EQ(rr.results.size(), 16u);
+  // Quoting a paper does not change what runs.
+  const auto pilot = load_protocol(DTLAB_SOURCE_DIR "/protocols/pilot.toml");
+  ASSERT_TRUE(pilot.ok());
+  EXPECT_FALSE(pilot->reference_results.has_value());
+}
+
 TEST(Cascade, TaskOverridesScenarioOverridesDefault) {
   const auto r = load_protocol_text(kMinimal, "mini.toml");
   ASSERT_TRUE(r.ok()) << r.error().to_string();

@@ -45,7 +45,7 @@ std::string section_of(const std::string& heading) {
   if (heading.find("Top level") != std::string::npos) return "top level";
   if (heading.find(".tasks.") != std::string::npos) return "tasks";
   for (const char* s : {"session", "training", "factors", "order", "scenarios", "rendering", "questionnaire",
-                        "demographics"})
+                        "demographics", "reference_results"})
     if (heading.find(std::string("`[") + s) != std::string::npos) return s;
   return "";
 }
@@ -175,6 +175,12 @@ std::vector<Writer> writers() {
       {"questionnaire", "pairs", true, "questionnaire.depth_test.pairs", "pairs = 3", "pairs = {}"},
       {"demographics", "range", true, "demographics.age.range[0]", "range = [16, 99]", "range = [{}, 1000000]"},
       {"demographics", "range", true, "demographics.age.range[1]", "range = [16, 99]", "range = [0, {}]"},
+      {"reference_results", "participants", true, "reference_results.participants",
+       "label = \"article\"\nparticipants = 16", "label = \"article\"\nparticipants = {}"},
+      {"reference_results", "mean", false, "reference_results.results[0].mean.off", "mean = { off = 56.26,",
+       "mean = { off = {},"},
+      {"reference_results", "sd", false, "reference_results.results[0].sd.off", "sd = { off = 38.72,",
+       "sd = { off = {},"},
   };
 }
 

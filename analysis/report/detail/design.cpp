@@ -5,6 +5,8 @@
 #include <cctype>
 #include <set>
 
+#include "analysis/report/detail/format.h"
+
 namespace dtlab::report::detail {
 namespace {
 
@@ -46,7 +48,7 @@ std::string Design::level_label(int f, int level) const {
   const std::string& name = fac.levels[static_cast<size_t>(level)];
   if (fac.role != protocol::FactorRole::rendering) return name;
   const auto* r = rendering_named(*protocol, name);
-  if (reference && f == primary) return (name == "off" ? "Standard" : "DynTrans") + std::string(" (") + name + ")";
+  if (article_names && f == primary) return (name == "off" ? "Standard" : "DynTrans") + std::string(" (") + name + ")";
   return r ? name + " (" + r->method + ")" : name;
 }
 
@@ -79,23 +81,11 @@ std::string Design::tasks_note() const {
 Design make_design(const protocol::Protocol& p) {
   Design d;
   d.protocol = &p;
-  d.primary = 0;
+  d.primary = std::max(0, protocol::compared_factor(p));  // the factor published results are given per
   for (size_t f = 0; f < p.factors.size(); ++f) {
     d.all_factors.push_back(static_cast<int>(f));
     if (p.factors[f].role == protocol::FactorRole::scenario) d.scenario_factor = static_cast<int>(f);
   }
-  bool have_rendering = false;
-  for (size_t f = 0; f < p.factors.size(); ++f)
-    if (p.factors[f].role == protocol::FactorRole::rendering) {
-      d.primary = static_cast<int>(f);
-      have_rendering = true;
-    }
-  if (!have_rendering)
-    for (size_t f = 0; f < p.factors.size(); ++f)
-      if (p.factors[f].role != protocol::FactorRole::scenario) {
-        d.primary = static_cast<int>(f);
-        break;
-      }
   for (size_t s = 0; s < p.scenarios.size(); ++s) {
     // The conditions that use this scenario; a factor varies within the
     // scenario's tasks when those conditions hold more than one of its levels.
@@ -109,8 +99,84 @@ Design make_design(const protocol::Protocol& p) {
     for (const auto& t : p.scenarios[s].tasks)
       d.tasks.push_back({t.id, t.type, p.scenarios[s].name, t.trials, varying});
   }
-  d.reference = is_reference_design(p, d);
+  d.reference = p.reference_results.has_value();
+  d.article_names = d.reference && is_reference_design(p, d);
   return d;
+}
+
+const protocol::ReferenceResult* Design::published(const std::string& measure, const std::string& scope) const {
+  if (!protocol->reference_results) return nullptr;
+  for (const auto& r : protocol->reference_results->results)
+    if (r.measure == measure && r.scope == scope) return &r;
+  return nullptr;
+}
+
+std::vector<std::string> Design::published_header(bool with_f) const {
+  if (!reference) return {};
+  std::vector<std::string> h;
+  const auto& levels = factor(primary).levels;
+  for (size_t l = 0; l < levels.size(); ++l)
+    h.push_back(article_names ? (levels[l] == "off" ? "Standard" : "DynTrans") : levels[l]);
+  if (with_f) {
+    const int n = protocol->reference_results->participants;
+    const int df1 = static_cast<int>(levels.size()) - 1;
+    h.push_back(n > 1 ? "F(" + std::to_string(df1) + "," + std::to_string(df1 * (n - 1)) + ")" : "F");
+  }
+  h.push_back("p");
+  return h;
+}
+
+std::vector<std::string> Design::published_cells(const std::string& measure, const std::string& scope, int decimals,
+                                                 bool with_f) const {
+  if (!reference) return {};
+  std::vector<std::string> cells(published_header(with_f).size(), kDash);
+  const protocol::ReferenceResult* r = published(measure, scope);
+  if (!r) return cells;
+  for (size_t l = 0; l < r->mean.size() && l + 1 < cells.size(); ++l) cells[l] = mean_sd(r->mean[l], r->sd[l], decimals);
+  if (with_f && !r->F.empty()) cells[cells.size() - 2] = r->F;
+  if (!r->p.empty()) cells.back() = r->p;
+  return cells;
+}
+
+std::string Design::published_group(const std::vector<std::string>& measures) const {
+  if (!reference) return "";
+  std::vector<std::string> where;
+  for (const auto& r : protocol->reference_results->results)
+    if (std::find(measures.begin(), measures.end(), r.measure) != measures.end() && !r.location.empty() && std::find(where.begin(), where.end(), r.location) == where.end())
+      where.push_back(r.location);
+  std::string g = protocol->reference_results->label;
+  for (size_t i = 0; i < where.size(); ++i) g += (i ? ", " : " (") + where[i] + (i + 1 == where.size() ? ")" : "");
+  return g;
+}
+
+std::string Design::published_note(const std::vector<std::string>& measures) const {
+  if (!reference) return "";
+  const auto& rr = *protocol->reference_results;
+  std::string label = rr.label;
+  if (!label.empty()) label[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(label[0])));
+  const std::string group = published_group(measures);
+  const size_t open = group.find(" (");
+  return label + ": the values printed in " + rr.source +
+         (open == std::string::npos ? "" : ", " + group.substr(open + 2, group.size() - open - 3)) +
+         (rr.participants > 0 ? " (" + std::to_string(rr.participants) + " participants" : " (") +
+         (rr.participants > 0 ? "; " : "") + "tests as printed there), declared in the protocol's "
+         "[reference_results]. Quoted for comparison, not computed here.";
+}
+
+std::string Design::published_summary(const std::string& measure, const std::string& scope, int decimals) const {
+  const protocol::ReferenceResult* r = published(measure, scope);
+  if (!r) return "";
+  std::string out;
+  if (!r->per_level && !r->mean.empty()) out = mean_sd(r->mean[0], r->sd[0], decimals);
+  if (r->per_level)
+    for (size_t l = 0; l < r->mean.size(); ++l)
+      out += (l ? ", " : "") + factor(primary).levels[l] + " " + mean_sd(r->mean[l], r->sd[l], decimals);
+  if (!r->p.empty()) out += (out.empty() ? "p " : "; p ") + r->p;
+  return out;
+}
+
+std::string Design::published_cf() const {
+  return reference ? "; cf. " + protocol->reference_results->source : "";
 }
 
 std::string task_type_label(protocol::TaskType t) {

@@ -1,9 +1,10 @@
 // What the report analyses, derived from the recorded protocol (never from
 // hard-coded study facts): factors and their roles, the primary factor (the
 // rendering factor when there is one), tasks with their types and the factors
-// that vary inside each task, questionnaire items, display labels, whether
-// the design is the reference study's (then the article's values are shown
-// beside ours), and who the participants are (simulated or not).
+// that vary inside each task, questionnaire items, display labels, the
+// published results the protocol declares to compare with ([reference_results]:
+// shown beside ours, and the only way another study is ever named), and who
+// the participants are (simulated or not).
 // Pure functions of StudyData; no I/O.
 #pragma once
 #include <string>
@@ -28,7 +29,8 @@ struct Design {
   int primary = 0;               // the rendering-role factor, else the first factor
   int scenario_factor = -1;      // the scenario-role factor, or -1
   std::vector<TaskInfo> tasks;   // protocol order (scenarios in file order, their tasks in file order)
-  bool reference = false;        // the reference study's design (STUDY.md): article values are shown
+  bool reference = false;        // the protocol declares published results ([reference_results]) to compare with
+  bool article_names = false;    // ... and has the reference study's design: its level names (Standard, DynTrans)
 
   const protocol::Factor& factor(int f) const { return protocol->factors[static_cast<size_t>(f)]; }
   // "off (standard)" for a rendering level, "Standard (off)" in the reference design, else the level name.
@@ -42,6 +44,26 @@ struct Design {
   std::string task_label(const TaskInfo& t) const;
   // "Tasks: T1 count targets (abstract), T2 ...": the note under tables that name tasks by id.
   std::string tasks_note() const;
+
+  // --- published results ([reference_results]); all empty or null when the protocol declares none
+  // The published row of `measure` ("time", "accuracy", an item id) and scope, or nullptr.
+  const protocol::ReferenceResult* published(const std::string& measure, const std::string& scope) const;
+  // Headings of the published columns: a level label per primary level, then "F(df1,df2)" if with_f, then "p".
+  std::vector<std::string> published_header(bool with_f = true) const;
+  // The published cells of a row, in published_header's order; "—" where nothing is published.
+  std::vector<std::string> published_cells(const std::string& measure, const std::string& scope, int decimals,
+                                           bool with_f = true) const;
+  // The column group's heading: "article (Table III, VII.1)" (label and the locations of `measure`'s rows).
+  std::string published_group(const std::string& measure) const { return published_group(std::vector{measure}); }
+  std::string published_group(const std::vector<std::string>& measures) const;
+  // The note under a table with published columns: who printed them, with how many participants.
+  std::string published_note(const std::string& measure) const { return published_note(std::vector{measure}); }
+  std::string published_note(const std::vector<std::string>& measures) const;
+  // One cell: "0.94 (0.25)" for a whole-study value, "off 1.52 (0.59), on 3.09 (0.38)" per level,
+  // then "; p < .01" when a p is printed; "" when nothing is published.
+  std::string published_summary(const std::string& measure, const std::string& scope, int decimals) const;
+  // "; cf. <source>" for figure captions, "" without published results.
+  std::string published_cf() const;
 };
 
 Design make_design(const protocol::Protocol& p);

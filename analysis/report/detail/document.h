@@ -1,7 +1,8 @@
 // The report as a document: sections of paragraphs, tables, figures and
-// call-outs, built by the analysis sections and rendered twice, to Markdown
-// (report.md) and to a self-contained HTML page (index.html). Keeping one
-// document for both guarantees that the two show the same tables. Text is
+// call-outs, built by the analysis sections and rendered three times, to
+// Markdown (report.md), to a self-contained HTML page (index.html) and to
+// LaTeX (report.tex). Keeping one document for all guarantees that they show
+// the same tables. Text is
 // plain; `backticks` mark code (file names, columns) in both renderings.
 // Renderers number tables and figures in order of appearance.
 #pragma once
@@ -69,7 +70,12 @@ std::string render_markdown(const Document& doc);
 // its markup without XML prolog, ids made unique), no script, no external URL.
 std::string render_html(const Document& doc, const std::map<std::string, std::string>& svg);
 
+// report.tex: a LaTeX article (booktabs tables, figures/<id>.pdf), compiled by pdflatex with
+// texlive-latex-recommended; every LaTeX special and non-ASCII character of the text escaped.
+std::string render_latex(const Document& doc);
+
 // Escapes for the renderers.
+std::string latex_escape(const std::string& s);  // text mode; `code` spans become \texttt
 std::string html_escape(const std::string& s);
 // The SVG text prepared for inlining: no XML prolog or DOCTYPE, no xmlns
 // declarations (HTML5 inline SVG needs none), every id and #reference

@@ -56,10 +56,6 @@ std::string df_text(double df) {
 
 std::string integer(long long v) { return std::to_string(v); }
 
-std::string count_of(long long n, const std::string& noun) {
-  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
-}
-
 std::string percent(double share, int decimals) {
   if (std::isnan(share)) return kDash;
   return fixed(100 * share, decimals) + "%";

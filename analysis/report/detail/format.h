@@ -10,6 +10,8 @@
 
 #include <string>
 
+#include "study/common/text.h"  // dtlab::count: "1 trial", "3 trials"
+
 namespace dtlab::report::detail {
 
 inline constexpr const char* kDash = "—";  // undefined value in a table
@@ -21,10 +23,9 @@ std::string bounded(double v, int decimals = 2);      // ".57", "1.00", "-.12"; 
 std::string f_text(double f);                         // F with 2 decimals (APA), "∞", kDash for NaN
 std::string df_text(double df);                       // "15" or "12.47" (GG-corrected df)
 std::string integer(long long v);
-std::string count_of(long long n, const std::string& noun);  // "1 participant", "16 participants"
 std::string percent(double share, int decimals = 1);  // 0.125 -> "12.5%"
 
-nlohmann::json num(double v);
-std::string csv_number(double v);  // shortest round-trip text; "NA" for NaN, "Inf"/"-Inf" (R's spelling)  // NaN -> null, +-inf -> "Infinity"/"-Infinity"
+nlohmann::json num(double v);        // NaN -> null, +-inf -> "Infinity"/"-Infinity"
+std::string csv_number(double v);  // shortest round-trip text; "NA" for NaN, "Inf"/"-Inf" (R's spelling)
 
 }  // namespace dtlab::report::detail

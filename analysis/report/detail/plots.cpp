@@ -115,11 +115,22 @@ Result<std::map<std::string, std::string>> render_plots(const std::vector<PlotSp
     for (const auto& [name, content] : p.data)
       if (!write_file(dir / name, content))
         return Error{(dir / name).string(), 0, 0, "output", "cannot write the plot data file", ErrorKind::environment};
-    script += "\n# --- " + p.id + " ---\nreset\n";
-    script += "set terminal svg size " + std::to_string(p.width) + "," + std::to_string(p.height) +
-              " dynamic enhanced font 'DejaVu Sans,12' background rgb 'white'\n";
-    script += "set output " + gp_quote(p.id + ".svg") + "\n";
-    script += gp_style() + p.commands + "\nunset multiplot\nset output\n";
+    // The same figure three times, by the same gnuplot process: SVG (the page), PNG at twice the
+    // pixels (slides, word processors) and PDF (LaTeX), sized so that text reads 12 px / 9 pt.
+    const std::string w = std::to_string(p.width), h = std::to_string(p.height);
+    const std::pair<std::string, std::string> terminals[] = {
+        {"svg", "svg size " + w + "," + h + " dynamic enhanced font 'DejaVu Sans,12'"},
+        {"png", "pngcairo size " + std::to_string(2 * p.width) + "," + std::to_string(2 * p.height) +
+                    " enhanced font 'DejaVu Sans,12' fontscale 2 linewidth 2"},
+        {"pdf", "pdfcairo size " + gp_value(p.width / 100.0) + "in," + gp_value(p.height / 100.0) +
+                    "in enhanced font 'DejaVu Sans,9'"},
+    };
+    for (const auto& [ext, terminal] : terminals) {
+      script += "\n# --- " + p.id + "." + ext + " ---\nreset\n";
+      script += "set terminal " + terminal + " background rgb 'white'\n";
+      script += "set output " + gp_quote(p.id + "." + ext) + "\n";
+      script += gp_style() + p.commands + "\nunset multiplot\nset output\n";
+    }
   }
   const fs::path gp = dir / "report.gp";
   if (!write_file(gp, script)) return Error{gp.string(), 0, 0, "output", "cannot write the gnuplot script", ErrorKind::environment};
@@ -135,6 +146,12 @@ Result<std::map<std::string, std::string>> render_plots(const std::vector<PlotSp
     std::string text = read_file(f);
     if (text.find("<svg") == std::string::npos)
       return gnuplot_error(f.string(), "gnuplot wrote no SVG for figure " + p.id + ": " + tail_lines(out, 6));
+    for (const char* ext : {".png", ".pdf"})
+      if (std::error_code ec; fs::file_size(dir / (p.id + ext), ec) == 0 || ec)
+        return gnuplot_error((dir / (p.id + ext)).string(), "gnuplot wrote no " + std::string(ext + 1) +
+                                                                " for figure " + p.id + " (pngcairo and pdfcairo "
+                                                                "need gnuplot built with cairo, as Debian's "
+                                                                "gnuplot-nox is): " + tail_lines(out, 6));
     svg[p.id] = std::move(text);
   }
   return svg;

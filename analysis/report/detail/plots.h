@@ -1,5 +1,6 @@
-// Plots through gnuplot (Debian's gnuplot-nox, `set terminal svg`), run as a
-// subprocess: each figure is a data file plus gnuplot commands; all figures
+// Plots through gnuplot (Debian's gnuplot-nox: terminals svg, pngcairo,
+// pdfcairo), run as a subprocess: each figure is a data file plus gnuplot
+// commands, drawn as <id>.svg, <id>.png (twice the pixels) and <id>.pdf; all figures
 // go into one script, figures/report.gp, run by one gnuplot process, so a
 // reader can re-draw or restyle every figure from the files left beside it.
 // Guarantees: gnuplot is found or a clear Error says how to get it; a failing
@@ -30,7 +31,8 @@ std::string gnuplot_executable(const std::string& configured);
 Status check_gnuplot(const std::string& exe);
 
 // Writes the data files and figures/report.gp into `figures_dir` (existing),
-// runs gnuplot once and returns id -> SVG text. Error field "gnuplot" or "output".
+// runs gnuplot once (SVG, PNG and PDF of each figure) and returns id -> SVG text. Error field
+// "gnuplot" (also when a PNG or PDF is missing: a gnuplot without cairo) or "output".
 Result<std::map<std::string, std::string>> render_plots(const std::vector<PlotSpec>& plots,
                                                         const std::string& figures_dir, const std::string& exe);
 

@@ -25,14 +25,17 @@ h2 { font-size: 1.35rem; margin: 2.4rem 0 .6rem; border-bottom: 1px solid var(--
 h3 { font-size: 1.1rem; margin: 1.8rem 0 .5rem; }
 p { margin: .6rem 0; }
 code { font: 0.88em/1.4 "DejaVu Sans Mono", monospace; background: #f3f3f5; padding: 0 .2em; border-radius: 3px; }
-figure.table { margin: 1.4rem 0; overflow-x: auto; }
+figure.table { margin: 1.4rem 0; max-width: 100%; overflow-x: auto; }
 figcaption { font-size: .95rem; margin: 0 0 .4rem; }
 figcaption b { font-weight: 700; }
 table { border-collapse: collapse; font: 13px/1.45 system-ui, "DejaVu Sans", sans-serif;
         font-variant-numeric: tabular-nums; border-top: 2px solid var(--rule); border-bottom: 2px solid var(--rule); }
-th, td { padding: .25rem .7rem; text-align: right; white-space: nowrap; vertical-align: top; }
+th, td { padding: .25rem .6rem; text-align: right; white-space: nowrap; vertical-align: top; }
+th { white-space: normal; min-width: 3.2rem; vertical-align: bottom; }
 th.text, td.text { text-align: left; white-space: normal; }
 td.text { min-width: 4rem; max-width: 26rem; }
+figure.table.wide table { font-size: 12px; }
+figure.table.wide th, figure.table.wide td { padding: .2rem .35rem; }
 thead tr:last-child th { border-bottom: 1px solid var(--rule); }
 thead tr.groups th { border-bottom: 1px solid var(--light); text-align: center; font-weight: 600; color: var(--muted); }
 tbody tr:nth-child(even) { background: #fafafb; }
@@ -46,8 +49,32 @@ figure.plot figcaption { margin-top: .4rem; }
 .callout h4 { margin: 0 0 .3rem; font: 600 15px/1.4 system-ui, "DejaVu Sans", sans-serif; }
 .callout ul { margin: .2rem 0 .2rem 1.2rem; padding: 0; font-size: .95rem; }
 footer { margin-top: 3rem; color: var(--muted); font-size: .85rem; }
-@media print { nav { display: none; } h2 { break-after: avoid; } figure { break-inside: avoid; } }
+/* Print (A4 or Letter, whichever the dialog picks): nothing is cut. Tables lose their scroll box,
+   cells wrap at spaces, header rows repeat on every page; a table of many columns gets a page
+   of its own turned to landscape. */
+@page { margin: 14mm 12mm; }
+@page wide { size: landscape; margin: 12mm; }
+@media print {
+  body { font-size: 10pt; line-height: 1.4; }
+  main { max-width: none; padding: 0; }
+  nav, footer { display: none; }
+  h2, h3, figcaption { break-after: avoid; }
+  figure.plot { break-inside: avoid; }
+  figure.plot svg { max-height: 120mm; }
+  figure.table { overflow: visible; margin: .8rem 0; }
+  figure.table.wide { page: wide; }
+  table { font-size: 7.5pt; line-height: 1.3; max-width: 100%; }
+  thead { display: table-header-group; }
+  tr { break-inside: avoid; }
+  th, td { padding: .1rem .3rem; white-space: normal; min-width: 0; }
+  td.text { max-width: 60mm; overflow-wrap: anywhere; }
+  tbody tr:nth-child(even) { background: none; }
+  .callout { break-inside: avoid; }
+}
 )css";
+
+// A table of this many columns or more prints on a landscape page of its own.
+constexpr size_t kWideColumns = 12;
 
 // Escapes HTML and turns `code` spans into <code>.
 std::string text_html(const std::string& s) {
@@ -92,7 +119,8 @@ std::string render_html(const Document& doc, const std::map<std::string, std::st
       if (const auto* p = std::get_if<Paragraph>(&b)) {
         o << "<p>" << text_html(p->text) << "</p>\n";
       } else if (const auto* t = std::get_if<Table>(&b)) {
-        o << "<figure class=\"table\" id=\"" << t->id << "\">\n<figcaption><b>Table " << ++tables << ".</b> "
+        o << "<figure class=\"table" << (t->header.size() >= kWideColumns ? " wide" : "") << "\" id=\"" << t->id
+          << "\">\n<figcaption><b>Table " << ++tables << ".</b> "
           << text_html(t->caption) << "</figcaption>\n<table>\n<thead>\n";
         if (!t->groups.empty()) {
           o << "<tr class=\"groups\">";

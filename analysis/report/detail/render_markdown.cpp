@@ -73,7 +73,8 @@ std::string render_markdown(const Document& doc) {
       } else if (const auto* f = std::get_if<Figure>(&b)) {
         ++figures;
         o << "![Figure " << figures << "](figures/" << f->id << ".svg)\n\n**Figure " << figures << ".** "
-          << md(f->caption) << "\n\n";
+          << md(f->caption) << " Also as [PNG](figures/" << f->id << ".png) and [PDF](figures/" << f->id
+          << ".pdf).\n\n";
       } else if (const auto* c = std::get_if<Callout>(&b)) {
         o << "> **" << md(c->title) << "**\n";
         for (const auto& item : c->items) o << ">\n> - " << md(item) << "\n";

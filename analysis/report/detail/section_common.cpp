@@ -253,7 +253,7 @@ Table comparison_table(const std::vector<stats::Comparison>& list, const std::st
 
 std::vector<std::string> test_notes(const TestReport& r) {
   std::vector<std::string> notes;
-  std::string n = "n = " + count_of(static_cast<long long>(r.kept.size()), "participant");
+  std::string n = "n = " + dtlab::count(static_cast<long long>(r.kept.size()), "participant");
   if (!r.excluded.empty()) {
     n += "; excluded (listwise deletion, a cell without a value): ";
     for (size_t i = 0; i < r.excluded.size(); ++i) n += (i ? "; " : "") + r.excluded[i];
@@ -271,6 +271,21 @@ std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int
   for (size_t l = 0; l < levels; ++l)
     out.push_back(m ? mean_sd((*m)[l].mean, (*m)[l].sd, decimals) : kDash);
   return out;
+}
+
+nlohmann::json published_json(const protocol::ReferenceResult& r, const Design& d) {
+  const auto& rr = *d.protocol->reference_results;
+  nlohmann::json j{{"source", rr.source}, {"label", rr.label}, {"location", r.location}, {"F", r.F}, {"p", r.p}};
+  if (!r.per_level && !r.mean.empty()) {
+    j["mean"] = r.mean[0];
+    j["sd"] = r.sd[0];
+  } else if (!r.mean.empty()) {
+    for (size_t l = 0; l < r.mean.size(); ++l) {
+      j["mean"][d.factor(d.primary).levels[l]] = r.mean[l];
+      j["sd"][d.factor(d.primary).levels[l]] = r.sd[l];
+    }
+  }
+  return j;
 }
 
 std::string csv_line(const std::vector<std::string>& fields) {

@@ -1,13 +1,12 @@
 // Accuracy, by task type (STUDY.md "Measures"): counting tasks get the
 // relative error |answer - truth| / truth per trial (averaged per participant
-// x condition) and the article's aggregated form |sum truths - sum answers| /
+// x condition) and the aggregated form |sum truths - sum answers| /
 // sum truths per participant x condition, each by RM ANOVA, per task and for
 // all counting tasks together; letter tasks the proportion correct by
 // Friedman; find-unique tasks the Euclidean distance by RM ANOVA. Trials
 // without an answer are left out of the error measures and counted in a note.
 #include <cmath>
 
-#include "analysis/report/detail/article.h"
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/sections.h"
 
@@ -21,7 +20,7 @@ bool is_count(TaskType t) { return t == TaskType::count_targets || t == TaskType
 struct Row {
   std::string label, measure, unit;
   const TestReport* r = nullptr;
-  const article::Row* article = nullptr;
+  std::string published;  // the scope of its published row ([reference_results] accuracy), "" = none
   int decimals = 3;
 };
 
@@ -56,10 +55,10 @@ void section_errors(Context& ctx) {
   const bool two = primary.levels.size() == 2;
   Section s{"accuracy", "Accuracy", 2, {}};
   s.text("Accuracy is measured per task type. Counting tasks: the relative error |answer − truth| / truth of each "
-         "trial, averaged per participant and condition; and the article's aggregated form, |sum of the true "
+         "trial, averaged per participant and condition; and the aggregated form, |sum of the true "
          "counts − sum of the answers| / sum of the true counts over a participant's trials in a condition (an "
          "over-count and an under-count cancel in it). Letter tasks: the proportion of correct answers per "
-         "participant and condition, tested with Friedman's test as in the article. Find-unique tasks: the "
+         "participant and condition, tested with Friedman's test. Find-unique tasks: the "
          "Euclidean distance between the marked and the true position, in world units. Continuous measures are "
          "tested with repeated-measures ANOVA over the participant x condition means.");
 
@@ -71,10 +70,6 @@ void section_errors(Context& ctx) {
     jtests.push_back(to_json(*row.r, d));
     csv += matrix_csv_rows(m, d, csv_measure, row.r->scope);
     rows.push_back(std::move(row));
-  };
-  const article::Row* acc = d.reference ? article::kAccuracy : nullptr;
-  auto find_article = [&](const std::string& scope) {
-    return acc ? article::find(article::kAccuracy, std::size(article::kAccuracy), scope) : nullptr;
   };
 
   std::vector<const TaskInfo*> count_tasks;
@@ -90,10 +85,10 @@ void section_errors(Context& ctx) {
         zero_truth += (t.truth_count && *t.truth_count == 0) ? 1 : 0;
       }
     if (unanswered)
-      notes.push_back(task.id + ": " + std::to_string(unanswered) + " of " + std::to_string(n) +
-                      " trials without an answer, left out of its error measures.");
+      notes.push_back(task.id + ": " + std::to_string(unanswered) + " of " + dtlab::count(n, "trial") +
+                      " without an answer, left out of its error measures.");
     if (zero_truth)
-      notes.push_back(task.id + ": " + std::to_string(zero_truth) + " trials with a true count of 0 have no per-trial "
+      notes.push_back(task.id + ": " + dtlab::count(zero_truth, "trial") + " with a true count of 0 have no per-trial "
                       "relative error (division by 0); the aggregated form keeps them.");
     if (is_count(task.type)) {
       count_tasks.push_back(&task);
@@ -102,10 +97,10 @@ void section_errors(Context& ctx) {
       const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.rel_error; }));
       const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
       ctx.accuracy[task.id] = &r1;
-      add({task.id, "rel. error, mean of trials", "", &r1, nullptr, 3}, m1, "rel_error_mean");
+      add({task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
       const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
       const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
-      add({task.id, "rel. error, aggregated", "", &r2, find_article(task.id), 3}, m2,
+      add({task.id, "rel. error, aggregated", "", &r2, task.id, 3}, m2,
           "rel_error_aggregated");
       const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
                                    return t.signed_error ? std::optional<double>(static_cast<double>(*t.signed_error))
@@ -116,12 +111,12 @@ void section_errors(Context& ctx) {
       const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
       const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
       ctx.accuracy[task.id] = &r;
-      add({task.id, "proportion correct", "", &r, find_article(task.id), 3}, m, "proportion_correct");
+      add({task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
     } else if (task.type == TaskType::find_unique) {
       const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.distance; }));
       const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
       ctx.accuracy[task.id] = &r;
-      add({task.id, "distance (world units)", "world units", &r, find_article(task.id), 2}, m, "distance_mean");
+      add({task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
     }
   }
   if (count_tasks.size() > 1) {
@@ -135,11 +130,11 @@ void section_errors(Context& ctx) {
     std::sort(count_factors.begin(), count_factors.end());
     const auto& m1 = ctx.cells(count_factors, in_count, mean_of([](const TrialRow& t) { return t.rel_error; }));
     add({ids, "rel. error, mean of trials", "",
-         &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), nullptr, 3},
+         &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), "", 3},
         m1, "rel_error_mean");
     const auto& m2 = ctx.cells(count_factors, in_count, aggregated_relative_error());
     add({ids, "rel. error, aggregated", "",
-         &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), find_article("count"), 3},
+         &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), "counting", 3},
         m2, "rel_error_aggregated");
   }
   if (rows.empty()) {
@@ -158,7 +153,7 @@ void section_errors(Context& ctx) {
   t.header.insert(t.header.end(), {"n", "Test", "p", "Effect size"});
   if (two) t.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
   const size_t ours = t.header.size();
-  if (d.reference) t.header.insert(t.header.end(), {"Standard", "DynTrans", "F(1,15)", "p"});
+  for (const auto& h : d.published_header()) t.header.push_back(h);
   nlohmann::json jrows = nlohmann::json::array();
   for (const auto& row : rows) {
     const TestReport& r = *row.r;
@@ -175,22 +170,15 @@ void section_errors(Context& ctx) {
                                : kDash);
     }
     nlohmann::json jr{{"scope", r.scope}, {"label", row.label}, {"measure", row.measure}, {"n", r.kept.size()}};
-    if (d.reference) {
-      if (row.article) {
-        cells.insert(cells.end(), {mean_sd(row.article->off_mean, row.article->off_sd, row.decimals),
-                                   mean_sd(row.article->on_mean, row.article->on_sd, row.decimals), row.article->F,
-                                   row.article->p});
-        jr["article"] = {{"off_mean", row.article->off_mean}, {"off_sd", row.article->off_sd},
-                         {"on_mean", row.article->on_mean},   {"on_sd", row.article->on_sd},
-                         {"F", row.article->F},               {"p", row.article->p}};
-      } else {
-        cells.insert(cells.end(), {"", "", "", ""});
-      }
-    }
+    const auto* a = row.published.empty() ? nullptr : d.published("accuracy", row.published);
+    for (const auto& c : d.published_cells("accuracy", row.published, row.decimals)) cells.push_back(a ? c : "");
+    if (a) jr["published"] = published_json(*a, d);
     jrows.push_back(jr);
     t.rows.push_back(std::move(cells));
   }
-  if (d.reference) t.groups = {{"this study", static_cast<int>(ours)}, {"article (VII.2)", 4}};
+  if (d.reference)
+    t.groups = {{"this study", static_cast<int>(ours)},
+                {d.published_group("accuracy"), static_cast<int>(t.header.size() - ours)}};
   t.notes.push_back(d.tasks_note() + " Relative error is a proportion (0 = exact count); proportion correct is 0..1; distance is in "
                     "world units. Test: repeated-measures ANOVA (F) or Friedman's test (χ², with the exact "
                     "permutation p in parentheses when computed). p in APA style (exact values in report.json). Effect size: partial η² (ηp²) or Kendall's W.");
@@ -201,9 +189,7 @@ void section_errors(Context& ctx) {
     t.notes.push_back("Δ: mean paired difference " + primary.levels[1] + " − " + primary.levels[0] +
                       " with its 95% CI (paired t); negative = smaller error / fewer correct with " + primary.levels[1] +
                       ".");
-  if (d.reference)
-    t.notes.push_back("Article: the values printed in VII.2 (aggregated relative error for T1, T4 and both; T2 "
-                      "correctness by Friedman; T3 distance). Not computed here.");
+  if (d.reference) t.notes.push_back(d.published_note("accuracy"));
   for (const auto& n : notes) t.notes.push_back(n);
   s.add(t);
   for (const auto& row : rows) {

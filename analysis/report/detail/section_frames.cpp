@@ -1,14 +1,17 @@
 // The frame-time audit: per condition, from the frame statistics the store
-// keeps per trial (mean, sd, p95, max frame time in ms), the median of the
-// trials' mean and p95 frame times, the worst p95, and the share of trials
-// whose p95 exceeded the threshold (default 33.3 ms = 30 frames per second);
-// and, where the trials ran on a display of known refresh rate (schema v3,
-// `dtlab run`), the median steady frame rate against that rate and the late
-// frames, flagging a condition that fell below the display's rate.
-// A reviewer reads from it whether rendering was fluid in every condition,
-// i.e. whether slow frames could explain a difference in completion time.
+// keeps per trial (schema v3: the first frame apart, the median of frames
+// 2..n, the frames later than 1.5 display intervals, the display's rate) and
+// the display each session recorded (kind, framebuffer size, renderer): the
+// median frame rate, the share of late frames, the warm-up frame, the p95
+// and the trials whose p95 exceeded --frame-threshold-ms. It speaks up: a
+// condition rendered below the threshold's rate (30 fps by default), or
+// conditions whose median rates differ by more than 25%, put a warning at the
+// top of the report, because render cost then may confound completion time.
+// Simulated frames are labelled with their size and renderer. Never claims
+// fluency the numbers do not show.
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/sections.h"
@@ -26,101 +29,212 @@ double median(std::vector<double> v) {
 // A condition is below the display's rate when its median steady frame takes more than this share
 // of a refresh interval over it (vsync holds a fluid frame to the interval, give or take jitter).
 constexpr double kBelowDisplayTolerance = 0.05;
+// Two conditions' median frame rates "differ" when the faster is more than this much faster.
+constexpr double kRateSpread = 1.25;
+// The display rate late frames are counted against when the display's is unknown (store::frame_stats).
+constexpr double kAssumedHz = 60;
 
-}  // namespace
+// "headless 160 × 120" from a trial's display record; "" when none is recorded.
+std::string display_text(const TrialRow& t) {
+  if (t.display_kind.empty()) return "";
+  return t.display_kind + (t.display_width > 0 ? " " + std::to_string(t.display_width) + " × " +
+                                                     std::to_string(t.display_height)
+                                               : std::string());
+}
 
-void section_frames(Context& ctx) {
-  const Design& d = ctx.design;
-  const double threshold = ctx.options.frame_threshold_ms;
-  Section s{"frames", "Frame-time audit", 2, {}};
-  s.text("Rendering speed per condition, from the frame-time statistics recorded with every trial. A trial counts "
-         "as slow when its 95th-percentile frame time exceeds " + fixed(threshold, 1) + " ms (" +
-         fixed(1000 / threshold, 0) + " frames per second), i.e. when more than 5% of its frames were slower than "
-         "that. Dynamic transparency costs rendering time by design (the article measured 2.1x to 3.6x the frame "
-         "time); what matters for the comparison is that every condition stayed fluid.");
-  Table t;
-  t.id = "table-frames";
-  t.caption = "Frame times per condition (ms): medians over trials of each trial's mean and 95th percentile.";
-  t.header = {"Condition", "Method", "Trials", "Frames", "Median of mean", "≈ fps", "Median of p95", "Worst p95",
-              "Slow trials", "Display Hz", "Steady fps", "Late frames"};
-  nlohmann::json jf = nlohmann::json::array();
-  std::string csv = csv_line({"condition", "method", "trials", "trials_with_frames", "frames", "median_mean_ms",
-                              "median_p95_ms", "max_p95_ms", "max_frame_ms", "slow_trials", "slow_share",
-                              "display_hz", "median_steady_ms", "steady_fps", "late_frames", "below_display"});
-  long long with_frames = 0;
-  std::vector<std::string> below;
-  for (const auto& cond : d.protocol->conditions) {
-    std::vector<double> means, p95s, steady, rates;
-    long long trials = 0, frames = 0, slow = 0, late = 0;
-    double worst = NAN, max_frame = NAN;
-    std::string method;
+// True for a renderer string of a software rasterizer (Mesa's llvmpipe, softpipe, swrast).
+bool software(const std::string& renderer) {
+  for (const char* s : {"llvmpipe", "softpipe", "swrast", "Software"})
+    if (renderer.find(s) != std::string::npos) return true;
+  return false;
+}
+
+struct ConditionFrames {
+  std::string name, method;
+  long long trials = 0, frames = 0, slow = 0, late = 0, steady_frames = 0;
+  std::vector<double> rate_ms;  // per trial: its steady median frame time (its mean in files before schema v3)
+  std::vector<double> first, p95, hz;
+  std::set<std::string> displays;
+  double fps() const { const double m = median(rate_ms); return m > 0 ? 1000 / m : NAN; }
+};
+
+struct Gathered {
+  std::vector<ConditionFrames> conds;            // one per protocol condition, in order
+  std::set<std::string> renderers;               // every renderer string of the analysed trials
+  std::set<std::string> simulated_sizes;         // "160 × 120": framebuffers of simulated participants' trials
+  bool simulated_frames = false;                 // a simulated participant's trial has frames
+};
+
+// The frame statistics of the analysed trials, per condition.
+Gathered gather(const Context& ctx, double threshold) {
+  Gathered g;
+  for (const auto& cond : ctx.design.protocol->conditions) {
+    ConditionFrames c;
+    c.name = cond.name;
     for (const auto& tr : ctx.data.trials) {
       if (!ctx.analysed(tr)) continue;
       bool same = true;
       for (size_t f = 0; f < tr.level_index.size(); ++f) same = same && tr.level_index[f] == cond.levels[f];
       if (!same) continue;
-      ++trials;
-      method = tr.method;
+      ++c.trials;
+      c.method = tr.method;
       if (tr.frame_count <= 0 || !tr.frame_mean) continue;
-      frames += tr.frame_count;
-      means.push_back(*tr.frame_mean);
+      c.frames += tr.frame_count;
+      c.rate_ms.push_back(tr.frame_median.value_or(*tr.frame_mean));
+      if (tr.frame_first) c.first.push_back(*tr.frame_first);
       if (tr.frame_p95) {
-        p95s.push_back(*tr.frame_p95);
-        worst = std::isnan(worst) ? *tr.frame_p95 : std::max(worst, *tr.frame_p95);
-        slow += *tr.frame_p95 > threshold ? 1 : 0;
+        c.p95.push_back(*tr.frame_p95);
+        c.slow += *tr.frame_p95 > threshold ? 1 : 0;
       }
-      if (tr.frame_max) max_frame = std::isnan(max_frame) ? *tr.frame_max : std::max(max_frame, *tr.frame_max);
-      if (tr.refresh_hz) {  // a display of known rate: the steady frames against it
-        rates.push_back(*tr.refresh_hz);
-        if (tr.frame_median) steady.push_back(*tr.frame_median);
-        late += tr.late_frames.value_or(0);
+      if (tr.late_frames) {
+        c.late += *tr.late_frames;
+        c.steady_frames += tr.frame_count - 1;
+      }
+      c.hz.push_back(tr.refresh_hz.value_or(kAssumedHz));
+      if (!tr.display_kind.empty()) c.displays.insert(display_text(tr));
+      if (!tr.renderer.empty()) g.renderers.insert(tr.renderer);
+      if (std::find(ctx.simulated.begin(), ctx.simulated.end(), tr.participant) != ctx.simulated.end()) {
+        g.simulated_frames = true;
+        if (tr.display_width > 0)
+          g.simulated_sizes.insert(std::to_string(tr.display_width) + " × " + std::to_string(tr.display_height));
       }
     }
-    with_frames += static_cast<long long>(means.size());
-    const double mm = median(means), mp = median(p95s);
-    const double share = p95s.empty() ? NAN : static_cast<double>(slow) / static_cast<double>(p95s.size());
-    const double hz = median(rates), ms = median(steady);
-    const bool is_below = hz > 0 && ms > 0 && ms > (1 + kBelowDisplayTolerance) * 1000 / hz;
-    if (is_below) below.push_back(cond.name);
-    const std::string steady_fps = ms > 0 ? fixed(1000 / ms, 0) + (is_below ? " (below)" : "") : kDash;
-    t.rows.push_back({cond.name, method, std::to_string(trials), std::to_string(frames), fixed(mm, 1),
-                      mm > 0 ? fixed(1000 / mm, 0) : kDash, fixed(mp, 1), fixed(worst, 1),
-                      p95s.empty() ? kDash : std::to_string(slow) + " (" + percent(share) + ")",
-                      hz > 0 ? fixed(hz, 0) : kDash, steady_fps, rates.empty() ? kDash : std::to_string(late)});
-    jf.push_back({{"condition", cond.name}, {"method", method}, {"trials", trials},
-                  {"trials_with_frames", means.size()}, {"frames", frames}, {"median_mean_ms", num(mm)},
-                  {"median_p95_ms", num(mp)}, {"max_p95_ms", num(worst)}, {"max_frame_ms", num(max_frame)},
-                  {"slow_trials", slow}, {"slow_share", num(share)}, {"display_hz", num(hz)},
-                  {"median_steady_ms", num(ms)}, {"late_frames", rates.empty() ? nlohmann::json() : nlohmann::json(late)},
-                  {"below_display", is_below}});
-    csv += csv_line({cond.name, method, std::to_string(trials), std::to_string(means.size()), std::to_string(frames),
-                     csv_number(mm), csv_number(mp), csv_number(worst), csv_number(max_frame), std::to_string(slow),
-                     csv_number(share), csv_number(hz), csv_number(ms), csv_number(ms > 0 ? 1000 / ms : NAN),
-                     rates.empty() ? "NA" : std::to_string(late), is_below ? "TRUE" : "FALSE"});
+    g.conds.push_back(std::move(c));
   }
+
+  return g;
+}
+
+// The sentence that labels simulated frames with their size and renderer.
+std::string simulated_text(const Gathered& g) {
+  std::string size_list;
+  for (const auto& x : g.simulated_sizes) size_list += (size_list.empty() ? "" : ", ") + x;
+  const bool soft = std::any_of(g.renderers.begin(), g.renderers.end(), [](const std::string& r) { return software(r); });
+  return "Simulated frames: the simulated participants' trials were rendered offscreen" +
+         (size_list.empty() ? std::string() : " at " + size_list + " pixels") +
+         (soft ? ", by a software rasterizer on the CPU" : "") +
+         ". Their frame rates measure this machine's rendering at that size, not what a participant's screen "
+         "would show; they say nothing about fluency in a real session.";
+}
+
+// The audit's warnings also at the top of the report (the data section), where a reader starts.
+void warn_at_top(Context& ctx, const std::vector<std::string>& warnings) {
+  if (warnings.empty()) return;
+  for (const auto& w : warnings) ctx.warnings.push_back("frame-time audit: " + w);
+  for (auto& sec : ctx.doc.sections)
+    if (sec.id == "data") {
+      std::vector<std::string> items = warnings;
+      items.push_back("See the frame-time audit (#frames) before reading completion-time differences as the "
+                      "conditions' effect on the participants.");
+      sec.blocks.insert(sec.blocks.begin(), Callout{"warning", "Render cost may confound completion time", items});
+    }
+}
+
+}  // namespace
+
+void section_frames(Context& ctx) {
+  const double threshold = ctx.options.frame_threshold_ms;
+  const double min_fps = 1000 / threshold;
+  Section s{"frames", "Frame-time audit", 2, {}};
+  s.text("Rendering speed per condition, from the frame times recorded with every trial. The median frame rate "
+         "is over the trials' median frame time after their first frame; the first frame of a trial (scene upload "
+         "and first present: warm-up) is reported apart. A frame is late when it took more than 1.5 display "
+         "intervals, i.e. missed a refresh (" + fixed(kAssumedHz, 0) + " Hz where the display's rate is unknown). A "
+         "trial is slow when its 95th-percentile frame time exceeds " + fixed(threshold, 1) + " ms (" +
+         fixed(min_fps, 0) + " fps). If conditions render at different speeds, completion time may measure "
+         "render cost as well as the condition's effect on the participant.");
+
+  const Gathered g = gather(ctx, threshold);
+  const auto& conds = g.conds;
+  const auto& renderers = g.renderers;
+
+  Table t;
+  t.id = "table-frames";
+  t.caption = "Frame times per condition: median frame rate, late frames, the warm-up frame and the 95th percentile.";
+  t.header = {"Condition", "Method", "Display", "Trials", "Frames", "Display Hz", "Median fps", "Late frames",
+              "First frame (ms)", "p95 (ms)", "Slow trials"};
+  t.text_columns = 3;
+  nlohmann::json jf = nlohmann::json::array();
+  std::string csv = csv_line({"condition", "method", "display", "trials", "trials_with_frames", "frames", "display_hz",
+                              "median_fps", "late_frames", "late_share", "median_first_ms", "median_p95_ms",
+                              "slow_trials", "slow_share"});
+  long long with_frames = 0;
+  std::vector<std::string> warnings, below;
+  const bool known_hz = std::any_of(ctx.data.trials.begin(), ctx.data.trials.end(),
+                                    [](const TrialRow& tr) { return tr.refresh_hz.has_value(); });
+  const ConditionFrames* fastest = nullptr;
+  const ConditionFrames* slowest = nullptr;
+  for (const auto& c : conds) {
+    with_frames += static_cast<long long>(c.rate_ms.size());
+    const double fps = c.fps(), hz = median(c.hz), first = median(c.first), p95 = median(c.p95);
+    const double late_share = c.steady_frames > 0 ? static_cast<double>(c.late) / c.steady_frames : NAN;
+    const double slow_share = c.p95.empty() ? NAN : static_cast<double>(c.slow) / static_cast<double>(c.p95.size());
+    const double steady_ms = median(c.rate_ms);
+    const bool is_below = known_hz && steady_ms > (1 + kBelowDisplayTolerance) * 1000 / hz;
+    if (is_below) below.push_back(c.name);
+    std::string display;
+    for (const auto& x : c.displays) display += (display.empty() ? "" : "; ") + x;
+    if (std::isfinite(fps)) {
+      if (fps < min_fps)
+        warnings.push_back(c.name + " (" + c.method + ") rendered at a median " + fixed(fps, 1) + " fps, below " +
+                           fixed(min_fps, 0) + " fps" + (c.p95.empty() ? "" : "; " + percent(slow_share, 0) +
+                           " of its trials were slow") + ".");
+      if (!fastest || fps > fastest->fps()) fastest = &c;
+      if (!slowest || fps < slowest->fps()) slowest = &c;
+    }
+    t.rows.push_back({c.name, c.method, display.empty() ? kDash : display, integer(c.trials), integer(c.frames),
+                      c.hz.empty() ? kDash : fixed(hz, 0) + (known_hz ? "" : " (assumed)"),
+                      fixed(fps, 1) + (is_below ? " (below display)" : ""),
+                      c.steady_frames > 0 ? integer(c.late) + " (" + percent(late_share) + ")" : kDash,
+                      fixed(first, 1), fixed(p95, 1),
+                      c.p95.empty() ? kDash : integer(c.slow) + " (" + percent(slow_share) + ")"});
+    jf.push_back({{"condition", c.name}, {"method", c.method}, {"display", display}, {"trials", c.trials},
+                  {"trials_with_frames", c.rate_ms.size()}, {"frames", c.frames}, {"display_hz", num(hz)},
+                  {"display_hz_known", known_hz}, {"median_fps", num(fps)}, {"median_steady_ms", num(steady_ms)},
+                  {"below_display", is_below}, {"late_frames", c.late},
+                  {"late_share", num(late_share)}, {"median_first_ms", num(first)}, {"median_p95_ms", num(p95)},
+                  {"slow_trials", c.slow}, {"slow_share", num(slow_share)}});
+    csv += csv_line({c.name, c.method, display, std::to_string(c.trials), std::to_string(c.rate_ms.size()),
+                     std::to_string(c.frames), csv_number(hz), csv_number(fps), std::to_string(c.late),
+                     csv_number(late_share), csv_number(first), csv_number(p95), std::to_string(c.slow),
+                     csv_number(slow_share)});
+  }
+  if (fastest && slowest && fastest->fps() > kRateSpread * slowest->fps())
+    warnings.push_back("Median frame rates differ by more than " + fixed(100 * (kRateSpread - 1), 0) +
+                       "% between conditions: " + fastest->name + " " + fixed(fastest->fps(), 1) + " fps, " +
+                       slowest->name + " " + fixed(slowest->fps(), 1) + " fps (" +
+                       fixed(fastest->fps() / slowest->fps(), 1) + " times).");
+
   if (with_frames == 0) {
     s.text("No trial in the database recorded frame times (frame_count = 0 everywhere): the trials were not "
-           "rendered while they ran, as with simulated participants that answer without a display. The audit has "
-           "nothing to check.");
+           "rendered while they ran. The audit has nothing to check.");
   } else {
-    t.notes.push_back("Frames: frames rendered in the condition's trials. ≈ fps = 1000 / median of the trials' mean "
-                      "frame time. Slow trials: p95 frame time above " + fixed(threshold, 1) +
-                      " ms, share of the trials with frame statistics. Display Hz, steady fps, late frames: only "
-                      "trials shown on a display of known refresh rate (dtlab run); steady fps = 1000 / median of "
-                      "the trials' median frame time after the first frame; late frames: steady frames that took "
-                      "more than 1.5 refresh intervals. A condition is \"below\" when its steady frame time "
-                      "exceeds the refresh interval by more than " + fixed(100 * kBelowDisplayTolerance, 0) + "%.");
-    s.add(t);
-    if (!below.empty()) {
-      std::string names;
-      for (const auto& n : below) names += (names.empty() ? "" : ", ") + n;
-      s.text("Warning: rendering fell below the display's refresh rate in " + names +
-             ". Completion times in these conditions may include waiting for frames; compare them with care.");
+    t.notes.push_back("Display: the kind and framebuffer size the session recorded (window: a participant's screen; "
+                      "headless: offscreen, simulated). Median fps: 1000 / the median over trials of each trial's "
+                      "median frame time after its first frame (its mean in databases written before frame timing "
+                      "was split). Late frames: frames after the first that took more than 1.5 display intervals, "
+                      "share of those frames. First frame: median over trials (warm-up, not in the other columns). "
+                      "p95: median over trials of each trial's 95th-percentile frame time (all frames). Slow trials: "
+                      "p95 above " + fixed(threshold, 1) + " ms (--frame-threshold-ms). Below display: on a display of "
+                      "known rate, the median frame took more than " + fixed(100 * kBelowDisplayTolerance, 0) +
+                      "% longer than a refresh interval.");
+    if (!renderers.empty()) {
+      std::string list;
+      for (const auto& r : renderers) list += (list.empty() ? "" : "; ") + ("`" + r + "`");
+      t.notes.push_back("Renderer: " + list + ".");
     }
+    s.add(t);
+    if (g.simulated_frames) s.text(simulated_text(g));
+    if (warnings.empty())
+      s.text("Every condition rendered at a median of at least " + fixed(min_fps, 0) + " fps and the conditions' "
+             "median frame rates are within " + fixed(100 * (kRateSpread - 1), 0) + "% of each other.");
+    else
+      s.add(Callout{"warning", "Render cost may confound completion time", warnings});
   }
-  ctx.json["frames"] = {{"threshold_ms", threshold},
-                        {"trials_with_frames", with_frames},
-                        {"below_display", below},
+  warn_at_top(ctx, warnings);
+  ctx.json["frames"] = {{"threshold_ms", threshold},     {"min_fps", min_fps},
+                        {"rate_spread", kRateSpread},     {"trials_with_frames", with_frames},
+                        {"warnings", warnings},           {"below_display", below},
                         {"conditions", jf}};
   ctx.csv["frames.csv"] = csv;
   ctx.doc.sections.push_back(std::move(s));

@@ -12,6 +12,12 @@
 namespace dtlab::report::detail {
 namespace {
 
+// The source of the published results the protocol compares with; "" when it declares none.
+std::string published_source(const Context& ctx) {
+  const auto& r = ctx.data.protocol.reference_results;
+  return r ? r->source : "";
+}
+
 std::string join(const std::vector<std::string>& v, const std::string& sep) {
   std::string out;
   for (size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
@@ -63,19 +69,20 @@ void section_overview(Context& ctx) {
     s.add(Callout{"warning",
                   all ? "Simulated participants: every participant in this database is simulated."
                       : "Simulated participants: " + std::to_string(ctx.simulated.size()) + " of " +
-                            std::to_string(ctx.subjects.size()) + " participants are simulated.",
+                            dtlab::count(static_cast<long long>(ctx.subjects.size()), "participant") + " are simulated.",
                   {"The database marks them as simulated in their enrollment record (demographics): " +
                        join(ctx.simulated, ", ") + ".",
                    "Their times, answers and ratings come from a model of a participant, not from people: the "
                    "statistics below describe that model. They test the pipeline; they are not evidence about "
-                   "human performance and not a replication of the article."}});
+                   "human performance" + (published_source(ctx).empty() ? std::string(".")
+                                                    : " and not a replication of " + published_source(ctx) + ".")}});
   }
-  s.text(std::to_string(data.participants.size()) + " participants enrolled under protocol `" + p.id + "`; sessions: " +
+  s.text(dtlab::count(static_cast<long long>(data.participants.size()), "participant") + " enrolled under protocol `" + p.id + "`; sessions: " +
          std::to_string(finished) + " finished, " + std::to_string(running) + " still running (incomplete), " +
          std::to_string(abandoned) + " abandoned" + (none ? ", " + std::to_string(none) + " never started" : "") +
          ". " + std::to_string(recorded) + " of " + std::to_string(planned) + " planned trials are recorded; " +
-         std::to_string(ctx.analysed_trials) + " trials from " + std::to_string(ctx.subjects.size()) +
-         " participants are analysed" + (practice ? " (" + std::to_string(practice) + " practice trials excluded)" : "") +
+         dtlab::count(ctx.analysed_trials, "trial") + " from " + dtlab::count(static_cast<long long>(ctx.subjects.size()), "participant") +
+         " are analysed" + (practice ? " (" + dtlab::count(practice, "practice trial") + " excluded)" : "") +
          ".");
   std::string design = "Design: ";
   for (size_t f = 0; f < p.factors.size(); ++f)
@@ -85,20 +92,20 @@ void section_overview(Context& ctx) {
             " order rows). Tasks: ";
   std::vector<std::string> tasks;
   for (const auto& t : d.tasks)
-    tasks.push_back(d.task_label(t) + " in " + t.scenario + ", " + count_of(t.trials, "trial") + " per condition");
+    tasks.push_back(d.task_label(t) + " in " + t.scenario + ", " + dtlab::count(t.trials, "trial") + " per condition");
   s.text(design + join(tasks, "; ") + ". Primary factor of the tables: " + d.factor(d.primary).name + ".");
 
   std::vector<std::string> warnings;
   for (const auto& pr : data.participants) {
     if (pr.session_status == "running" || pr.session_status == "abandoned")
       warnings.push_back(pr.id + ": session " + pr.session_status + " with " + std::to_string(pr.recorded) + " of " +
-                         std::to_string(pr.planned) + " trials recorded; their recorded trials are analysed, and tests "
+                         dtlab::count(pr.planned, "trial") + " recorded; their recorded trials are analysed, and tests "
                          "needing a missing condition leave them out (named under each table).");
     if (pr.session_status.empty()) warnings.push_back(pr.id + ": enrolled, no session started; not analysed.");
     else if (pr.recorded == 0) warnings.push_back(pr.id + ": no trial recorded; not analysed.");
   }
   if (unknown)
-    warnings.push_back(std::to_string(unknown) + " trials carry a factor level the protocol does not declare; left out.");
+    warnings.push_back(dtlab::count(unknown, "trial") + " carry a factor level the protocol does not declare; left out.");
   if (!data.excluded_participants.empty() || data.excluded_trials > 0)
     warnings.push_back(data.with_excluded
                            ? "Excluded data are KEPT in this analysis (--with-excluded): " +
@@ -151,8 +158,8 @@ void section_overview(Context& ctx) {
   Section m{"methods", "Method of analysis", 2, {}};
   m.text("Aggregation. Every test compares conditions within participants. For each participant and condition the "
          "trials are first reduced to one number (the mean of the trials' completion times, of their relative "
-         "errors, or the proportion of correct answers, ...); the tests then treat participants as the units, as "
-         "the article did (its F(1, 15) come from 16 participants). Practice trials are excluded.");
+         "errors, or the proportion of correct answers, ...); the tests then treat participants as the units (with "
+         "n participants, a two-level factor's F has 1 and n − 1 degrees of freedom). Practice trials are excluded.");
   m.text("Repeated-measures ANOVA (analysis/stats, following R's afex::aov_car and car::Anova with type III sums of "
          "squares): F, its df, MSE, p, partial η² with its 90% confidence interval (noncentral F) and generalized "
          "η². For effects with more than 1 df, Mauchly's test and the Greenhouse-Geisser and Huynh-Feldt epsilons "
@@ -171,22 +178,26 @@ void section_overview(Context& ctx) {
          "given) is left out of that test only (listwise deletion, as afex and friedman.test do); every table names "
          "the participants it left out and the cells they lacked. Descriptives in a test's table are over the "
          "participants the test kept.");
-  m.text("p-values are two-sided tail probabilities from Boost.Math, printed in APA style (p = .002, p < .001); "
-         "report.json and the CSV files keep them exact (never rounded to 0, with their log10). The statistics library is validated against NIST StRD certified "
+  m.text("p-values are exact tail probabilities from Boost.Math (the upper tail of F and χ², two-sided for t "
+         "and Wilcoxon), printed in APA style (p = .002, p < .001); report.json and the CSV files keep them exact "
+         "(never rounded to 0, with their log10). The statistics library is validated against NIST StRD certified "
          "values and R (README, \"Statistics\"); the repeated-measures correlation against R's rmcorr.");
   ctx.doc.sections.push_back(std::move(m));
 }
 
 void section_notes(Context& ctx) {
   Section s{"notes", "Notes and files", 2, {}};
-  s.text("No correction for multiple testing is applied across tasks and measures: every task is its own family, "
-         "as in the article. The article's values, where shown, are printed values quoted for comparison; they "
-         "are labelled \"article\" and never enter a computation.");
-  s.text("Files beside this page: `report.md` (the same tables in Markdown), `report.json` (every number of the "
+  s.text("No correction for multiple testing is applied across tasks and measures: every task is its own family.");
+  if (ctx.design.reference)
+    s.text("The values of " + published_source(ctx) + ", where shown, are printed values the protocol declares "
+           "([reference_results]) and quotes for comparison; they are labelled \"" +
+           ctx.data.protocol.reference_results->label + "\" and never enter a computation.");
+  s.text("Files beside this page: `report.md` (the same tables in Markdown), `report.tex` (the same in LaTeX: "
+         "booktabs tables, `pdflatex report.tex`), `report.json` (every number of the "
          "tables, machine-readable), `trials.csv` (the tidy one-row-per-trial table, as `dtlab export` writes "
          "it), `completion_time_means.csv` and `accuracy_means.csv` (the participant x condition values every "
          "test used), `tests.csv` (one row per test), `questionnaire.csv`, `frames.csv`, and `figures/` (each "
-         "figure's SVG, its data and the gnuplot script `report.gp` that draws them)" +
+         "figure's SVG, PNG and PDF, its data and the gnuplot script `report.gp` that draws them)" +
          std::string(ctx.json.contains("path_figures") ? ", and `paths/` (the walked-path figures)" : "") + ".");
   ctx.doc.sections.push_back(std::move(s));
 }

@@ -2,7 +2,7 @@
 // Ratings asked per level of the primary factor: Friedman's test across its
 // levels, per combination of the item's other factors (e.g. per scenario)
 // and overall (a participant's mean over those combinations), with a bar
-// chart like the article's Fig. 10. Other ratings: descriptives. Choices:
+// chart. Other ratings: descriptives. Choices:
 // counts and proportions, and for a two-level factor a sign test among the
 // participants who chose a side. Depth tests: pairs judged correctly.
 // Answer scopes read "factor=level;factor=level" (levels matched without
@@ -12,7 +12,6 @@
 #include <cmath>
 #include <map>
 
-#include "analysis/report/detail/article.h"
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/sections.h"
 
@@ -85,7 +84,7 @@ void section_questionnaire(Context& ctx) {
     return;
   }
   s.text("Each item as the protocol declares it. Ratings of the levels of " + d.factor(d.primary).name +
-         " are compared with Friedman's test (participants as blocks), as in the article; the overall rating of a "
+         " are compared with Friedman's test (participants as blocks); the overall rating of a "
          "level is a participant's mean over the item's other factors. n counts the participants who rated every "
          "level compared.");
   const int pf = d.primary;
@@ -103,7 +102,7 @@ void section_questionnaire(Context& ctx) {
   for (size_t l = 0; l < d.factor(pf).levels.size(); ++l) summary.header.push_back(d.level_label(pf, static_cast<int>(l)));
   summary.header.insert(summary.header.end(), {"n", "χ² (df)", "p", "Kendall's W"});
   const size_t ours = summary.header.size();
-  if (d.reference) summary.header.insert(summary.header.end(), {"Standard", "DynTrans", "p"});
+  for (const auto& h : d.published_header(/*with_f=*/false)) summary.header.push_back(h);
   const size_t width = summary.header.size();
   auto pad = [&](std::vector<std::string> row) {
     row.resize(width, "");
@@ -115,7 +114,9 @@ void section_questionnaire(Context& ctx) {
   others.caption = "Questionnaire: the other items (self-reports, choices, depth test).";
   others.header = {"Item", "Question", "Summary", "n", "Test", "p"};
   others.text_columns = 3;
-  if (d.reference) others.header.push_back("Article (VII.3)");
+  std::vector<std::string> item_ids;
+  for (const auto& item : items) item_ids.push_back(item.id);
+  if (d.reference) others.header.push_back(d.published_group(item_ids));
 
   for (const auto& item : items) {
     const auto subjects = answered_by(ctx.data, item.id);
@@ -165,12 +166,8 @@ void section_questionnaire(Context& ctx) {
                                             : "")
                                  : kDash);
         row.push_back(r.friedman ? bounded(r.friedman->kendall_W) : kDash);
-        if (d.reference && scope == "overall")
-          row.insert(row.end(), {mean_sd(article::kRatingOverall.off_mean, article::kRatingOverall.off_sd, 2),
-                                 mean_sd(article::kRatingOverall.on_mean, article::kRatingOverall.on_sd, 2),
-                                 article::kRatingOverall.p});
-        else if (d.reference)
-          row.insert(row.end(), {"", "", "< .05 (Friedman)"});
+        const auto* a = d.published(item.id, scope);
+        for (const auto& c : d.published_cells(item.id, scope, 2, /*with_f=*/false)) row.push_back(a ? c : "");
         summary.rows.push_back(pad(row));
         for (const auto& note : test_notes(r))
           if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) summary.notes.push_back(item.id + " " + scope + ": " + note);
@@ -211,12 +208,8 @@ void section_questionnaire(Context& ctx) {
                                       std::to_string(ds.n), kDash, kDash};
       ji["descriptives"] = to_json(ds);
       if (depth) ji["proportion_correct"] = num(ds.mean / item.pairs);
-      if (d.reference) {
-        const double am = depth ? article::kDepthTest : article::kDepthSelf;
-        const double asd = depth ? article::kDepthTestSd : article::kDepthSelfSd;
-        row.push_back(mean_sd(am, asd, 2));
-        ji["article"] = {{"mean", am}, {"sd", asd}};
-      }
+      if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
+      if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
       others.rows.push_back(row);
     } else if (item.type == protocol::ItemType::choice) {
       std::vector<std::string> options = item.options;
@@ -265,36 +258,32 @@ void section_questionnaire(Context& ctx) {
                            {"p", num(st.p)}, {"log10_p", num(st.log10_p)}};
         ++ctx.tests;
       }
-      if (d.reference) {
-        row.push_back(factor == pf ? "preference " + mean_sd(article::kPreference, article::kPreferenceSd, 2) : "");
-        if (factor == pf) ji["article"] = {{"proportion", article::kPreference}, {"sd", article::kPreferenceSd}};
-      }
+      if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
+      if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
       others.rows.push_back(row);
     }
     jq[item.id] = ji;
   }
-  if (d.reference) summary.groups = {{"this study", static_cast<int>(ours)}, {"article (VII.3)", 3}};
+  if (d.reference)
+    summary.groups = {{"this study", static_cast<int>(ours)},
+                      {d.published_group(item_ids), static_cast<int>(summary.header.size() - ours)}};
   summary.notes.insert(summary.notes.begin(),
                        "χ², p: Friedman's test across the levels of " + d.factor(pf).name +
                            " (chi-square approximation; exact permutation p in parentheses). Kendall's W: agreement "
                            "of the participants' rankings (0..1).");
-  if (d.reference)
-    summary.notes.push_back("Article: VII.3 (per scenario only \"p < .05\"; its Fig. 10 gives no numbers). Not "
-                            "computed here.");
+  if (d.reference) summary.notes.push_back(d.published_note(item_ids));
   if (!summary.rows.empty()) s.add(summary);
   if (!others.rows.empty()) {
     others.notes.push_back("Choice items: proportion of the participants choosing each option, with the SD of the "
                            "0/1 indicator; the sign test is exact (binomial, p = 1/2) among the participants who "
                            "chose one of two options. Depth test: pairs judged correctly per participant.");
-    if (d.reference)
-      others.notes.push_back("Article: VII.3, mean (SD) as printed; the preference counts a neutral answer as not "
-                             "preferring dynamic transparency (.94 = 15/16). Not computed here.");
+    if (d.reference) others.notes.push_back(d.published_note(item_ids));
     s.add(others);
   }
   if (!fig_rows.empty()) {
     ctx.add_figure(s, bar_plot(ctx, fig_rows, "fig-ratings", "Rating"),
                    "Average subjective rating per " + d.factor(pf).name +
-                       " level (error bars: standard deviation over participants; cf. the article's Fig. 10).");
+                       " level (error bars: standard deviation over participants" + d.published_cf() + ").");
   }
   ctx.json["questionnaire"] = jq;
   ctx.csv["questionnaire.csv"] = csv;

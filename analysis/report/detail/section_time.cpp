@@ -1,14 +1,14 @@
 // Completion time: per task and over all tasks, the participant x condition
-// means, the repeated-measures ANOVA (the article's Table III layout: one row
-// per task, the primary factor's levels as columns, F and p), the full ANOVA
+// means, the repeated-measures ANOVA (one row per task, the primary factor's
+// levels as columns, F and p, published values beside when the protocol
+// declares them), the full ANOVA
 // tables with sphericity, Holm post-hoc tests for factors with more than two
-// levels, a bar chart with SD error bars (the article's Fig. 9) and the
+// levels, a bar chart with SD error bars and the
 // per-participant lines. Overall, a participant's condition mean is the mean
 // of its per-task means (every task weighs the same, as in a balanced design).
 #include <cmath>
 #include <set>
 
-#include "analysis/report/detail/article.h"
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/sections.h"
 
@@ -143,7 +143,7 @@ void section_time(Context& ctx) {
   s.text("Completion time is the time from a trial's start to the participant's answer, in seconds. For each "
          "task, every participant contributes one value per condition: the mean of their trials in that "
          "condition. These participant x condition means enter a repeated-measures ANOVA over participants "
-         "(this is how the article's F(1, 15) arise with 16 participants). Over all tasks, a participant's "
+         "(with n participants and two levels, F has 1 and n − 1 degrees of freedom). Over all tasks, a participant's "
          "condition value is the mean of their per-task means.");
 
   std::vector<std::pair<std::string, const TestReport*>> rows;
@@ -164,18 +164,18 @@ void section_time(Context& ctx) {
   jtests.push_back(to_json(overall, d));
   means_csv += matrix_csv_rows(mo, d, "completion_time_s", "overall");
 
-  // Table III layout.
+  // One row per task and one over all tasks, published values beside (when the protocol declares them).
   Table t3;
   t3.id = "table-time";
   t3.caption = "Average completion time (s) per task: mean (SD) over participants, and the repeated-measures ANOVA "
-               "of " + primary.name + " (the article's Table III layout).";
+               "of " + primary.name + ".";
   t3.header = {"Task"};
   for (size_t l = 0; l < primary.levels.size(); ++l) t3.header.push_back(d.level_label(d.primary, static_cast<int>(l)));
   t3.header.insert(t3.header.end(), {"n", "F", "df", "p", "ηp²"});
   if (two)
     t3.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
   const size_t ours = t3.header.size();
-  if (d.reference) t3.header.insert(t3.header.end(), {"Standard", "DynTrans", "F(1,15)", "p"});
+  for (const auto& h : d.published_header()) t3.header.push_back(h);
   nlohmann::json jrows = nlohmann::json::array();
   for (const auto& [label, r] : rows) {
     const TaskInfo* task = d.task(r->scope);
@@ -187,18 +187,18 @@ void section_time(Context& ctx) {
     if (two) row.push_back(difference_text(*r, 2));
     nlohmann::json jr{{"scope", r->scope}, {"label", row[0]}, {"n", r->kept.size()}};
     if (e) jr["effect"] = to_json(*e);
-    if (const auto* a = d.reference ? article::find(article::kTime, std::size(article::kTime), r->scope) : nullptr) {
-      row.insert(row.end(), {mean_sd(a->off_mean, a->off_sd, 2), mean_sd(a->on_mean, a->on_sd, 2), a->F, a->p});
-      jr["article"] = {{"off_mean", a->off_mean}, {"off_sd", a->off_sd}, {"on_mean", a->on_mean},
-                       {"on_sd", a->on_sd},       {"F", a->F},           {"p", a->p}};
-    }
+    for (const auto& c : d.published_cells("time", r->scope, 2)) row.push_back(c);
+    if (const auto* a = d.published("time", r->scope)) jr["published"] = published_json(*a, d);
     jrows.push_back(jr);
     t3.rows.push_back(std::move(row));
   }
-  if (d.reference) t3.groups = {{"this study", static_cast<int>(ours)}, {"article (Table III, VII.1)", 4}};
+  if (d.reference)
+    t3.groups = {{"this study", static_cast<int>(ours)},
+                 {d.published_group("time"), static_cast<int>(t3.header.size() - ours)}};
   t3.notes.push_back(d.tasks_note() + " n: participants with a value in every condition of the row (others are "
-                     "excluded, listwise). F, df, p: the repeated-measures ANOVA's test of " + primary.name + " (p in APA style; exact "
-                     "values in report.json and tests.csv); ηp²: partial eta squared.");
+                     "excluded, listwise). F, df, p: the repeated-measures ANOVA's test of " + primary.name +
+                     " (p: the upper tail of F, in APA style; exact values in report.json and tests.csv); ηp²: "
+                     "partial eta squared.");
   if (two)
     t3.notes.push_back("Δ: mean paired difference of the participants' means, " + primary.levels[1] + " minus " +
                        primary.levels[0] + ", with its 95% confidence interval (paired t). With two levels, "
@@ -206,9 +206,7 @@ void section_time(Context& ctx) {
   else
     t3.notes.push_back("df and p are Greenhouse-Geisser corrected where ε < 1 (sphericity is not assumed with " +
                        std::to_string(primary.levels.size()) + " levels).");
-  if (d.reference)
-    t3.notes.push_back("Article: the values printed in Elmqvist, Assarsson & Tsigas (2008), Table III and VII.1 "
-                       "(16 participants; p as printed there). They are the article's numbers, not computed here.");
+  if (d.reference) t3.notes.push_back(d.published_note("time"));
   s.add(t3);
 
   // One sentence per row, as a results section would state them.
@@ -230,7 +228,7 @@ void section_time(Context& ctx) {
 
   ctx.add_figure(s, bar_plot(ctx, rows, "fig-time", "Completion time (s)"),
                  "Average completion time per task and over all tasks, by " + primary.name +
-                     " (error bars: standard deviation over participants; cf. the article's Fig. 9).");
+                     " (error bars: standard deviation over participants" + d.published_cf() + ").");
   ctx.add_figure(s, participant_lines(ctx, rows, "fig-time-participants", "Completion time (s)"),
                  "Each participant's mean completion time per level of " + primary.name +
                      " (grey lines, one per participant) and the mean over participants (black).");

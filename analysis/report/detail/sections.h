@@ -120,6 +120,8 @@ std::vector<std::string> test_notes(const TestReport& r);
 void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string& id, const std::string& caption);
 // "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
 std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
+// report.json's record of a published row: source, label, location, mean and sd per level (or one value), F, p.
+nlohmann::json published_json(const protocol::ReferenceResult& r, const Design& d);
 // A CSV line from fields (quoted as the export quotes them).
 std::string csv_line(const std::vector<std::string>& fields);
 // Participant x cell values of a matrix as long CSV rows (measure, scope, participant, levels..., value, trials).

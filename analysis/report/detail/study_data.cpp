@@ -58,6 +58,7 @@ TrialRow to_report_row(const store::TrialRow& t, const protocol::Protocol& p) {
   r.frame_median = t.frames.steady_median_ms;
   r.late_frames = t.frames.late;
   r.refresh_hz = t.frames.refresh_hz;
+  r.frame_first = t.frames.first_ms;
   r.protocol_sha256 = t.protocol_sha256;
   r.excluded = t.excluded;
   return r;
@@ -117,7 +118,11 @@ Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with
   auto sessions = reader.sessions();
   if (!sessions) return sessions.error();
   std::map<std::string, const store::SessionRecord*> session_of;
-  for (const auto& s : *sessions) session_of[s.participant] = &s;
+  std::map<std::int64_t, const store::SessionRecord*> by_id;
+  for (const auto& s : *sessions) {
+    session_of[s.participant] = &s;
+    by_id[s.id] = &s;
+  }
   std::set<std::string> members;
   for (const store::LedgerEntry& e : *ledger) {
     const auto it = session_of.find(e.participant);
@@ -162,7 +167,19 @@ Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with
       ++d.excluded_trials;
       if (!with_excluded) continue;
     }
-    d.trials.push_back(to_report_row(t, d.protocol));
+    TrialRow row = to_report_row(t, d.protocol);
+    // The display the session recorded last at or before the trial started (its first when none).
+    const store::Display* shown = nullptr;
+    if (const auto it = by_id.find(t.session_id); it != by_id.end())
+      for (const auto& disp : it->second->displays)
+        if (!shown || disp.recorded_at <= t.started_at) shown = &disp;
+    if (shown) {
+      row.display_kind = shown->info.kind;
+      row.display_width = shown->info.width;
+      row.display_height = shown->info.height;
+      row.renderer = shown->info.renderer;
+    }
+    d.trials.push_back(std::move(row));
   }
 
   auto answers = reader.questionnaire();

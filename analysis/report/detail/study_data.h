@@ -40,6 +40,10 @@ struct TrialRow {
   std::optional<double> frame_median;       // steady frames (2..n), schema v3; nullopt in older files
   std::optional<std::int64_t> late_frames;  // steady frames later than 1.5 display intervals
   std::optional<double> refresh_hz;         // the display's rate; nullopt: unknown (headless)
+  std::optional<double> frame_first;        // the first frame (warm-up: scene upload, first present), schema v3
+  std::string display_kind;                 // the session's display at the trial: "window", "headless"; "" unknown
+  int display_width = 0, display_height = 0;  // its framebuffer pixels (0 = not recorded)
+  std::string renderer;                     // "GL_VERSION / GL_RENDERER" of that display
   std::string protocol_sha256;
   std::optional<std::string> excluded;  // the reason, when the trial or its participant is excluded (with_excluded)
 };

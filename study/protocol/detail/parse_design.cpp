@@ -289,6 +289,7 @@ void parse_document(const toml::table& root, ParseState& s) {
   parse_order(r, s);
   parse_questionnaire(r, s);
   parse_demographics(r, s);
+  parse_reference_results(r, s);
   r.finish();
 
   if (!p.conditions.empty() && s.scenarios_ok) {

@@ -47,6 +47,8 @@ void parse_questionnaire(TableReader& root, ParseState& s);
 
 // Sections (parse_people.cpp).
 void parse_demographics(TableReader& root, ParseState& s);
+// [reference_results] (parse_reference.cpp); after factors, scenarios and the questionnaire.
+void parse_reference_results(TableReader& root, ParseState& s);
 
 // Index of `name` in `names`, -1 if absent.
 int find_index(const std::vector<std::string>& names, const std::string& name);

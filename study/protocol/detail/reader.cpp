@@ -177,7 +177,11 @@ std::optional<std::string> TableReader::string(std::string_view key, bool requir
 
 std::optional<std::string> TableReader::choice(std::string_view key, bool required,
                                                std::initializer_list<std::string_view> allowed) {
-  std::vector<std::string> names(allowed.begin(), allowed.end());
+  return choice_of(key, required, std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+std::optional<std::string> TableReader::choice_of(std::string_view key, bool required,
+                                                  const std::vector<std::string>& names) {
   const toml::node* n = node(key);
   if (!n) {
     if (required) missing(key, "one of " + quoted_list(names));

@@ -71,6 +71,7 @@ class TableReader {
   std::optional<std::string> string(std::string_view key, bool required, bool non_empty = true);
   std::optional<std::string> choice(std::string_view key, bool required,
                                     std::initializer_list<std::string_view> allowed);
+  std::optional<std::string> choice_of(std::string_view key, bool required, const std::vector<std::string>& allowed);
   std::optional<std::int64_t> integer(std::string_view key, bool required, limits::Ints range);
   std::optional<double> number(std::string_view key, bool required, limits::Numbers range);
   // Array of unique strings, as many as `count` allows, each passing `allowed` (empty = anything non-empty).

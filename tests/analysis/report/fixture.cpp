@@ -82,6 +82,8 @@ void build_study(const std::string& path, const StudySpec& spec) {
     const design::Plan plan = design::make_plan(*proto, e->index, e->order_row);
     auto session = s.begin_session(spec.participants[p], plan);
     if (!session) fail("starting a session", session.error());
+    if (spec.display)
+      if (auto st = s.record_display(*session, *spec.display); !st) fail("recording the display", st.error());
     bool complete = true;
     for (const auto& t : plan.trials) {
       const auto o = spec.trial(p, t);
@@ -97,7 +99,7 @@ void build_study(const std::string& path, const StudySpec& spec) {
       r.completion_s = o->time_s;
       r.started_at = t0 + std::chrono::seconds(100 * t.position);
       r.ended_at = r.started_at + std::chrono::milliseconds(static_cast<long long>(o->time_s * 1000));
-      r.frames = store::frame_stats(o->frame_ms, 60.0);  // shown on a 60 Hz display
+      r.frames = store::frame_stats(o->frame_ms, spec.display ? spec.display->refresh_hz : 60.0);  // default: 60 Hz
       for (size_t f = 0; f < o->frame_ms.size(); ++f) {
         store::CameraPose pose;
         pose.t_s = 0.01 * static_cast<double>(f);

@@ -47,6 +47,7 @@ struct StudySpec {
   std::function<std::optional<Outcome>(size_t p, const design::PlannedTrial& t)> trial;
   std::function<std::vector<store::QuestionnaireAnswer>(size_t p)> questionnaire;  // optional
   bool allow_protocol_change = false;  // the database exists under another design: record this one beside it
+  std::optional<store::DisplayInfo> display;  // recorded for every session; its rate counts late frames (else 60 Hz)
 };
 
 // Writes the study into the database at `path` (new, or of the same design, or any design when

@@ -230,6 +230,25 @@ void build_small_reference(const std::string& path, int n) {
   build_study(path, s);
 }
 
+void build_pilot_simulated(const std::string& path) {
+  StudySpec s;
+  s.protocol_text = source_file("protocols/pilot.toml");
+  for (int i = 1; i <= 4; ++i) s.participants.push_back("P" + std::to_string(i));
+  s.demographics = [](size_t) { return store::Demographics{{"simulated", "true"}}; };
+  s.display = store::DisplayInfo{"headless", 160, 120, std::nullopt,
+                                 "4.5 (Core Profile) Mesa 22.3.6 / llvmpipe (LLVM 15.0.6, 256 bits)", ""};
+  s.trial = [](size_t p, const design::PlannedTrial& t) -> std::optional<Outcome> {
+    Outcome o;
+    const bool off = level(t, "transparency") == "off";
+    o.time_s = 20.0 + t.position + (off ? 5.0 : 0.0);
+    reference_answers(p, t, o);
+    o.frame_ms = off ? std::vector<double>{30, 10, 10} : std::vector<double>{500, 100, 100};
+    return o;
+  };
+  s.questionnaire = reference_questionnaire;
+  build_study(path, s);
+}
+
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;

@@ -41,6 +41,11 @@ void build_small_reference(const std::string& path, int n);
 void build_reference_participants(const std::string& path, const std::vector<std::string>& ids,
                                   const std::string& protocol_text, bool allow_change = false);
 
+// protocols/pilot.toml (no published results), participants P1..P4 marked simulated, shown headless at
+// 160 x 120 by a software renderer (llvmpipe) of unknown rate: off frames {30, 10, 10} ms, on frames
+// {500, 100, 100} ms (a warm-up first frame, then 10 fps); times 20 + position s (+5 s off); answers and
+// questionnaire as the reference study's fixtures.
+void build_pilot_simulated(const std::string& path);
 // Runs write_report into `out` (gnuplot from PATH); fails the test on error.
 nlohmann::json run_report(const std::string& db, const std::string& out, const ReportOptions& options = {});
 

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <map>
 #include <regex>
@@ -71,7 +72,7 @@ TEST_F(ReportOutput, HtmlIsSelfContainedWithTablesAndInlineSvg) {
 }
 
 TEST_F(ReportOutput, HtmlReadsLikeAResultsSection) {
-  for (const char* text : {"Completion time", "Table III layout", "Standard (off)", "DynTrans (on)",
+  for (const char* text : {"Completion time", "Standard (off)", "DynTrans (on)",
                            "T1 (count targets)", "F(1, 7)", "Sphericity holds trivially", "Method of analysis",
                            "listwise deletion", "Speed and accuracy", "Frame-time audit", "Questionnaire",
                            "Position effects", "Simulated participants", "article (Table III, VII.1)",
@@ -91,6 +92,28 @@ TEST_F(ReportOutput, MarkdownHasTheTablesAndLinksTheFigures) {
       EXPECT_TRUE(fs::exists(dir->file("out/" + f))) << f;
     }
   EXPECT_TRUE(fs::exists(dir->file("out/figures/report.gp")));
+}
+
+// report.tex holds the same tables and figures as index.html; with pdflatex on PATH (Debian:
+// texlive-latex-recommended, texlive-fonts-recommended) it must compile, else only its structure is checked.
+TEST_F(ReportOutput, LatexHasEveryTableAndFigureAndCompiles) {
+  const std::string tex = read_text(dir->file("out/report.tex"));
+  EXPECT_EQ(count(tex, "\\begin{table}") + count(tex, "\\begin{longtable}"), count(*html, "<table>"));
+  EXPECT_EQ(count(tex, "\\toprule"), count(tex, "\\bottomrule"));
+  EXPECT_EQ(count(tex, "\\includegraphics"), count(*html, "<svg"));
+  for (const auto& f : summary->files)
+    if (f.size() > 4 && f.compare(f.size() - 4, 4, ".pdf") == 0) {
+      EXPECT_NE(tex.find("{" + f + "}"), std::string::npos) << f;
+      EXPECT_GT(fs::file_size(dir->file("out/" + f)), 0u) << f;
+    }
+  if (std::system("pdflatex --version > /dev/null 2>&1") != 0) {
+    std::cout << "[ NOTE     ] pdflatex is not installed: report.tex checked for structure only\n";
+    return;
+  }
+  const std::string cmd = "cd '" + dir->file("out") + "' && pdflatex -interaction=nonstopmode -halt-on-error "
+                          "report.tex > pdflatex.out 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(dir->file("out/pdflatex.out"));
+  EXPECT_TRUE(fs::exists(dir->file("out/report.pdf")));
 }
 
 // trials.csv is the tidy table of every recorded trial: checked against the fixture's inputs (the
@@ -158,8 +181,63 @@ TEST_F(ReportOutput, FrameAuditCountsSlowTrialsAndFlagsConditionsBelowTheDisplay
     EXPECT_EQ(c.at("below_display"), on);
   }
   EXPECT_EQ(j.at("frames").at("below_display").size(), 2u);  // the two "on" conditions
+  // on: 1000 / 35 = 28.6 fps, below 30; off: 1000 / 11.5 = 87.0 fps, 3.0 times on's: both warned, at the top too.
+  for (const auto& c : j.at("frames").at("conditions"))
+    EXPECT_NEAR(c.at("median_fps").get<double>(),
+                c.at("condition").get<std::string>().rfind("on/", 0) == 0 ? 1000 / 35.0 : 1000 / 11.5, 1e-9);
+  const auto& warnings = j.at("frames").at("warnings");
+  ASSERT_EQ(warnings.size(), 3u);  // two "on" conditions below 30 fps, and the spread
+  EXPECT_NE(warnings[2].get<std::string>().find("differ by more than 25%"), std::string::npos);
   const std::string md = read_text(dir->file("out/report.md"));
-  EXPECT_NE(md.find("Warning: rendering fell below the display's refresh rate in on/"), std::string::npos);
+  const size_t top = md.find("Render cost may confound completion time");
+  ASSERT_NE(top, std::string::npos);
+  EXPECT_LT(top, md.find("## Completion time"));  // in the data section, before any result
+  EXPECT_NE(md.find("rendered at a median 28.6 fps, below 30 fps"), std::string::npos);
+  EXPECT_EQ(md.find("stayed fluid"), std::string::npos);
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// A protocol without [reference_results] (protocols/pilot.toml, simulated): the report compares with no
+// other study, names none, and its frame audit speaks up about 10 fps software frames.
+TEST(ReportOtherProtocol, NamesNoOtherStudyAndWarnsAboutSlowSimulatedFrames) {
+  TempDir dir;
+  build_pilot_simulated(dir.file("s.sqlite"));
+  const auto j = run_report(dir.file("s.sqlite"), dir.file("out"));
+  for (const char* file : {"out/index.html", "out/report.md", "out/report.json", "out/report.tex"}) {
+    std::string text = lower(read_text(dir.file(file)));
+    if (text.rfind("\\documentclass[10pt]{article}", 0) == 0) text.erase(0, text.find('\n'));  // LaTeX's class
+    for (const char* banned : {"article", "elmqvist", "table iii", "dyntrans", "cf. "})
+      EXPECT_EQ(text.find(banned), std::string::npos) << file << ": " << banned;
+  }
+  EXPECT_TRUE(j.at("design").at("published_results").is_null());
+  EXPECT_FALSE(j.at("design").at("reference_design").get<bool>());
+  const std::string md = read_text(dir.file("out/report.md"));
+  EXPECT_EQ(md.find("this study"), std::string::npos);  // no column group beside a published one
+  // Frames: on {500, 100, 100} ms: warm-up 500 ms apart, then 10 fps; off 100 fps: 10 times as fast.
+  for (const auto& c : j.at("frames").at("conditions")) {
+    const bool on = c.at("condition").get<std::string>().rfind("on/", 0) == 0;
+    EXPECT_DOUBLE_EQ(c.at("median_fps").get<double>(), on ? 10.0 : 100.0);
+    EXPECT_DOUBLE_EQ(c.at("median_first_ms").get<double>(), on ? 500.0 : 30.0);
+    EXPECT_EQ(c.at("display"), "headless 160 × 120");
+    EXPECT_FALSE(c.at("display_hz_known").get<bool>());
+    // Late against 60 Hz (25 ms): both steady frames of every on trial, none of off.
+    EXPECT_DOUBLE_EQ(c.at("late_share").get<double>(), on ? 1.0 : 0.0);
+  }
+  const size_t top = md.find("Render cost may confound completion time");
+  ASSERT_NE(top, std::string::npos);
+  EXPECT_LT(top, md.find("## Completion time"));
+  EXPECT_NE(md.find("rendered at a median 10.0 fps, below 30 fps"), std::string::npos);
+  EXPECT_NE(md.find("Median frame rates differ by more than 25% between conditions"), std::string::npos);
+  EXPECT_NE(md.find("rendered offscreen at 160 × 120 pixels, by a software rasterizer"), std::string::npos);
+  EXPECT_EQ(md.find("stayed fluid"), std::string::npos);
+  // Counts agree with their nouns: one trial per condition.
+  EXPECT_NE(md.find("1 trial per condition"), std::string::npos);
+  EXPECT_EQ(md.find("1 trials"), std::string::npos);
+  EXPECT_EQ(md.find("1 participants"), std::string::npos);
 }
 
 TEST(ReportEdge, SingleParticipantGetsDescriptivesAndNoTest) {

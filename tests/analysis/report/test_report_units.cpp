@@ -104,6 +104,41 @@ TEST(InlineSvg, StripsPrologAndMakesIdsUnique) {
   EXPECT_NE(out.find("<g id='fig-key'/><g id='fig-key-2'/>"), std::string::npos);
 }
 
+TEST(Latex, EscapesEverySpecialCharacterAndMapsTheReportsSymbols) {
+  EXPECT_EQ(latex_escape("50% of a_b & c#d $x {y} ~z ^w \\ <a|b>"),
+            "50\\% of a\\_b \\& c\\#d \\$x \\{y\\} \\textasciitilde{}z \\textasciicircum{}w "
+            "\\textbackslash{} \\textless{}a\\textbar{}b\\textgreater{}");
+  EXPECT_EQ(latex_escape("`trials_2.csv` η²p − 1 × 2 — χ²"),
+            "\\texttt{trials\\_2.csv} $\\eta$\\textsuperscript{2}p $-$ 1 $\\times$ 2 --- "
+            "$\\chi$\\textsuperscript{2}");
+}
+
+TEST(Latex, TablesUseBooktabsAndSpanningGroups) {
+  Document doc;
+  doc.title = "Results: A & B";
+  Section s{"time", "Completion time", 2, {}};
+  Table t;
+  t.id = "table-time";
+  t.caption = "Time (s) of 100% of trials";
+  t.groups = {{"this study", 2}, {"article", 1}};
+  t.header = {"Task", "off", "off"};
+  t.rows = {{"T_1", "1.00", "2.00"}};
+  t.notes = {"n = 8"};
+  s.add(t);
+  doc.sections.push_back(s);
+  const std::string tex = render_latex(doc);
+  EXPECT_NE(tex.find("\\usepackage{booktabs}"), std::string::npos);
+  EXPECT_NE(tex.find("\\title{Results: A \\& B}"), std::string::npos);
+  EXPECT_NE(tex.find("\\caption{Time (s) of 100\\% of trials}\\label{table-time}"), std::string::npos);
+  EXPECT_NE(tex.find("\\begin{tabular}{@{}lrr@{}}\n\\toprule\n"), std::string::npos);
+  EXPECT_NE(tex.find("\\multicolumn{2}{c}{this study} & \\multicolumn{1}{c}{article} \\\\\n"
+                     "\\cmidrule(lr){1-2}\\cmidrule(lr){3-3}"),
+            std::string::npos);
+  EXPECT_NE(tex.find("T\\_1 & 1.00 & 2.00 \\\\\n\\bottomrule"), std::string::npos);
+  EXPECT_NE(tex.find("\\tablenotes{n = 8}"), std::string::npos);
+  EXPECT_EQ(tex.rfind("\\end{document}\n"), tex.size() - 15);
+}
+
 TEST(Reducers, AggregatedRelativeErrorIsTheArticles) {
   // |sum truths - sum answers| / sum truths over answered trials: truths 25 30 35, answers 26 30 34 -> 0;
   // a trial without an answer is left out of both sums.
