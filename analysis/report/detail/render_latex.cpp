@@ -47,6 +47,8 @@ constexpr Mapped kUnicode[] = {
     {"“", "``"},               {"”", "''"},               {"‘", "`"},              {"’", "'"},
     {"√", "$\\surd$"},         {"≠", "$\\neq$"},          {"°", "\\textdegree{}"}, {"₁", "$_1$"},
     {"₂", "$_2$"},             {"ᵢ", "$_i$"},             {" ", "~"},             {"½", "\\textonehalf{}"},
+    {"λ", "$\\lambda$"},       {"ρ", "$\\rho$"},          {"τ", "$\\tau$"},        {"δ", "$\\delta$"},
+    {"Σ", "$\\Sigma$"},        {"⁷", "\\textsuperscript{7}"},
 };
 
 // Escapes one character run of plain text.

@@ -31,7 +31,7 @@ void section_planning(Context& ctx) {
   s.text("How many participants would a study of this design need to detect the effects seen here? For every effect "
          "of the repeated-measures ANOVAs above (completion time and accuracy, per task and over all tasks), the "
          "table gives the power of the same test at " + sizes + " participants (α = .05), computed from the effect "
-         "this study observed. An effect with one degree of freedom is a paired comparison: its power is that of "
+         "observed in these data. An effect with one degree of freedom is a paired comparison: its power is that of "
          "the paired t test with the observed standardized difference d_z = √(F / N) (noncentral t). An effect with "
          "more degrees of freedom uses the noncentral F distribution with noncentrality λ = F · df1 · n / N, the "
          "observed Greenhouse-Geisser ε applied to λ and both df (as G*Power does). The last columns give the "
@@ -61,7 +61,7 @@ void section_planning(Context& ctx) {
     t.rows.push_back(std::move(row));
     jeffects.push_back(to_json(e));
   }
-  t.notes.push_back("N: participants of this study in the test. Power: probability that the test (two-sided, α = .05; "
+  t.notes.push_back("N: participants in the test. Power: probability that the test (two-sided, α = .05; "
                     "Greenhouse-Geisser corrected for effects with more than one df) rejects the null hypothesis when "
                     "the true effect equals the observed one. —: no finite F (e.g. no error variance).");
   if (effects.empty()) s.text("No ANOVA effect could be planned.");
