@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "study/render/camera.h"
+#include "study/render/detail/frame_view.h"
 #include "study/render/render.h"
 
 namespace dtlab::render::detail {
@@ -26,6 +27,12 @@ struct LensVolume {
 // The volume of `lens` for `camera` and a width x height view (lens.center in output pixels,
 // origin top-left). `lens` must pass check().
 LensVolume make_lens_volume(const LensSettings& lens, const Camera& camera, int width, int height);
+
+// The window pixels (bottom-left origin) the volume can cover: the bounds of its projected
+// vertices grown by a pixel (a convex volume projects inside the hull of its vertices), or the
+// whole view when the eye is inside it or a vertex lies within half the near distance of the eye's
+// plane (its projection is unbounded there).
+PixelRect lens_footprint(const LensVolume& v, const Camera& camera, int width, int height);
 
 // Whether world point `p` lies strictly inside the closed convex mesh `triangles`.
 bool inside_convex(const std::vector<glm::vec3>& triangles, glm::vec3 p);

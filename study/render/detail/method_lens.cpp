@@ -48,8 +48,11 @@ void draw_lens_depth(const FrameContext& fc, const LensGpu& lens, bool back) {
   glDisable(GL_DEPTH_CLAMP);
 }
 
-// renderScene(NORMAL or LENS_STYLE) restricted to one class by the second depth test.
-void draw_scene_class(const FrameContext& fc, Class c, unsigned back, unsigned front) {
+// renderScene(NORMAL or LENS_STYLE) restricted to one class by the second depth test. Passes 2
+// and 3 change nothing outside the lens's footprint, so there they are scissored to it and skip the
+// objects whose screen rectangles miss it (the paper's section 5: bounding volumes spare the
+// second pass most of the scene).
+void draw_scene_class(const FrameContext& fc, const LensGpu& gpu_lens, Class c, unsigned back, unsigned front) {
   const Program& p = fc.programs.object_lens;
   fc.use_program(p);
   fc.bound.lit = &p;
@@ -78,14 +81,20 @@ void draw_scene_class(const FrameContext& fc, Class c, unsigned back, unsigned f
   glDisable(GL_STENCIL_TEST);
   const bool wire = styled && lens.style == LensStyle::wireframe;
   if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  const PixelRect area = c == Class::behind ? fc.view.viewport() : gpu_lens.footprint;
+  if (c != Class::behind) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(area.x0, area.y0, area.x1 - area.x0, area.y1 - area.y0);
+  }
   const auto& rects = fc.view.rects;
   for (std::uint32_t i = 0; i < rects.size(); ++i) {
-    if (rects[i].empty()) continue;
+    if (rects[i].empty() || !rects[i].overlaps(area)) continue;
     // The eraser: no fragment of a non-target survives inside the lens.
     if (styled && lens.style == LensStyle::eraser && !fc.gpu.objects()[i].target) continue;
     fc.draw_lit(i);
   }
   if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glDisable(GL_SCISSOR_TEST);
   glBindTexture(GL_TEXTURE_2D, 0);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, 0);
@@ -130,10 +139,10 @@ Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& le
         d.color = b.write(b.create("color", {fc.width(), fc.height(), fc.color_format, false}));
         d.depth = b.write(b.create("depth", {fc.width(), fc.height(), TextureFormat::depth24_stencil8, false}));
       },
-      [&fc](const LensScenePassData& d, PassResources& r) {
+      [&fc, &lens](const LensScenePassData& d, PassResources& r) {
         begin_pass(fc, r.framebuffer({d.color}, d.depth));
         clear_to_background(fc);
-        draw_scene_class(fc, Class::behind, r.texture(d.back), r.texture(d.back));
+        draw_scene_class(fc, lens, Class::behind, r.texture(d.back), r.texture(d.back));
       });
   // Passes 2 and 3: inside (lens style), then in front (normal), over what the previous pass left.
   auto scene_pass = [&](const char* name, Class c, Handle color, Handle depth) {
@@ -145,9 +154,10 @@ Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& le
           d.color = b.write(b.read(color));  // drawn over what the previous pass left
           d.depth = b.write(b.read(depth));
         },
-        [&fc, c](const LensScenePassData& d, PassResources& r) {
+        [&fc, &lens, c](const LensScenePassData& d, PassResources& r) {
           begin_pass(fc, r.framebuffer({d.color}, d.depth));
-          draw_scene_class(fc, c, r.texture(d.back), r.texture(d.front));
+          if (lens.footprint.empty()) return;  // the lens is out of view: passes 2 and 3 draw nothing
+          draw_scene_class(fc, lens, c, r.texture(d.back), r.texture(d.front));
         });
     return std::pair{data.color, data.depth};
   };

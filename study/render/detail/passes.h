@@ -104,6 +104,7 @@ struct LensGpu {
   unsigned vao = 0;
   int vertices = 0;
   bool eye_inside = false;  // no entry surface: the front map is 0 over the whole view
+  PixelRect footprint;      // pixels the lens can cover (conservative); passes 2 and 3 change nothing outside
 };
 // Two lens-only depth passes (`lens-back`, `lens-front`: the volume's farthest and nearest
 // surface per pixel) and the paper's three scene passes in its order, each keeping one class of

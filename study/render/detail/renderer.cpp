@@ -213,6 +213,7 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   if (settings.method == Method::lens) {
     const detail::LensVolume volume = detail::make_lens_volume(settings.lens, camera, target.width, target.height);
     lens = impl_->upload_lens(volume);
+    lens.footprint = detail::lens_footprint(volume, camera, target.width, target.height);
     color = detail::add_lens_passes(fg, fc, lens);
   } else if (settings.method == Method::reference) {
     color = detail::add_reference_pass(fg, fc);

@@ -60,7 +60,7 @@ struct Renderer::Impl {
     glBindBuffer(GL_ARRAY_BUFFER, lens_vbo);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.triangles.size() * sizeof(glm::vec3)), v.triangles.data(),
                  GL_STREAM_DRAW);
-    return detail::LensGpu{lens_vao, static_cast<int>(v.triangles.size()), v.eye_inside};
+    return detail::LensGpu{lens_vao, static_cast<int>(v.triangles.size()), v.eye_inside, {}};
   }
 
   void ensure_offscreen(int w, int h, bool fp) {
