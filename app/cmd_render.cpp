@@ -421,7 +421,7 @@ void add_render_command(CLI::App& root) {
                                   "off: the article's algorithm as printed");
   auto* lens_shape_opt = cmd->add_option("--lens-shape", o->lens_shape, "Lens volume: sphere | box | cylinder | cone")
                             ->check(CLI::IsMember({"sphere", "box", "cylinder", "cone"}));
-  auto* lens_style_opt = cmd->add_option("--lens-style", o->lens_style, "What the lens does inside: eraser | wireframe | tint")
+  auto* lens_style_opt = cmd->add_option("--lens-style", o->lens_style, "What the lens does inside: eraser (distractors vanish) | wireframe | tint")
                             ->check(CLI::IsMember({"eraser", "wireframe", "tint"}));
   auto* lens_radius_opt = cmd->add_option("--lens-radius", o->lens_radius, "Lens radius (box: half side), world units");
   auto* lens_distance_opt =
@@ -445,7 +445,7 @@ void add_render_command(CLI::App& root) {
       "image's longer side (or 128). --alpha-target, --alpha-start: at least 0 and below 1.\n"
       "--method lens (Ropinski & Hinrichs 2004, docs/render.md): a convex lens volume centred on the view\n"
       "ray through --lens-at at --lens-distance from the eye; the scene is drawn behind, inside (in the\n"
-      "lens style) and in front of it. eraser removes every non-target inside it, wireframe draws it as\n"
+      "lens style) and in front of it. eraser removes the distractors inside it, wireframe draws it as\n"
       "lines, tint mixes it with orange. Defaults: distance = the orbit distance (abstract) or two cells\n"
       "(walkthrough), radius = a quarter of the view's half-height there, length = 2 x radius.\n"
       "Visible pixels (docs/render.md): pixels where the target's own surface makes up at least 10% of\n"

@@ -90,8 +90,8 @@ float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int w
 enum class LensShape { sphere, box, cylinder, cone };
 std::string_view to_string(LensShape s);  // "sphere", "box", "cylinder", "cone"
 std::optional<LensShape> parse_lens_shape(std::string_view s);
-// What the lens does to the geometry inside it: eraser removes every non-target fragment inside
-// (targets stay, drawn normally); wireframe draws it as lines; tint mixes it with a colour.
+// What the lens does to the geometry inside it: eraser removes every distractor inside (targets and
+// impenetrable surfaces stay, drawn normally); wireframe draws it as lines; tint mixes in a colour.
 enum class LensStyle { eraser, wireframe, tint };
 std::string_view to_string(LensStyle s);  // "eraser", "wireframe", "tint"
 std::optional<LensStyle> parse_lens_style(std::string_view s);

@@ -191,6 +191,16 @@ TEST_F(LensTest, EraserKeepsTargets) {
   EXPECT_EQ(render(s, f).rgba, render(s, settings(Method::standard, true, s)).rgba);
 }
 
+// Nor are impenetrable surfaces (rule R3: a WALKTHROUGH's floor, ceiling, outer walls): an eraser
+// lens around an impenetrable wall leaves the frame as standard draws it.
+TEST_F(LensTest, EraserKeepsImpenetrableSurfaces) {
+  scene::Scene s = wall_scene();
+  s.objects.back().impenetrable = true;  // the wall
+  FrameSettings f = settings(Method::lens, true, s);
+  f.lens = lens(LensShape::sphere, LensStyle::eraser, 8.0f, 2.5f);
+  EXPECT_EQ(render(s, f).rgba, render(s, settings(Method::standard, true, s)).rgba);
+}
+
 // Each style, pixel by pixel, for each shape: outside the footprint = standard; where the wall is
 // inside the lens: eraser = the scene without the wall, tint = wall (1 - s) (weight mode: the
 // tint is black), wireframe = the wall on its edges, the scene without the wall elsewhere.

@@ -9,7 +9,7 @@
 // more than `standard` whatever the lens's shape.
 // Guarantees: outside the lens footprint and wherever the lens holds no
 // geometry the frame equals `standard`'s (same shader maths, same depths);
-// targets are never erased. Never: draws the lens itself into the colour.
+// targets and impenetrable surfaces are never erased. Never: draws the lens itself into the colour.
 #include <glad/gl.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -89,8 +89,11 @@ void draw_scene_class(const FrameContext& fc, const LensGpu& gpu_lens, Class c, 
   const auto& rects = fc.view.rects;
   for (std::uint32_t i = 0; i < rects.size(); ++i) {
     if (rects[i].empty() || !rects[i].overlaps(area)) continue;
-    // The eraser: no fragment of a non-target survives inside the lens.
-    if (styled && lens.style == LensStyle::eraser && !fc.gpu.objects()[i].target) continue;
+    // The eraser: no fragment of a distractor survives inside the lens. Targets stay, and so do
+    // impenetrable surfaces (rule R3 of the reference study: a WALKTHROUGH's floor, ceiling and
+    // outer walls, which no condition makes see-through).
+    const ObjectRecord& o = fc.gpu.objects()[i];
+    if (styled && lens.style == LensStyle::eraser && !o.target && !o.impenetrable) continue;
     fc.draw_lit(i);
   }
   if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
