@@ -6,7 +6,8 @@
 // (a method's time must not depend on what else the process rendered); image
 // error against `reference` over the frame and over the effect region (where
 // some target's exact mask is below 1), and dt-fast against dt-seed there;
-// passes run; the R1 guard both ways; then what accuracy costs: mask
+// passes run; the R1 guard both ways; the lens method (three shapes and
+// styles; no error column: reference is not its yardstick); then what accuracy costs: mask
 // resolution 64/256/full and gradient width sweeps. Table on stdout (or
 // --json), progress on stderr.
 #include <CLI/CLI.hpp>
@@ -132,6 +133,18 @@ std::vector<Config> configurations(const BenchOptions& o, render::Renderer& main
   add("dt-fast R1 guard", render::Method::dt_fast, guard, &main);
   add("dt-seed" + quiet_label, render::Method::dt_seed, base, &quiet);
   add("dt-fast" + quiet_label, render::Method::dt_fast, base, &quiet);
+  // The lens (render::scene_lens: at the view's centre); the paper's claim: the cost does not
+  // depend on the lens's shape (two scene passes more than standard whatever the shape).
+  for (auto [shape, style] : {std::pair{render::LensShape::sphere, render::LensStyle::eraser},
+                              std::pair{render::LensShape::box, render::LensStyle::wireframe},
+                              std::pair{render::LensShape::cone, render::LensStyle::tint}}) {
+    add("lens " + std::string(render::to_string(shape)) + " " + std::string(render::to_string(style)),
+        render::Method::lens, base, &main);
+    render::LensSettings& l = configs.back().settings.lens;
+    l = render::scene_lens(main.scene(), w, h);
+    l.shape = shape;
+    l.style = style;
+  }
   if (!o.sweep) return configs;
   for (int res : {64, 256, 0}) {
     render::DtSettings dt = base;
@@ -166,7 +179,8 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
     c.passes = static_cast<int>(rep.passes_run().size());
     if (!rep.gl_errors.empty()) c.note = "GL error: " + rep.gl_errors.front();
     c.image = c.renderer->read_color();
-    if (c.renderer != &main) continue;
+    if (c.renderer != &main || c.settings.method == render::Method::lens)
+      continue;  // the lens draws another picture: `reference` is no yardstick for it
     const std::pair<float, bool> key{s.dt.gradient_px, s.dt.r1_guard};
     if (!refs.count(key)) {
       s.method = render::Method::reference;
@@ -388,7 +402,8 @@ void add_bench_command(CLI::App& root) {
       "region (pixels where some target's exact mask is below 1); seed: dt-fast against dt-seed with the same\n"
       "settings in the effect region. Defaults: aT 0.3, a0 0.1, gradient 8 pixels of a 128 x 128 mask,\n"
       "outline, passive, R1 guard off (the article as printed). \"nothing occluded\": the same scene with\n"
-      "only the targets nothing hides (transparency on, the effect not called for).");
+      "only the targets nothing hides (transparency on, the effect not called for). lens rows: the lens\n"
+      "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.");
   cmd->callback([o] { run(*o); });
 }
 

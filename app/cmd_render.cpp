@@ -1,6 +1,6 @@
 // `dtlab render (--scene KIND --task T --seed S --method M | --protocol P
 // (--index K | --db FILE --participant ID) --trial N) --out FILE.png
-// [--width W --height H] [--frames K] [--camera ...] [--json]`: renders one
+// [--width W --height H] [--frames K] [--camera ...] [--lens-...] [--json]`: renders one
 // trial scene headless (OSMesa) with one rendering method and writes the PNG;
 // --json prints the passes that ran, the median frame time, per-target
 // visible pixel counts and GL errors. The protocol form renders the trial at
@@ -58,6 +58,9 @@ struct RenderOptions {
   std::string shape = "outline", searchlight, graphviz;
   bool r1_guard = false;
   bool profile = false;
+  // Lens parameters (render.h LensSettings); sizes in world units, unset: from the scene.
+  std::string lens_shape = "sphere", lens_style = "eraser", lens_at;
+  std::optional<float> lens_radius, lens_distance, lens_length;
 };
 
 [[noreturn]] void fail(int code, const std::string& message) {
@@ -173,6 +176,26 @@ render::DtSettings dt_settings(const RenderOptions& o) {
   return dt;
 }
 
+// The lens of the scene form: unset sizes from render::scene_lens.
+render::LensSettings lens_settings(const RenderOptions& o, const scene::Scene& sc) {
+  render::LensSettings l = render::scene_lens(sc, o.width, o.height);
+  l.shape = *render::parse_lens_shape(o.lens_shape);
+  l.style = *render::parse_lens_style(o.lens_style);
+  if (!o.lens_at.empty()) {
+    float x = 0, y = 0;
+    char comma = 0;
+    std::stringstream ss(o.lens_at);
+    if (!(ss >> x >> comma >> y) || comma != ',' || !(ss >> std::ws).eof() || !std::isfinite(x) || !std::isfinite(y))
+      fail(kExitUsage, "--lens-at: expected X,Y in pixels (origin top-left), got '" + o.lens_at + "'");
+    l.center = {x, y};
+  }
+  l.distance = o.lens_distance.value_or(l.distance);
+  l.radius = o.lens_radius.value_or(l.radius);
+  l.length = o.lens_length.value_or(2.0f * l.radius);
+  if (const auto problem = render::check(l)) fail(kExitUsage, "--lens-" + *problem);
+  return l;
+}
+
 // What to render: the scene, the method's settings and the start camera, from either form.
 struct Job {
   scene::Scene scene;
@@ -250,6 +273,7 @@ Job scene_job(const RenderOptions& o) {
   job.scene = std::move(generated.value());
   job.settings.method = *render::parse_method(o.method);
   job.settings.dt = dt_settings(o);
+  if (job.settings.method == render::Method::lens) job.settings.lens = lens_settings(o, job.scene);
   job.method = o.method;
   job.kind = o.kind;
   job.task = o.task;
@@ -357,8 +381,8 @@ void add_render_command(CLI::App& root) {
   auto* task_opt = cmd->add_option("--task", o->task, "Task: T1, T2 (abstract), T3, T4 (walkthrough)")
                        ->check(CLI::IsMember({"T1", "T2", "T3", "T4"}));
   auto* seed_opt = cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)")->check(unsigned_integer());
-  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference")
-                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference"}));
+  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference | lens")
+                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens"}));
   auto* protocol_opt = cmd->add_option("--protocol", o->protocol,
                                        "Protocol file: render a planned trial (with --index K or --db/--participant, "
                                        "and --trial N)");
@@ -395,6 +419,16 @@ void add_render_command(CLI::App& root) {
   auto* guard_opt = cmd->add_flag("--r1-guard", o->r1_guard,
                                   "R1 guard on (docs/render.md): targets never blended below aT, sort errors repaired; "
                                   "off: the article's algorithm as printed");
+  auto* lens_shape_opt = cmd->add_option("--lens-shape", o->lens_shape, "Lens volume: sphere | box | cylinder | cone")
+                            ->check(CLI::IsMember({"sphere", "box", "cylinder", "cone"}));
+  auto* lens_style_opt = cmd->add_option("--lens-style", o->lens_style, "What the lens does inside: eraser (distractors vanish) | wireframe | tint")
+                            ->check(CLI::IsMember({"eraser", "wireframe", "tint"}));
+  auto* lens_radius_opt = cmd->add_option("--lens-radius", o->lens_radius, "Lens radius (box: half side), world units");
+  auto* lens_distance_opt =
+      cmd->add_option("--lens-distance", o->lens_distance, "Eye to lens centre along the ray through --lens-at, world units");
+  auto* lens_length_opt =
+      cmd->add_option("--lens-length", o->lens_length, "Box, cylinder, cone: extent along the ray, world units");
+  auto* lens_at_opt = cmd->add_option("--lens-at", o->lens_at, "Lens centre pixel X,Y (origin top-left; default the view's centre)");
   cmd->add_option("--graphviz", o->graphviz, "Write the last frame's frame graph (dot) to FILE");
   cmd->add_flag("--profile", o->profile, "glFinish after every pass and print per-pass times of the last frame");
   cmd->add_flag("--json", o->json,
@@ -409,6 +443,11 @@ void add_render_command(CLI::App& root) {
       "pitch -90..90, fov 1..170 (degrees); distance (orbit cameras) between the scene's near and far\n"
       "planes; x, y, z (walk cameras) within sight of the scene; each key once. --mask-res: at most the\n"
       "image's longer side (or 128). --alpha-target, --alpha-start: at least 0 and below 1.\n"
+      "--method lens (Ropinski & Hinrichs 2004, docs/render.md): a convex lens volume centred on the view\n"
+      "ray through --lens-at at --lens-distance from the eye; the scene is drawn behind, inside (in the\n"
+      "lens style) and in front of it. eraser removes the distractors inside it, wireframe draws it as\n"
+      "lines, tint mixes it with orange. Defaults: distance = the orbit distance (abstract) or two cells\n"
+      "(walkthrough), radius = a quarter of the view's half-height there, length = 2 x radius.\n"
       "Visible pixels (docs/render.md): pixels where the target's own surface makes up at least 10% of\n"
       "the final colour as the method composited it, counted with the method's own passes (weight\n"
       "frames: the target flat white, everything else black). silhouette_pixels: pixels the target\n"
@@ -418,8 +457,10 @@ void add_render_command(CLI::App& root) {
   const std::vector<CLI::Option*> dt_options{alpha_target_opt, alpha_start_opt, gradient_opt, gradient_px_opt,
                                              mask_res_opt,     shape_opt,       searchlight_opt, layer_limit_opt,
                                              guard_opt};
+  const std::vector<CLI::Option*> lens_options{lens_shape_opt,  lens_style_opt, lens_radius_opt,
+                                               lens_distance_opt, lens_length_opt, lens_at_opt};
   const std::vector<CLI::Option*> protocol_form{protocol_opt, index_opt, db_opt, participant_opt, trial_opt};
-  cmd->callback([o, scene_form, dt_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
+  cmd->callback([o, scene_form, dt_options, lens_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
                  trial_opt] {
     const auto given = [](const std::vector<CLI::Option*>& opts) {
       std::string names;
@@ -428,7 +469,7 @@ void add_render_command(CLI::App& root) {
       return names;
     };
     if (protocol_opt->count() > 0) {
-      if (const std::string bad = given(scene_form) + given(dt_options); !bad.empty())
+      if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options); !bad.empty())
         fail(kExitUsage, "--protocol renders a planned trial: its scene, seed, method and mask parameters come from "
                          "the protocol; drop " + bad);
       if ((index_opt->count() > 0) == (db_opt->count() > 0 || participant_opt->count() > 0) ||
@@ -442,6 +483,8 @@ void add_render_command(CLI::App& root) {
         if (opt->count() == 0)
           fail(kExitUsage, "give --scene KIND --task T --seed S --method M, or --protocol P --index K --trial N "
                            "(missing " + opt->get_name() + ")");
+      if (const std::string bad = given(lens_options); !bad.empty() && o->method != "lens")
+        fail(kExitUsage, bad + " apply to --method lens only");
     }
     run(*o);
   });

@@ -6,6 +6,13 @@
 // mode), u_searchlight limits it to a circle; without, it has no discard, so the
 // driver can test depth before shading (llvmpipe tests late in any shader that
 // may discard, which cost standard frames 25%).
+// Compiled a third time with LENS (the lens method, docs/render.md "lens"): the
+// second depth test of Ropinski & Hinrichs (2004) against the lens's back- and
+// front-face depth maps (texelFetch at the fragment's own window pixel: the
+// maps are aligned with the view), keeping only the fragments of this pass's
+// class: 0 behind the lens (z > back), 1 inside (front <= z <= back), 2 in
+// front (z < front); outside the lens footprint back = 0 and front = 1, so
+// class 0 keeps everything there. u_lens_tint.a > 0 mixes u_lens_tint.rgb in.
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -18,15 +25,38 @@ uniform vec4 u_flat;
 #ifdef SEARCHLIGHT
 uniform vec3 u_searchlight;  // (x, y, radius) window pixels; radius < 0: off (fragments outside are discarded)
 #endif
+#ifdef LENS
+uniform sampler2D u_lens_back;   // depth of the lens's farthest surface (0 where no lens)
+uniform sampler2D u_lens_front;  // depth of its nearest surface (1 where no lens; 0 with the eye inside)
+uniform int u_lens_class;        // 0 behind, 1 inside, 2 in front
+uniform vec4 u_lens_tint;        // rgb mixed in with weight a (a = 0: none)
+#endif
 
 out vec4 frag_color;
+
+#ifdef LENS
+vec4 lens_tinted(vec4 c) {
+  return u_lens_tint.a > 0.0 ? vec4(mix(c.rgb, u_lens_tint.rgb, u_lens_tint.a), c.a) : c;
+}
+#endif
 
 void main() {
 #ifdef SEARCHLIGHT
   if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
 #endif
+#ifdef LENS
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  float z = gl_FragCoord.z;
+  float back = texelFetch(u_lens_back, pixel, 0).r;
+  float front = texelFetch(u_lens_front, pixel, 0).r;
+  bool keep = u_lens_class == 0 ? z > back : (u_lens_class == 2 ? z < front : (z >= front && z <= back));
+  if (!keep) discard;
+#endif
   if (u_flat.a > 0.5) {
     frag_color = vec4(u_flat.rgb, 1.0);
+#ifdef LENS
+    frag_color = lens_tinted(frag_color);
+#endif
     return;
   }
   vec3 to_eye = u_eye - v_world;
@@ -36,4 +66,7 @@ void main() {
   float diffuse = ln > 1e-12 ? abs(dot(v_normal / ln, l)) : 1.0;
   vec3 c = clamp(v_color * u_tint, 0.0, 1.0) * (0.3 + 0.7 * clamp(diffuse, 0.0, 1.0));
   frag_color = vec4(c, 1.0);
+#ifdef LENS
+  frag_color = lens_tinted(frag_color);
+#endif
 }

@@ -108,6 +108,13 @@ std::string design_sha256(const Protocol& p) {
     c.str("rendering.mask_shape", r.mask_shape);
     c.str("rendering.mode", r.mode);
     c.integer("rendering.layer_limit", r.layer_limit);
+    if (r.method == "lens") {  // only then: the design hash of every other protocol stays as it was
+      c.str("rendering.shape", r.shape);
+      c.str("rendering.style", r.style);
+      c.num("rendering.radius", r.radius);
+      c.num("rendering.distance", r.distance);
+      c.num("rendering.length", r.length);
+    }
   }
   for (const QuestionnaireItem& q : p.questionnaire) {
     c.str("item", q.id);

@@ -111,14 +111,21 @@ struct Scenario {
 
 struct Rendering {
   std::string name;                 // the level of the rendering factor it belongs to
-  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference"
+  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference" | "lens"
   double a0 = 0.1;                  // alpha where the mask gradient starts (next to the target)
   double aT = 0.3;                  // alpha of surfaces directly in front of a target
   int gradient_width = 8;           // n: gradient width in mask pixels
   int mask_resolution = 128;        // mask buffer is mask_resolution x mask_resolution
   std::string mask_shape = "outline";  // "outline" | "circle" | "ellipse"
-  std::string mode = "passive";     // "passive" (whole view) | "active" (searchlight)
+  std::string mode = "passive";     // "passive" (whole view) | "active" (searchlight; a lens: follows the
+                                    // cursor) | "fixed" (a lens at the view's centre; the lens's default)
   int layer_limit = 0;              // most surfaces made transparent in front of a target; 0 = no limit
+  // method = "lens" (docs/render.md, "lens"); sizes in world units (the scene's own scale).
+  std::string shape = "sphere";     // "sphere" | "box" | "cylinder" | "cone"
+  std::string style = "eraser";     // "eraser" | "wireframe" | "tint"
+  double radius = 0.0;              // required with lens
+  double distance = 0.0;            // eye to lens centre along the cursor's ray; required with lens
+  double length = 0.0;              // box, cylinder, cone: extent along the ray; 0 = 2 x radius
 };
 
 // --- session, training, questionnaire --------------------------------------------------

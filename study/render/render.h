@@ -1,4 +1,4 @@
-// The dtlab renderer: draws a scene::Scene with one of four methods through
+// The dtlab renderer: draws a scene::Scene with one of five methods through
 // a frame graph (detail/frame_graph.h), into a caller-owned target (a window's
 // default framebuffer or an offscreen framebuffer), in any GL 3.3 core
 // context (the platform layer makes one). Methods (docs/render.md):
@@ -8,7 +8,9 @@
 //              grown by ping-pong border passes);
 //   dt-fast    the same visual model at close to standard's cost (all masks
 //              at once in a reduced-resolution atlas, scissored regions);
-//   reference  exact per-pixel compositing on the CPU (the error yardstick).
+//   reference  exact per-pixel compositing on the CPU (the error yardstick);
+//   lens       Ropinski & Hinrichs's volumetric 3D magic lens (a convex lens volume, a second
+//              depth test against its back- and front-face depth maps, three scene passes).
 // Guarantees: the GL state of the caller is restored after every call that
 // draws; an effect the frame does not call for (transparency off, no target
 // in view, no target occluded) runs no pass. Never: creates a GL context,
@@ -31,10 +33,10 @@
 
 namespace dtlab::render {
 
-enum class Method { standard, dt_seed, dt_fast, reference };
-std::string_view to_string(Method m);                   // "standard", "dt-seed", "dt-fast", "reference"
+enum class Method { standard, dt_seed, dt_fast, reference, lens };
+std::string_view to_string(Method m);                   // "standard", "dt-seed", "dt-fast", "reference", "lens"
 std::optional<Method> parse_method(std::string_view s);  // inverse of to_string; nullopt if unknown
-bool uses_transparency(Method m);                        // every method but standard
+bool uses_transparency(Method m);                        // dynamic transparency: dt-seed, dt-fast, reference
 
 enum class MaskShape { outline, circle, ellipse };
 std::string_view to_string(MaskShape s);
@@ -84,9 +86,42 @@ void validate(const DtSettings& s, int width = 0, int height = 0);
 // view, in output pixels (the protocol's gradient_width is in mask pixels).
 float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int width, int height);
 
+// The lens method (docs/render.md, "lens"): a convex lens volume on the view ray through `center`.
+enum class LensShape { sphere, box, cylinder, cone };
+std::string_view to_string(LensShape s);  // "sphere", "box", "cylinder", "cone"
+std::optional<LensShape> parse_lens_shape(std::string_view s);
+// What the lens does to the geometry inside it: eraser removes every distractor inside (targets and
+// impenetrable surfaces stay, drawn normally); wireframe draws it as lines; tint mixes in a colour.
+enum class LensStyle { eraser, wireframe, tint };
+std::string_view to_string(LensStyle s);  // "eraser", "wireframe", "tint"
+std::optional<LensStyle> parse_lens_style(std::string_view s);
+
+// The lens volume in the camera's frame: its axis is the view ray through `center`; sizes are in
+// world units. sphere: `radius` around the centre; box: a cube of half-side `radius` whose faces
+// are square to the ray (depth `length`); cylinder: `radius`, `length` along the ray; cone: apex
+// just behind the eye, radius `radius` at the centre, closed by a disc `length` / 2 beyond it.
+struct LensSettings {
+  LensShape shape = LensShape::sphere;
+  LensStyle style = LensStyle::eraser;
+  glm::vec2 center{0.0f};    // output pixels, origin top-left (a cursor position)
+  bool follows_cursor = false;  // active mode: a session moves `center` to the cursor every frame
+  float distance = 10.0f;    // eye to the lens centre along the ray, > 0
+  float radius = 2.0f;       // > 0
+  float length = 4.0f;       // box, cylinder, cone: extent along the ray (> 0); sphere: unused
+  glm::vec3 tint{1.0f, 0.55f, 0.1f};  // tint style: the colour mixed in
+  float tint_strength = 0.5f;         // tint style: its weight, [0, 1]
+};
+// nullopt when fine; else what is wrong, naming the member ("radius must be > 0 (got -1)").
+std::optional<std::string> check(const LensSettings& s);
+// A lens sized to `scene` at the centre of a width x height view: distance = the orbit distance
+// (ABSTRACT: centred on the orbit centre) or two floor-plan cells (WALKTHROUGH); radius = a
+// quarter of the view's half-height at that distance; length = 2 x radius.
+LensSettings scene_lens(const scene::Scene& scene, int width, int height);
+
 struct FrameSettings {
   Method method = Method::standard;
   DtSettings dt;
+  LensSettings lens;  // method lens only
   glm::vec3 background{0.80f, 0.82f, 0.86f};  // linear RGB of pixels no object covers
   bool float_color = false;   // RGBA16F colour buffer instead of RGBA8 (tests scan it for NaN)
   bool timed = false;         // glFinish at the end and report frame_ms (benchmarks, --frames)

@@ -128,7 +128,7 @@ Status render_frames(const RecordedTrial& trial, int width, int height, int ever
   if (!frame) return frame.error();
   auto renderer = render::Renderer::create(trial.scene);
   if (!renderer) return renderer.error();
-  // The searchlight of the active mode followed the cursor: the last cursor event before each frame,
+  // The searchlight of the active mode (and an active lens) followed the cursor: the last cursor event before each frame,
   // scaled from the recorded display to this size.
   const double sx = trial.display ? static_cast<double>(width) / trial.display->width : 1.0;
   const double sy = trial.display ? static_cast<double>(height) / trial.display->height : 1.0;
@@ -144,10 +144,10 @@ Status render_frames(const RecordedTrial& trial, int width, int height, int ever
     }
     if (i % std::max(1, every) != 0 && i != n - 1) continue;
     render::FrameSettings s = frame.value();
-    if (s.dt.mode == render::DtMode::active)
-      s.dt.searchlight_center = trial.scene.camera.mode == scene::CameraStart::Mode::walk
-                                    ? glm::vec2(width / 2.0f, height / 2.0f)
-                                    : cursor;
+    const glm::vec2 pointer =
+        trial.scene.camera.mode == scene::CameraStart::Mode::walk ? glm::vec2(width / 2.0f, height / 2.0f) : cursor;
+    if (s.dt.mode == render::DtMode::active) s.dt.searchlight_center = pointer;
+    if (s.method == render::Method::lens && s.lens.follows_cursor) s.lens.center = pointer;
     (*renderer)->render_offscreen(pose_camera(trial.scene, pose, width, height), s, width, height);
     if (Status st = out(written++, i, (*renderer)->read_color()); !st) return st;
   }

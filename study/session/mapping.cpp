@@ -154,6 +154,34 @@ Result<scene::Params> scene_params(const protocol::Protocol& p, const protocol::
   return out;
 }
 
+namespace {
+// The lens of a [rendering.*] table with method = "lens": at the view's centre; in active mode a
+// responder moves it to the cursor (render.h LensSettings::center).
+Result<render::FrameSettings> lens_settings(const protocol::Protocol& p, const protocol::Rendering& r, int width,
+                                            int height, render::FrameSettings f) {
+  const std::string field = "rendering." + r.name;
+  render::LensSettings& l = f.lens;
+  const auto shape = render::parse_lens_shape(r.shape);
+  if (!shape) return bad(p, field + ".shape", "unknown lens shape '" + r.shape + "' (sphere, box, cylinder, cone)");
+  const auto style = render::parse_lens_style(r.style);
+  if (!style) return bad(p, field + ".style", "unknown lens style '" + r.style + "' (eraser, wireframe, tint)");
+  if (r.mode != "active" && r.mode != "fixed")
+    return bad(p, field + ".mode", "a lens is 'active' (follows the cursor) or 'fixed', not '" + r.mode + "'");
+  l.shape = *shape;
+  l.style = *style;
+  l.center = {0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height)};
+  l.follows_cursor = r.mode == "active";
+  l.radius = static_cast<float>(r.radius);
+  l.distance = static_cast<float>(r.distance);
+  l.length = static_cast<float>(r.length > 0.0 ? r.length : 2.0 * r.radius);
+  if (const auto problem = render::check(l)) {
+    const std::string member = problem->substr(0, problem->find(' '));
+    return bad(p, field + "." + member, *problem);
+  }
+  return f;
+}
+}  // namespace
+
 Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const protocol::Rendering& r, int width,
                                              int height) {
   if (width < 1 || height < 1) throw std::invalid_argument("session::frame_settings: viewport must be at least 1x1");
@@ -162,8 +190,9 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
   const auto method = render::parse_method(r.method);
   if (!method)
     return bad(p, field + ".method", "the renderer has no method '" + r.method +
-                                         "' (standard, dt-seed, dt-fast, reference)");
+                                         "' (standard, dt-seed, dt-fast, reference, lens)");
   f.method = *method;
+  if (f.method == render::Method::lens) return lens_settings(p, r, width, height, f);
   const auto shape = render::parse_mask_shape(r.mask_shape);
   if (!shape) return bad(p, field + ".mask_shape", "unknown mask shape '" + r.mask_shape + "' (outline, circle, ellipse)");
   render::DtSettings& dt = f.dt;

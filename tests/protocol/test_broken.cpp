@@ -124,6 +124,21 @@ const Case kCases[] = {
     {"unknown mask shape", {{26, "method = \"dt-seed\"\nmask_shape = \"square\""}}, 27, "rendering.on.mask_shape",
      "unknown value"},
     {"unknown role", {{6, "role = \"render\""}}, 6, "factors.transparency.role", "unknown value"},
+    // the lens method (docs/protocol.md): sizes required, its own modes, its own shapes
+    {"lens without a radius", {{26, "method = \"lens\"\ndistance = 10.0"}}, 25, "rendering.on.radius",
+     "missing required key"},
+    {"lens without a distance", {{26, "method = \"lens\"\nradius = 2.0"}}, 25, "rendering.on.distance",
+     "missing required key"},
+    {"lens radius zero", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 0.0"}}, 28, "rendering.on.radius",
+     "out of range"},
+    {"lens in passive mode", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\nmode = \"passive\""}}, 29,
+     "rendering.on.mode", "\"active\" (follows the cursor) or \"fixed\""},
+    {"fixed mode without a lens", {{26, "method = \"dt-seed\"\nmode = \"fixed\""}}, 27, "rendering.on.mode",
+     "a lens mode"},
+    {"unknown lens shape", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\nshape = \"torus\""}}, 29,
+     "rendering.on.shape", "unknown value"},
+    {"unknown lens style", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\nstyle = \"glass\""}}, 29,
+     "rendering.on.style", "unknown value"},
     {"unknown scenario kind", {{14, "kind = \"maze\""}}, 14, "scenarios.abstract.kind", "unknown value"},
     {"unknown letter", {{16, "type = \"identify-letter\"\nletters = [\"C\", \"Q\"]"}}, 17,
      "scenarios.abstract.tasks.T1.letters[1]", "unknown value \"Q\""},
@@ -363,6 +378,9 @@ const WarningCase kWarnings[] = {
     {"a0 above aT", {{26, "method = \"dt-seed\"\na0 = 0.5\naT = 0.2"}}, 27, "rendering.on.a0", "a0 > aT"},
     {"transparency keys on standard", {{24, "method = \"standard\"\naT = 0.2"}}, 25, "rendering.off.aT",
      "no effect"},
+    {"lens keys on dt-seed", {{26, "method = \"dt-seed\"\nradius = 2.0"}}, 27, "rendering.on.radius", "a lens key"},
+    {"transparency keys on a lens", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\naT = 0.2"}}, 29,
+     "rendering.on.aT", "no effect"},
 };
 
 class Warns : public testing::TestWithParam<WarningCase> {};

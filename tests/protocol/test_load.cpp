@@ -16,6 +16,7 @@ using namespace dtlab::protocol;
 
 const std::string kReference = DTLAB_SOURCE_DIR "/protocols/elmqvist2008.toml";
 const std::string kPilot = DTLAB_SOURCE_DIR "/protocols/pilot.toml";
+const std::string kLens = DTLAB_SOURCE_DIR "/protocols/lens-vs-dt.toml";
 
 std::string read(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -43,7 +44,7 @@ TEST_P(ShippedProtocol, ValidatesWithoutErrorsOrWarnings) {
   EXPECT_EQ(p->sha256.size(), 64u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Protocols, ShippedProtocol, testing::Values(kReference, kPilot));
+INSTANTIATE_TEST_SUITE_P(Protocols, ShippedProtocol, testing::Values(kReference, kPilot, kLens));
 
 TEST(ReferenceProtocol, HasTheDesignOfStudyMd) {
   const auto r = load_protocol(kReference);

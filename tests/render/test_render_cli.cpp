@@ -113,6 +113,29 @@ TEST(RenderCli, DbParticipantTakesTheEnrollmentIndexFromTheLedger) {
   for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(db.string() + suffix);
 }
 
+// The lens method (docs/render.md, "lens"): its passes in the paper's order, and an eraser cone
+// through the ABSTRACT cube uncovers targets standard leaves hidden.
+TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
+  const fs::path out = png_path("lens");
+  auto visible = [&](const std::string& method) {
+    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
+                                   method + " --out '" + out.string() + "' --json");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    long n = 0;
+    for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
+    EXPECT_TRUE(j["gl_errors"].empty());
+    return std::pair{n, j["passes"]};
+  };
+  const auto [standard, standard_passes] = visible("standard");
+  const auto [lens, lens_passes] =
+      visible("lens --lens-shape cone --lens-style eraser --lens-radius 20 --lens-length 100");
+  EXPECT_EQ(lens_passes, nlohmann::json({"lens-back", "lens-front", "lens-behind", "lens-inside", "lens-in-front",
+                                         "present"}));
+  EXPECT_GT(lens, standard);
+  fs::remove(out);
+}
+
 struct BadCase {
   const char* name;
   std::string args;
@@ -164,7 +187,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "--mask-res: must be at most 200"},
         BadCase{"index_without_protocol", "--scene abstract --task T1 --seed 1 --method standard --index 0",
                 "give --protocol"},
-        BadCase{"scene_form_without_method", "--scene abstract --task T1 --seed 1", "missing --method"}),
+        BadCase{"scene_form_without_method", "--scene abstract --task T1 --seed 1", "missing --method"},
+        BadCase{"lens_option_without_lens", kAbstract + " --lens-radius 3", "--method lens only"},
+        BadCase{"lens_radius_zero", "--scene abstract --task T1 --seed 1 --method lens --lens-radius 0",
+                "--lens-radius must be finite and > 0"},
+        BadCase{"lens_at_not_a_pixel", "--scene abstract --task T1 --seed 1 --method lens --lens-at 3",
+                "--lens-at: expected X,Y"},
+        BadCase{"protocol_and_lens", "--protocol " + kReference + " --index 0 --trial 1 --lens-shape box",
+                "drop --lens-shape"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

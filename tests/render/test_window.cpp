@@ -35,10 +35,11 @@ TEST(Window, EveryMethodGivesTheSamePixelsInAWindowAndHeadless) {
   ASSERT_EQ(win.height(), kH);
   const scene::Scene s = scene_with_target_behind_wall();
   const Camera cam = testing::front_camera(kW, kH);
-  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference}) {
+  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens}) {
     SCOPED_TRACE(std::string(to_string(m)));
     FrameSettings settings;
     settings.method = m;
+    settings.lens.center = {kW / 2.0f, kH / 2.0f};
     settings.timed = true;
     // Window: render into the default framebuffer (an imported target).
     win.make_current();
@@ -239,11 +240,12 @@ TEST(Window, RenderingIntoTheWindowRestoresTheCallersGlStateAndIgnoresIt) {
   auto r = Renderer::create(scene_with_target_behind_wall());
   ASSERT_TRUE(r.ok());
   const Camera cam = testing::front_camera(kW, kH);
-  const std::vector<Method> methods{Method::standard, Method::dt_seed, Method::dt_fast, Method::reference};
+  const std::vector<Method> methods{Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens};
   std::vector<Image> clean;
   for (Method m : methods) {
     FrameSettings settings;
     settings.method = m;
+    settings.lens.center = {kW / 2.0f, kH / 2.0f};
     (*r)->render(cam, settings, ImportedTarget{0, kW, kH});
     clean.push_back((*r)->read_color());
   }
@@ -254,6 +256,7 @@ TEST(Window, RenderingIntoTheWindowRestoresTheCallersGlStateAndIgnoresIt) {
     SCOPED_TRACE(std::string(to_string(methods[k])));
     FrameSettings settings;
     settings.method = methods[k];
+    settings.lens.center = {kW / 2.0f, kH / 2.0f};
     const FrameReport rep = (*r)->render(cam, settings, ImportedTarget{0, kW, kH});
     EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
     caller.expect_unchanged("render");

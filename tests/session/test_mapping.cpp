@@ -140,6 +140,39 @@ TEST(Mapping, AMaskFinerThanTheViewIsTheViewsOwnResolution) {
   EXPECT_EQ(frame_settings(p, r, 16, 16)->dt.mask_resolution, 128);
 }
 
+// The lens table of the shipped comparison protocol becomes the renderer's LensSettings key by key;
+// an absent length is twice the radius; fixed mode does not follow the cursor.
+TEST(Mapping, LensRendering) {
+  auto loaded = protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/lens-vs-dt.toml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
+  protocol::Protocol p = std::move(loaded.value());
+  const protocol::Rendering* r = protocol::find_rendering(p, "lens");
+  ASSERT_NE(r, nullptr);
+  auto f = frame_settings(p, *r, 800, 600);
+  ASSERT_TRUE(f.ok()) << f.error().to_string();
+  EXPECT_EQ(f->method, render::Method::lens);
+  EXPECT_EQ(f->lens.shape, render::LensShape::cone);
+  EXPECT_EQ(f->lens.style, render::LensStyle::eraser);
+  EXPECT_FLOAT_EQ(f->lens.radius, 20.0f);
+  EXPECT_FLOAT_EQ(f->lens.distance, 237.6f);
+  EXPECT_FLOAT_EQ(f->lens.length, 100.0f);
+  EXPECT_TRUE(f->lens.follows_cursor);
+  EXPECT_EQ(f->lens.center, glm::vec2(400.0f, 300.0f));
+  protocol::Rendering fixed = *r;
+  fixed.mode = "fixed";
+  fixed.length = 0.0;  // absent
+  fixed.shape = "box";
+  f = frame_settings(p, fixed, 800, 600);
+  ASSERT_TRUE(f.ok());
+  EXPECT_FALSE(f->lens.follows_cursor);
+  EXPECT_EQ(f->lens.shape, render::LensShape::box);
+  EXPECT_FLOAT_EQ(f->lens.length, 40.0f);
+  fixed.style = "glass";
+  f = frame_settings(p, fixed, 800, 600);
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.error().field, "rendering.lens.style");
+}
+
 TEST(Mapping, UnsupportedValuesNameTheField) {
   const protocol::Protocol ref = reference();
   struct Case {

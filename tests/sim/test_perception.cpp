@@ -58,6 +58,9 @@ TEST_F(Perception, VisiblePixelsEqualTheRenderersVisibility) {
       {scene::Kind::abstract, scene::Task::T2, 13, render::Method::dt_seed, 2.0f, 0.7f},
       {scene::Kind::walkthrough, scene::Task::T3, 14, render::Method::standard, 0.0f, 0.0f},
       {scene::Kind::walkthrough, scene::Task::T3, 14, render::Method::dt_seed, 2.4f, 0.0f},
+      // The lens (an eraser cone through the view's centre): seen through like any method.
+      {scene::Kind::abstract, scene::Task::T1, 11, render::Method::lens, 0.0f, 0.0f},
+      {scene::Kind::walkthrough, scene::Task::T3, 14, render::Method::lens, 2.4f, 0.0f},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(scene::kind_name(c.kind)) + " seed " + std::to_string(c.seed) + " " +
@@ -70,7 +73,10 @@ TEST_F(Perception, VisiblePixelsEqualTheRenderersVisibility) {
     start.yaw += c.yaw;
     start.pitch += c.pitch;
     const render::Camera cam = render::camera_from_start(start, static_cast<float>(kW) / kH);
-    const render::FrameSettings fs = settings(c.method);
+    render::FrameSettings fs = settings(c.method);
+    fs.lens = render::scene_lens(sc.value(), kW, kH);
+    fs.lens.shape = render::LensShape::cone;
+    fs.lens.length = 4.0f * fs.lens.radius;
     const auto reference = r.value()->visibility(cam, fs, kW, kH);
 
     std::vector<std::uint32_t> targets;

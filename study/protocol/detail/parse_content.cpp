@@ -210,6 +210,35 @@ void parse_scenarios(TableReader& root, ParseState& s) {
   s.scenarios_ok = match_levels(s, "scenarios", s.scenario_factor, root.pos("scenarios"), names);
 }
 
+namespace {
+
+// The lens keys (method = "lens"): radius and distance required (world units: the scene's own
+// scale), mode active or fixed (default fixed); with another method they are warnings, and mode =
+// "fixed" is an error (a searchlight is passive or active).
+void parse_lens_keys(TableReader& rr, Rendering& r, ParseState& s) {
+  const bool lens = r.method == "lens";
+  if (auto v = rr.choice("shape", false, {"sphere", "box", "cylinder", "cone"})) r.shape = *v;
+  if (auto v = rr.choice("style", false, {"eraser", "wireframe", "tint"})) r.style = *v;
+  if (auto v = rr.number("radius", lens, limits::kLensSize)) r.radius = *v;
+  if (auto v = rr.number("distance", lens, limits::kLensSize)) r.distance = *v;
+  if (auto v = rr.number("length", false, limits::kLensSize)) r.length = *v;
+  if (lens) {
+    if (!rr.has("mode")) r.mode = "fixed";
+    else if (r.mode == "passive")
+      s.d.error(rr.pos("mode"), rr.field("mode"),
+                "a lens is \"active\" (follows the cursor) or \"fixed\" (at the view's centre), not \"passive\"");
+    return;
+  }
+  for (const char* key : {"shape", "style", "radius", "distance", "length"})
+    if (rr.has(key))
+      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"" + r.method + "\" (a lens key)");
+  if (r.mode == "fixed" && rr.has("mode"))
+    s.d.error(rr.pos("mode"), rr.field("mode"),
+              "\"fixed\" is a lens mode (method = \"lens\"); dynamic transparency is \"passive\" or \"active\"");
+}
+
+}  // namespace
+
 void parse_renderings(TableReader& root, ParseState& s) {
   Protocol& p = s.p;
   const int errors_before = s.d.errors();
@@ -227,19 +256,23 @@ void parse_renderings(TableReader& root, ParseState& s) {
     TableReader rr(*n->as_table(), path, s.d, pos_of(*k));
     Rendering r;
     r.name = name;
-    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference"})) r.method = *v;
+    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference", "lens"})) r.method = *v;
     if (auto v = rr.number("a0", false, limits::kAlpha)) r.a0 = *v;
     if (auto v = rr.number("aT", false, limits::kAlpha)) r.aT = *v;
     if (auto v = rr.integer("gradient_width", false, limits::kGradientWidth)) r.gradient_width = static_cast<int>(*v);
     if (auto v = rr.integer("mask_resolution", false, limits::kMaskResolution)) r.mask_resolution = static_cast<int>(*v);
     if (auto v = rr.choice("mask_shape", false, {"outline", "circle", "ellipse"})) r.mask_shape = *v;
-    if (auto v = rr.choice("mode", false, {"passive", "active"})) r.mode = *v;
+    if (auto v = rr.choice("mode", false, {"passive", "active", "fixed"})) r.mode = *v;
     if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
+    parse_lens_keys(rr, r, s);
     rr.finish();
-    if (r.method == "standard") {
-      for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "mode", "layer_limit"})
+    if (r.method == "standard" || r.method == "lens") {
+      for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit"})
         if (rr.has(key))
-          s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"standard\" (no transparency)");
+          s.d.warning(rr.pos(key), rr.field(key),
+                      "has no effect with method = \"" + r.method + "\" (no dynamic transparency)");
+      if (r.method == "standard" && rr.has("mode"))
+        s.d.warning(rr.pos("mode"), rr.field("mode"), "has no effect with method = \"standard\" (no transparency)");
     } else if (r.a0 > r.aT) {
       s.d.warning(rr.pos("a0"), rr.field("a0"),
                   "a0 > aT: the gradient starts more opaque than the surfaces in front of the target "

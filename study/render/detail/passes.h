@@ -98,6 +98,20 @@ bool fast_direct_possible(const FrameContext& fc);
 // reference: per-object layers rendered on the GPU, composited exactly on the CPU.
 Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
 
+// lens (Ropinski & Hinrichs 2004): the lens volume uploaded for this frame (world-space
+// triangles, attribute 0 of `vao`).
+struct LensGpu {
+  unsigned vao = 0;
+  int vertices = 0;
+  bool eye_inside = false;  // no entry surface: the front map is 0 over the whole view
+  PixelRect footprint;      // pixels the lens can cover (conservative); passes 2 and 3 change nothing outside
+};
+// Two lens-only depth passes (`lens-back`, `lens-front`: the volume's farthest and nearest
+// surface per pixel) and the paper's three scene passes in its order, each keeping one class of
+// fragments by the second depth test: `lens-behind` (normal), `lens-inside` (the lens style),
+// `lens-in-front` (normal). Returns the final colour.
+Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& lens);
+
 // Shared GL sequences of the two GPU methods.
 //
 // Stencil layout while the effect is drawn (docs/render.md, "Stencil"):

@@ -100,7 +100,7 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 }
 
 void Programs::destroy() {
-  for (Program* p : {&object, &object_sl, &object_alpha, &object_alpha_sl, &quad_alpha, &border, &shape,
+  for (Program* p : {&object, &object_sl, &object_lens, &object_alpha, &object_alpha_sl, &quad_alpha, &border, &shape,
                      &cheb_rows, &cheb_cols, &fast_apply, &fast_apply_counter}) {
     if (p->id != 0) glDeleteProgram(p->id);
     p->id = 0;
@@ -118,6 +118,7 @@ Result<Programs> compile_programs() {
   const Entry entries[] = {
       {&ps.object, "object.vert", "object.frag", ""},
       {&ps.object_sl, "object.vert", "object.frag", "SEARCHLIGHT"},
+      {&ps.object_lens, "object.vert", "object.frag", "LENS"},
       {&ps.object_alpha, "object.vert", "flat_alpha.frag", ""},
       {&ps.object_alpha_sl, "object.vert", "flat_alpha.frag", "SEARCHLIGHT"},
       {&ps.quad_alpha, "fullscreen.vert", "flat_alpha.frag", "SEARCHLIGHT"},

@@ -27,6 +27,7 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 struct Programs {
   Program object;       // object.vert + object.frag: lit or flat colour
   Program object_sl;    // the same, cut to the searchlight (the R1 guard's repair in active mode)
+  Program object_lens;  // the same with LENS: the lens method's second depth test (discards)
   Program object_alpha; // object.vert + flat_alpha.frag: depth-only, queries, silhouettes
   Program object_alpha_sl;  // the same, cut to the searchlight (or alpha 1 outside it)
   Program quad_alpha;   // fullscreen.vert + flat_alpha.frag (SEARCHLIGHT)

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "study/render/detail/gl_state.h"
+#include "study/render/detail/lens_volume.h"
 #include "study/render/detail/passes.h"
 #include "study/render/detail/renderer_impl.h"
 #include "study/render/render.h"
@@ -22,17 +23,70 @@ std::string_view to_string(Method m) {
     case Method::dt_seed: return "dt-seed";
     case Method::dt_fast: return "dt-fast";
     case Method::reference: return "reference";
+    case Method::lens: return "lens";
   }
   return "?";
 }
 
 std::optional<Method> parse_method(std::string_view s) {
-  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference})
+  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens})
     if (to_string(m) == s) return m;
   return std::nullopt;
 }
 
-bool uses_transparency(Method m) { return m != Method::standard; }
+bool uses_transparency(Method m) { return m == Method::dt_seed || m == Method::dt_fast || m == Method::reference; }
+
+std::string_view to_string(LensShape s) {
+  switch (s) {
+    case LensShape::sphere: return "sphere";
+    case LensShape::box: return "box";
+    case LensShape::cylinder: return "cylinder";
+    case LensShape::cone: return "cone";
+  }
+  return "?";
+}
+
+std::optional<LensShape> parse_lens_shape(std::string_view s) {
+  for (LensShape v : {LensShape::sphere, LensShape::box, LensShape::cylinder, LensShape::cone})
+    if (to_string(v) == s) return v;
+  return std::nullopt;
+}
+
+std::string_view to_string(LensStyle s) {
+  switch (s) {
+    case LensStyle::eraser: return "eraser";
+    case LensStyle::wireframe: return "wireframe";
+    case LensStyle::tint: return "tint";
+  }
+  return "?";
+}
+
+std::optional<LensStyle> parse_lens_style(std::string_view s) {
+  for (LensStyle v : {LensStyle::eraser, LensStyle::wireframe, LensStyle::tint})
+    if (to_string(v) == s) return v;
+  return std::nullopt;
+}
+
+std::optional<std::string> check(const LensSettings& s) {
+  auto positive = [](const char* name, float v) -> std::optional<std::string> {
+    if (v > 0.0f && std::isfinite(v)) return std::nullopt;
+    std::ostringstream o;
+    o << name << " must be finite and > 0 (got " << v << ")";
+    return o.str();
+  };
+  if (auto p = positive("distance", s.distance)) return p;
+  if (auto p = positive("radius", s.radius)) return p;
+  if (auto p = positive("length", s.length)) return p;
+  if (!std::isfinite(s.center.x) || !std::isfinite(s.center.y)) return std::string("center must be finite");
+  if (!(s.tint_strength >= 0.0f && s.tint_strength <= 1.0f)) {
+    std::ostringstream o;
+    o << "tint_strength must be 0..1 (got " << s.tint_strength << ")";
+    return o.str();
+  }
+  if (!(glm::all(glm::greaterThanEqual(s.tint, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(s.tint, glm::vec3(1.0f)))))
+    return std::string("tint must be an RGB colour in 0..1");
+  return std::nullopt;
+}
 
 std::string_view to_string(MaskShape s) {
   switch (s) {
@@ -101,6 +155,17 @@ float gradient_px_from_mask_pixels(float mask_pixels, int mask_resolution, int w
   return mask_pixels * std::sqrt(static_cast<float>(width) * static_cast<float>(height)) / static_cast<float>(mask_resolution);
 }
 
+LensSettings scene_lens(const scene::Scene& sc, int width, int height) {
+  LensSettings l;
+  l.center = {0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height)};
+  const bool orbit = sc.camera.mode == scene::CameraStart::Mode::orbit;
+  const float cell = sc.plan ? sc.plan->cell_size : 4.0f;
+  l.distance = orbit ? sc.camera.distance : 2.0f * cell;
+  l.radius = 0.25f * l.distance * std::tan(0.5f * sc.camera.fov_y);
+  l.length = 2.0f * l.radius;
+  return l;
+}
+
 Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Renderer::~Renderer() = default;
 
@@ -125,6 +190,8 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
     throw std::invalid_argument("Renderer::render: target size must be positive, got " + std::to_string(target.width) +
                                 "x" + std::to_string(target.height));
   validate(settings.dt, target.width, target.height);
+  if (settings.method == Method::lens)
+    if (const auto problem = check(settings.lens)) throw std::invalid_argument("LensSettings." + *problem);
   if (settings.flat_colors.size() > impl_->gpu->objects().size())
     throw std::invalid_argument("Renderer::render: more flat colours than objects");
   using Clock = std::chrono::steady_clock;
@@ -142,7 +209,13 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   Handle occluded;  // "some target is occluded": the effect was called for (none: no query this frame)
   const bool direct = settings.method == Method::dt_fast && targets && impl_->fast_effect_hint &&
                       detail::fast_direct_possible(fc);
-  if (settings.method == Method::reference) {
+  detail::LensGpu lens;
+  if (settings.method == Method::lens) {
+    const detail::LensVolume volume = detail::make_lens_volume(settings.lens, camera, target.width, target.height);
+    lens = impl_->upload_lens(volume);
+    lens.footprint = detail::lens_footprint(volume, camera, target.width, target.height);
+    color = detail::add_lens_passes(fg, fc, lens);
+  } else if (settings.method == Method::reference) {
     color = detail::add_reference_pass(fg, fc);
   } else if (direct) {
     const detail::FastDirect d = detail::add_fast_direct_passes(fg, fc);

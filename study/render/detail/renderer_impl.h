@@ -9,6 +9,8 @@
 #include <string>
 
 #include "study/render/detail/gl_backend.h"
+#include "study/render/detail/lens_volume.h"
+#include "study/render/detail/passes.h"
 #include "study/render/detail/programs.h"
 #include "study/render/detail/scene_gpu.h"
 #include "study/render/detail/sort.h"
@@ -34,10 +36,31 @@ struct Renderer::Impl {
   ImportedTarget last_target;
   bool last_float = false;
 
+  // The lens method's volume, re-uploaded every lens frame (a few hundred triangles).
+  unsigned lens_vao = 0, lens_vbo = 0;
+
   ~Impl() {
+    if (lens_vao != 0) glDeleteVertexArrays(1, &lens_vao);
+    if (lens_vbo != 0) glDeleteBuffers(1, &lens_vbo);
     if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
     if (out_tex != 0) glDeleteTextures(1, &out_tex);
     programs.destroy();
+  }
+
+  // Uploads `v` into the lens buffer (inside the frame's GlStateGuard: binds VAO and array buffer).
+  detail::LensGpu upload_lens(const detail::LensVolume& v) {
+    if (lens_vao == 0) {
+      glGenVertexArrays(1, &lens_vao);
+      glGenBuffers(1, &lens_vbo);
+      glBindVertexArray(lens_vao);
+      glBindBuffer(GL_ARRAY_BUFFER, lens_vbo);
+      glEnableVertexAttribArray(0);
+      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, lens_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.triangles.size() * sizeof(glm::vec3)), v.triangles.data(),
+                 GL_STREAM_DRAW);
+    return detail::LensGpu{lens_vao, static_cast<int>(v.triangles.size()), v.eye_inside, {}};
   }
 
   void ensure_offscreen(int w, int h, bool fp) {
