@@ -131,7 +131,7 @@ void add_demo_command(CLI::App& root) {
       "demo",
       "Run the reference study (Elmqvist, Assarsson & Tsigas 2008; protocols/elmqvist2008.toml, built in) end to end "
       "with simulated participants (16 by default), headless: protocol, database, CSV table and analysis report in "
-      "--out; 16 take about 2 CPU-minutes (about a minute on 2 idle cores). Rerunning resumes and finishes what is "
+      "--out; 16 take about 1.5 CPU-minutes (under a minute on 2 idle cores). Rerunning resumes and finishes what is "
       "missing. The completion times are simulated seconds from the agent model in docs/sim.md, not measurements "
       "of people");
   cmd->footer(
