@@ -56,6 +56,15 @@ PixelRect to_pixels(const glm::vec4& b, int w, int h) {
   return r.intersect({0, 0, w, h});
 }
 
+}  // namespace
+
+PixelRect screen_rect(const std::vector<glm::vec3>& points, const glm::mat4& view_proj, int width, int height) {
+  const Projected p = project(points.size(), [&](std::size_t i) { return points[i]; }, view_proj, width, height);
+  return p.unbounded ? PixelRect{0, 0, width, height} : to_pixels(p.bounds, width, height);
+}
+
+namespace {
+
 // Greedy colouring: each target the smallest code no earlier target with an overlapping
 // rectangle has. A target fragment can only be hidden, at a pixel, by an object whose rectangle
 // holds that pixel; so equal codes never meet. 0 when all 255 codes are taken around it.

@@ -37,6 +37,11 @@ struct PixelRect {
   bool operator==(const PixelRect&) const = default;
 };
 
+// The conservative window rectangle of `points` seen through `view_proj` (one pixel of margin,
+// clipped to the viewport; empty when they project outside it); the whole viewport when a point
+// lies behind the near plane, where the projection is unbounded. The rule object rectangles use.
+PixelRect screen_rect(const std::vector<glm::vec3>& points, const glm::mat4& view_proj, int width, int height);
+
 // The texel grid of the masks (docs/render.md, "Mask"), the same for dt-seed and dt-fast: R x R
 // texels over the whole view (the article's 128 x 128: texels of W/R x H/R pixels), or one
 // texel per pixel for R = 0; the gradient is `layers` texels wide (Algorithm 2's n).

@@ -88,24 +88,8 @@ bool inside_convex(const std::vector<glm::vec3>& t, glm::vec3 p) {
 }
 
 PixelRect lens_footprint(const LensVolume& v, const Camera& camera, int width, int height) {
-  const PixelRect all{0, 0, width, height};
-  if (v.eye_inside || v.triangles.empty()) return all;
-  const glm::mat4 vp = camera.proj * camera.view;
-  float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  for (const glm::vec3& p : v.triangles) {
-    const glm::vec4 c = vp * glm::vec4(p, 1.0f);
-    if (!(c.w > 0.5f * camera.near_plane)) return all;
-    const float x = (c.x / c.w * 0.5f + 0.5f) * static_cast<float>(width);
-    const float y = (c.y / c.w * 0.5f + 0.5f) * static_cast<float>(height);
-    x0 = std::min(x0, x);
-    y0 = std::min(y0, y);
-    x1 = std::max(x1, x);
-    y1 = std::max(y1, y);
-  }
-  const auto clamp = [](float f, int hi) { return static_cast<int>(std::clamp(f, -1.0f, static_cast<float>(hi) + 1.0f)); };
-  return PixelRect{clamp(std::floor(x0), width) - 1, clamp(std::floor(y0), height) - 1, clamp(std::ceil(x1), width) + 1,
-                   clamp(std::ceil(y1), height) + 1}
-      .intersect(all);
+  if (v.eye_inside || v.triangles.empty()) return PixelRect{0, 0, width, height};
+  return screen_rect(v.triangles, camera.proj * camera.view, width, height);
 }
 
 LensVolume make_lens_volume(const LensSettings& lens, const Camera& camera, int width, int height) {

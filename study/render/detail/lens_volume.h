@@ -30,8 +30,8 @@ LensVolume make_lens_volume(const LensSettings& lens, const Camera& camera, int 
 
 // The window pixels (bottom-left origin) the volume can cover: the bounds of its projected
 // vertices grown by a pixel (a convex volume projects inside the hull of its vertices), or the
-// whole view when the eye is inside it or a vertex lies within half the near distance of the eye's
-// plane (its projection is unbounded there).
+// whole view when the eye is inside it or a vertex lies behind the near plane (screen_rect, the
+// rule object rectangles use).
 PixelRect lens_footprint(const LensVolume& v, const Camera& camera, int width, int height);
 
 // Whether world point `p` lies strictly inside the closed convex mesh `triangles`.
