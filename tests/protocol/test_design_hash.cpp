@@ -95,6 +95,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Edit{"mask_shape", "mask_shape = \"outline\"", "mask_shape = \"circle\""},
                       Edit{"mode", "mode = \"passive\"", "mode = \"active\""},
                       Edit{"layer_limit", "layer_limit = 0", "layer_limit = 2"},
+                      Edit{"searchlight_radius", "layer_limit = 0", "layer_limit = 0\nsearchlight_radius = 0.3"},
                       Edit{"scale", "scale = [0, 4]", "scale = [1, 5]"},
                       Edit{"per", "per = [\"scenario\", \"transparency\"]", "per = [\"scenario\"]"},
                       Edit{"id", "id = \"pilot\"", "id = \"pilot2\""}),

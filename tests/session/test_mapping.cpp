@@ -122,6 +122,24 @@ TEST(Mapping, ReferenceRenderings) {
   }
 }
 
+// The active searchlight covers the same share of the view on every screen: searchlight_radius x
+// the view's height (0.2 x 600 = 120, the article's screen; 0.2 x 1024 = 204.8), centred.
+TEST(Mapping, TheSearchlightScalesWithTheView) {
+  protocol::Protocol p = reference();
+  protocol::Rendering on = p.renderings[1];
+  on.mode = "active";
+  auto f = frame_settings(p, on, 800, 600);
+  ASSERT_TRUE(f.ok()) << f.error().to_string();
+  EXPECT_EQ(f->dt.mode, render::DtMode::active);
+  EXPECT_FLOAT_EQ(f->dt.searchlight_radius, 120.0f);
+  EXPECT_FLOAT_EQ(f->dt.searchlight_center.x, 400.0f);
+  auto big = frame_settings(p, on, 1280, 1024);
+  ASSERT_TRUE(big.ok());
+  EXPECT_FLOAT_EQ(big->dt.searchlight_radius, 204.8f);
+  on.searchlight_radius = 0.5;
+  EXPECT_FLOAT_EQ(frame_settings(p, on, 1280, 1024)->dt.searchlight_radius, 512.0f);
+}
+
 // Values a stage cannot take: each an Error naming the protocol field.
 // A mask finer than the view can show is drawn at the view's full resolution (the same picture at
 // less cost; regression: a 4096 mask at 800 x 600 ran at 4096 x 4096 and took minutes a frame under

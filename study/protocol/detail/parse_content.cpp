@@ -264,6 +264,7 @@ void parse_renderings(TableReader& root, ParseState& s) {
     if (auto v = rr.choice("mask_shape", false, {"outline", "circle", "ellipse"})) r.mask_shape = *v;
     if (auto v = rr.choice("mode", false, {"passive", "active", "fixed"})) r.mode = *v;
     if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
+    if (auto v = rr.number("searchlight_radius", false, limits::kSearchlightRadius)) r.searchlight_radius = *v;
     parse_lens_keys(rr, r, s);
     rr.finish();
     if (r.method == "standard" || r.method == "lens") {
@@ -273,6 +274,10 @@ void parse_renderings(TableReader& root, ParseState& s) {
                       "has no effect with method = \"" + r.method + "\" (no dynamic transparency)");
       if (r.method == "standard" && rr.has("mode"))
         s.d.warning(rr.pos("mode"), rr.field("mode"), "has no effect with method = \"standard\" (no transparency)");
+    }
+    if (rr.has("searchlight_radius") && (r.mode != "active" || r.method == "standard" || r.method == "lens")) {
+      s.d.warning(rr.pos("searchlight_radius"), rr.field("searchlight_radius"),
+                  "has no effect without a searchlight (dynamic transparency with mode = \"active\")");
     } else if (r.a0 > r.aT) {
       s.d.warning(rr.pos("a0"), rr.field("a0"),
                   "a0 > aT: the gradient starts more opaque than the surfaces in front of the target "
