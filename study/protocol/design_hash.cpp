@@ -108,6 +108,7 @@ std::string design_sha256(const Protocol& p) {
     c.str("rendering.mask_shape", r.mask_shape);
     c.str("rendering.mode", r.mode);
     c.integer("rendering.layer_limit", r.layer_limit);
+    if (r.occlusion_culling) c.str("rendering.occlusion_culling", "true");  // unset: the hash stays as it was
     if (r.method == "lens") {  // only then: the design hash of every other protocol stays as it was
       c.str("rendering.shape", r.shape);
       c.str("rendering.style", r.style);

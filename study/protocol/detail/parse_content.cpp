@@ -265,6 +265,7 @@ void parse_renderings(TableReader& root, ParseState& s) {
     if (auto v = rr.choice("mode", false, {"passive", "active", "fixed"})) r.mode = *v;
     if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
     parse_lens_keys(rr, r, s);
+    if (auto v = rr.boolean("occlusion_culling", false)) r.occlusion_culling = *v;
     rr.finish();
     if (r.method == "standard" || r.method == "lens") {
       for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit"})
