@@ -167,12 +167,12 @@ TEST(MinimumOccluderSet, SelectionPicksWallsWithinTheLimit) {
 
 constexpr int kW = 160, kH = 120;
 
-// The views of a seed: every third pose of the route, every doorway on it, the longest sightline.
+// The views of a seed: every fourth pose of the route, every doorway on it, the longest sightline.
 std::vector<scene::Pose> views(const scene::Scene& s) {
   const auto route = scene::walkthrough_route(s);
   std::vector<scene::Pose> out;
   for (std::size_t i = 0; i < route.size(); ++i)
-    if (i % 3 == 0 || route[i].doorway) out.push_back(route[i]);
+    if (i % 4 == 0 || route[i].doorway) out.push_back(route[i]);
   out.push_back(scene::longest_sightline(s));
   return out;
 }

@@ -159,30 +159,40 @@ Image project_box(const ObjectRecord& o, const RayView& v) {
 
 }  // namespace
 
-IdSet select_occluders(const std::vector<ObjectRecord>& objects, const std::vector<std::uint32_t>& candidates,
-                       glm::vec3 eye, glm::vec3 forward, const MosParams& p) {
-  RayView view{eye, glm::normalize(forward), {}, {}, p.resolution};
-  view.right = glm::normalize(glm::cross(view.forward, glm::vec3(0.0f, 1.0f, 0.0f)));
-  view.up = glm::cross(view.right, view.forward);
-  const int R = p.resolution;
-  // Per pixel, every candidate the ray enters, nearest first (local ids = candidate positions).
-  std::vector<std::vector<std::pair<float, std::uint32_t>>> hits(static_cast<std::size_t>(R * R));
-  std::vector<double> cost(candidates.size(), 1.0);
+namespace {
+
+// Per pixel of a view, every candidate its ray enters, nearest first (local ids = positions in
+// `candidates`), and each candidate's cost: 1 plus its projected share of the view.
+struct RayHits {
+  std::vector<std::vector<std::pair<float, std::uint32_t>>> pixels;
+  std::vector<double> cost;
+};
+RayHits cast_rays(const std::vector<ObjectRecord>& objects, const std::vector<std::uint32_t>& candidates,
+                  const RayView& view) {
+  const int R = view.res;
+  RayHits out{std::vector<std::vector<std::pair<float, std::uint32_t>>>(static_cast<std::size_t>(R * R)),
+              std::vector<double>(candidates.size(), 1.0)};
   for (int y = 0; y < R; ++y)
     for (int x = 0; x < R; ++x) {
-      auto& h = hits[static_cast<std::size_t>(y * R + x)];
+      auto& h = out.pixels[static_cast<std::size_t>(y * R + x)];
       const glm::vec3 d = view.dir(x, y);
       for (std::uint32_t c = 0; c < candidates.size(); ++c) {
         const ObjectRecord& o = objects[candidates[c]];
-        const float t = entry(eye, d, o.world_min, o.world_max);
+        const float t = entry(view.eye, d, o.world_min, o.world_max);
         if (t > 0.0f) {
           h.emplace_back(t, c);
-          cost[c] += 1.0 / static_cast<double>(R * R);  // projected size: its share of the view
+          out.cost[c] += 1.0 / static_cast<double>(R * R);
         }
       }
       std::sort(h.begin(), h.end());
     }
-  // Occluder stacks and MOSs per occludee, grouped (identical sets add their gains).
+  return out;
+}
+
+// 3.2.1-3.2.2: per occludee, its occluder stacks, combination table and cheapest MOSs; identical
+// sets of different occludees grouped (their gains add).
+std::map<IdSet, int> occluder_sets(const std::vector<ObjectRecord>& objects, const std::vector<std::uint32_t>& candidates,
+                                   const RayView& view, const RayHits& hits, const MosParams& p) {
   std::vector<bool> is_candidate(objects.size(), false);
   for (auto c : candidates) is_candidate[c] = true;
   std::map<IdSet, int> gain;
@@ -195,16 +205,21 @@ IdSet select_occluders(const std::vector<ObjectRecord>& objects, const std::vect
     for (int y = im.y0; y < im.y1; ++y)
       for (int x = im.x0; x < im.x1; ++x) {
         IdSet s;
-        for (const auto& [t, c] : hits[static_cast<std::size_t>(y * R + x)]) {
+        for (const auto& [t, c] : hits.pixels[static_cast<std::size_t>(y * view.res + x)]) {
           if (t >= im.near) break;
           s.push_back(c);
         }
         std::sort(s.begin(), s.end());
         stacks.push_back(std::move(s));
       }
-    for (const IdSet& m : minimum_occluder_sets(combination_table(stacks), cost, p.keep)) ++gain[m];
+    for (const IdSet& m : minimum_occluder_sets(combination_table(stacks), hits.cost, p.keep)) ++gain[m];
   }
-  // Score: gain (plus the gains of its subsets: occluder fusion) over cost, best first.
+  return gain;
+}
+
+// 3.2.3: score = (gain + gains of its subsets) / cost; sets in score order overlaid in the ID
+// buffer (first chosen occluder per ray) until `limit` occluders are visible in it.
+IdSet select_by_score(const std::map<IdSet, int>& gain, const RayHits& hits, std::size_t candidates, int limit) {
   struct Scored {
     double score;
     IdSet set;
@@ -214,30 +229,41 @@ IdSet select_occluders(const std::vector<ObjectRecord>& objects, const std::vect
     double total = g, c = 0.0;
     for (const auto& [other, og] : gain)
       if (other.size() < set.size() && std::includes(set.begin(), set.end(), other.begin(), other.end())) total += og;
-    for (auto id : set) c += cost[id];
+    for (auto id : set) c += hits.cost[id];
     scored.push_back({total / c, set});
   }
   std::stable_sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.score > b.score; });
-  // Selection: overlay each set's ID rendering; only IDs visible in the buffer stay.
   IdSet selected;
   for (const Scored& s : scored) {
-    if (static_cast<int>(selected.size()) >= p.limit) break;
+    if (static_cast<int>(selected.size()) >= limit) break;
     IdSet with;
     std::set_union(selected.begin(), selected.end(), s.set.begin(), s.set.end(), std::back_inserter(with));
-    if (static_cast<int>(with.size()) > p.limit) continue;
-    std::vector<bool> seen(candidates.size(), false);
-    for (const auto& h : hits)
+    if (static_cast<int>(with.size()) > limit) continue;
+    std::vector<bool> seen(candidates, false);
+    for (const auto& h : hits.pixels)
       for (const auto& [t, c] : h)
         if (std::binary_search(with.begin(), with.end(), c)) {
           seen[c] = true;
           break;
         }
     selected.clear();
-    for (std::uint32_t c = 0; c < candidates.size(); ++c)
+    for (std::uint32_t c = 0; c < candidates; ++c)
       if (seen[c]) selected.push_back(c);
   }
+  return selected;
+}
+
+}  // namespace
+
+IdSet select_occluders(const std::vector<ObjectRecord>& objects, const std::vector<std::uint32_t>& candidates,
+                       glm::vec3 eye, glm::vec3 forward, const MosParams& p) {
+  RayView view{eye, glm::normalize(forward), {}, {}, p.resolution};
+  view.right = glm::normalize(glm::cross(view.forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+  view.up = glm::cross(view.right, view.forward);
+  const RayHits hits = cast_rays(objects, candidates, view);
+  const IdSet local = select_by_score(occluder_sets(objects, candidates, view, hits, p), hits, candidates.size(), p.limit);
   IdSet out;
-  for (auto c : selected) out.push_back(candidates[c]);
+  for (auto c : local) out.push_back(candidates[c]);
   return out;
 }
 

@@ -58,21 +58,7 @@ void OcclusionCuller::ensure_targets(int width, int height) {
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, map_tex_, 0);
 }
 
-Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& fc, const PixelRect& lens_footprint) {
-  CullingReport report;
-  if (!scene_.plan) return report;
-  report.ran = true;
-  if (!database_) {
-    const auto t = Clock::now();
-    database_ = std::make_unique<OccluderDatabase>(build_occluder_database(scene_, objects_));
-    report.preprocess_ms = ms_since(t);
-  }
-  if (reduce_.id == 0) {
-    auto p = link_program("fullscreen.vert", "depth_reduce.frag");
-    if (!p) return p.error();
-    reduce_ = std::move(p.value());
-  }
-  const auto t0 = Clock::now();
+std::vector<float> OcclusionCuller::occluder_map(const FrameView& view, const FrameContext& fc, CullingReport& report) {
   const int W = view.width, H = view.height;
   ensure_targets(W, H);
   // Step 2: the grid point's occluders in view, depth only, no lighting.
@@ -100,8 +86,7 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   glViewport(0, 0, map_w_, map_h_);
   glDisable(GL_DEPTH_TEST);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glUseProgram(reduce_.id);
-  fc.bound.program = reduce_.id;
+  fc.use_program(reduce_);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, depth_tex_);
   glUniform1i(reduce_.loc("u_depth"), 0);
@@ -111,7 +96,7 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   glUniform1f(reduce_.loc("u_z"), 0.0f);
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
   std::vector<float> depth(static_cast<std::size_t>(map_w_) * map_h_);
-  const auto t1 = Clock::now();
+  const auto t = Clock::now();
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glPixelStorei(GL_PACK_ROW_LENGTH, 0);
@@ -120,29 +105,58 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   glBindFramebuffer(GL_READ_FRAMEBUFFER, map_fbo_);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glReadPixels(0, 0, map_w_, map_h_, GL_RED, GL_FLOAT, depth.data());
-  report.readback_ms = ms_since(t1);
-  // Step 3: the maps. Pixels a transparency method or the lens may change are holes.
-  std::vector<PixelRect> holes;
-  const bool transparency = uses_transparency(fc.settings.method);
-  if (transparency) {
-    // Active mode: masks act only inside the searchlight circle (its pixel box bounds them).
+  report.readback_ms = ms_since(t);
+  return depth;
+}
+
+namespace {
+
+// Pixels a transparency method or the lens may change: each target's mask support (in active
+// mode cut to the searchlight circle's box, where masks act), or the lens footprint.
+std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRect& lens_footprint) {
+  std::vector<PixelRect> out;
+  if (uses_transparency(method)) {
     const glm::vec3 sl = view.searchlight;
     const PixelRect circle = sl.z >= 0.0f ? PixelRect{static_cast<int>(std::floor(sl.x - sl.z)) - 1,
                                                       static_cast<int>(std::floor(sl.y - sl.z)) - 1,
                                                       static_cast<int>(std::ceil(sl.x + sl.z)) + 2,
                                                       static_cast<int>(std::ceil(sl.y + sl.z)) + 2}
                                           : view.viewport();
-    for (const TargetView& t : view.targets) holes.push_back(t.support.intersect(circle));
+    for (const TargetView& t : view.targets) out.push_back(t.support.intersect(circle));
   }
-  if (fc.settings.method == Method::lens) holes.push_back(lens_footprint);
-  const OcclusionMap map = make_occlusion_map(std::move(depth), map_w_, map_h_, block_, holes);
+  if (method == Method::lens) out.push_back(lens_footprint);
+  return out;
+}
+
+}  // namespace
+
+Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& fc, const PixelRect& lens_footprint) {
+  CullingReport report;
+  if (!scene_.plan) return report;
+  report.ran = true;
+  if (!database_) {
+    const auto t = Clock::now();
+    database_ = std::make_unique<OccluderDatabase>(build_occluder_database(scene_, objects_));
+    report.preprocess_ms = ms_since(t);
+  }
+  if (reduce_.id == 0) {
+    auto p = link_program("fullscreen.vert", "depth_reduce.frag");
+    if (!p) return p.error();
+    reduce_ = std::move(p.value());
+  }
+  const auto t0 = Clock::now();
+  // Steps 2-3: the occluders' map, the opacity and sparse depth maps.
+  const OcclusionMap map = make_occlusion_map(occluder_map(view, fc, report), map_w_, map_h_, block_,
+                                              holes(view, fc.settings.method, lens_footprint));
   // Step 4: the hierarchy; targets stay under a transparency method (a mask may reveal them).
+  const bool transparency = uses_transparency(fc.settings.method);
   std::vector<bool> keep(objects_.size(), false);
   for (std::uint32_t i = 0; i < objects_.size(); ++i) keep[i] = view.rects[i].empty() || (transparency && objects_[i].target);
   std::vector<bool> culled;
-  const CullCounts counts = cull_hierarchy(hierarchy_, objects_, map, view.view_proj, W, H, keep, culled);
+  const CullCounts counts = cull_hierarchy(hierarchy_, objects_, map, view.view_proj, view.width, view.height, keep, culled);
   report.nodes_tested = counts.nodes_tested;
   report.nodes_culled = counts.nodes_culled;
+  // Step 5: culled objects leave the frame's lists.
   for (std::uint32_t i = 0; i < objects_.size(); ++i) {
     if (view.rects[i].empty()) continue;
     ++report.objects_in_view;

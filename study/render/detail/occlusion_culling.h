@@ -34,6 +34,8 @@ class OcclusionCuller {
 
  private:
   void ensure_targets(int width, int height);
+  // Steps 2-3 on the GPU: the occluders' depth, reduced to the map's texels, read back.
+  std::vector<float> occluder_map(const FrameView& view, const FrameContext& fc, CullingReport& report);
   const scene::Scene& scene_;
   const std::vector<ObjectRecord>& objects_;
   Hierarchy hierarchy_;
