@@ -145,6 +145,16 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
     reduce_ = std::move(p.value());
   }
   const auto t0 = Clock::now();
+  for (std::uint32_t i = 0; i < objects_.size(); ++i)
+    if (!view.rects[i].empty()) {
+      ++report.objects_in_view;
+      report.triangles_in_view += objects_[i].index_count / 3;
+    }
+  const auto& occluders = database_->nearest(view.camera.eye);
+  if (std::none_of(occluders.begin(), occluders.end(), [&](std::uint32_t i) { return !view.rects[i].empty(); })) {
+    report.ms = ms_since(t0);  // no occluder in view: nothing can be hidden, no GPU work
+    return report;
+  }
   // Steps 2-3: the occluders' map, the opacity and sparse depth maps.
   const OcclusionMap map = make_occlusion_map(occluder_map(view, fc, report), map_w_, map_h_, block_,
                                               holes(view, fc.settings.method, lens_footprint));
@@ -158,10 +168,7 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   report.nodes_culled = counts.nodes_culled;
   // Step 5: culled objects leave the frame's lists.
   for (std::uint32_t i = 0; i < objects_.size(); ++i) {
-    if (view.rects[i].empty()) continue;
-    ++report.objects_in_view;
-    report.triangles_in_view += objects_[i].index_count / 3;
-    if (!culled[i]) continue;
+    if (view.rects[i].empty() || !culled[i]) continue;
     ++report.objects_culled;
     report.triangles_culled += objects_[i].index_count / 3;
     view.rects[i] = {};
