@@ -229,6 +229,24 @@ INSTANTIATE_TEST_SUITE_P(Methods, CullingIsInvisible,
                                            Case{Method::dt_fast, "dt_fast_passive", false, false}),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// Regression: the map was sized after it was read on a renderer's first culled frame (argument
+// evaluation order), so the first frame culled nothing. The start view of seed 1 faces a wall.
+TEST(OcclusionCulling, FirstFrameCullsLikeTheNext) {
+  testing::headless_context();
+  const auto s = walkthrough(1);
+  auto r = Renderer::create(s);
+  ASSERT_TRUE(r.ok());
+  FrameSettings f;
+  f.occlusion_culling = true;
+  const Camera cam = camera_from_start(s.camera, static_cast<float>(kW) / kH);
+  const auto first = r.value()->render_offscreen(cam, f, kW, kH).culling;
+  const auto second = r.value()->render_offscreen(cam, f, kW, kH).culling;
+  EXPECT_GT(first.preprocess_ms, 0.0);
+  EXPECT_EQ(second.preprocess_ms, 0.0);  // built once per renderer
+  EXPECT_GT(first.objects_culled, 0);
+  EXPECT_EQ(first.objects_culled, second.objects_culled);
+}
+
 TEST(OcclusionCulling, HolesOnlyRemoveCoverage) {
   testing::headless_context();
   const auto s = walkthrough(2);

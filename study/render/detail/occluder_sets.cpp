@@ -172,11 +172,24 @@ RayHits cast_rays(const std::vector<ObjectRecord>& objects, const std::vector<st
   const int R = view.res;
   RayHits out{std::vector<std::vector<std::pair<float, std::uint32_t>>>(static_cast<std::size_t>(R * R)),
               std::vector<double>(candidates.size(), 1.0)};
+  // Only candidates the view's pyramid can see: no ray enters a box wholly outside one of its planes.
+  std::vector<std::uint32_t> seen;
+  for (std::uint32_t c = 0; c < candidates.size(); ++c) {
+    const ObjectRecord& o = objects[candidates[c]];
+    int outside = 0x1f;
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec3 r = glm::vec3((k & 1) ? o.world_max.x : o.world_min.x, (k & 2) ? o.world_max.y : o.world_min.y,
+                                    (k & 4) ? o.world_max.z : o.world_min.z) - view.eye;
+      const float z = glm::dot(r, view.forward), u = glm::dot(r, view.right), v = glm::dot(r, view.up);
+      outside &= (z <= kNear ? 1 : 0) | (u > z ? 2 : 0) | (-u > z ? 4 : 0) | (v > z ? 8 : 0) | (-v > z ? 16 : 0);
+    }
+    if (outside == 0) seen.push_back(c);
+  }
   for (int y = 0; y < R; ++y)
     for (int x = 0; x < R; ++x) {
       auto& h = out.pixels[static_cast<std::size_t>(y * R + x)];
       const glm::vec3 d = view.dir(x, y);
-      for (std::uint32_t c = 0; c < candidates.size(); ++c) {
+      for (std::uint32_t c : seen) {
         const ObjectRecord& o = objects[candidates[c]];
         const float t = entry(view.eye, d, o.world_min, o.world_max);
         if (t > 0.0f) {

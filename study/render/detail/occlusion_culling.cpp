@@ -156,8 +156,10 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
     return report;
   }
   // Steps 2-3: the occluders' map, the opacity and sparse depth maps.
-  const OcclusionMap map = make_occlusion_map(occluder_map(view, fc, report), map_w_, map_h_, block_,
-                                              holes(view, fc.settings.method, lens_footprint));
+  // (occluder_map sizes the map: call it before reading map_w_, map_h_, block_.)
+  std::vector<float> depth = occluder_map(view, fc, report);
+  const OcclusionMap map =
+      make_occlusion_map(std::move(depth), map_w_, map_h_, block_, holes(view, fc.settings.method, lens_footprint));
   // Step 4: the hierarchy; targets stay under a transparency method (a mask may reveal them).
   const bool transparency = uses_transparency(fc.settings.method);
   std::vector<bool> keep(objects_.size(), false);
