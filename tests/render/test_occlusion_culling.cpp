@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "study/render/detail/occluder_sets.h"
@@ -177,6 +178,19 @@ std::vector<scene::Pose> views(const scene::Scene& s) {
   return out;
 }
 
+Camera pose_camera(const scene::Scene& s, const scene::Pose& p) {
+  return walk_camera(p.position, p.yaw, 0.0f, s.camera.fov_y, static_cast<float>(kW) / kH, s.camera.near_plane,
+                     s.camera.far_plane);
+}
+
+// A renderer of `s` in the test's headless context.
+std::unique_ptr<Renderer> renderer_of(const scene::Scene& s) {
+  testing::headless_context();
+  auto r = Renderer::create(s);
+  EXPECT_TRUE(r.ok());
+  return r.ok() ? std::move(r.value()) : nullptr;
+}
+
 struct Case {
   Method method;
   const char* name;
@@ -187,13 +201,12 @@ struct Case {
 class CullingIsInvisible : public ::testing::TestWithParam<Case> {};
 
 TEST_P(CullingIsInvisible, SameImageOnAndOff) {
-  testing::headless_context();
   long culled = 0, doorways = 0;
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     const auto s = walkthrough(seed);
-    auto r = Renderer::create(s);
-    ASSERT_TRUE(r.ok());
-    Renderer& renderer = *r.value();
+    auto r = renderer_of(s);
+    ASSERT_TRUE(r);
+    Renderer& renderer = *r;
     FrameSettings f;
     f.method = GetParam().method;
     f.lens = scene_lens(s, kW, kH);
@@ -204,8 +217,7 @@ TEST_P(CullingIsInvisible, SameImageOnAndOff) {
     }
     for (const scene::Pose& p : views(s)) {
       doorways += p.doorway ? 1 : 0;
-      const Camera cam = walk_camera(p.position, p.yaw, 0.0f, s.camera.fov_y, static_cast<float>(kW) / kH,
-                                     s.camera.near_plane, s.camera.far_plane);
+      const Camera cam = pose_camera(s, p);
       f.occlusion_culling = false;
       renderer.render_offscreen(cam, f, kW, kH);
       const Image off = renderer.read_color();
@@ -219,7 +231,9 @@ TEST_P(CullingIsInvisible, SameImageOnAndOff) {
     }
   }
   EXPECT_GT(doorways, 0);
-  if (GetParam().expect_culling) EXPECT_GT(culled, 0) << "culling removed nothing: the test proves nothing";
+  if (GetParam().expect_culling) {
+    EXPECT_GT(culled, 0) << "culling removed nothing: the test proves nothing";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, CullingIsInvisible,
@@ -232,15 +246,14 @@ INSTANTIATE_TEST_SUITE_P(Methods, CullingIsInvisible,
 // Regression: the map was sized after it was read on a renderer's first culled frame (argument
 // evaluation order), so the first frame culled nothing. The start view of seed 1 faces a wall.
 TEST(OcclusionCulling, FirstFrameCullsLikeTheNext) {
-  testing::headless_context();
   const auto s = walkthrough(1);
-  auto r = Renderer::create(s);
-  ASSERT_TRUE(r.ok());
+  auto r = renderer_of(s);
+  ASSERT_TRUE(r);
   FrameSettings f;
   f.occlusion_culling = true;
   const Camera cam = camera_from_start(s.camera, static_cast<float>(kW) / kH);
-  const auto first = r.value()->render_offscreen(cam, f, kW, kH).culling;
-  const auto second = r.value()->render_offscreen(cam, f, kW, kH).culling;
+  const auto first = r->render_offscreen(cam, f, kW, kH).culling;
+  const auto second = r->render_offscreen(cam, f, kW, kH).culling;
   EXPECT_GT(first.preprocess_ms, 0.0);
   EXPECT_EQ(second.preprocess_ms, 0.0);  // built once per renderer
   EXPECT_GT(first.objects_culled, 0);
@@ -248,20 +261,18 @@ TEST(OcclusionCulling, FirstFrameCullsLikeTheNext) {
 }
 
 TEST(OcclusionCulling, HolesOnlyRemoveCoverage) {
-  testing::headless_context();
   const auto s = walkthrough(2);
-  auto r = Renderer::create(s);
-  ASSERT_TRUE(r.ok());
+  auto r = renderer_of(s);
+  ASSERT_TRUE(r);
   FrameSettings f;
   f.occlusion_culling = true;
   long views_with_culling = 0;
   for (const scene::Pose& p : views(s)) {
-    const Camera cam = walk_camera(p.position, p.yaw, 0.0f, s.camera.fov_y, static_cast<float>(kW) / kH,
-                                   s.camera.near_plane, s.camera.far_plane);
+    const Camera cam = pose_camera(s, p);
     f.method = Method::standard;
-    const auto std_rep = r.value()->render_offscreen(cam, f, kW, kH).culling;
+    const auto std_rep = r->render_offscreen(cam, f, kW, kH).culling;
     f.method = Method::dt_fast;
-    const auto dt_rep = r.value()->render_offscreen(cam, f, kW, kH).culling;
+    const auto dt_rep = r->render_offscreen(cam, f, kW, kH).culling;
     EXPECT_LE(dt_rep.objects_culled, std_rep.objects_culled);  // holes only remove coverage
     views_with_culling += std_rep.objects_culled > 0 ? 1 : 0;
   }
