@@ -267,6 +267,29 @@ TEST(OcclusionCulling, ReferenceSameImageAtTheStartViews) {
   EXPECT_GT(culled, 0);
 }
 
+// Visible-pixel counts (weight frames with flat colours, what the simulated participant sees)
+// are the same with culling on: the weight frames are pictures too.
+TEST(OcclusionCulling, VisibilityCountsUnchanged) {
+  const auto s = walkthrough(1);
+  auto r = renderer_of(s);
+  ASSERT_TRUE(r);
+  const auto route = scene::walkthrough_route(s);
+  for (Method m : {Method::standard, Method::dt_fast}) {
+    for (std::size_t i = 0; i < route.size(); i += 5) {
+      FrameSettings f;
+      f.method = m;
+      const auto off = r->visibility(pose_camera(s, route[i]), f, kW, kH);
+      f.occlusion_culling = true;
+      const auto on = r->visibility(pose_camera(s, route[i]), f, kW, kH);
+      ASSERT_EQ(on.size(), off.size());
+      for (std::size_t k = 0; k < on.size(); ++k) {
+        EXPECT_EQ(on[k].visible_pixels, off[k].visible_pixels) << to_string(m) << " pose " << i << " target " << k;
+        EXPECT_EQ(on[k].silhouette_pixels, off[k].silhouette_pixels);
+      }
+    }
+  }
+}
+
 // Regression: the map was sized after it was read on a renderer's first culled frame (argument
 // evaluation order), so the first frame culled nothing. The start view of seed 1 faces a wall.
 TEST(OcclusionCulling, FirstFrameCullsLikeTheNext) {
