@@ -26,12 +26,13 @@ namespace {
 using detail::IdSet;
 constexpr std::uint32_t A = 0, B = 1, C = 2, D = 3;
 
-// Figure 4: pixels covered by A only, C only, A and B, C and D, B and D. Picking A and C (the
-// one-ID slots) leaves the slot BD: the MOSs are ABC and ACD; ABCD is not minimal (Figure 3).
-const std::vector<IdSet> kFigure4 = {{A, B}, {C}, {B, D}, {A}, {C, D}, {A}, {B, D}};
+// Figure 4 as the text describes it (its pixel counts are not in the text): a first column of
+// one-ID slots, A and C; a second column of two-ID slots whose third is BD. Picking A and C leaves
+// only BD: the MOSs are ABC and ACD; ABCD is not minimal (Figure 3, right).
+const std::vector<IdSet> kFigure4 = {{A, B}, {C}, {B, D}, {A}, {A, C}, {A}, {B, D}};
 
 TEST(MinimumOccluderSet, CombinationTableSortsSlotsBySize) {
-  const std::vector<IdSet> expected = {{A}, {C}, {A, B}, {B, D}, {C, D}};
+  const std::vector<IdSet> expected = {{A}, {C}, {A, B}, {A, C}, {B, D}};
   EXPECT_EQ(detail::combination_table(kFigure4), expected);
 }
 
