@@ -128,6 +128,7 @@ struct Rendering {
   double radius = 0.0;              // required with lens
   double distance = 0.0;            // eye to lens centre along the cursor's ray; required with lens
   double length = 0.0;              // box, cylinder, cone: extent along the ray; 0 = 2 x radius
+  bool occlusion_culling = false;   // Poon's occlusion culling in WALKTHROUGH scenes (the picture is unchanged)
 };
 
 // --- session, training, questionnaire --------------------------------------------------

@@ -192,6 +192,7 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
     return bad(p, field + ".method", "the renderer has no method '" + r.method +
                                          "' (standard, dt-seed, dt-fast, reference, lens)");
   f.method = *method;
+  f.occlusion_culling = r.occlusion_culling;
   if (f.method == render::Method::lens) return lens_settings(p, r, width, height, f);
   const auto shape = render::parse_mask_shape(r.mask_shape);
   if (!shape) return bad(p, field + ".mask_shape", "unknown mask shape '" + r.mask_shape + "' (outline, circle, ellipse)");

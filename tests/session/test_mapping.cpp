@@ -3,6 +3,9 @@
 // stage cannot take is an Error naming the protocol field.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 
@@ -189,6 +192,33 @@ TEST(Mapping, LensRendering) {
   f = frame_settings(p, fixed, 800, 600);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.error().field, "rendering.lens.style");
+}
+
+// occlusion_culling = true in a [rendering.*] table turns the renderer's flag on, for a lens too;
+// absent, it stays off (the default).
+TEST(Mapping, OcclusionCullingKey) {
+  std::string text;
+  {
+    std::ifstream in(std::string(DTLAB_SOURCE_DIR) + "/protocols/lens-vs-dt.toml");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+  }
+  auto plain = protocol::load_protocol_text(text, "lens-vs-dt.toml");
+  ASSERT_TRUE(plain.ok()) << plain.error().to_string();
+  for (const auto& r : plain->renderings) EXPECT_FALSE(frame_settings(*plain, r, 800, 600)->occlusion_culling);
+  const auto at = text.find("method = \"lens\"");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "occlusion_culling = true\n");
+  auto loaded = protocol::load_protocol_text(text, "lens-vs-dt.toml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
+  const protocol::Rendering* r = protocol::find_rendering(*loaded, "lens");
+  ASSERT_NE(r, nullptr);
+  EXPECT_TRUE(r->occlusion_culling);
+  auto f = frame_settings(*loaded, *r, 800, 600);
+  ASSERT_TRUE(f.ok());
+  EXPECT_TRUE(f->occlusion_culling);
+  EXPECT_EQ(f->method, render::Method::lens);
 }
 
 TEST(Mapping, UnsupportedValuesNameTheField) {

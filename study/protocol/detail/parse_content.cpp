@@ -266,6 +266,7 @@ void parse_renderings(TableReader& root, ParseState& s) {
     if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
     if (auto v = rr.number("searchlight_radius", false, limits::kSearchlightRadius)) r.searchlight_radius = *v;
     parse_lens_keys(rr, r, s);
+    if (auto v = rr.boolean("occlusion_culling", false)) r.occlusion_culling = *v;
     rr.finish();
     if (r.method == "standard" || r.method == "lens") {
       for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit"})
