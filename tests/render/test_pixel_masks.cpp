@@ -175,7 +175,13 @@ TEST(PixelMasks, RandomDataNeighbourhoodCompensationBeatsWhiteNoise) {
                 "tabular + neighbourhood worst %.2f mean %.3f\n",
                 side, noise.worst, noise.mean, plain.worst, plain.mean, comp.worst, comp.mean);
     EXPECT_LT(comp.mean, noise.mean);
+    EXPECT_LT(comp.mean, plain.mean);
     EXPECT_LT(comp.worst, noise.worst);
+    EXPECT_LT(comp.worst, plain.worst);
+    // The thesis: "only 1 to 2 faulty pixels". Measured here (100 trials): 1.80 at 16 x 16, 3.46
+    // at 32 x 32 (white noise 11.1 and 20.9; tabular without the compensation 8.7 and 86.3).
+    EXPECT_LE(comp.worst, side == 16 ? 2.0 : 4.0);
+    EXPECT_GT(noise.worst, 5.0);
   }
 }
 
