@@ -7,7 +7,8 @@
 // error against `reference` over the frame and over the effect region (where
 // some target's exact mask is below 1), and dt-fast against dt-seed there;
 // passes run; the R1 guard both ways; the lens method (three shapes and
-// styles; no error column: reference is not its yardstick); then what accuracy costs: mask
+// styles; no error column: reference is not its yardstick); screen-door at 8 x 8, 16 x 16 and
+// 32 x 32 masks (errors against reference); then what accuracy costs: mask
 // resolution 64/256/full and gradient width sweeps. Table on stdout (or
 // --json), progress on stderr.
 #include <CLI/CLI.hpp>
@@ -144,6 +145,12 @@ std::vector<Config> configurations(const BenchOptions& o, render::Renderer& main
     l = render::scene_lens(main.scene(), w, h);
     l.shape = shape;
     l.style = style;
+  }
+  // Screen-door (Poon 2000) at each mask side: dt-seed's picture by sub-pixel masks, so its error
+  // columns are against `reference` as for the dt rows (the accuracy-versus-time table).
+  for (int side : {8, 16, 32}) {
+    add("screen-door " + std::to_string(side) + "x" + std::to_string(side), render::Method::screen_door, base, &main);
+    configs.back().settings.screen_door.mask_side = side;
   }
   if (!o.sweep) return configs;
   for (int res : {64, 256, 0}) {
@@ -403,7 +410,8 @@ void add_bench_command(CLI::App& root) {
       "settings in the effect region. Defaults: aT 0.3, a0 0.1, gradient 8 pixels of a 128 x 128 mask,\n"
       "outline, passive, R1 guard off (the article as printed). \"nothing occluded\": the same scene with\n"
       "only the targets nothing hides (transparency on, the effect not called for). lens rows: the lens\n"
-      "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.");
+      "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.\n"
+      "screen-door rows: Poon's (2000) sub-pixel screen door (tabular masks) at mask sides 8, 16, 32.");
   cmd->callback([o] { run(*o); });
 }
 
