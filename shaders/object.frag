@@ -16,9 +16,10 @@
 // Compiled a fourth time with SCREEN_DOOR (the screen-door method, docs/render.md
 // "screen-door"): drawn on a buffer enlarged s times, each output pixel an s x s
 // block of sub-pixels; sub-pixel (i, j) of pixel p is bit j s + i of the object's
-// mask at p, u_sd_words 32-bit words per pixel in u_sd_masks from texel
-// u_sd_origin (x: p.x words + word, y: p.y); a fragment whose bit is 0 is
-// discarded. u_sd_origin.x < 0: no mask (alpha 1 over the whole chunk).
+// mask at p, u_sd_words 32-bit words per pixel in u_sd_masks, the block of the
+// pixels u_sd_block from texel u_sd_origin (x: q.x words + word, y: q.y, q = p -
+// block corner); a fragment whose bit is 0 is discarded. u_sd_origin.x < 0: no
+// mask (alpha 1 over the whole chunk).
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -36,6 +37,7 @@ uniform usampler2D u_sd_masks;
 uniform int u_sd_side;     // s
 uniform int u_sd_words;    // words per pixel: s s / 32
 uniform ivec2 u_sd_origin; // this object's block in u_sd_masks; x < 0: none
+uniform ivec4 u_sd_block;  // the chunk pixels the block holds: x0, y0, x1, y1 (outside: no mask)
 #endif
 #ifdef LENS
 uniform sampler2D u_lens_back;   // depth of the lens's farthest surface (0 where no lens)
@@ -59,8 +61,11 @@ void main() {
     ivec2 p = e / u_sd_side;
     ivec2 sub = e - p * u_sd_side;
     int bit = sub.y * u_sd_side + sub.x;
-    uint word = texelFetch(u_sd_masks, u_sd_origin + ivec2(p.x * u_sd_words + bit / 32, p.y), 0).r;
-    if (((word >> uint(bit % 32)) & 1u) == 0u) discard;
+    ivec2 q = p - u_sd_block.xy;
+    if (p.x < u_sd_block.z && p.y < u_sd_block.w && q.x >= 0 && q.y >= 0) {
+      uint word = texelFetch(u_sd_masks, u_sd_origin + ivec2(q.x * u_sd_words + bit / 32, q.y), 0).r;
+      if (((word >> uint(bit % 32)) & 1u) == 0u) discard;
+    }
   }
 #endif
 #ifdef SEARCHLIGHT

@@ -21,14 +21,16 @@ TEST(ScreenDoorStudy, SimulatesAndAnalyses) {
   fs::create_directories(dir);
   const fs::path db = dir / "study.sqlite", out = dir / "report";
   const auto sim = dtlab::test::run_dtlab("simulate '" + std::string(DTLAB_SOURCE_DIR) +
-                                          "/protocols/screen-door-vs-dt.toml' --db '" + db.string() +
+                                          "/protocols/screen-door-vs-dt.toml' --participants 6 --db '" + db.string() +
                                           "' --width 96 --height 72 --json");
   ASSERT_EQ(sim.rc, 0) << sim.err;
   const auto rep = dtlab::test::run_dtlab("analyze '" + db.string() + "' --out '" + out.string() + "' --quiet --json");
   ASSERT_EQ(rep.rc, 0) << rep.err;
   const std::string text = rep.out + dtlab::test::read_text(out / "report.json");
   // 6 participants x 3 techniques x 2 trials, every level named in the analysis.
-  EXPECT_NE(sim.out.find("36"), std::string::npos) << sim.out;
+  const auto summary = nlohmann::json::parse(sim.out);
+  EXPECT_EQ(summary.at("trials_run"), 36) << sim.out;
+  EXPECT_TRUE(summary.at("failed").empty()) << sim.out;
   for (const char* level : {"\"off\"", "\"dt\"", "\"screen-door\""}) EXPECT_NE(text.find(level), std::string::npos) << level;
   fs::remove_all(dir);
 }

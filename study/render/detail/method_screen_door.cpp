@@ -50,13 +50,15 @@ struct Entry {
   int slot = -1;   // target slot, or -1
   bool drawn = false;  // its rectangle meets the chunk
   int layer = -1;  // its block in the chunk's mask texture (-1: alpha 1 over the whole chunk)
+  PixelRect block;     // the pixels its block holds: its rectangle within the chunk
+  glm::ivec2 origin{0};  // the block's first texel
 };
 
 struct Chunk {
   PixelRect rect;
   std::vector<Entry> sequence;  // sorted order: objects drawn in the chunk, and targets whose mask reaches it
   int layers = 0;
-  int cols = 1, rows = 1;       // layer blocks in the mask texture
+  int tex_width = 1, tex_height = 1;  // the mask texture: blocks packed in shelves
 };
 
 MaskGeneration generation(ScreenDoorMasks m) {
@@ -82,16 +84,32 @@ std::vector<Chunk> plan_chunks(const FrameContext& fc, int side) {
         const bool drawn = v.rects[i].overlaps(ch.rect);
         const bool mask = slot >= 0 && v.targets[static_cast<std::size_t>(slot)].support.overlaps(ch.rect);
         if (!drawn && !mask) continue;
-        Entry e{i, slot, drawn, -1};
-        if (drawn && reached) e.layer = ch.layers++;  // sorted after a target that reaches here
+        Entry e{i, slot, drawn, -1, {}, {}};
+        if (drawn && reached) {  // sorted after a target that reaches here
+          e.layer = ch.layers++;
+          e.block = v.rects[i].intersect(ch.rect);
+        }
         reached = reached || mask;
         ch.sequence.push_back(e);
       }
       if (ch.layers == 0) continue;  // every alpha is 1 here: the opaque frame stands
       for (std::uint32_t i : v.impenetrable)
-        if (v.rects[i].overlaps(ch.rect)) ch.sequence.insert(ch.sequence.begin(), Entry{i, -1, true, -1});
-      ch.cols = std::max(1, std::min(ch.layers, kMaskTextureWidth / (c * words)));
-      ch.rows = (ch.layers + ch.cols - 1) / ch.cols;
+        if (v.rects[i].overlaps(ch.rect)) ch.sequence.insert(ch.sequence.begin(), Entry{i, -1, true, -1, {}, {}});
+      int x = 0, y = 0, shelf = 0;  // shelf packing, blocks of (width x words) x height texels
+      for (Entry& e : ch.sequence) {
+        if (e.layer < 0) continue;
+        const int bw = (e.block.x1 - e.block.x0) * words, bh = e.block.y1 - e.block.y0;
+        if (x + bw > kMaskTextureWidth) {
+          x = 0;
+          y += shelf;
+          shelf = 0;
+        }
+        e.origin = {x, y};
+        x += bw;
+        shelf = std::max(shelf, bh);
+        ch.tex_width = std::max(ch.tex_width, x);
+      }
+      ch.tex_height = y + shelf;
       out.push_back(std::move(ch));
     }
   }
@@ -137,14 +155,14 @@ void sd_silhouettes(const FrameContext& fc, ScreenDoorState& st, unsigned query,
   glDisable(GL_SCISSOR_TEST);
 }
 
-// The chunk's masks, one block of (chunk width x words) x chunk height texels per layer; a
-// pixel where an object keeps alpha 1 has its full mask.
+// The chunk's masks: per masked object a block over its rectangle within the chunk (words per
+// pixel side by side); a pixel where the object keeps alpha 1 has its full mask.
 std::vector<std::uint32_t> chunk_masks(const FrameContext& fc, ScreenDoorState& st, const Chunk& ch, int side,
                                        const TextureDesc& desc) {
-  const int c = kEnlargedSide / side, words = side * side / 32;
+  const int words = side * side / 32;
   std::vector<std::uint32_t> tex(static_cast<std::size_t>(desc.width) * desc.height, 0xffffffffu);
   std::vector<std::pair<float, int>> seq;
-  std::vector<int> who;
+  std::vector<const Entry*> who;
   for (int y = ch.rect.y0; y < ch.rect.y1; ++y) {
     for (int x = ch.rect.x0; x < ch.rect.x1; ++x) {
       float a = 1.0f;
@@ -154,7 +172,7 @@ std::vector<std::uint32_t> chunk_masks(const FrameContext& fc, ScreenDoorState& 
         const PixelRect& r = fc.view.rects[e.object];
         if (e.layer >= 0 && a < 1.0f && x >= r.x0 && x < r.x1 && y >= r.y0 && y < r.y1) {
           seq.emplace_back(a, 0);
-          who.push_back(e.layer);
+          who.push_back(&e);
         }
         if (e.slot >= 0) a *= st.fields[static_cast<std::size_t>(e.slot)].at(x, y);
       }
@@ -162,9 +180,9 @@ std::vector<std::uint32_t> chunk_masks(const FrameContext& fc, ScreenDoorState& 
       for (std::size_t k = 0; k < seq.size(); ++k) seq[k].second = static_cast<int>(seq.size() - 1 - k);  // 0: nearest
       const std::vector<PixelMask>& masks = st.cache->get(seq);
       for (std::size_t k = 0; k < seq.size(); ++k) {
-        const int col = who[k] % ch.cols, row = who[k] / ch.cols;
-        const std::size_t tx = static_cast<std::size_t>(col * c * words + (x - ch.rect.x0) * words);
-        const std::size_t ty = static_cast<std::size_t>(row * c + (y - ch.rect.y0));
+        const Entry& e = *who[k];
+        const std::size_t tx = static_cast<std::size_t>(e.origin.x + (x - e.block.x0) * words);
+        const std::size_t ty = static_cast<std::size_t>(e.origin.y + (y - e.block.y0));
         std::copy(masks[k].words.begin(), masks[k].words.end(), tex.begin() + static_cast<long>(ty * desc.width + tx));
       }
     }
@@ -174,7 +192,7 @@ std::vector<std::uint32_t> chunk_masks(const FrameContext& fc, ScreenDoorState& 
 
 // The chunk's objects on the enlarged buffer (bound), through a projection cropped to the chunk.
 void draw_enlarged(const FrameContext& fc, const Chunk& ch, int side, unsigned mask_texture) {
-  const int c = kEnlargedSide / side, words = side * side / 32;
+  const int words = side * side / 32;
   const float W = static_cast<float>(fc.width()), H = static_cast<float>(fc.height());
   const PixelRect& r = ch.rect;
   const float sx = W / static_cast<float>(r.x1 - r.x0), sy = H / static_cast<float>(r.y1 - r.y0);
@@ -200,7 +218,9 @@ void draw_enlarged(const FrameContext& fc, const Chunk& ch, int side, unsigned m
   for (const Entry& e : ch.sequence) {
     if (e.layer < 0) continue;
     const ObjectRecord& o = fc.gpu.objects()[e.object];
-    glUniform2i(p.loc("u_sd_origin"), (e.layer % ch.cols) * c * words, (e.layer / ch.cols) * c);
+    glUniform2i(p.loc("u_sd_origin"), e.origin.x, e.origin.y);
+    glUniform4i(p.loc("u_sd_block"), e.block.x0 - ch.rect.x0, e.block.y0 - ch.rect.y0, e.block.x1 - ch.rect.x0,
+                e.block.y1 - ch.rect.y0);
     glUniformMatrix4fv(p.loc("u_model"), 1, GL_FALSE, glm::value_ptr(o.model));
     glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(o.normal_matrix));
     glUniform3fv(p.loc("u_tint"), 1, glm::value_ptr(o.tint));
@@ -237,7 +257,6 @@ MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainT
         sd_silhouettes(fc, *state, d.query.valid() ? r.query(d.query) : 0u, r.framebuffer({d.silhouette}));
       });
 
-  const int c = kEnlargedSide / side, words = side * side / 32;
   Handle color = main.color;
   for (std::size_t k = 0; k < chunks->size(); ++k) {
     const Chunk& ch = (*chunks)[k];
@@ -253,7 +272,7 @@ MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainT
           d.enlarged = b.write(b.create("sd-enlarged", {kEnlargedSide, kEnlargedSide, fc.color_format, false}));
           d.enlarged_depth = b.write(
               b.create("sd-enlarged-depth", {kEnlargedSide, kEnlargedSide, TextureFormat::depth24_stencil8, false}));
-          d.masks = b.write(b.create("sd-masks", {ch.cols * c * words, ch.rows * c, TextureFormat::r32ui, false}));
+          d.masks = b.write(b.create("sd-masks", {ch.tex_width, ch.tex_height, TextureFormat::r32ui, false}));
         },
         [&fc, state, chunks, k, side](const RegionPassData& d, PassResources& r) {
           if (!state->active) return;
