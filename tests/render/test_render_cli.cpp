@@ -136,6 +136,30 @@ TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
   fs::remove(out);
 }
 
+// Screen-door (docs/render.md, "screen-door"): its passes, and it uncovers targets standard leaves
+// hidden (the visual model's picture, as dt-seed).
+TEST(RenderCli, ScreenDoorRendersItsPassesAndUncoversTargets) {
+  const fs::path out = png_path("screen-door");
+  auto visible = [&](const std::string& method) {
+    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
+                                   method + " --out '" + out.string() + "' --json");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    long n = 0;
+    for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
+    EXPECT_TRUE(j["gl_errors"].empty());
+    return std::pair{n, j["passes"]};
+  };
+  const auto [standard, standard_passes] = visible("standard");
+  const auto [sd, sd_passes] = visible("screen-door --screen-door-mask 16 --screen-door-masks pixel-tree");
+  ASSERT_GE(sd_passes.size(), 5u);
+  EXPECT_EQ(sd_passes[2], "sd-silhouettes");
+  EXPECT_EQ(sd_passes[3], "sd-region 1");
+  EXPECT_EQ(sd_passes.back(), "present");
+  EXPECT_GT(sd, standard);
+  fs::remove(out);
+}
+
 struct BadCase {
   const char* name;
   std::string args;
@@ -194,7 +218,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"lens_at_not_a_pixel", "--scene abstract --task T1 --seed 1 --method lens --lens-at 3",
                 "--lens-at: expected X,Y"},
         BadCase{"protocol_and_lens", "--protocol " + kReference + " --index 0 --trial 1 --lens-shape box",
-                "drop --lens-shape"}),
+                "drop --lens-shape"},
+        BadCase{"screen_door_option_without_screen_door", kAbstract + " --screen-door-mask 16", "--method screen-door only"},
+        BadCase{"screen_door_mask_12", "--scene abstract --task T1 --seed 1 --method screen-door --screen-door-mask 12",
+                "--screen-door-mask"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

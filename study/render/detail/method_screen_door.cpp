@@ -230,6 +230,52 @@ void draw_enlarged(const FrameContext& fc, const Chunk& ch, int side, unsigned m
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
+struct RegionPassData {
+  Handle silhouette, color, enlarged, enlarged_depth, masks;
+};
+
+// One sd-region pass: the chunk's masks uploaded, its objects drawn on the enlarged buffer, the
+// box filter into the colour.
+void sd_region(const FrameContext& fc, ScreenDoorState& st, const Chunk& ch, int side, const RegionPassData& d,
+               PassResources& r) {
+  const TextureDesc& md = r.desc(d.masks);
+  const std::vector<std::uint32_t> tex = chunk_masks(fc, st, ch, side, md);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glBindTexture(GL_TEXTURE_2D, r.texture(d.masks));
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, md.width, md.height, GL_RED_INTEGER, GL_UNSIGNED_INT, tex.data());
+  // The enlarged buffer: background, then every object of the chunk z-buffered.
+  const int ew = (ch.rect.x1 - ch.rect.x0) * side, eh = (ch.rect.y1 - ch.rect.y0) * side;
+  glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.enlarged}, d.enlarged_depth));
+  glViewport(0, 0, ew, eh);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, 0, ew, eh);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  clear_to_background(fc);
+  draw_enlarged(fc, ch, side, r.texture(d.masks));
+  // Resolve: the box filter into the chunk's output pixels.
+  glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}));
+  glViewport(0, 0, fc.width(), fc.height());
+  glScissor(ch.rect.x0, ch.rect.y0, ch.rect.x1 - ch.rect.x0, ch.rect.y1 - ch.rect.y0);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  const Program& p = fc.programs.sd_resolve;
+  fc.use_program(p);
+  glUniform1i(p.loc("u_enlarged"), 0);
+  glUniform1i(p.loc("u_side"), side);
+  glUniform2i(p.loc("u_origin"), ch.rect.x0, ch.rect.y0);
+  glBindTexture(GL_TEXTURE_2D, r.texture(d.enlarged));
+  fc.quad(p, static_cast<float>(ch.rect.x0), static_cast<float>(ch.rect.y0), static_cast<float>(ch.rect.x1),
+          static_cast<float>(ch.rect.y1), fc.width(), fc.height());
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glDisable(GL_SCISSOR_TEST);
+  glDepthMask(GL_TRUE);
+}
+
 }  // namespace
 
 MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
@@ -260,9 +306,6 @@ MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainT
   Handle color = main.color;
   for (std::size_t k = 0; k < chunks->size(); ++k) {
     const Chunk& ch = (*chunks)[k];
-    struct RegionPassData {
-      Handle silhouette, color, enlarged, enlarged_depth, masks;
-    };
     const auto& reg = fg.add_pass<RegionPassData>(
         "sd-region " + std::to_string(k + 1),
         [&](FrameGraph::Builder& b, RegionPassData& d) {
@@ -275,44 +318,7 @@ MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainT
           d.masks = b.write(b.create("sd-masks", {ch.tex_width, ch.tex_height, TextureFormat::r32ui, false}));
         },
         [&fc, state, chunks, k, side](const RegionPassData& d, PassResources& r) {
-          if (!state->active) return;
-          const Chunk& ch = (*chunks)[k];
-          const TextureDesc& md = r.desc(d.masks);
-          const std::vector<std::uint32_t> tex = chunk_masks(fc, *state, ch, side, md);
-          glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-          glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-          glBindTexture(GL_TEXTURE_2D, r.texture(d.masks));
-          glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, md.width, md.height, GL_RED_INTEGER, GL_UNSIGNED_INT, tex.data());
-          // The enlarged buffer: background, then every object of the chunk z-buffered.
-          const int ew = (ch.rect.x1 - ch.rect.x0) * side, eh = (ch.rect.y1 - ch.rect.y0) * side;
-          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.enlarged}, d.enlarged_depth));
-          glViewport(0, 0, ew, eh);
-          glEnable(GL_SCISSOR_TEST);
-          glScissor(0, 0, ew, eh);
-          glDisable(GL_BLEND);
-          glDisable(GL_STENCIL_TEST);
-          glDisable(GL_CULL_FACE);
-          glEnable(GL_DEPTH_TEST);
-          glDepthFunc(GL_LESS);
-          clear_to_background(fc);
-          draw_enlarged(fc, ch, side, r.texture(d.masks));
-          // Resolve: the box filter into the chunk's output pixels.
-          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}));
-          glViewport(0, 0, fc.width(), fc.height());
-          glScissor(ch.rect.x0, ch.rect.y0, ch.rect.x1 - ch.rect.x0, ch.rect.y1 - ch.rect.y0);
-          glDisable(GL_DEPTH_TEST);
-          glDepthMask(GL_FALSE);
-          const Program& p = fc.programs.sd_resolve;
-          fc.use_program(p);
-          glUniform1i(p.loc("u_enlarged"), 0);
-          glUniform1i(p.loc("u_side"), side);
-          glUniform2i(p.loc("u_origin"), ch.rect.x0, ch.rect.y0);
-          glBindTexture(GL_TEXTURE_2D, r.texture(d.enlarged));
-          fc.quad(p, static_cast<float>(ch.rect.x0), static_cast<float>(ch.rect.y0), static_cast<float>(ch.rect.x1),
-                  static_cast<float>(ch.rect.y1), fc.width(), fc.height());
-          glBindTexture(GL_TEXTURE_2D, 0);
-          glDisable(GL_SCISSOR_TEST);
-          glDepthMask(GL_TRUE);
+          if (state->active) sd_region(fc, *state, (*chunks)[k], side, d, r);
         });
     color = reg.color;
   }
