@@ -7,7 +7,8 @@
 // error against `reference` over the frame and over the effect region (where
 // some target's exact mask is below 1), and dt-fast against dt-seed there;
 // passes run; the R1 guard both ways; the lens method (three shapes and
-// styles; no error column: reference is not its yardstick); then what accuracy costs: mask
+// styles; no error column: reference is not its yardstick); screen-door at 8 x 8, 16 x 16 and
+// 32 x 32 masks (errors against reference); then what accuracy costs: mask
 // resolution 64/256/full and gradient width sweeps. With --culling, only
 // occlusion culling along walkthrough routes (bench_culling.h). Table on
 // stdout (or --json), progress on stderr.
@@ -46,6 +47,7 @@ struct BenchOptions {
   std::vector<std::string> scenes{"abstract", "walkthrough"};
   bool sweep = true;
   bool alone = true;      // time standard again in a fresh process
+  bool screen_door = true;  // the screen-door rows (seconds a frame)
   double budget_s = 4.0;  // per configuration: stop repeating a slow one after this much time
   bool culling = false;   // instead: occlusion culling along walkthrough routes (bench_culling.h)
   std::vector<std::string> culling_methods{"standard", "dt-fast"};
@@ -81,6 +83,7 @@ struct Config {
   render::Renderer* renderer = nullptr;
   std::vector<double> wall, cpu;
   double spent_s = 0.0;
+  int min_frames = 3;         // timed frames before the budget may stop it
   int passes = 0;
   Errors error;
   render::Image image;
@@ -149,6 +152,14 @@ std::vector<Config> configurations(const BenchOptions& o, render::Renderer& main
     l.shape = shape;
     l.style = style;
   }
+  // Screen-door (Poon 2000) at each mask side: dt-seed's picture by sub-pixel masks, so its error
+  // columns are against `reference` as for the dt rows (the accuracy-versus-time table).
+  for (int side : {8, 16, 32}) {
+    if (!o.screen_door) break;
+    add("screen-door " + std::to_string(side) + "x" + std::to_string(side), render::Method::screen_door, base, &main);
+    configs.back().settings.screen_door.mask_side = side;
+    configs.back().min_frames = 1;  // seconds a frame: one timed frame may exhaust the budget
+  }
   if (!o.sweep) return configs;
   for (int res : {64, 256, 0}) {
     render::DtSettings dt = base;
@@ -211,7 +222,7 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
 void time_interleaved(const BenchOptions& o, std::vector<Config>& configs, const render::Camera& cam, int w, int h) {
   for (int f = 0; f < o.frames; ++f) {
     for (Config& c : configs) {
-      if (f >= 3 && c.spent_s > o.budget_s) continue;
+      if (f >= c.min_frames && c.spent_s > o.budget_s) continue;
       const double c0 = cpu_ms();
       const render::FrameReport rep = c.renderer->render_offscreen(cam, c.settings, w, h);
       c.cpu.push_back(cpu_ms() - c0);
@@ -414,6 +425,7 @@ void add_bench_command(CLI::App& root) {
   cmd->add_option("--culling-methods", o->culling_methods, "Methods of the --culling routes")
       ->delimiter(',')
       ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens"}));
+  cmd->add_flag("!--no-screen-door", o->screen_door, "Skip the screen-door rows (seconds a frame each on llvmpipe)");
   cmd->add_option("--budget", o->budget_s, "Seconds per configuration after which a slow one stops repeating (>= 3 frames)");
   cmd->footer(
       "frame ms: wall time of a frame from graph build to glFinish, median over frames; cpu ms: process CPU\n"
@@ -427,6 +439,7 @@ void add_bench_command(CLI::App& root) {
       "outline, passive, R1 guard off (the article as printed). \"nothing occluded\": the same scene with\n"
       "only the targets nothing hides (transparency on, the effect not called for). lens rows: the lens\n"
       "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.\n"
+      "screen-door rows: Poon's (2000) sub-pixel screen door (tabular masks) at mask sides 8, 16, 32.\n"
       "--culling: per route (the eye walking cell by cell from the start cell to the farthest one, looking\n"
       "ahead, and standing in each doorway), the speed-up of occlusion culling over frustum culling alone\n"
       "(frame ms off / on, culling's own time included) at the best, mean and worst view, and over the\n"

@@ -1,6 +1,7 @@
 // `dtlab render (--scene KIND --task T --seed S --method M | --protocol P
 // (--index K | --db FILE --participant ID) --trial N) --out FILE.png
-// [--width W --height H] [--frames K] [--camera ...] [--lens-...] [--occlusion-culling] [--json]`: renders one
+// [--width W --height H] [--frames K] [--camera ...] [--lens-...] [--screen-door-...] [--occlusion-culling]
+// [--json]`: renders one
 // trial scene headless (OSMesa) with one rendering method and writes the PNG;
 // --json prints the passes that ran, the median frame time, per-target
 // visible pixel counts and GL errors. The protocol form renders the trial at
@@ -62,6 +63,8 @@ struct RenderOptions {
   // Lens parameters (render.h LensSettings); sizes in world units, unset: from the scene.
   std::string lens_shape = "sphere", lens_style = "eraser", lens_at;
   std::optional<float> lens_radius, lens_distance, lens_length;
+  int sd_mask = 8;  // screen-door: mask side
+  std::string sd_masks = "tabular";
 };
 
 [[noreturn]] void fail(int code, const std::string& message) {
@@ -275,6 +278,7 @@ Job scene_job(const RenderOptions& o) {
   job.settings.method = *render::parse_method(o.method);
   job.settings.dt = dt_settings(o);
   if (job.settings.method == render::Method::lens) job.settings.lens = lens_settings(o, job.scene);
+  job.settings.screen_door = {o.sd_mask, *render::parse_screen_door_masks(o.sd_masks)};
   job.method = o.method;
   job.kind = o.kind;
   job.task = o.task;
@@ -396,8 +400,8 @@ void add_render_command(CLI::App& root) {
   auto* task_opt = cmd->add_option("--task", o->task, "Task: T1, T2 (abstract), T3, T4 (walkthrough)")
                        ->check(CLI::IsMember({"T1", "T2", "T3", "T4"}));
   auto* seed_opt = cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)")->check(unsigned_integer());
-  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference | lens")
-                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens"}));
+  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference | lens | screen-door")
+                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door"}));
   auto* protocol_opt = cmd->add_option("--protocol", o->protocol,
                                        "Protocol file: render a planned trial (with --index K or --db/--participant, "
                                        "and --trial N)");
@@ -447,6 +451,10 @@ void add_render_command(CLI::App& root) {
   cmd->add_flag("--occlusion-culling", o->occlusion_culling,
                 "Walkthrough: skip objects hidden behind the walls (Poon's occlusion culling; the picture is "
                 "unchanged, only the cost)");
+  auto* sd_mask_opt = cmd->add_option("--screen-door-mask", o->sd_mask, "screen-door: mask side s (s x s sub-pixels): 8 | 16 | 32")
+                         ->check(CLI::IsMember({8, 16, 32}));
+  auto* sd_masks_opt = cmd->add_option("--screen-door-masks", o->sd_masks, "screen-door: mask generation: tabular | pixel-tree | white-noise")
+                          ->check(CLI::IsMember({"tabular", "pixel-tree", "white-noise"}));
   cmd->add_option("--graphviz", o->graphviz, "Write the last frame's frame graph (dot) to FILE");
   cmd->add_flag("--profile", o->profile, "glFinish after every pass and print per-pass times of the last frame");
   cmd->add_flag("--json", o->json,
@@ -469,6 +477,10 @@ void add_render_command(CLI::App& root) {
       "--occlusion-culling (walkthrough scenes, either form): Poon's occlusion culling; the JSON gains\n"
       "\"culling\" (objects and triangles culled, its time, the occluder database's time). The image is the\n"
       "same with it on or off.\n"
+      "--method screen-door (Poon 2000, docs/render.md): dt-seed's picture by sub-pixel screen-door\n"
+      "transparency: each surface's alpha picks an s x s mask (--screen-door-mask, default 8) made by\n"
+      "--screen-door-masks (tabular with neighbourhood compensation, default); the targets' regions are\n"
+      "drawn s times enlarged and box-filtered. Slow at 32 (1024 sub-pixels a pixel).\n"
       "Visible pixels (docs/render.md): pixels where the target's own surface makes up at least 10% of\n"
       "the final colour as the method composited it, counted with the method's own passes (weight\n"
       "frames: the target flat white, everything else black). silhouette_pixels: pixels the target\n"
@@ -480,8 +492,9 @@ void add_render_command(CLI::App& root) {
                                              guard_opt};
   const std::vector<CLI::Option*> lens_options{lens_shape_opt,  lens_style_opt, lens_radius_opt,
                                                lens_distance_opt, lens_length_opt, lens_at_opt};
+  const std::vector<CLI::Option*> sd_options{sd_mask_opt, sd_masks_opt};
   const std::vector<CLI::Option*> protocol_form{protocol_opt, index_opt, db_opt, participant_opt, trial_opt};
-  cmd->callback([o, scene_form, dt_options, lens_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
+  cmd->callback([o, scene_form, dt_options, lens_options, sd_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
                  trial_opt] {
     const auto given = [](const std::vector<CLI::Option*>& opts) {
       std::string names;
@@ -490,7 +503,8 @@ void add_render_command(CLI::App& root) {
       return names;
     };
     if (protocol_opt->count() > 0) {
-      if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options); !bad.empty())
+      if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options) + given(sd_options);
+          !bad.empty())
         fail(kExitUsage, "--protocol renders a planned trial: its scene, seed, method and mask parameters come from "
                          "the protocol; drop " + bad);
       if ((index_opt->count() > 0) == (db_opt->count() > 0 || participant_opt->count() > 0) ||
@@ -506,6 +520,8 @@ void add_render_command(CLI::App& root) {
                            "(missing " + opt->get_name() + ")");
       if (const std::string bad = given(lens_options); !bad.empty() && o->method != "lens")
         fail(kExitUsage, bad + " apply to --method lens only");
+      if (const std::string bad = given(sd_options); !bad.empty() && o->method != "screen-door")
+        fail(kExitUsage, bad + " apply to --method screen-door only");
     }
     run(*o);
   });

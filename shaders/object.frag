@@ -13,6 +13,13 @@
 // class: 0 behind the lens (z > back), 1 inside (front <= z <= back), 2 in
 // front (z < front); outside the lens footprint back = 0 and front = 1, so
 // class 0 keeps everything there. u_lens_tint.a > 0 mixes u_lens_tint.rgb in.
+// Compiled a fourth time with SCREEN_DOOR (the screen-door method, docs/render.md
+// "screen-door"): drawn on a buffer enlarged s times, each output pixel an s x s
+// block of sub-pixels; sub-pixel (i, j) of pixel p is bit j s + i of the object's
+// mask at p, u_sd_words 32-bit words per pixel in u_sd_masks, the block of the
+// pixels u_sd_block from texel u_sd_origin (x: q.x words + word, y: q.y, q = p -
+// block corner); a fragment whose bit is 0 is discarded. u_sd_origin.x < 0: no
+// mask (alpha 1 over the whole chunk).
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -24,6 +31,13 @@ uniform vec3 u_eye;
 uniform vec4 u_flat;
 #ifdef SEARCHLIGHT
 uniform vec3 u_searchlight;  // (x, y, radius) window pixels; radius < 0: off (fragments outside are discarded)
+#endif
+#ifdef SCREEN_DOOR
+uniform usampler2D u_sd_masks;
+uniform int u_sd_side;     // s
+uniform int u_sd_words;    // words per pixel: s s / 32
+uniform ivec2 u_sd_origin; // this object's block in u_sd_masks; x < 0: none
+uniform ivec4 u_sd_block;  // the chunk pixels the block holds: x0, y0, x1, y1 (outside: no mask)
 #endif
 #ifdef LENS
 uniform sampler2D u_lens_back;   // depth of the lens's farthest surface (0 where no lens)
@@ -41,6 +55,19 @@ vec4 lens_tinted(vec4 c) {
 #endif
 
 void main() {
+#ifdef SCREEN_DOOR
+  if (u_sd_origin.x >= 0) {
+    ivec2 e = ivec2(gl_FragCoord.xy);
+    ivec2 p = e / u_sd_side;
+    ivec2 sub = e - p * u_sd_side;
+    int bit = sub.y * u_sd_side + sub.x;
+    ivec2 q = p - u_sd_block.xy;
+    if (p.x < u_sd_block.z && p.y < u_sd_block.w && q.x >= 0 && q.y >= 0) {
+      uint word = texelFetch(u_sd_masks, u_sd_origin + ivec2(q.x * u_sd_words + bit / 32, q.y), 0).r;
+      if (((word >> uint(bit % 32)) & 1u) == 0u) discard;
+    }
+  }
+#endif
 #ifdef SEARCHLIGHT
   if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
 #endif

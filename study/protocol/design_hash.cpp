@@ -119,6 +119,10 @@ std::string design_sha256(const Protocol& p) {
       c.num("rendering.distance", r.distance);
       c.num("rendering.length", r.length);
     }
+    if (r.method == "screen-door") {  // likewise
+      c.integer("rendering.screen_door_mask", r.screen_door_mask);
+      c.str("rendering.screen_door_generation", r.screen_door_generation);
+    }
   }
   for (const QuestionnaireItem& q : p.questionnaire) {
     c.str("item", q.id);

@@ -44,6 +44,7 @@ constexpr std::array kDocumented{
     numbers("rendering", "radius", kLensSize),
     numbers("rendering", "distance", kLensSize),
     numbers("rendering", "length", kLensSize),
+    ints("rendering", "screen_door_mask", kScreenDoorMask),
     ints("questionnaire", "scale", kScale),
     ints("questionnaire", "options", kOptions),
     ints("questionnaire", "pairs", kPairs),

@@ -111,7 +111,7 @@ struct Scenario {
 
 struct Rendering {
   std::string name;                 // the level of the rendering factor it belongs to
-  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference" | "lens"
+  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference" | "lens" | "screen-door"
   double a0 = 0.1;                  // alpha where the mask gradient starts (next to the target)
   double aT = 0.3;                  // alpha of surfaces directly in front of a target
   int gradient_width = 8;           // n: gradient width in mask pixels
@@ -129,6 +129,9 @@ struct Rendering {
   double distance = 0.0;            // eye to lens centre along the cursor's ray; required with lens
   double length = 0.0;              // box, cylinder, cone: extent along the ray; 0 = 2 x radius
   bool occlusion_culling = false;   // Poon's occlusion culling in WALKTHROUGH scenes (the picture is unchanged)
+  // method = "screen-door" (docs/render.md, "screen-door"): Poon's (2000) sub-pixel screen door.
+  int screen_door_mask = 8;                        // mask side in sub-pixels: 8, 16 or 32
+  std::string screen_door_generation = "tabular";  // "tabular" | "pixel-tree" | "white-noise"
 };
 
 // --- session, training, questionnaire --------------------------------------------------

@@ -1,4 +1,4 @@
-// The dtlab renderer: draws a scene::Scene with one of five methods through
+// The dtlab renderer: draws a scene::Scene with one of six methods through
 // a frame graph (detail/frame_graph.h), into a caller-owned target (a window's
 // default framebuffer or an offscreen framebuffer), in any GL 3.3 core
 // context (the platform layer makes one). Methods (docs/render.md):
@@ -11,6 +11,8 @@
 //   reference  exact per-pixel compositing on the CPU (the error yardstick);
 //   lens       Ropinski & Hinrichs's volumetric 3D magic lens (a convex lens volume, a second
 //              depth test against its back- and front-face depth maps, three scene passes).
+//   screen-door  dt-seed's picture by Poon's (2000) sub-pixel screen-door transparency: each
+//              surface's alpha picks an n-pixel mask, z-buffered on an enlarged buffer, box-filtered.
 // Guarantees: the GL state of the caller is restored after every call that
 // draws; an effect the frame does not call for (transparency off, no target
 // in view, no target occluded) runs no pass. Never: creates a GL context,
@@ -33,10 +35,10 @@
 
 namespace dtlab::render {
 
-enum class Method { standard, dt_seed, dt_fast, reference, lens };
-std::string_view to_string(Method m);                   // "standard", "dt-seed", "dt-fast", "reference", "lens"
+enum class Method { standard, dt_seed, dt_fast, reference, lens, screen_door };
+std::string_view to_string(Method m);  // "standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door"
 std::optional<Method> parse_method(std::string_view s);  // inverse of to_string; nullopt if unknown
-bool uses_transparency(Method m);                        // dynamic transparency: dt-seed, dt-fast, reference
+bool uses_transparency(Method m);  // dynamic transparency: dt-seed, dt-fast, reference, screen-door
 
 enum class MaskShape { outline, circle, ellipse };
 std::string_view to_string(MaskShape s);
@@ -118,10 +120,23 @@ std::optional<std::string> check(const LensSettings& s);
 // quarter of the view's half-height at that distance; length = 2 x radius.
 LensSettings scene_lens(const scene::Scene& scene, int width, int height);
 
+// The screen-door method (docs/render.md, "screen-door"; Poon 2000, chapter 4): each output pixel is
+// an s x s block of sub-pixels of an enlarged buffer, each surface keeps the sub-pixels of its mask.
+enum class ScreenDoorMasks { tabular, pixel_tree, white_noise };  // tabular: with neighbourhood compensation
+std::string_view to_string(ScreenDoorMasks m);  // "tabular", "pixel-tree", "white-noise"
+std::optional<ScreenDoorMasks> parse_screen_door_masks(std::string_view s);
+struct ScreenDoorSettings {
+  int mask_side = 8;  // s: 8 (the thesis's practical size), 16 or 32; a mask has s x s pixels
+  ScreenDoorMasks masks = ScreenDoorMasks::tabular;
+};
+// nullopt when fine; else what is wrong ("mask_side must be 8, 16 or 32 (got 5)").
+std::optional<std::string> check(const ScreenDoorSettings& s);
+
 struct FrameSettings {
   Method method = Method::standard;
   DtSettings dt;
   LensSettings lens;  // method lens only
+  ScreenDoorSettings screen_door;  // method screen-door only
   glm::vec3 background{0.80f, 0.82f, 0.86f};  // linear RGB of pixels no object covers
   bool float_color = false;   // RGBA16F colour buffer instead of RGBA8 (tests scan it for NaN)
   bool timed = false;         // glFinish at the end and report frame_ms (benchmarks, --frames)

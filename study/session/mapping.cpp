@@ -190,10 +190,18 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
   const auto method = render::parse_method(r.method);
   if (!method)
     return bad(p, field + ".method", "the renderer has no method '" + r.method +
-                                         "' (standard, dt-seed, dt-fast, reference, lens)");
+                                         "' (standard, dt-seed, dt-fast, reference, lens, screen-door)");
   f.method = *method;
   f.occlusion_culling = r.occlusion_culling;
   if (f.method == render::Method::lens) return lens_settings(p, r, width, height, f);
+  if (f.method == render::Method::screen_door) {  // then the dynamic-transparency keys below, as dt-seed
+    const auto masks = render::parse_screen_door_masks(r.screen_door_generation);
+    if (!masks)
+      return bad(p, field + ".screen_door_generation", "unknown mask generation '" + r.screen_door_generation +
+                                                          "' (tabular, pixel-tree, white-noise)");
+    f.screen_door = {r.screen_door_mask, *masks};
+    if (const auto problem = render::check(f.screen_door)) return bad(p, field + ".screen_door_mask", *problem);
+  }
   const auto shape = render::parse_mask_shape(r.mask_shape);
   if (!shape) return bad(p, field + ".mask_shape", "unknown mask shape '" + r.mask_shape + "' (outline, circle, ellipse)");
   render::DtSettings& dt = f.dt;

@@ -139,6 +139,13 @@ const Case kCases[] = {
      "rendering.on.shape", "unknown value"},
     {"unknown lens style", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\nstyle = \"glass\""}}, 29,
      "rendering.on.style", "unknown value"},
+    // the screen-door method: mask side 8, 16 or 32; its own generations
+    {"screen-door mask 12", {{26, "method = \"screen-door\"\nscreen_door_mask = 12"}}, 27, "rendering.on.screen_door_mask",
+     "expected 8, 16 or 32"},
+    {"screen-door mask 64", {{26, "method = \"screen-door\"\nscreen_door_mask = 64"}}, 27, "rendering.on.screen_door_mask",
+     "out of range"},
+    {"unknown screen-door generation", {{26, "method = \"screen-door\"\nscreen_door_generation = \"blue-noise\""}}, 27,
+     "rendering.on.screen_door_generation", "unknown value"},
     {"unknown scenario kind", {{14, "kind = \"maze\""}}, 14, "scenarios.abstract.kind", "unknown value"},
     // occlusion culling is a boolean
     {"occlusion culling as a string", {{26, "method = \"dt-seed\"\nocclusion_culling = \"yes\""}}, 27,
@@ -384,6 +391,10 @@ const WarningCase kWarnings[] = {
     {"transparency keys on standard", {{24, "method = \"standard\"\naT = 0.2"}}, 25, "rendering.off.aT",
      "no effect"},
     {"lens keys on dt-seed", {{26, "method = \"dt-seed\"\nradius = 2.0"}}, 27, "rendering.on.radius", "a lens key"},
+    {"screen-door keys on dt-seed", {{26, "method = \"dt-seed\"\nscreen_door_mask = 16"}}, 27, "rendering.on.screen_door_mask",
+     "a screen-door key"},
+    {"layer limit on screen-door", {{26, "method = \"screen-door\"\nlayer_limit = 2"}}, 27, "rendering.on.layer_limit",
+     "no effect"},
     {"transparency keys on a lens", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\naT = 0.2"}}, 29,
      "rendering.on.aT", "no effect"},
 };

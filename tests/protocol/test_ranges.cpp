@@ -178,6 +178,8 @@ std::vector<Writer> writers() {
        "method = \"lens\"\nradius = 10.0\ndistance = {}\n"},
       {"rendering", "length", false, "rendering.off.length", "method = \"standard\"  ",
        "method = \"lens\"\nradius = 10.0\ndistance = 100.0\nlength = {}\n"},
+      {"rendering", "screen_door_mask", true, "rendering.off.screen_door_mask", "method = \"standard\"  ",
+       "method = \"screen-door\"\nscreen_door_mask = {}\n"},
       {"questionnaire", "scale", true, "questionnaire.rating.scale[0]", "scale = [0, 4]", "scale = [{}, 100]"},
       {"questionnaire", "scale", true, "questionnaire.rating.scale[1]", "scale = [0, 4]", "scale = [-100, {}]"},
       {"questionnaire", "pairs", true, "questionnaire.depth_test.pairs", "pairs = 3", "pairs = {}"},

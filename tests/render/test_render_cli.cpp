@@ -115,23 +115,26 @@ TEST(RenderCli, DbParticipantTakesTheEnrollmentIndexFromTheLedger) {
   for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(db.string() + suffix);
 }
 
+// ABSTRACT T1 seed 7 at 160 x 120 rendered with `method` (and its options) into `out`: the targets'
+// visible pixels summed, and the passes that ran.
+std::pair<long, nlohmann::json> visible(const std::string& method, const fs::path& out) {
+  const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
+                                 method + " --out '" + out.string() + "' --json");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  long n = 0;
+  for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
+  EXPECT_TRUE(j["gl_errors"].empty());
+  return {n, j["passes"]};
+}
+
 // The lens method (docs/render.md, "lens"): its passes in the paper's order, and an eraser cone
 // through the ABSTRACT cube uncovers targets standard leaves hidden.
 TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
   const fs::path out = png_path("lens");
-  auto visible = [&](const std::string& method) {
-    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
-                                   method + " --out '" + out.string() + "' --json");
-    EXPECT_EQ(r.rc, 0) << r.err;
-    const auto j = nlohmann::json::parse(r.out);
-    long n = 0;
-    for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
-    EXPECT_TRUE(j["gl_errors"].empty());
-    return std::pair{n, j["passes"]};
-  };
-  const auto [standard, standard_passes] = visible("standard");
+  const auto [standard, standard_passes] = visible("standard", out);
   const auto [lens, lens_passes] =
-      visible("lens --lens-shape cone --lens-style eraser --lens-radius 20 --lens-length 100");
+      visible("lens --lens-shape cone --lens-style eraser --lens-radius 20 --lens-length 100", out);
   EXPECT_EQ(lens_passes, nlohmann::json({"lens-back", "lens-front", "lens-behind", "lens-inside", "lens-in-front",
                                          "present"}));
   EXPECT_GT(lens, standard);
@@ -159,6 +162,20 @@ TEST(RenderCli, OcclusionCullingReportsAndKeepsThePicture) {
   EXPECT_EQ(bytes(on), bytes(off));
   fs::remove(on);
   fs::remove(off);
+}
+
+// Screen-door (docs/render.md, "screen-door"): its passes, and it uncovers targets standard leaves
+// hidden (the visual model's picture, as dt-seed).
+TEST(RenderCli, ScreenDoorRendersItsPassesAndUncoversTargets) {
+  const fs::path out = png_path("screen-door");
+  const auto [standard, standard_passes] = visible("standard", out);
+  const auto [sd, sd_passes] = visible("screen-door --screen-door-mask 16 --screen-door-masks pixel-tree", out);
+  ASSERT_GE(sd_passes.size(), 5u);
+  EXPECT_EQ(sd_passes[2], "sd-silhouettes");
+  EXPECT_EQ(sd_passes[3], "sd-region 1");
+  EXPECT_EQ(sd_passes.back(), "present");
+  EXPECT_GT(sd, standard);
+  fs::remove(out);
 }
 
 struct BadCase {
@@ -221,6 +238,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"protocol_and_lens", "--protocol " + kReference + " --index 0 --trial 1 --lens-shape box",
                 "drop --lens-shape"},
         BadCase{"occlusion_culling_on_abstract", kAbstract + " --occlusion-culling", "walkthrough scenes only"}),
+        BadCase{"screen_door_option_without_screen_door", kAbstract + " --screen-door-mask 16", "--method screen-door only"},
+        BadCase{"screen_door_mask_12", "--scene abstract --task T1 --seed 1 --method screen-door --screen-door-mask 12",
+                "--screen-door-mask"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

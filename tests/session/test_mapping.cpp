@@ -221,6 +221,41 @@ TEST(Mapping, OcclusionCullingKey) {
   EXPECT_EQ(f->method, render::Method::lens);
 }
 
+// The screen-door table of the shipped comparison protocol: the dynamic-transparency keys as for
+// dt-seed, plus the mask side and generation; a side the renderer lacks names its key.
+TEST(Mapping, ScreenDoorRendering) {
+  auto loaded = protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/screen-door-vs-dt.toml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
+  protocol::Protocol p = std::move(loaded.value());
+  const protocol::Rendering* r = protocol::find_rendering(p, "screen-door");
+  ASSERT_NE(r, nullptr);
+  auto f = frame_settings(p, *r, 800, 600);
+  ASSERT_TRUE(f.ok()) << f.error().to_string();
+  EXPECT_EQ(f->method, render::Method::screen_door);
+  EXPECT_EQ(f->screen_door.mask_side, 8);
+  EXPECT_EQ(f->screen_door.masks, render::ScreenDoorMasks::tabular);
+  EXPECT_FLOAT_EQ(f->dt.alpha_target, 0.3f);
+  EXPECT_FLOAT_EQ(f->dt.alpha_start, 0.1f);
+  // 8 mask pixels of a 128 mask at 800 x 600: 8 sqrt(800 x 600) / 128 = 43.30 output pixels.
+  EXPECT_NEAR(f->dt.gradient_px, 43.30f, 0.01f);
+  protocol::Rendering other = *r;
+  other.screen_door_mask = 32;
+  other.screen_door_generation = "pixel-tree";
+  f = frame_settings(p, other, 800, 600);
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f->screen_door.mask_side, 32);
+  EXPECT_EQ(f->screen_door.masks, render::ScreenDoorMasks::pixel_tree);
+  other.screen_door_mask = 12;
+  f = frame_settings(p, other, 800, 600);
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.error().field, "rendering.screen-door.screen_door_mask");
+  other.screen_door_mask = 8;
+  other.screen_door_generation = "blue-noise";
+  f = frame_settings(p, other, 800, 600);
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.error().field, "rendering.screen-door.screen_door_generation");
+}
+
 TEST(Mapping, UnsupportedValuesNameTheField) {
   const protocol::Protocol ref = reference();
   struct Case {

@@ -237,6 +237,27 @@ void parse_lens_keys(TableReader& rr, Rendering& r, ParseState& s) {
               "\"fixed\" is a lens mode (method = \"lens\"); dynamic transparency is \"passive\" or \"active\"");
 }
 
+// The screen-door keys (method = "screen-door", docs/render.md): the mask side in sub-pixels (8, 16 or
+// 32; default 8) and how masks are made; with another method they are warnings. It draws
+// dt-seed's picture with exact target masks, so mask_resolution and layer_limit do not apply.
+void parse_screen_door_keys(TableReader& rr, Rendering& r, ParseState& s) {
+  if (auto v = rr.integer("screen_door_mask", false, limits::kScreenDoorMask)) {
+    if (*v == 8 || *v == 16 || *v == 32) r.screen_door_mask = static_cast<int>(*v);
+    else
+      s.d.error(rr.pos("screen_door_mask"), rr.field("screen_door_mask"),
+                "expected 8, 16 or 32 (the side of the mask in sub-pixels), got " + std::to_string(*v));
+  }
+  if (auto v = rr.choice("screen_door_generation", false, {"tabular", "pixel-tree", "white-noise"}))
+    r.screen_door_generation = *v;
+  const bool sd = r.method == "screen-door";
+  for (const char* key : {"screen_door_mask", "screen_door_generation"})
+    if (!sd && rr.has(key))
+      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"" + r.method + "\" (a screen-door key)");
+  for (const char* key : {"mask_resolution", "layer_limit"})
+    if (sd && rr.has(key))
+      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"screen-door\" (exact target masks, no layer limit)");
+}
+
 }  // namespace
 
 void parse_renderings(TableReader& root, ParseState& s) {
@@ -256,7 +277,7 @@ void parse_renderings(TableReader& root, ParseState& s) {
     TableReader rr(*n->as_table(), path, s.d, pos_of(*k));
     Rendering r;
     r.name = name;
-    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference", "lens"})) r.method = *v;
+    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door"})) r.method = *v;
     if (auto v = rr.number("a0", false, limits::kAlpha)) r.a0 = *v;
     if (auto v = rr.number("aT", false, limits::kAlpha)) r.aT = *v;
     if (auto v = rr.integer("gradient_width", false, limits::kGradientWidth)) r.gradient_width = static_cast<int>(*v);
@@ -267,6 +288,7 @@ void parse_renderings(TableReader& root, ParseState& s) {
     if (auto v = rr.number("searchlight_radius", false, limits::kSearchlightRadius)) r.searchlight_radius = *v;
     parse_lens_keys(rr, r, s);
     if (auto v = rr.boolean("occlusion_culling", false)) r.occlusion_culling = *v;
+    parse_screen_door_keys(rr, r, s);
     rr.finish();
     if (r.method == "standard" || r.method == "lens") {
       for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit"})

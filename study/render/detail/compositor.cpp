@@ -48,19 +48,15 @@ std::vector<int> chessboard_distance(const std::vector<bool>& covered, int w, in
 
 namespace {
 
-struct MaskField {  // one target's mask over its support rectangle
-  PixelRect rect;
-  std::vector<float> alpha;  // M_T(p) in rect, 1 where the mask does not apply
-  std::vector<float> depth;  // depth of the mask event
-};
-
 bool in_searchlight(const glm::vec3& s, int x, int y) {
   if (s.z < 0.0f) return true;
   const float dx = static_cast<float>(x) + 0.5f - s.x, dy = static_cast<float>(y) + 0.5f - s.y;
   return std::sqrt(dx * dx + dy * dy) <= s.z;
 }
 
-MaskField make_mask(const CompositeInput& in, const TargetView& t, const ObjectLayer* layer) {
+}  // namespace
+
+MaskField exact_mask(const DtSettings& dt, glm::vec3 searchlight, const TargetView& t, const ObjectLayer* layer) {
   MaskField f;
   f.rect = t.support;
   const int w = f.rect.x1 - f.rect.x0, h = f.rect.y1 - f.rect.y0;
@@ -76,7 +72,7 @@ MaskField make_mask(const CompositeInput& in, const TargetView& t, const ObjectL
         own[k] = layer->depth_at(x, y);
         if (own[k] < 1.0f) nearest = std::min(nearest, own[k]);
       }
-      if (in.dt.shape == MaskShape::outline) {
+      if (dt.shape == MaskShape::outline) {
         covered[k] = own[k] < 1.0f;
       } else {
         const glm::vec2 d = (glm::vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f) - t.shape_center) /
@@ -85,21 +81,23 @@ MaskField make_mask(const CompositeInput& in, const TargetView& t, const ObjectL
       }
     }
   }
-  const int cap = static_cast<int>(std::ceil(in.dt.gradient_px)) + 2;
+  const int cap = static_cast<int>(std::ceil(dt.gradient_px)) + 2;
   const std::vector<int> dist = chessboard_distance(covered, w, h, cap);
   f.alpha.assign(n, 1.0f);
   f.depth.assign(n, nearest);
   for (int y = f.rect.y0; y < f.rect.y1; ++y) {
     for (int x = f.rect.x0; x < f.rect.x1; ++x) {
       const std::size_t k = static_cast<std::size_t>(y - f.rect.y0) * w + (x - f.rect.x0);
-      if (!in_searchlight(in.searchlight, x, y)) continue;
-      f.alpha[k] = covered[k] ? in.dt.alpha_target
-                              : gradient_alpha(static_cast<float>(dist[k]), in.dt.alpha_start, in.dt.gradient_px);
+      if (!in_searchlight(searchlight, x, y)) continue;
+      f.alpha[k] = covered[k] ? dt.alpha_target
+                              : gradient_alpha(static_cast<float>(dist[k]), dt.alpha_start, dt.gradient_px);
       if (own[k] < 1.0f) f.depth[k] = own[k];
     }
   }
   return f;
 }
+
+namespace {
 
 struct Event {
   float depth;
@@ -167,7 +165,7 @@ CompositeOutput composite(const CompositeInput& in) {
   std::vector<MaskField> masks;
   for (const TargetView& t : in.targets) {
     const int li = layer_index(t.object);
-    masks.push_back(make_mask(in, t, li < 0 ? nullptr : &in.layers[static_cast<std::size_t>(li)]));
+    masks.push_back(exact_mask(in.dt, in.searchlight, t, li < 0 ? nullptr : &in.layers[static_cast<std::size_t>(li)]));
   }
   const int limit = in.dt.layer_limit;
   std::vector<Event> events;

@@ -49,6 +49,22 @@ struct CompositeOutput {
   bool effect = false;          // transparency was on and some target was occluded
 };
 
+// One target's exact mask over its support rectangle (the rule of the file comment), shared with
+// screen-door, which picks each surface's mask from the product of these.
+struct MaskField {
+  PixelRect rect;
+  std::vector<float> alpha;  // M_T(p) in rect (row-major, bottom-up), 1 where the mask does not apply
+  std::vector<float> depth;  // depth of the mask event
+  float at(int x, int y) const {  // 1 outside rect
+    if (x < rect.x0 || x >= rect.x1 || y < rect.y0 || y >= rect.y1) return 1.0f;
+    return alpha[static_cast<std::size_t>(y - rect.y0) * static_cast<std::size_t>(rect.x1 - rect.x0) +
+                 static_cast<std::size_t>(x - rect.x0)];
+  }
+};
+// Target t's mask from its own layer (coverage: depth < 1; null: no pixel covered); `searchlight`
+// (x, y, radius), radius < 0: passive mode.
+MaskField exact_mask(const DtSettings& dt, glm::vec3 searchlight, const TargetView& t, const ObjectLayer* layer);
+
 // Composites the layers; see the file comment for the rules.
 CompositeOutput composite(const CompositeInput& in);
 

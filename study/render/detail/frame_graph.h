@@ -27,7 +27,7 @@
 
 namespace dtlab::render {
 
-enum class TextureFormat { rgba8, rgba16f, rgba32f, r8, r16f, r32f, depth24_stencil8, depth32f };
+enum class TextureFormat { rgba8, rgba16f, rgba32f, r8, r16f, r32f, r32ui, depth24_stencil8, depth32f };
 
 struct TextureDesc {
   int width = 0;

@@ -21,6 +21,7 @@ Format gl_format(TextureFormat f) {
     case TextureFormat::r8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
     case TextureFormat::r16f: return {GL_R16F, GL_RED, GL_FLOAT};
     case TextureFormat::r32f: return {GL_R32F, GL_RED, GL_FLOAT};
+    case TextureFormat::r32ui: return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
     case TextureFormat::depth24_stencil8: return {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8};
     case TextureFormat::depth32f: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
   }

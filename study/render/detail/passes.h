@@ -112,6 +112,13 @@ struct LensGpu {
 // `lens-in-front` (normal). Returns the final colour.
 Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& lens);
 
+// screen-door (Poon 2000, chapter 4; docs/render.md "screen-door"), conditional on `query` like dt-seed:
+// `sd-silhouettes` reads the targets' silhouettes back for their exact masks; then one `sd-region`
+// pass per chunk of the targets' supports renders every object in the chunk on an enlarged
+// buffer (s x s sub-pixels per pixel), each keeping the sub-pixels of its mask, and box-filters
+// the chunk back into the colour. Returns the final colour and depth.
+MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
+
 // Shared GL sequences of the two GPU methods.
 //
 // Stencil layout while the effect is drawn (docs/render.md, "Stencil"):

@@ -101,7 +101,7 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 
 void Programs::destroy() {
   for (Program* p : {&object, &object_sl, &object_lens, &object_alpha, &object_alpha_sl, &quad_alpha, &border, &shape,
-                     &cheb_rows, &cheb_cols, &fast_apply, &fast_apply_counter}) {
+                     &cheb_rows, &cheb_cols, &fast_apply, &fast_apply_counter, &object_sd, &sd_resolve}) {
     if (p->id != 0) glDeleteProgram(p->id);
     p->id = 0;
   }
@@ -128,6 +128,8 @@ Result<Programs> compile_programs() {
       {&ps.cheb_cols, "fullscreen.vert", "cheb_cols.frag", ""},
       {&ps.fast_apply, "fullscreen.vert", "fast_apply.frag", ""},
       {&ps.fast_apply_counter, "fullscreen.vert", "fast_apply.frag", "COUNTER"},
+      {&ps.object_sd, "object.vert", "object.frag", "SCREEN_DOOR"},
+      {&ps.sd_resolve, "fullscreen.vert", "sd_resolve.frag", ""},
   };
   for (const Entry& e : entries) {
     auto p = link_program(e.vs, e.fs, e.defines);

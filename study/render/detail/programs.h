@@ -37,6 +37,8 @@ struct Programs {
   Program cheb_cols;    // fullscreen.vert + cheb_cols.frag
   Program fast_apply;   // fullscreen.vert + fast_apply.frag (Algorithm 2, line 10, from an atlas tile)
   Program fast_apply_counter;  // the same with COUNTER (layer limit: discards where the mask is 1)
+  Program object_sd;    // object.vert + object.frag with SCREEN_DOOR: keeps the sub-pixels of its mask (discards)
+  Program sd_resolve;   // fullscreen.vert + sd_resolve.frag: the enlarged buffer box-filtered to output pixels
   void destroy();       // deletes every program (needs the context current)
 };
 

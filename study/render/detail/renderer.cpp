@@ -24,17 +24,40 @@ std::string_view to_string(Method m) {
     case Method::dt_fast: return "dt-fast";
     case Method::reference: return "reference";
     case Method::lens: return "lens";
+    case Method::screen_door: return "screen-door";
   }
   return "?";
 }
 
 std::optional<Method> parse_method(std::string_view s) {
-  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens})
+  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens, Method::screen_door})
     if (to_string(m) == s) return m;
   return std::nullopt;
 }
 
-bool uses_transparency(Method m) { return m == Method::dt_seed || m == Method::dt_fast || m == Method::reference; }
+bool uses_transparency(Method m) {
+  return m == Method::dt_seed || m == Method::dt_fast || m == Method::reference || m == Method::screen_door;
+}
+
+std::string_view to_string(ScreenDoorMasks m) {
+  switch (m) {
+    case ScreenDoorMasks::tabular: return "tabular";
+    case ScreenDoorMasks::pixel_tree: return "pixel-tree";
+    case ScreenDoorMasks::white_noise: return "white-noise";
+  }
+  return "?";
+}
+
+std::optional<ScreenDoorMasks> parse_screen_door_masks(std::string_view s) {
+  for (ScreenDoorMasks m : {ScreenDoorMasks::tabular, ScreenDoorMasks::pixel_tree, ScreenDoorMasks::white_noise})
+    if (to_string(m) == s) return m;
+  return std::nullopt;
+}
+
+std::optional<std::string> check(const ScreenDoorSettings& s) {
+  if (s.mask_side == 8 || s.mask_side == 16 || s.mask_side == 32) return std::nullopt;
+  return "mask_side must be 8, 16 or 32 (got " + std::to_string(s.mask_side) + ")";
+}
 
 std::string_view to_string(LensShape s) {
   switch (s) {
@@ -192,6 +215,8 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   validate(settings.dt, target.width, target.height);
   if (settings.method == Method::lens)
     if (const auto problem = check(settings.lens)) throw std::invalid_argument("LensSettings." + *problem);
+  if (settings.method == Method::screen_door)
+    if (const auto problem = check(settings.screen_door)) throw std::invalid_argument("ScreenDoorSettings." + *problem);
   if (settings.flat_colors.size() > impl_->gpu->objects().size())
     throw std::invalid_argument("Renderer::render: more flat colours than objects");
   using Clock = std::chrono::steady_clock;
@@ -234,8 +259,9 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
     // another) there is no query and the effect runs unconditionally.
     if (targets && !view.codes_exhausted) occluded = detail::add_target_query_pass(fg, fc, main.depth, 0xFF);
     if (transparency && targets) {
-      main = settings.method == Method::dt_seed ? detail::add_seed_passes(fg, fc, main, occluded)
-                                                : detail::add_fast_passes(fg, fc, main, occluded);
+      main = settings.method == Method::dt_seed       ? detail::add_seed_passes(fg, fc, main, occluded)
+             : settings.method == Method::screen_door ? detail::add_screen_door_passes(fg, fc, main, occluded)
+                                                      : detail::add_fast_passes(fg, fc, main, occluded);
     }
     color = main.color;
   }
