@@ -237,7 +237,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "--lens-at: expected X,Y"},
         BadCase{"protocol_and_lens", "--protocol " + kReference + " --index 0 --trial 1 --lens-shape box",
                 "drop --lens-shape"},
-        BadCase{"occlusion_culling_on_abstract", kAbstract + " --occlusion-culling", "walkthrough scenes only"}),
+        BadCase{"occlusion_culling_on_abstract", kAbstract + " --occlusion-culling", "walkthrough scenes only"},
         BadCase{"screen_door_option_without_screen_door", kAbstract + " --screen-door-mask 16", "--method screen-door only"},
         BadCase{"screen_door_mask_12", "--scene abstract --task T1 --seed 1 --method screen-door --screen-door-mask 12",
                 "--screen-door-mask"}),
