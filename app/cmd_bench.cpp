@@ -7,7 +7,8 @@
 // error against `reference` over the frame and over the effect region (where
 // some target's exact mask is below 1), and dt-fast against dt-seed there;
 // passes run; the R1 guard both ways; the lens method (three shapes and
-// styles; no error column: reference is not its yardstick); then what accuracy costs: mask
+// styles; no error column: reference is not its yardstick); vdt (no error
+// column either: another transparency model); then what accuracy costs: mask
 // resolution 64/256/full and gradient width sweeps. Table on stdout (or
 // --json), progress on stderr.
 #include <CLI/CLI.hpp>
@@ -145,6 +146,9 @@ std::vector<Config> configurations(const BenchOptions& o, render::Renderer& main
     l.shape = shape;
     l.style = style;
   }
+  // vdt (Diepstraten et al. 2002) with its defaults: its cost is two depth-only passes of the
+  // transparent objects, the opaque ones twice, and the per-vertex alpha on the CPU.
+  add("vdt", render::Method::vdt, base, &main);
   if (!o.sweep) return configs;
   for (int res : {64, 256, 0}) {
     render::DtSettings dt = base;
@@ -179,8 +183,8 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
     c.passes = static_cast<int>(rep.passes_run().size());
     if (!rep.gl_errors.empty()) c.note = "GL error: " + rep.gl_errors.front();
     c.image = c.renderer->read_color();
-    if (c.renderer != &main || c.settings.method == render::Method::lens)
-      continue;  // the lens draws another picture: `reference` is no yardstick for it
+    if (c.renderer != &main || c.settings.method == render::Method::lens || c.settings.method == render::Method::vdt)
+      continue;  // lens and vdt draw another picture: `reference` is no yardstick for them
     const std::pair<float, bool> key{s.dt.gradient_px, s.dt.r1_guard};
     if (!refs.count(key)) {
       s.method = render::Method::reference;
@@ -403,7 +407,9 @@ void add_bench_command(CLI::App& root) {
       "settings in the effect region. Defaults: aT 0.3, a0 0.1, gradient 8 pixels of a 128 x 128 mask,\n"
       "outline, passive, R1 guard off (the article as printed). \"nothing occluded\": the same scene with\n"
       "only the targets nothing hides (transparency on, the effect not called for). lens rows: the lens\n"
-      "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.");
+      "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.\n"
+      "vdt: view-dependent transparency (docs/render.md), default k and weights, no error columns (its\n"
+      "model makes every distractor transparent: reference's picture is not what it aims at).");
   cmd->callback([o] { run(*o); });
 }
 

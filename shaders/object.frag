@@ -13,6 +13,9 @@
 // class: 0 behind the lens (z > back), 1 inside (front <= z <= back), 2 in
 // front (z < front); outside the lens footprint back = 0 and front = 1, so
 // class 0 keeps everything there. u_lens_tint.a > 0 mixes u_lens_tint.rgb in.
+// Compiled a fourth time with VDT (docs/render.md "vdt"): alpha is the
+// interpolated view-dependent alpha of the vertices (clamped to [0, 1]) in both
+// the lit and the flat branch; the blend state decides what it weighs.
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -31,8 +34,18 @@ uniform sampler2D u_lens_front;  // depth of its nearest surface (1 where no len
 uniform int u_lens_class;        // 0 behind, 1 inside, 2 in front
 uniform vec4 u_lens_tint;        // rgb mixed in with weight a (a = 0: none)
 #endif
+#ifdef VDT
+in float v_alpha;
+#endif
 
 out vec4 frag_color;
+
+vec4 with_alpha(vec4 c) {
+#ifdef VDT
+  c.a = clamp(v_alpha, 0.0, 1.0);
+#endif
+  return c;
+}
 
 #ifdef LENS
 vec4 lens_tinted(vec4 c) {
@@ -53,7 +66,7 @@ void main() {
   if (!keep) discard;
 #endif
   if (u_flat.a > 0.5) {
-    frag_color = vec4(u_flat.rgb, 1.0);
+    frag_color = with_alpha(vec4(u_flat.rgb, 1.0));
 #ifdef LENS
     frag_color = lens_tinted(frag_color);
 #endif
@@ -65,7 +78,7 @@ void main() {
   float ln = length(v_normal);
   float diffuse = ln > 1e-12 ? abs(dot(v_normal / ln, l)) : 1.0;
   vec3 c = clamp(v_color * u_tint, 0.0, 1.0) * (0.3 + 0.7 * clamp(diffuse, 0.0, 1.0));
-  frag_color = vec4(c, 1.0);
+  frag_color = with_alpha(vec4(c, 1.0));
 #ifdef LENS
   frag_color = lens_tinted(frag_color);
 #endif

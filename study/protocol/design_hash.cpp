@@ -115,6 +115,11 @@ std::string design_sha256(const Protocol& p) {
       c.num("rendering.distance", r.distance);
       c.num("rendering.length", r.length);
     }
+    if (r.method == "vdt") {  // likewise
+      c.num("rendering.falloff", r.falloff);
+      c.num("rendering.opaque_alpha", r.opaque_alpha);
+      c.num("rendering.background_alpha", r.background_alpha);
+    }
   }
   for (const QuestionnaireItem& q : p.questionnaire) {
     c.str("item", q.id);

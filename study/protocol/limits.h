@@ -58,6 +58,7 @@ inline constexpr Ints kGradientWidth{0, 64};
 inline constexpr Ints kMaskResolution{16, 4096};
 inline constexpr Ints kLayerLimit{0, 60};
 inline constexpr Numbers kLensSize{0.001, 100000};  // radius, distance, length (world units)
+inline constexpr Numbers kVdtUnit{0, 1};            // falloff (k), opaque_alpha, background_alpha
 // [questionnaire.*].
 inline constexpr Ints kScale{-100, 100};
 inline constexpr Ints kOptions{2, 32};              // entries of a choice's options

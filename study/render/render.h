@@ -1,4 +1,4 @@
-// The dtlab renderer: draws a scene::Scene with one of five methods through
+// The dtlab renderer: draws a scene::Scene with one of six methods through
 // a frame graph (detail/frame_graph.h), into a caller-owned target (a window's
 // default framebuffer or an offscreen framebuffer), in any GL 3.3 core
 // context (the platform layer makes one). Methods (docs/render.md):
@@ -10,7 +10,9 @@
 //              at once in a reduced-resolution atlas, scissored regions);
 //   reference  exact per-pixel compositing on the CPU (the error yardstick);
 //   lens       Ropinski & Hinrichs's volumetric 3D magic lens (a convex lens volume, a second
-//              depth test against its back- and front-face depth maps, three scene passes).
+//              depth test against its back- and front-face depth maps, three scene passes);
+//   vdt        Diepstraten, Weiskopf & Ertl's view-dependent transparency (distractors transparent,
+//              targets and impenetrable surfaces opaque; image-space depth peeling of two layers).
 // Guarantees: the GL state of the caller is restored after every call that
 // draws; an effect the frame does not call for (transparency off, no target
 // in view, no target occluded) runs no pass. Never: creates a GL context,
@@ -33,10 +35,12 @@
 
 namespace dtlab::render {
 
-enum class Method { standard, dt_seed, dt_fast, reference, lens };
-std::string_view to_string(Method m);                   // "standard", "dt-seed", "dt-fast", "reference", "lens"
+enum class Method { standard, dt_seed, dt_fast, reference, lens, vdt };
+std::string_view to_string(Method m);                   // "standard", "dt-seed", "dt-fast", "reference", "lens", "vdt"
 std::optional<Method> parse_method(std::string_view s);  // inverse of to_string; nullopt if unknown
-bool uses_transparency(Method m);                        // dynamic transparency: dt-seed, dt-fast, reference
+// Dynamic transparency (target-driven masks): dt-seed, dt-fast, reference. Not vdt: its transparency
+// is per object class and the same whether or not a target is occluded (no masks, no target query).
+bool uses_transparency(Method m);
 
 enum class MaskShape { outline, circle, ellipse };
 std::string_view to_string(MaskShape s);
@@ -118,10 +122,24 @@ std::optional<std::string> check(const LensSettings& s);
 // quarter of the view's half-height at that distance; length = 2 x radius.
 LensSettings scene_lens(const scene::Scene& scene, int width, int height);
 
+// The vdt method (docs/render.md, "vdt"): Diepstraten, Weiskopf & Ertl (2002). Distractors are
+// transparent; targets and impenetrable surfaces opaque. A transparent surface's alpha is eq. (2),
+// 1 - (d_min / d_object,max)^k per vertex (d_min: distance to its nearest silhouette edge); the final
+// colour is alpha C_transparent + a_dst C_behind (GL_SRC_ALPHA, GL_DST_ALPHA), where a_dst is the
+// fixed alpha of the opaque object behind, or of the background.
+struct VdtSettings {
+  float falloff = 0.5f;           // k in [0, 1]: the paper's "falling off term"
+  float opaque_alpha = 0.5f;      // [0, 1]: weight of an opaque object seen through a transparent one
+  float background_alpha = 0.5f;  // [0, 1]: weight of the background (the paper suggests 0.5)
+};
+// nullopt when fine; else what is wrong, naming the member ("falloff must be 0..1 (got 2)").
+std::optional<std::string> check(const VdtSettings& s);
+
 struct FrameSettings {
   Method method = Method::standard;
   DtSettings dt;
   LensSettings lens;  // method lens only
+  VdtSettings vdt;    // method vdt only
   glm::vec3 background{0.80f, 0.82f, 0.86f};  // linear RGB of pixels no object covers
   bool float_color = false;   // RGBA16F colour buffer instead of RGBA8 (tests scan it for NaN)
   bool timed = false;         // glFinish at the end and report frame_ms (benchmarks, --frames)

@@ -139,6 +139,12 @@ const Case kCases[] = {
      "rendering.on.shape", "unknown value"},
     {"unknown lens style", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\nstyle = \"glass\""}}, 29,
      "rendering.on.style", "unknown value"},
+    // the vdt method (docs/protocol.md): k and the two weights in [0, 1]
+    {"vdt falloff above 1", {{26, "method = \"vdt\"\nfalloff = 1.5"}}, 27, "rendering.on.falloff", "out of range"},
+    {"vdt opaque alpha negative", {{26, "method = \"vdt\"\nopaque_alpha = -0.1"}}, 27, "rendering.on.opaque_alpha",
+     "out of range"},
+    {"vdt background alpha a string", {{26, "method = \"vdt\"\nbackground_alpha = \"half\""}}, 27,
+     "rendering.on.background_alpha", "expected"},
     {"unknown scenario kind", {{14, "kind = \"maze\""}}, 14, "scenarios.abstract.kind", "unknown value"},
     {"unknown letter", {{16, "type = \"identify-letter\"\nletters = [\"C\", \"Q\"]"}}, 17,
      "scenarios.abstract.tasks.T1.letters[1]", "unknown value \"Q\""},
@@ -381,6 +387,8 @@ const WarningCase kWarnings[] = {
     {"lens keys on dt-seed", {{26, "method = \"dt-seed\"\nradius = 2.0"}}, 27, "rendering.on.radius", "a lens key"},
     {"transparency keys on a lens", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\naT = 0.2"}}, 29,
      "rendering.on.aT", "no effect"},
+    {"vdt keys on dt-seed", {{26, "method = \"dt-seed\"\nfalloff = 0.5"}}, 27, "rendering.on.falloff", "a vdt key"},
+    {"transparency keys on vdt", {{26, "method = \"vdt\"\naT = 0.2"}}, 27, "rendering.on.aT", "no effect"},
 };
 
 class Warns : public testing::TestWithParam<WarningCase> {};

@@ -136,6 +136,28 @@ TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
   fs::remove(out);
 }
 
+// The vdt method (docs/render.md, "vdt"): its passes in the paper's order (section 6.2), and
+// targets seen through the nearest distractor where standard leaves them hidden.
+TEST(RenderCli, VdtRendersItsPassesAndShowsTargetsThroughDistractors) {
+  const fs::path out = png_path("vdt");
+  auto visible = [&](const std::string& method) {
+    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
+                                   method + " --out '" + out.string() + "' --json");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    long n = 0;
+    for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
+    EXPECT_TRUE(j["gl_errors"].empty());
+    return std::pair{n, j["passes"]};
+  };
+  const auto [standard, standard_passes] = visible("standard");
+  const auto [vdt, vdt_passes] = visible("vdt --vdt-falloff 0.5 --vdt-opaque-alpha 0.6");
+  EXPECT_EQ(vdt_passes, nlohmann::json({"vdt-nearest", "vdt-second", "vdt-opaque", "vdt-blend", "vdt-foreground",
+                                        "present"}));
+  EXPECT_GT(vdt, standard);
+  fs::remove(out);
+}
+
 struct BadCase {
   const char* name;
   std::string args;
@@ -193,6 +215,9 @@ INSTANTIATE_TEST_SUITE_P(
                 "--lens-radius must be finite and > 0"},
         BadCase{"lens_at_not_a_pixel", "--scene abstract --task T1 --seed 1 --method lens --lens-at 3",
                 "--lens-at: expected X,Y"},
+        BadCase{"vdt_option_without_vdt", kAbstract + " --vdt-falloff 0.3", "--method vdt only"},
+        BadCase{"vdt_falloff_above_one", "--scene abstract --task T1 --seed 1 --method vdt --vdt-falloff 2",
+                "--vdt-falloff"},
         BadCase{"protocol_and_lens", "--protocol " + kReference + " --index 0 --trial 1 --lens-shape box",
                 "drop --lens-shape"}),
     [](const auto& info) { return std::string(info.param.name); });

@@ -35,7 +35,7 @@ TEST(Window, EveryMethodGivesTheSamePixelsInAWindowAndHeadless) {
   ASSERT_EQ(win.height(), kH);
   const scene::Scene s = scene_with_target_behind_wall();
   const Camera cam = testing::front_camera(kW, kH);
-  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens}) {
+  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens, Method::vdt}) {
     SCOPED_TRACE(std::string(to_string(m)));
     FrameSettings settings;
     settings.method = m;
@@ -240,7 +240,8 @@ TEST(Window, RenderingIntoTheWindowRestoresTheCallersGlStateAndIgnoresIt) {
   auto r = Renderer::create(scene_with_target_behind_wall());
   ASSERT_TRUE(r.ok());
   const Camera cam = testing::front_camera(kW, kH);
-  const std::vector<Method> methods{Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens};
+  const std::vector<Method> methods{Method::standard, Method::dt_seed, Method::dt_fast,
+                                    Method::reference, Method::lens,    Method::vdt};
   std::vector<Image> clean;
   for (Method m : methods) {
     FrameSettings settings;

@@ -61,6 +61,9 @@ TEST_F(Perception, VisiblePixelsEqualTheRenderersVisibility) {
       // The lens (an eraser cone through the view's centre): seen through like any method.
       {scene::Kind::abstract, scene::Task::T1, 11, render::Method::lens, 0.0f, 0.0f},
       {scene::Kind::walkthrough, scene::Task::T3, 14, render::Method::lens, 2.4f, 0.0f},
+      // vdt (distractors transparent, the nearest one blended): likewise.
+      {scene::Kind::abstract, scene::Task::T1, 11, render::Method::vdt, 0.0f, 0.0f},
+      {scene::Kind::walkthrough, scene::Task::T3, 14, render::Method::vdt, 2.4f, 0.0f},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(scene::kind_name(c.kind)) + " seed " + std::to_string(c.seed) + " " +

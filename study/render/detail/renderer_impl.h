@@ -14,6 +14,7 @@
 #include "study/render/detail/programs.h"
 #include "study/render/detail/scene_gpu.h"
 #include "study/render/detail/sort.h"
+#include "study/render/detail/vdt.h"
 #include "study/render/render.h"
 
 namespace dtlab::render {
@@ -38,8 +39,11 @@ struct Renderer::Impl {
 
   // The lens method's volume, re-uploaded every lens frame (a few hundred triangles).
   unsigned lens_vao = 0, lens_vbo = 0;
+  // The vdt method's per-vertex alpha buffer and the meshes' edge lists (built on first use).
+  detail::VdtState vdt;
 
   ~Impl() {
+    vdt.destroy();
     if (lens_vao != 0) glDeleteVertexArrays(1, &lens_vao);
     if (lens_vbo != 0) glDeleteBuffers(1, &lens_vbo);
     if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
