@@ -34,7 +34,8 @@ Result<scene::Params> scene_params(const protocol::Protocol& p, const protocol::
 // Frame settings of a [rendering.*] table for a width x height viewport (both >= 1):
 // the protocol's gradient width (mask pixels) becomes output pixels. Active mode puts the
 // searchlight at the viewport centre (a responder may move it); so does a lens (method "lens"),
-// which follows the cursor in active mode (LensSettings::follows_cursor).
+// which follows the cursor in active mode (LensSettings::follows_cursor). vdt's keys become
+// VdtSettings.
 Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const protocol::Rendering& rendering,
                                              int width, int height);
 

@@ -113,20 +113,24 @@ TEST(RenderCli, DbParticipantTakesTheEnrollmentIndexFromTheLedger) {
   for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(db.string() + suffix);
 }
 
+// ABSTRACT T1 seed 7 at 160 x 120 with `method` (and its options): the targets' visible pixels
+// summed, and the passes that ran (no GL error, exit 0).
+std::pair<long, nlohmann::json> visible_and_passes(const std::string& method, const fs::path& out) {
+  const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
+                                 method + " --out '" + out.string() + "' --json");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  long n = 0;
+  for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
+  EXPECT_TRUE(j["gl_errors"].empty());
+  return {n, j["passes"]};
+}
+
 // The lens method (docs/render.md, "lens"): its passes in the paper's order, and an eraser cone
 // through the ABSTRACT cube uncovers targets standard leaves hidden.
 TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
   const fs::path out = png_path("lens");
-  auto visible = [&](const std::string& method) {
-    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
-                                   method + " --out '" + out.string() + "' --json");
-    EXPECT_EQ(r.rc, 0) << r.err;
-    const auto j = nlohmann::json::parse(r.out);
-    long n = 0;
-    for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
-    EXPECT_TRUE(j["gl_errors"].empty());
-    return std::pair{n, j["passes"]};
-  };
+  auto visible = [&](const std::string& method) { return visible_and_passes(method, out); };
   const auto [standard, standard_passes] = visible("standard");
   const auto [lens, lens_passes] =
       visible("lens --lens-shape cone --lens-style eraser --lens-radius 20 --lens-length 100");
@@ -140,16 +144,7 @@ TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
 // targets seen through the nearest distractor where standard leaves them hidden.
 TEST(RenderCli, VdtRendersItsPassesAndShowsTargetsThroughDistractors) {
   const fs::path out = png_path("vdt");
-  auto visible = [&](const std::string& method) {
-    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --method " +
-                                   method + " --out '" + out.string() + "' --json");
-    EXPECT_EQ(r.rc, 0) << r.err;
-    const auto j = nlohmann::json::parse(r.out);
-    long n = 0;
-    for (const auto& t : j["targets"]) n += t["visible_pixels"].get<long>();
-    EXPECT_TRUE(j["gl_errors"].empty());
-    return std::pair{n, j["passes"]};
-  };
+  auto visible = [&](const std::string& method) { return visible_and_passes(method, out); };
   const auto [standard, standard_passes] = visible("standard");
   const auto [vdt, vdt_passes] = visible("vdt --vdt-falloff 0.5 --vdt-opaque-alpha 0.6");
   EXPECT_EQ(vdt_passes, nlohmann::json({"vdt-nearest", "vdt-second", "vdt-opaque", "vdt-blend", "vdt-foreground",
