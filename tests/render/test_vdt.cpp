@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "study/render/detail/vdt_alpha.h"
+#include "study/scene/primitives.h"
 #include "tests/render/scenes.h"
 
 namespace dtlab::render {
@@ -325,6 +326,43 @@ TEST_F(VdtTest, RestoresTheCallersGlState) {
   glDeleteBuffers(1, &buffer);
   r.value()->render_offscreen(front_camera(kW, kH), standard, kW, kH);
   EXPECT_EQ(r.value()->read_color().rgba, before.rgba);
+}
+
+// The edge lists eq. (1) runs on: split vertices welded, degenerate triangles left out, so a
+// closed mesh becomes a closed 2-manifold: every edge has two faces and V - E + F = 2 (Euler).
+// A box: 8 corners, 12 edges + 6 face diagonals, 12 triangles. A UV sphere (its pole rows and
+// seam split): the same two properties.
+TEST(VdtTopology, ClosedMeshesWeldToClosedSurfaces) {
+  const detail::VdtTopology box = detail::vdt_topology(testing::box_mesh({-1, -1, -1}, {1, 2, 3}));
+  EXPECT_EQ(box.points.size(), 8u);
+  EXPECT_EQ(box.edges.size(), 18u);
+  EXPECT_EQ(box.planes.size(), 12u);
+  const detail::VdtTopology sphere = detail::vdt_topology(testing::sphere_mesh({0, 0, -5}, 2.0f));
+  for (const detail::VdtTopology* t : {&box, &sphere}) {
+    for (const auto& e : t->edges) EXPECT_EQ(e.faces.size(), 2u);
+    EXPECT_EQ(static_cast<long>(t->points.size()) - static_cast<long>(t->edges.size()) +
+                  static_cast<long>(t->planes.size()),
+              2);
+  }
+  // ABSTRACT's own primitives (their seams and poles are placed with sin(2 pi), sin(pi) a few 1e-16
+  // off zero: welded within tolerance, no edge is a border). Euler characteristic: 2, a torus 0.
+  for (scene::Primitive p : {scene::Primitive::sphere, scene::Primitive::cone, scene::Primitive::box,
+                             scene::Primitive::torus}) {
+    SCOPED_TRACE(std::string(scene::primitive_name(p)));
+    const detail::VdtTopology t = detail::vdt_topology(scene::primitive_mesh(p));
+    int not_two = 0;
+    for (const auto& e : t.edges) not_two += e.faces.size() != 2;
+    EXPECT_EQ(not_two, 0);
+    EXPECT_EQ(static_cast<long>(t.points.size()) - static_cast<long>(t.edges.size()) +
+                  static_cast<long>(t.planes.size()),
+              p == scene::Primitive::torus ? 0 : 2);
+  }
+  // An open quad: its 4 border edges have one face each, the diagonal two.
+  const detail::VdtTopology quad = detail::vdt_topology(testing::quad_mesh(0, 0, 1, 1, 0));
+  int border = 0;
+  for (const auto& e : quad.edges) border += e.faces.size() == 1;
+  EXPECT_EQ(border, 4);
+  EXPECT_EQ(quad.edges.size(), 5u);
 }
 
 TEST(VdtSettingsCheck, NamesTheMember) {

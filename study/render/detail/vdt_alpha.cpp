@@ -3,24 +3,63 @@
 #include "study/render/detail/vdt_alpha.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <tuple>
+#include <optional>
 #include <utility>
 
 namespace dtlab::render::detail {
 
-VdtTopology vdt_topology(const scene::Mesh& mesh) {
-  VdtTopology t;
-  std::map<std::tuple<float, float, float>, std::uint32_t> ids;
+namespace {
+
+// Welds positions closer than `eps` (a hash grid of cell eps; a point is looked up in its cell and
+// the 26 around it). Exact equality is not enough: generators place seam and pole vertices with
+// sin(2 pi) or sin(pi) in floating point, a few 1e-16 off zero, and an unwelded seam would be a
+// border, so a silhouette edge across the middle of the object.
+void weld(const scene::Mesh& mesh, VdtTopology& t) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const scene::Vertex& v : mesh.vertices) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  const float eps = mesh.vertices.empty() ? 1.0f : std::max(1e-5f * glm::length(hi - lo), 1e-12f);
+  using Cell = std::array<long long, 3>;
+  std::map<Cell, std::vector<std::uint32_t>> grid;
+  auto cell_of = [&](glm::vec3 p) {
+    return Cell{static_cast<long long>(std::floor(p.x / eps)), static_cast<long long>(std::floor(p.y / eps)),
+                static_cast<long long>(std::floor(p.z / eps))};
+  };
   t.weld.reserve(mesh.vertices.size());
   for (const scene::Vertex& v : mesh.vertices) {
-    const auto key = std::make_tuple(v.position.x, v.position.y, v.position.z);
-    const auto [it, added] = ids.emplace(key, static_cast<std::uint32_t>(t.points.size()));
-    if (added) t.points.push_back(v.position);
-    t.weld.push_back(it->second);
+    const Cell c = cell_of(v.position);
+    std::optional<std::uint32_t> found;
+    for (long long dx = -1; dx <= 1 && !found; ++dx)
+      for (long long dy = -1; dy <= 1 && !found; ++dy)
+        for (long long dz = -1; dz <= 1 && !found; ++dz) {
+          const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == grid.end()) continue;
+          for (std::uint32_t k : it->second)
+            if (glm::length(t.points[k] - v.position) <= eps) {
+              found = k;
+              break;
+            }
+        }
+    if (!found) {
+      found = static_cast<std::uint32_t>(t.points.size());
+      t.points.push_back(v.position);
+      grid[c].push_back(*found);
+    }
+    t.weld.push_back(*found);
   }
+}
+
+}  // namespace
+
+VdtTopology vdt_topology(const scene::Mesh& mesh) {
+  VdtTopology t;
+  weld(mesh, t);
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> edge_of;
   for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
     const std::uint32_t w[3] = {t.weld[mesh.indices[i]], t.weld[mesh.indices[i + 1]], t.weld[mesh.indices[i + 2]]};

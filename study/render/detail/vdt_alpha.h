@@ -17,8 +17,9 @@
 
 namespace dtlab::render::detail {
 
-// A mesh's edges with the faces that share them, its vertices welded by position (the scene's
-// meshes split vertices at sharp edges for their normals; a silhouette is an edge of the surface).
+// A mesh's edges with the faces that share them, its vertices welded by position within 1e-5 of
+// the mesh's size (the scene's meshes split vertices at sharp edges for their normals and at
+// seams; a silhouette is an edge of the surface).
 struct VdtTopology {
   std::vector<glm::vec3> points;      // welded positions, model space
   std::vector<std::uint32_t> weld;    // per mesh vertex: its index in `points`
