@@ -91,15 +91,20 @@ void draw_transparent_depth(const FrameContext& fc, const VdtFrame& frame, unsig
   glFrontFace(GL_CCW);
 }
 
+// Every colour channel written, blending on (the caller sets its functions), the depth test on.
+void blended_colour_state(GLenum depth_func, GLboolean depth_write) {
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(depth_func);
+  glDepthMask(depth_write);
+  glEnable(GL_BLEND);
+}
+
 // Opaque objects, lit, z-buffered (LESS) over what the depth buffer holds, writing their fixed
 // alpha (the destination weight of the later blend) through the constant blend colour.
 void draw_opaque(const FrameContext& fc, const VdtFrame& frame) {
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
+  blended_colour_state(GL_LESS, GL_TRUE);
   glDisable(GL_CULL_FACE);
-  glEnable(GL_BLEND);
   glBlendColor(0.0f, 0.0f, 0.0f, fc.settings.vdt.opaque_alpha);
   glBlendFuncSeparate(GL_ONE, GL_ZERO, GL_CONSTANT_ALPHA, GL_ZERO);
   fc.use_lit(fc.view.view_proj);
@@ -109,11 +114,7 @@ void draw_opaque(const FrameContext& fc, const VdtFrame& frame) {
 
 // The nearest transparent front faces (depth EQUAL against their own map), C = a C_t + a_dst C_dst.
 void draw_blend(const FrameContext& fc, const VdtFrame& frame) {
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_EQUAL);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
+  blended_colour_state(GL_EQUAL, GL_FALSE);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_DST_ALPHA, GL_ZERO, GL_ONE);  // the destination alpha stays
   const Program& p = fc.programs.object_vdt;
   fc.use_program(p);
