@@ -9,8 +9,9 @@
 // passes run; the R1 guard both ways; the lens method (three shapes and
 // styles; no error column: reference is not its yardstick); vdt (no error
 // column either: another transparency model); then what accuracy costs: mask
-// resolution 64/256/full and gradient width sweeps. Table on stdout (or
-// --json), progress on stderr.
+// resolution 64/256/full and gradient width sweeps. With --culling, only
+// occlusion culling along walkthrough routes (bench_culling.h). Table on
+// stdout (or --json), progress on stderr.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -28,6 +29,7 @@
 
 #include <unistd.h>
 
+#include "app/bench_culling.h"
 #include "app/commands.h"
 #include "app/platform/gl_context.h"
 #include "study/render/render.h"
@@ -46,6 +48,8 @@ struct BenchOptions {
   bool sweep = true;
   bool alone = true;      // time standard again in a fresh process
   double budget_s = 4.0;  // per configuration: stop repeating a slow one after this much time
+  bool culling = false;   // instead: occlusion culling along walkthrough routes (bench_culling.h)
+  std::vector<std::string> culling_methods{"standard", "dt-fast"};
 };
 
 [[noreturn]] void fail(int code, const std::string& message) {
@@ -366,6 +370,19 @@ void print_table(const std::vector<Row>& rows) {
 }
 
 void run(const BenchOptions& o) {
+  if (o.culling) {  // three routes from --seed, at the first size
+    CullingBenchOptions c;
+    c.json = o.json;
+    c.frames = std::min(o.frames, 5);
+    c.seeds = {o.seed, o.seed + 1, o.seed + 2};
+    c.methods = o.culling_methods;
+    char x = 0;
+    std::stringstream ss(o.sizes.front());
+    if (!(ss >> c.width >> x >> c.height) || x != 'x' || c.width <= 0 || c.height <= 0 || c.width > 8192 || c.height > 8192)
+      fail(kExitUsage, "--sizes: '" + o.sizes.front() + "' is not WxH");
+    bench_culling(c);
+    return;
+  }
   std::vector<Row> rows;
   for (const auto& kind : o.scenes) {
     for (const auto& size : o.sizes) {
@@ -395,6 +412,12 @@ void add_bench_command(CLI::App& root) {
   cmd->add_option("--scenes", o->scenes, "Scene kinds")->delimiter(',')->check(CLI::IsMember({"abstract", "walkthrough"}));
   cmd->add_flag("!--no-sweep", o->sweep, "Skip the mask-resolution and gradient-width sweeps");
   cmd->add_flag("!--no-alone", o->alone, "Skip timing standard alone in a fresh process");
+  cmd->add_flag("--culling", o->culling,
+                "Instead: occlusion culling along walkthrough routes (seeds --seed, +1, +2; the first --sizes; "
+                "at most 5 frames per view)");
+  cmd->add_option("--culling-methods", o->culling_methods, "Methods of the --culling routes")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens"}));
   cmd->add_option("--budget", o->budget_s, "Seconds per configuration after which a slow one stops repeating (>= 3 frames)");
   cmd->footer(
       "frame ms: wall time of a frame from graph build to glFinish, median over frames; cpu ms: process CPU\n"
@@ -409,7 +432,12 @@ void add_bench_command(CLI::App& root) {
       "only the targets nothing hides (transparency on, the effect not called for). lens rows: the lens\n"
       "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.\n"
       "vdt: view-dependent transparency (docs/render.md), default k and weights, no error columns (its\n"
-      "model makes every distractor transparent: reference's picture is not what it aims at).");
+      "model makes every distractor transparent: reference's picture is not what it aims at).\n"
+      "--culling: per route (the eye walking cell by cell from the start cell to the farthest one, looking\n"
+      "ahead, and standing in each doorway), the speed-up of occlusion culling over frustum culling alone\n"
+      "(frame ms off / on, culling's own time included) at the best, mean and worst view, and over the\n"
+      "whole route; cull ms: occluder render, reduction, readback, maps and tree test; obj %, tri %: share of\n"
+      "the objects and triangles in the frustum it culled; prep ms: the occluder database (once per scene).");
   cmd->callback([o] { run(*o); });
 }
 

@@ -108,6 +108,10 @@ std::string design_sha256(const Protocol& p) {
     c.str("rendering.mask_shape", r.mask_shape);
     c.str("rendering.mode", r.mode);
     c.integer("rendering.layer_limit", r.layer_limit);
+    // Only when not the default: every protocol written before the key keeps its hash (their
+    // searchlight was 120 pixels, the default's size at the article's 800 x 600).
+    if (r.searchlight_radius != Rendering{}.searchlight_radius) c.num("rendering.searchlight_radius", r.searchlight_radius);
+    if (r.occlusion_culling) c.str("rendering.occlusion_culling", "true");  // unset: the hash stays as it was
     if (r.method == "lens") {  // only then: the design hash of every other protocol stays as it was
       c.str("rendering.shape", r.shape);
       c.str("rendering.style", r.style);

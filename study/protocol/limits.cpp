@@ -40,6 +40,7 @@ constexpr std::array kDocumented{
     ints("rendering", "gradient_width", kGradientWidth),
     ints("rendering", "mask_resolution", kMaskResolution),
     ints("rendering", "layer_limit", kLayerLimit),
+    numbers("rendering", "searchlight_radius", kSearchlightRadius),
     numbers("rendering", "radius", kLensSize),
     numbers("rendering", "distance", kLensSize),
     numbers("rendering", "length", kLensSize),

@@ -57,6 +57,7 @@ inline constexpr Numbers kAlpha{0, 0.99};
 inline constexpr Ints kGradientWidth{0, 64};
 inline constexpr Ints kMaskResolution{16, 4096};
 inline constexpr Ints kLayerLimit{0, 60};
+inline constexpr Numbers kSearchlightRadius{0.01, 2};  // share of the view's height (2: the whole view)
 inline constexpr Numbers kLensSize{0.001, 100000};  // radius, distance, length (world units)
 inline constexpr Numbers kVdtUnit{0, 1};            // falloff (k), opaque_alpha, background_alpha
 // [questionnaire.*].

@@ -120,6 +120,8 @@ struct Rendering {
   std::string mode = "passive";     // "passive" (whole view) | "active" (searchlight; a lens: follows the
                                     // cursor) | "fixed" (a lens at the view's centre; the lens's default)
   int layer_limit = 0;              // most surfaces made transparent in front of a target; 0 = no limit
+  double searchlight_radius = 0.2;  // mode = "active": the searchlight's radius as a share of the view's height
+                                    // (0.2 = 120 pixels at the article's 800 x 600)
   // method = "lens" (docs/render.md, "lens"); sizes in world units (the scene's own scale).
   std::string shape = "sphere";     // "sphere" | "box" | "cylinder" | "cone"
   std::string style = "eraser";     // "eraser" | "wireframe" | "tint"
@@ -130,6 +132,7 @@ struct Rendering {
   double falloff = 0.5;
   double opaque_alpha = 0.5;
   double background_alpha = 0.5;
+  bool occlusion_culling = false;   // Poon's occlusion culling in WALKTHROUGH scenes (the picture is unchanged)
 };
 
 // --- session, training, questionnaire --------------------------------------------------

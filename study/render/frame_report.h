@@ -24,8 +24,21 @@ struct PassRecord {
   double ms = 0.0;           // CPU time (all threads) of the pass when profiled (glFinish around it)
 };
 
+// Occlusion culling's work in one frame (FrameSettings::occlusion_culling; docs/render.md).
+struct CullingReport {
+  bool ran = false;                    // on, and the scene has a floor plan (WALKTHROUGH)
+  int occluders = 0;                   // drawn into the occluder depth (the nearest grid point's, in view)
+  int objects_in_view = 0, objects_culled = 0;      // in the view frustum; of those, hidden by occluders
+  long triangles_in_view = 0, triangles_culled = 0;
+  int nodes_tested = 0, nodes_culled = 0;           // hierarchy nodes
+  double ms = 0.0;             // CPU wall time of the test: occluder render, reduction, readback, maps, tree
+  double readback_ms = 0.0;    // of which reading the small map back (waits for the occluder render)
+  double preprocess_ms = 0.0;  // the occluder database, on the frame that built it (once per Renderer)
+};
+
 struct FrameReport {
   std::vector<PassRecord> passes;
+  CullingReport culling;
   std::vector<std::string> gl_errors;  // "pass 'name': GL_INVALID_OPERATION", in order
   double frame_ms = 0.0;               // CPU wall time from graph build to glFinish (0 if not timed)
   std::vector<std::string> passes_run() const;  // names of passes that ran (unknown counts as ran)

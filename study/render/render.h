@@ -144,6 +144,9 @@ struct FrameSettings {
   bool float_color = false;   // RGBA16F colour buffer instead of RGBA8 (tests scan it for NaN)
   bool timed = false;         // glFinish at the end and report frame_ms (benchmarks, --frames)
   bool profile_passes = false;  // glFinish after every pass; PassRecord::ms (slows the frame; debugging)
+  // Poon's occlusion culling (WALKTHROUGH only; docs/render.md): objects hidden behind the nearest
+  // grid point's occluders are not drawn. The picture is unchanged under every method.
+  bool occlusion_culling = false;
   // Flat colours per object index (unlit, exact): the weight mode used to count visible pixels.
   // Empty: normal shading. Objects beyond the vector's size are black.
   std::vector<glm::vec3> flat_colors;

@@ -203,6 +203,7 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
     return bad(p, field + ".method", "the renderer has no method '" + r.method +
                                          "' (standard, dt-seed, dt-fast, reference, lens, vdt)");
   f.method = *method;
+  f.occlusion_culling = r.occlusion_culling;
   if (f.method == render::Method::lens) return lens_settings(p, r, width, height, f);
   if (f.method == render::Method::vdt) return vdt_settings(p, r, f);
   const auto shape = render::parse_mask_shape(r.mask_shape);
@@ -221,6 +222,7 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
   } else if (r.mode == "active") {
     dt.mode = render::DtMode::active;
     dt.searchlight_center = {0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height)};
+    dt.searchlight_radius = static_cast<float>(r.searchlight_radius) * static_cast<float>(height);
   } else {
     return bad(p, field + ".mode", "unknown mode '" + r.mode + "' (passive, active)");
   }
@@ -238,7 +240,7 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
       case render::DtField::gradient: key = "gradient_width"; break;
       case render::DtField::mask_resolution: key = "mask_resolution"; break;
       case render::DtField::layer_limit: key = "layer_limit"; break;
-      case render::DtField::searchlight: key = "mode"; break;
+      case render::DtField::searchlight: key = "searchlight_radius"; break;
     }
     return bad(p, field + "." + key,
                problem->message + " (at a " + std::to_string(width) + "x" + std::to_string(height) + " viewport)");

@@ -185,4 +185,39 @@ View look(render::Renderer& renderer, const render::Camera& camera, const render
   return view;
 }
 
+float aid_radius_px(const render::FrameSettings& settings, const render::Camera& camera, int height) {
+  if (settings.method == render::Method::lens) {
+    const render::LensSettings& l = settings.lens;
+    if (!l.follows_cursor) return 0.0f;
+    // The lens's radius at its distance, projected: tan(half angle) = radius / distance, and
+    // proj[1][1] = 1 / tan(fov_y / 2) maps it to normalised device units (half the height).
+    if (l.radius >= l.distance) return 1e9f;  // the eye inside the lens: it covers the view
+    return l.radius / l.distance * camera.proj[1][1] * 0.5f * static_cast<float>(height);
+  }
+  if (render::uses_transparency(settings.method) && settings.dt.mode == render::DtMode::active)
+    return settings.dt.searchlight_radius;
+  return 0.0f;
+}
+
+std::vector<glm::vec2> aid_spots(const render::FrameSettings& settings, const render::Camera& camera,
+                                 bool mouse_turns_view, int width, int height) {
+  const float r = aid_radius_px(settings, camera, height);
+  if (mouse_turns_view || r <= 0.0f) return {};
+  const float w = static_cast<float>(width), h = static_cast<float>(height);
+  // Cells of one diameter, at least one per axis (a huge aid: one spot at the centre), and no more
+  // than kMaxAidSpots: a smaller aid is swept over as many spots, leaving gaps between them.
+  const float cell = std::max(2.0f * r, std::sqrt(w * h / static_cast<float>(kMaxAidSpots)));
+  const int nx = std::max(1, static_cast<int>(std::ceil(w / cell - 1e-4f)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(h / cell - 1e-4f)));
+  std::vector<glm::vec2> spots;
+  spots.reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+  for (int j = 0; j < ny; ++j)
+    for (int k = 0; k < nx; ++k) {
+      const int i = j % 2 == 0 ? k : nx - 1 - k;
+      spots.emplace_back((static_cast<float>(i) + 0.5f) * w / static_cast<float>(nx),
+                         (static_cast<float>(j) + 0.5f) * h / static_cast<float>(ny));
+    }
+  return spots;
+}
+
 }  // namespace dtlab::sim

@@ -52,4 +52,18 @@ struct View {
 View look(render::Renderer& renderer, const render::Camera& camera, const render::FrameSettings& settings, int width,
           int height, std::span<const std::uint32_t> objects, const std::vector<ObjectBounds>& bounds);
 
+// The on-screen radius in pixels of an aid that follows the cursor: the active searchlight's radius,
+// or an active lens's radius as seen at its distance; 0 when nothing follows the cursor (passive
+// transparency, a fixed lens, no aid).
+float aid_radius_px(const render::FrameSettings& settings, const render::Camera& camera, int height);
+// Where a participant puts such an aid while looking over one view (docs/sim.md, "Active aids"): the
+// centres of a grid of cells one aid diameter wide covering the view (wider when that would make more
+// than kMaxAidSpots), row by row, alternating direction (the shortest sweep); one spot at the view's
+// centre when the aid covers the whole view.
+inline constexpr int kMaxAidSpots = 12;
+// Empty when nothing follows the cursor or `mouse_turns_view` (WALKTHROUGH: the mouse turns the
+// head and the aid stays at the view's centre, as `dtlab run` draws it).
+std::vector<glm::vec2> aid_spots(const render::FrameSettings& settings, const render::Camera& camera,
+                                 bool mouse_turns_view, int width, int height);
+
 }  // namespace dtlab::sim

@@ -37,6 +37,8 @@ struct ModelParams {
   // Durations in seconds (multiplied by the participant's speed).
   double drag_base_s = 0.4, drag_s_per_rad = 1.2;  // one mouse drag of the orbit
   double scan_base_s = 1.0;                 // looking over a view
+  double aid_spot_s = 0.25;                 // an aid that follows the cursor: moving it to the next spot of the
+                                            // sweep and looking there (docs/sim.md, "Active aids")
   double count_new_s = 0.7;                 // counting one more target
   double check_known_s = 0.12;              // recognising one counted before
   double fragment_effort = 1.5;             // counting/checking time x (1 + this * hidden share) for a fragment
@@ -85,6 +87,7 @@ struct SimOptions {
 // What one trial looked like from inside (for tests and `--json` diagnostics).
 struct TrialTrace {
   int views = 0;                 // views looked at (camera poses recorded = frames rendered >= views)
+  int aid_spots = 0;             // cursor positions an active aid was swept over, all views together
   std::vector<int> noticed;      // per view: objects of interest noticed in it
   std::vector<int> visible;      // per view: objects of interest with any visible pixel
   double simulated_s = 0;        // the completion time reported

@@ -146,6 +146,11 @@ const Case kCases[] = {
     {"vdt background alpha a string", {{26, "method = \"vdt\"\nbackground_alpha = \"half\""}}, 27,
      "rendering.on.background_alpha", "expected"},
     {"unknown scenario kind", {{14, "kind = \"maze\""}}, 14, "scenarios.abstract.kind", "unknown value"},
+    // occlusion culling is a boolean
+    {"occlusion culling as a string", {{26, "method = \"dt-seed\"\nocclusion_culling = \"yes\""}}, 27,
+     "rendering.on.occlusion_culling", "expected true or false, got a string"},
+    {"occlusion culling as a number", {{24, "method = \"standard\"\nocclusion_culling = 1"}}, 25,
+     "rendering.off.occlusion_culling", "expected true or false"},
     {"unknown letter", {{16, "type = \"identify-letter\"\nletters = [\"C\", \"Q\"]"}}, 17,
      "scenarios.abstract.tasks.T1.letters[1]", "unknown value \"Q\""},
     {"unknown object kind", {{14, "kind = \"abstract\"\nobject_kinds = [\"cube\"]"}}, 15,

@@ -95,10 +95,21 @@ INSTANTIATE_TEST_SUITE_P(
                       Edit{"mask_shape", "mask_shape = \"outline\"", "mask_shape = \"circle\""},
                       Edit{"mode", "mode = \"passive\"", "mode = \"active\""},
                       Edit{"layer_limit", "layer_limit = 0", "layer_limit = 2"},
+                      Edit{"searchlight_radius", "layer_limit = 0", "layer_limit = 0\nsearchlight_radius = 0.3"},
                       Edit{"scale", "scale = [0, 4]", "scale = [1, 5]"},
                       Edit{"per", "per = [\"scenario\", \"transparency\"]", "per = [\"scenario\"]"},
-                      Edit{"id", "id = \"pilot\"", "id = \"pilot2\""}),
+                      Edit{"id", "id = \"pilot\"", "id = \"pilot2\""},
+                      Edit{"occlusion_culling", "method = \"dt-seed\"", "method = \"dt-seed\"\nocclusion_culling = true"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// A protocol that does not set occlusion_culling hashes as before the key existed; setting it false is
+// the default, so the same design.
+TEST(DesignHash, OcclusionCullingOffIsTheDefault) {
+  const std::string text = pilot_text();
+  std::string off = text;
+  off.replace(off.find("method = \"dt-seed\""), 18, "method = \"dt-seed\"\nocclusion_culling = false");
+  EXPECT_EQ(hash_of(off, "off"), hash_of(text, "pilot"));
+}
 
 TEST(DesignHash, OfTextEqualsOfTheParsedProtocolAndRefusesBrokenText) {
   const std::string text = pilot_text();

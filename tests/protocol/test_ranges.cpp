@@ -170,6 +170,8 @@ std::vector<Writer> writers() {
       {"rendering", "mask_resolution", true, "rendering.on.mask_resolution", "mask_resolution = 128",
        "mask_resolution = {}"},
       {"rendering", "layer_limit", true, "rendering.on.layer_limit", "layer_limit = 0", "layer_limit = {}"},
+      {"rendering", "searchlight_radius", false, "rendering.on.searchlight_radius", "layer_limit = 0",
+       "layer_limit = 0\nsearchlight_radius = {}"},
       {"rendering", "radius", false, "rendering.off.radius", "method = \"standard\"  ",
        "method = \"lens\"\ndistance = 100.0\nradius = {}\n"},
       {"rendering", "distance", false, "rendering.off.distance", "method = \"standard\"  ",

@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <ostream>
 #include <string>
 
@@ -153,6 +155,29 @@ TEST(RenderCli, VdtRendersItsPassesAndShowsTargetsThroughDistractors) {
   fs::remove(out);
 }
 
+// --occlusion-culling: the JSON says what was culled, and the PNG is the same file as without it.
+TEST(RenderCli, OcclusionCullingReportsAndKeepsThePicture) {
+  const fs::path on = png_path("culling-on"), off = png_path("culling-off");
+  const std::string scene = "render --scene walkthrough --task T3 --seed 1 --method standard --width 160 --height 120 ";
+  const CliOutcome a = run_dtlab(scene + "--occlusion-culling --json --out '" + on.string() + "'");
+  ASSERT_EQ(a.rc, 0) << a.err;
+  const auto j = nlohmann::json::parse(a.out);
+  ASSERT_TRUE(j.contains("culling"));
+  EXPECT_GT(j["culling"]["objects_culled"].get<int>(), 0);  // the start view faces a wall
+  EXPECT_LE(j["culling"]["objects_culled"].get<int>(), j["culling"]["objects_in_view"].get<int>());
+  EXPECT_GT(j["culling"]["preprocess_ms"].get<double>(), 0.0);
+  const CliOutcome b = run_dtlab(scene + "--json --out '" + off.string() + "'");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_FALSE(nlohmann::json::parse(b.out).contains("culling"));
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(on), bytes(off));
+  fs::remove(on);
+  fs::remove(off);
+}
+
 struct BadCase {
   const char* name;
   std::string args;
@@ -214,7 +239,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"vdt_falloff_above_one", "--scene abstract --task T1 --seed 1 --method vdt --vdt-falloff 2",
                 "--vdt-falloff"},
         BadCase{"protocol_and_lens", "--protocol " + kReference + " --index 0 --trial 1 --lens-shape box",
-                "drop --lens-shape"}),
+                "drop --lens-shape"},
+        BadCase{"occlusion_culling_on_abstract", kAbstract + " --occlusion-culling", "walkthrough scenes only"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

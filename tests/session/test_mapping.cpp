@@ -3,6 +3,9 @@
 // stage cannot take is an Error naming the protocol field.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 
@@ -122,6 +125,24 @@ TEST(Mapping, ReferenceRenderings) {
   }
 }
 
+// The active searchlight covers the same share of the view on every screen: searchlight_radius x
+// the view's height (0.2 x 600 = 120, the article's screen; 0.2 x 1024 = 204.8), centred.
+TEST(Mapping, TheSearchlightScalesWithTheView) {
+  protocol::Protocol p = reference();
+  protocol::Rendering on = p.renderings[1];
+  on.mode = "active";
+  auto f = frame_settings(p, on, 800, 600);
+  ASSERT_TRUE(f.ok()) << f.error().to_string();
+  EXPECT_EQ(f->dt.mode, render::DtMode::active);
+  EXPECT_FLOAT_EQ(f->dt.searchlight_radius, 120.0f);
+  EXPECT_FLOAT_EQ(f->dt.searchlight_center.x, 400.0f);
+  auto big = frame_settings(p, on, 1280, 1024);
+  ASSERT_TRUE(big.ok());
+  EXPECT_FLOAT_EQ(big->dt.searchlight_radius, 204.8f);
+  on.searchlight_radius = 0.5;
+  EXPECT_FLOAT_EQ(frame_settings(p, on, 1280, 1024)->dt.searchlight_radius, 512.0f);
+}
+
 // Values a stage cannot take: each an Error naming the protocol field.
 // A mask finer than the view can show is drawn at the view's full resolution (the same picture at
 // less cost; regression: a 4096 mask at 800 x 600 ran at 4096 x 4096 and took minutes a frame under
@@ -195,6 +216,33 @@ TEST(Mapping, VdtRendering) {
   f = frame_settings(p, edited, 800, 600);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.error().field, "rendering.vdt.opaque_alpha");
+}
+
+// occlusion_culling = true in a [rendering.*] table turns the renderer's flag on, for a lens too;
+// absent, it stays off (the default).
+TEST(Mapping, OcclusionCullingKey) {
+  std::string text;
+  {
+    std::ifstream in(std::string(DTLAB_SOURCE_DIR) + "/protocols/lens-vs-dt.toml");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+  }
+  auto plain = protocol::load_protocol_text(text, "lens-vs-dt.toml");
+  ASSERT_TRUE(plain.ok()) << plain.error().to_string();
+  for (const auto& r : plain->renderings) EXPECT_FALSE(frame_settings(*plain, r, 800, 600)->occlusion_culling);
+  const auto at = text.find("method = \"lens\"");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "occlusion_culling = true\n");
+  auto loaded = protocol::load_protocol_text(text, "lens-vs-dt.toml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
+  const protocol::Rendering* r = protocol::find_rendering(*loaded, "lens");
+  ASSERT_NE(r, nullptr);
+  EXPECT_TRUE(r->occlusion_culling);
+  auto f = frame_settings(*loaded, *r, 800, 600);
+  ASSERT_TRUE(f.ok());
+  EXPECT_TRUE(f->occlusion_culling);
+  EXPECT_EQ(f->method, render::Method::lens);
 }
 
 TEST(Mapping, UnsupportedValuesNameTheField) {

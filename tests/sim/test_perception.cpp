@@ -151,5 +151,65 @@ TEST_F(Perception, ObjectsOutOfViewAreNotSeen) {
   EXPECT_EQ(v.frame_ms.size(), 1u);
 }
 
+// An aid that follows the cursor is swept over the view: cells one aid diameter wide, row by row,
+// alternating direction. Pure geometry: the expected spots are worked out by hand below.
+TEST(AidSpots, ASearchlightTilesTheViewRowByRowAlternating) {
+  render::FrameSettings f = settings(render::Method::dt_seed);
+  const render::Camera cam = render::orbit_camera(glm::vec3(0.0f), 100.0f, 0.0f, 0.3f, 0.785398f, 4.0f / 3.0f, 1.0f, 500.0f);
+  EXPECT_TRUE(aid_spots(f, cam, false, kW, kH).empty()) << "passive: nothing follows the cursor";
+  f.dt.mode = render::DtMode::active;
+  f.dt.searchlight_radius = 24.0f;  // 0.2 of 120 rows, the protocol's default share
+  // 160 / 48 -> 4 columns of 40 pixels, 120 / 48 -> 3 rows of 40: centres 20, 60, 100, 140 and 20, 60, 100.
+  const std::vector<glm::vec2> expected = {{20, 20},  {60, 20},  {100, 20}, {140, 20}, {140, 60}, {100, 60},
+                                           {60, 60},  {20, 60},  {20, 100}, {60, 100}, {100, 100}, {140, 100}};
+  const std::vector<glm::vec2> got = aid_spots(f, cam, false, kW, kH);
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_FLOAT_EQ(got[i].x, expected[i].x) << i;
+    EXPECT_FLOAT_EQ(got[i].y, expected[i].y) << i;
+  }
+  // Every pixel of the view is within sqrt(2) radii of a spot (the cells are at most 2r wide).
+  for (int y = 0; y < kH; y += 7)
+    for (int x = 0; x < kW; x += 7) {
+      float d = 1e9f;
+      for (const glm::vec2& c : got) d = std::min(d, glm::length(glm::vec2(x + 0.5f, y + 0.5f) - c));
+      EXPECT_LE(d, 24.0f * std::sqrt(2.0f) + 1e-3f) << x << "," << y;
+    }
+  // Radius 60: 160 / 120 -> 2 columns, 120 / 120 -> 1 row.
+  f.dt.searchlight_radius = 60.0f;
+  const auto two = aid_spots(f, cam, false, kW, kH);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_FLOAT_EQ(two[0].x, 40.0f);
+  EXPECT_FLOAT_EQ(two[1].x, 120.0f);
+  EXPECT_FLOAT_EQ(two[1].y, 60.0f);
+  // Larger than the view: one spot at the centre.
+  f.dt.searchlight_radius = 1000.0f;
+  const auto one = aid_spots(f, cam, false, kW, kH);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_FLOAT_EQ(one[0].x, 80.0f);
+  EXPECT_FLOAT_EQ(one[0].y, 60.0f);
+  // WALKTHROUGH: the mouse turns the head; the aid stays at the centre, nothing is swept.
+  EXPECT_TRUE(aid_spots(f, cam, true, kW, kH).empty());
+}
+
+TEST(AidSpots, AnActiveLensIsSweptAtItsProjectedSize) {
+  render::FrameSettings f;
+  f.method = render::Method::lens;
+  f.lens.radius = 20.0f;
+  f.lens.distance = 237.6f;
+  const render::Camera cam =
+      render::orbit_camera(glm::vec3(0.0f), 237.6f, 0.0f, 0.3f, 0.785398f, 4.0f / 3.0f, 1.0f, 1000.0f);
+  EXPECT_EQ(aid_radius_px(f, cam, kH), 0.0f) << "a fixed lens does not follow the cursor";
+  f.lens.follows_cursor = true;
+  // 20 / 237.6 / tan(22.5 deg) x 60 rows = 0.0841751 x 2.4142136 x 60 = 12.19299 pixels.
+  EXPECT_NEAR(aid_radius_px(f, cam, kH), 12.19299f, 1e-3f);
+  // Cells of 24.386 pixels would make 7 x 5 = 35 spots; at most 12: cells of sqrt(160 x 120 / 12) = 40
+  // pixels, 4 x 3 spots (gaps between the lens's circles).
+  EXPECT_EQ(aid_spots(f, cam, false, kW, kH).size(), 12u);
+  // The eye inside the lens: the lens covers the view, one spot.
+  f.lens.radius = 300.0f;
+  EXPECT_EQ(aid_spots(f, cam, false, kW, kH).size(), 1u);
+}
+
 }  // namespace
 }  // namespace dtlab::sim

@@ -164,6 +164,45 @@ TEST_F(Sim, DynamicTransparencyShowsMoreTargetsInTheFirstView) {
   EXPECT_GE(more, 2) << "dt-seed should reveal hidden targets on most of these seeds";
 }
 
+// An active searchlight (the protocol's default radius, 0.2 of the view's height) is swept over
+// every ABSTRACT view: a cursor event per spot, each spot's frames after its event (replay puts the
+// searchlight there), an extra aid_spot_s per spot, and it shows at least what standard shows.
+TEST_F(Sim, AnActiveSearchlightIsSweptOverEveryView) {
+  int more = 0;
+  for (int k = 0; k < 3; ++k) {
+    auto standard = trial(k, "T1", 0), active = trial(k, "T1", 1);
+    protocol::Rendering searchlight = *active->setup.rendering;
+    searchlight.mode = "active";
+    active->spec.frame = session::frame_settings(*protocol_, searchlight, kW, kH).value();
+    ASSERT_EQ(active->spec.frame.dt.searchlight_radius, 24.0f) << "0.2 x 120 rows";
+    SimulatedParticipant agent(options());
+    ASSERT_TRUE(agent.run_trial(standard->spec).ok());
+    const TrialTrace s = agent.last_trace();
+    auto out = agent.run_trial(active->spec);
+    ASSERT_TRUE(out.ok());
+    const TrialTrace a = agent.last_trace();
+    EXPECT_EQ(a.aid_spots, 12 * a.views) << "4 x 3 cells of 48 pixels on 160 x 120";
+    EXPECT_EQ(s.aid_spots, 0);
+    // The spots' cursor events, in sweep order, and no frame before the first of its view.
+    std::vector<store::InputEvent> spots;
+    for (const auto& e : out->events)
+      if (e.kind == store::InputEvent::Kind::cursor) spots.push_back(e);
+    ASSERT_GE(spots.size(), 12u);
+    EXPECT_FLOAT_EQ(spots[0].x, 20.0f);
+    EXPECT_FLOAT_EQ(spots[0].y, 20.0f);
+    EXPECT_FLOAT_EQ(spots[4].x, 140.0f);
+    EXPECT_FLOAT_EQ(spots[4].y, 60.0f);
+    EXPECT_LE(spots[0].t_s, out->poses.front().t_s);
+    EXPECT_GE(out->poses.size(), static_cast<std::size_t>(12 * a.views));
+    // Eleven more spots per view, each 0.25 s times the participant's speed, at the least.
+    const double speed = draw_traits(agent_seed(protocol_->master_seed, k, 0)).speed;
+    EXPECT_GE(out->completion_s, a.views * 11 * 0.25 * speed);
+    EXPECT_GE(a.visible[0], s.visible[0]) << "participant " << k;
+    more += a.visible[0] > s.visible[0];
+  }
+  EXPECT_GE(more, 1) << "the sweep should reveal hidden targets on some of these seeds";
+}
+
 // Walls turn transparent around targets under dt-seed: the unique object is found in fewer views.
 TEST_F(Sim, TransparentWallsShortenTheWalkthroughSearch) {
   int standard_views = 0, dt_views = 0;

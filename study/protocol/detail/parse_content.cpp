@@ -278,8 +278,10 @@ void parse_renderings(TableReader& root, ParseState& s) {
     if (auto v = rr.choice("mask_shape", false, {"outline", "circle", "ellipse"})) r.mask_shape = *v;
     if (auto v = rr.choice("mode", false, {"passive", "active", "fixed"})) r.mode = *v;
     if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
+    if (auto v = rr.number("searchlight_radius", false, limits::kSearchlightRadius)) r.searchlight_radius = *v;
     parse_lens_keys(rr, r, s);
     parse_vdt_keys(rr, r, s);
+    if (auto v = rr.boolean("occlusion_culling", false)) r.occlusion_culling = *v;
     rr.finish();
     if (r.method == "standard" || r.method == "lens" || r.method == "vdt") {
       for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit"})
@@ -290,6 +292,11 @@ void parse_renderings(TableReader& root, ParseState& s) {
         s.d.warning(rr.pos("mode"), rr.field("mode"),
                     "has no effect with method = \"" + r.method + "\" (" +
                         (r.method == "standard" ? "no transparency" : "no searchlight") + ")");
+    }
+    if (rr.has("searchlight_radius") &&
+        (r.mode != "active" || r.method == "standard" || r.method == "lens" || r.method == "vdt")) {
+      s.d.warning(rr.pos("searchlight_radius"), rr.field("searchlight_radius"),
+                  "has no effect without a searchlight (dynamic transparency with mode = \"active\")");
     } else if (r.a0 > r.aT) {
       s.d.warning(rr.pos("a0"), rr.field("a0"),
                   "a0 > aT: the gradient starts more opaque than the surfaces in front of the target "

@@ -219,6 +219,19 @@ std::optional<std::int64_t> TableReader::integer(std::string_view key, bool requ
   return v;
 }
 
+std::optional<bool> TableReader::boolean(std::string_view key, bool required) {
+  const toml::node* n = node(key);
+  if (!n) {
+    if (required) missing(key, "true or false");
+    return std::nullopt;
+  }
+  if (!n->is_boolean()) {
+    wrong_type(key, *n, "true or false");
+    return std::nullopt;
+  }
+  return n->as_boolean()->get();
+}
+
 namespace {
 // A finite number from an integer or float node; nullopt if the node is neither.
 std::optional<double> as_number(const toml::node& n) {

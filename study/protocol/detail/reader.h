@@ -74,6 +74,7 @@ class TableReader {
   std::optional<std::string> choice_of(std::string_view key, bool required, const std::vector<std::string>& allowed);
   std::optional<std::int64_t> integer(std::string_view key, bool required, limits::Ints range);
   std::optional<double> number(std::string_view key, bool required, limits::Numbers range);
+  std::optional<bool> boolean(std::string_view key, bool required);  // true or false
   // Array of unique strings, as many as `count` allows, each passing `allowed` (empty = anything non-empty).
   std::optional<std::vector<std::string>> strings(std::string_view key, bool required, limits::Ints count,
                                                   const std::vector<std::string>& allowed = {});

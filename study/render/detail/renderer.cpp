@@ -200,8 +200,15 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   detail::GlStateGuard guard;
-  const detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, target.width,
-                                                         target.height, settings.dt, *impl_->sorter);
+  detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, target.width,
+                                                   target.height, settings.dt, *impl_->sorter);
+  detail::LensVolume volume;
+  detail::PixelRect lens_footprint;
+  if (settings.method == Method::lens) {
+    volume = detail::make_lens_volume(settings.lens, camera, target.width, target.height);
+    lens_footprint = detail::lens_footprint(volume, camera, target.width, target.height);
+  }
+  const CullingReport culling = impl_->cull(view, settings, lens_footprint);
   const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, settings, impl_->scene,
                                 settings.float_color ? TextureFormat::rgba16f : TextureFormat::rgba8, {}};
   FrameGraph fg;
@@ -215,9 +222,8 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   detail::LensGpu lens;
   detail::VdtFrame vdt_frame;
   if (settings.method == Method::lens) {
-    const detail::LensVolume volume = detail::make_lens_volume(settings.lens, camera, target.width, target.height);
     lens = impl_->upload_lens(volume);
-    lens.footprint = detail::lens_footprint(volume, camera, target.width, target.height);
+    lens.footprint = lens_footprint;
     color = detail::add_lens_passes(fg, fc, lens);
   } else if (settings.method == Method::vdt && impl_->vdt.prepare(fc, vdt_frame)) {
     color = detail::add_vdt_passes(fg, fc, vdt_frame);  // else no transparent object in view: standard's frame
@@ -253,6 +259,7 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
     else if (const auto a = fg.answer(occluded, impl_->backend, settings.timed)) impl_->fast_effect_hint = *a;
   }
   FrameReport report = fg.report(impl_->backend, settings.timed);
+  report.culling = culling;
   if (settings.timed) report.frame_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   impl_->backend.end_frame();
   impl_->graphviz = fg.graphviz();

@@ -6,10 +6,12 @@
 #include <glad/gl.h>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "study/render/detail/gl_backend.h"
 #include "study/render/detail/lens_volume.h"
+#include "study/render/detail/occlusion_culling.h"
 #include "study/render/detail/passes.h"
 #include "study/render/detail/programs.h"
 #include "study/render/detail/scene_gpu.h"
@@ -41,9 +43,11 @@ struct Renderer::Impl {
   unsigned lens_vao = 0, lens_vbo = 0;
   // The vdt method's per-vertex alpha buffer and the meshes' edge lists (built on first use).
   detail::VdtState vdt;
+  std::unique_ptr<detail::OcclusionCuller> culler;  // made on the first frame with occlusion culling on
 
   ~Impl() {
     vdt.destroy();
+    culler.reset();
     if (lens_vao != 0) glDeleteVertexArrays(1, &lens_vao);
     if (lens_vbo != 0) glDeleteBuffers(1, &lens_vbo);
     if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
@@ -65,6 +69,16 @@ struct Renderer::Impl {
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.triangles.size() * sizeof(glm::vec3)), v.triangles.data(),
                  GL_STREAM_DRAW);
     return detail::LensGpu{lens_vao, static_cast<int>(v.triangles.size()), v.eye_inside, {}};
+  }
+
+  // Occlusion culling of `view` (in place) when `settings` ask for it; throws on a shader error.
+  CullingReport cull(detail::FrameView& view, const FrameSettings& settings, const detail::PixelRect& lens_footprint) {
+    if (!settings.occlusion_culling || !scene.plan) return {};
+    if (!culler) culler = std::make_unique<detail::OcclusionCuller>(scene, gpu->objects());
+    const detail::FrameContext fc{*gpu, programs, view, settings, scene, TextureFormat::rgba8, {}};
+    auto r = culler->run(view, fc, lens_footprint);
+    if (!r) throw std::runtime_error("occlusion culling: " + r.error().to_string());
+    return r.value();
   }
 
   void ensure_offscreen(int w, int h, bool fp) {

@@ -19,16 +19,40 @@ TrialRun::TrialRun(const session::TrialSpec& s, const ModelParams& model, const 
 }
 
 View TrialRun::look(const render::Camera& camera, float yaw, float pitch, std::span<const std::uint32_t> objects) {
-  View v = sim::look(renderer, camera, spec.frame, width, height, objects, bounds);
-  for (double ms : v.frame_ms) {
-    out.frame_ms.push_back(ms);
-    out.poses.push_back(store::CameraPose{t_, camera.eye.x, camera.eye.y, camera.eye.z, yaw, pitch});
+  // An aid that follows the cursor is swept over the view (docs/sim.md, "Active aids"): a cursor
+  // move and a fixation per spot, the frames of every spot recorded after its cursor event (replay
+  // puts the aid where the cursor was), and each object seen as well as its best spot shows it.
+  const bool mouse_turns_view = spec.scene->camera.mode == scene::CameraStart::Mode::walk;
+  const std::vector<glm::vec2> spots = aid_spots(spec.frame, camera, mouse_turns_view, width, height);
+  render::FrameSettings frame = spec.frame;
+  View best;
+  for (std::size_t k = 0; k < std::max<std::size_t>(1, spots.size()); ++k) {
+    if (!spots.empty()) {
+      if (k > 0) spend(scaled(m.aid_spot_s));
+      frame.dt.searchlight_center = frame.lens.center = spots[k];
+      out.events.push_back({t_, store::InputEvent::Kind::cursor, "", spots[k].x, spots[k].y});
+    }
+    View v = sim::look(renderer, camera, frame, width, height, objects, bounds);
+    for (double ms : v.frame_ms) {
+      out.frame_ms.push_back(ms);
+      out.poses.push_back(store::CameraPose{t_, camera.eye.x, camera.eye.y, camera.eye.z, yaw, pitch});
+    }
+    if (k == 0) {
+      best = std::move(v);
+      continue;
+    }
+    best.frame_ms.insert(best.frame_ms.end(), v.frame_ms.begin(), v.frame_ms.end());
+    for (std::size_t i = 0; i < best.seen.size(); ++i) {
+      best.seen[i].visible_px = std::max(best.seen[i].visible_px, v.seen[i].visible_px);
+      best.seen[i].clear_px = std::max(best.seen[i].clear_px, v.seen[i].clear_px);
+    }
   }
   ++trace.views;
+  trace.aid_spots += static_cast<int>(spots.size());
   int visible = 0;
-  for (const Seen& s : v.seen) visible += s.visible_px > 0;
+  for (const Seen& s : best.seen) visible += s.visible_px > 0;
   trace.visible.push_back(visible);
-  return v;
+  return best;
 }
 
 double TrialRun::notice_probability(long visible_px) const {
