@@ -8,7 +8,8 @@
 // some target's exact mask is below 1), and dt-fast against dt-seed there;
 // passes run; the R1 guard both ways; the lens method (three shapes and
 // styles; no error column: reference is not its yardstick); screen-door at 8 x 8, 16 x 16 and
-// 32 x 32 masks (errors against reference); then what accuracy costs: mask
+// 32 x 32 masks (errors against reference); vdt (no error column either:
+// another transparency model); then what accuracy costs: mask
 // resolution 64/256/full and gradient width sweeps. With --culling, only
 // occlusion culling along walkthrough routes (bench_culling.h). Table on
 // stdout (or --json), progress on stderr.
@@ -160,6 +161,9 @@ std::vector<Config> configurations(const BenchOptions& o, render::Renderer& main
     configs.back().settings.screen_door.mask_side = side;
     configs.back().min_frames = 1;  // seconds a frame: one timed frame may exhaust the budget
   }
+  // vdt (Diepstraten et al. 2002) with its defaults: its cost is two depth-only passes of the
+  // transparent objects, the opaque ones twice, and the per-vertex alpha on the CPU.
+  add("vdt", render::Method::vdt, base, &main);
   if (!o.sweep) return configs;
   for (int res : {64, 256, 0}) {
     render::DtSettings dt = base;
@@ -194,8 +198,8 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
     c.passes = static_cast<int>(rep.passes_run().size());
     if (!rep.gl_errors.empty()) c.note = "GL error: " + rep.gl_errors.front();
     c.image = c.renderer->read_color();
-    if (c.renderer != &main || c.settings.method == render::Method::lens)
-      continue;  // the lens draws another picture: `reference` is no yardstick for it
+    if (c.renderer != &main || c.settings.method == render::Method::lens || c.settings.method == render::Method::vdt)
+      continue;  // lens and vdt draw another picture: `reference` is no yardstick for them
     const std::pair<float, bool> key{s.dt.gradient_px, s.dt.r1_guard};
     if (!refs.count(key)) {
       s.method = render::Method::reference;
@@ -440,6 +444,8 @@ void add_bench_command(CLI::App& root) {
       "only the targets nothing hides (transparency on, the effect not called for). lens rows: the lens\n"
       "method at the view's centre (sized as `dtlab render --method lens` sizes it), no error columns.\n"
       "screen-door rows: Poon's (2000) sub-pixel screen door (tabular masks) at mask sides 8, 16, 32.\n"
+      "vdt: view-dependent transparency (docs/render.md), default k and weights, no error columns (its\n"
+      "model makes every distractor transparent: reference's picture is not what it aims at).\n"
       "--culling: per route (the eye walking cell by cell from the start cell to the farthest one, looking\n"
       "ahead, and standing in each doorway), the speed-up of occlusion culling over frustum culling alone\n"
       "(frame ms off / on, culling's own time included) at the best, mean and worst view, and over the\n"

@@ -1,6 +1,6 @@
 // `dtlab render (--scene KIND --task T --seed S --method M | --protocol P
 // (--index K | --db FILE --participant ID) --trial N) --out FILE.png
-// [--width W --height H] [--frames K] [--camera ...] [--lens-...] [--screen-door-...] [--occlusion-culling]
+// [--width W --height H] [--frames K] [--camera ...] [--lens-...] [--screen-door-...] [--vdt-...] [--occlusion-culling]
 // [--json]`: renders one
 // trial scene headless (OSMesa) with one rendering method and writes the PNG;
 // --json prints the passes that ran, the median frame time, per-target
@@ -65,6 +65,7 @@ struct RenderOptions {
   std::optional<float> lens_radius, lens_distance, lens_length;
   int sd_mask = 8;  // screen-door: mask side
   std::string sd_masks = "tabular";
+  render::VdtSettings vdt;  // vdt parameters (render.h VdtSettings)
 };
 
 [[noreturn]] void fail(int code, const std::string& message) {
@@ -279,6 +280,7 @@ Job scene_job(const RenderOptions& o) {
   job.settings.dt = dt_settings(o);
   if (job.settings.method == render::Method::lens) job.settings.lens = lens_settings(o, job.scene);
   job.settings.screen_door = {o.sd_mask, *render::parse_screen_door_masks(o.sd_masks)};
+  job.settings.vdt = o.vdt;
   job.method = o.method;
   job.kind = o.kind;
   job.task = o.task;
@@ -400,8 +402,8 @@ void add_render_command(CLI::App& root) {
   auto* task_opt = cmd->add_option("--task", o->task, "Task: T1, T2 (abstract), T3, T4 (walkthrough)")
                        ->check(CLI::IsMember({"T1", "T2", "T3", "T4"}));
   auto* seed_opt = cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)")->check(unsigned_integer());
-  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference | lens | screen-door")
-                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door"}));
+  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference | lens | screen-door | vdt")
+                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door", "vdt"}));
   auto* protocol_opt = cmd->add_option("--protocol", o->protocol,
                                        "Protocol file: render a planned trial (with --index K or --db/--participant, "
                                        "and --trial N)");
@@ -448,6 +450,15 @@ void add_render_command(CLI::App& root) {
   auto* lens_length_opt =
       cmd->add_option("--lens-length", o->lens_length, "Box, cylinder, cone: extent along the ray, world units");
   auto* lens_at_opt = cmd->add_option("--lens-at", o->lens_at, "Lens centre pixel X,Y (origin top-left; default the view's centre)");
+  const std::vector<CLI::Option*> vdt_options{
+      cmd->add_option("--vdt-falloff", o->vdt.falloff, "vdt: k of alpha = 1 - (d_min / d_max)^k, 0..1 (default 0.5)")
+          ->check(CLI::Range(0.0, 1.0)),
+      cmd->add_option("--vdt-opaque-alpha", o->vdt.opaque_alpha,
+                      "vdt: weight of an opaque object seen through a transparent one, 0..1 (default 0.5)")
+          ->check(CLI::Range(0.0, 1.0)),
+      cmd->add_option("--vdt-background-alpha", o->vdt.background_alpha,
+                      "vdt: weight of the background seen through a transparent object, 0..1 (default 0.5)")
+          ->check(CLI::Range(0.0, 1.0))};
   cmd->add_flag("--occlusion-culling", o->occlusion_culling,
                 "Walkthrough: skip objects hidden behind the walls (Poon's occlusion culling; the picture is "
                 "unchanged, only the cost)");
@@ -474,6 +485,10 @@ void add_render_command(CLI::App& root) {
       "lens style) and in front of it. eraser removes the distractors inside it, wireframe draws it as\n"
       "lines, tint mixes it with orange. Defaults: distance = the orbit distance (abstract) or two cells\n"
       "(walkthrough), radius = a quarter of the view's half-height there, length = 2 x radius.\n"
+      "--method vdt (Diepstraten, Weiskopf & Ertl 2002, docs/render.md): distractors transparent, targets\n"
+      "and impenetrable surfaces opaque; only the nearest transparent surface is blended, over the opaque\n"
+      "surface behind it unless a second transparent surface lies between; its alpha falls off from 1 at\n"
+      "the object's silhouette with the distance to it (--vdt-falloff).\n"
       "--occlusion-culling (walkthrough scenes, either form): Poon's occlusion culling; the JSON gains\n"
       "\"culling\" (objects and triangles culled, its time, the occluder database's time). The image is the\n"
       "same with it on or off.\n"
@@ -494,8 +509,8 @@ void add_render_command(CLI::App& root) {
                                                lens_distance_opt, lens_length_opt, lens_at_opt};
   const std::vector<CLI::Option*> sd_options{sd_mask_opt, sd_masks_opt};
   const std::vector<CLI::Option*> protocol_form{protocol_opt, index_opt, db_opt, participant_opt, trial_opt};
-  cmd->callback([o, scene_form, dt_options, lens_options, sd_options, protocol_form, protocol_opt, index_opt, db_opt, participant_opt,
-                 trial_opt] {
+  cmd->callback([o, scene_form, dt_options, lens_options, sd_options, vdt_options, protocol_form, protocol_opt, index_opt,
+                 db_opt, participant_opt, trial_opt] {
     const auto given = [](const std::vector<CLI::Option*>& opts) {
       std::string names;
       for (const CLI::Option* opt : opts)
@@ -503,7 +518,8 @@ void add_render_command(CLI::App& root) {
       return names;
     };
     if (protocol_opt->count() > 0) {
-      if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options) + given(sd_options);
+      if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options) + given(sd_options) +
+                                  given(vdt_options);
           !bad.empty())
         fail(kExitUsage, "--protocol renders a planned trial: its scene, seed, method and mask parameters come from "
                          "the protocol; drop " + bad);
@@ -522,6 +538,8 @@ void add_render_command(CLI::App& root) {
         fail(kExitUsage, bad + " apply to --method lens only");
       if (const std::string bad = given(sd_options); !bad.empty() && o->method != "screen-door")
         fail(kExitUsage, bad + " apply to --method screen-door only");
+      if (const std::string bad = given(vdt_options); !bad.empty() && o->method != "vdt")
+        fail(kExitUsage, bad + " apply to --method vdt only");
     }
     run(*o);
   });

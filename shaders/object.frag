@@ -20,6 +20,9 @@
 // pixels u_sd_block from texel u_sd_origin (x: q.x words + word, y: q.y, q = p -
 // block corner); a fragment whose bit is 0 is discarded. u_sd_origin.x < 0: no
 // mask (alpha 1 over the whole chunk).
+// Compiled a fifth time with VDT (docs/render.md "vdt"): alpha is the
+// interpolated view-dependent alpha of the vertices (clamped to [0, 1]) in both
+// the lit and the flat branch; the blend state decides what it weighs.
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -45,8 +48,18 @@ uniform sampler2D u_lens_front;  // depth of its nearest surface (1 where no len
 uniform int u_lens_class;        // 0 behind, 1 inside, 2 in front
 uniform vec4 u_lens_tint;        // rgb mixed in with weight a (a = 0: none)
 #endif
+#ifdef VDT
+in float v_alpha;
+#endif
 
 out vec4 frag_color;
+
+vec4 with_alpha(vec4 c) {
+#ifdef VDT
+  c.a = clamp(v_alpha, 0.0, 1.0);
+#endif
+  return c;
+}
 
 #ifdef LENS
 vec4 lens_tinted(vec4 c) {
@@ -80,7 +93,7 @@ void main() {
   if (!keep) discard;
 #endif
   if (u_flat.a > 0.5) {
-    frag_color = vec4(u_flat.rgb, 1.0);
+    frag_color = with_alpha(vec4(u_flat.rgb, 1.0));
 #ifdef LENS
     frag_color = lens_tinted(frag_color);
 #endif
@@ -92,7 +105,7 @@ void main() {
   float ln = length(v_normal);
   float diffuse = ln > 1e-12 ? abs(dot(v_normal / ln, l)) : 1.0;
   vec3 c = clamp(v_color * u_tint, 0.0, 1.0) * (0.3 + 0.7 * clamp(diffuse, 0.0, 1.0));
-  frag_color = vec4(c, 1.0);
+  frag_color = with_alpha(vec4(c, 1.0));
 #ifdef LENS
   frag_color = lens_tinted(frag_color);
 #endif

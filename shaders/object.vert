@@ -1,6 +1,9 @@
 // Object vertex shader: model -> world -> clip. Shared by every program that
 // draws scene geometry, with `invariant gl_Position`, so a depth pass and a
 // later depth-EQUAL colour pass of the same object produce identical depths.
+// With VDT (the vdt method, docs/render.md "vdt") it also passes on the
+// per-vertex view-dependent alpha of attribute 3 (eq. 2 of Diepstraten et al.),
+// linearly interpolated as in the paper; the position maths is the same.
 #version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -13,6 +16,10 @@ uniform mat3 u_normal_matrix;
 out vec3 v_world;
 out vec3 v_normal;
 out vec3 v_color;
+#ifdef VDT
+layout(location = 3) in float a_alpha;
+out float v_alpha;
+#endif
 
 invariant gl_Position;
 
@@ -21,5 +28,8 @@ void main() {
   v_world = world.xyz;
   v_normal = u_normal_matrix * a_normal;
   v_color = a_color;
+#ifdef VDT
+  v_alpha = a_alpha;
+#endif
   gl_Position = u_view_proj * world;
 }

@@ -123,6 +123,11 @@ std::string design_sha256(const Protocol& p) {
       c.integer("rendering.screen_door_mask", r.screen_door_mask);
       c.str("rendering.screen_door_generation", r.screen_door_generation);
     }
+    if (r.method == "vdt") {  // likewise
+      c.num("rendering.falloff", r.falloff);
+      c.num("rendering.opaque_alpha", r.opaque_alpha);
+      c.num("rendering.background_alpha", r.background_alpha);
+    }
   }
   for (const QuestionnaireItem& q : p.questionnaire) {
     c.str("item", q.id);

@@ -60,6 +60,7 @@ inline constexpr Ints kLayerLimit{0, 60};
 inline constexpr Numbers kSearchlightRadius{0.01, 2};  // share of the view's height (2: the whole view)
 inline constexpr Numbers kLensSize{0.001, 100000};  // radius, distance, length (world units)
 inline constexpr Ints kScreenDoorMask{8, 32};       // screen_door_mask: 8, 16 or 32
+inline constexpr Numbers kVdtUnit{0, 1};            // falloff (k), opaque_alpha, background_alpha
 // [questionnaire.*].
 inline constexpr Ints kScale{-100, 100};
 inline constexpr Ints kOptions{2, 32};              // entries of a choice's options

@@ -111,7 +111,7 @@ struct Scenario {
 
 struct Rendering {
   std::string name;                 // the level of the rendering factor it belongs to
-  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference" | "lens" | "screen-door"
+  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference" | "lens" | "screen-door" | "vdt"
   double a0 = 0.1;                  // alpha where the mask gradient starts (next to the target)
   double aT = 0.3;                  // alpha of surfaces directly in front of a target
   int gradient_width = 8;           // n: gradient width in mask pixels
@@ -128,6 +128,10 @@ struct Rendering {
   double radius = 0.0;              // required with lens
   double distance = 0.0;            // eye to lens centre along the cursor's ray; required with lens
   double length = 0.0;              // box, cylinder, cone: extent along the ray; 0 = 2 x radius
+  // method = "vdt" (docs/render.md, "vdt"): eq. (2)'s k and the fixed blend weights, each in [0, 1].
+  double falloff = 0.5;
+  double opaque_alpha = 0.5;
+  double background_alpha = 0.5;
   bool occlusion_culling = false;   // Poon's occlusion culling in WALKTHROUGH scenes (the picture is unchanged)
   // method = "screen-door" (docs/render.md, "screen-door"): Poon's (2000) sub-pixel screen door.
   int screen_door_mask = 8;                        // mask side in sub-pixels: 8, 16 or 32

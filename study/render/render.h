@@ -10,9 +10,11 @@
 //              at once in a reduced-resolution atlas, scissored regions);
 //   reference  exact per-pixel compositing on the CPU (the error yardstick);
 //   lens       Ropinski & Hinrichs's volumetric 3D magic lens (a convex lens volume, a second
-//              depth test against its back- and front-face depth maps, three scene passes).
+//              depth test against its back- and front-face depth maps, three scene passes);
 //   screen-door  dt-seed's picture by Poon's (2000) sub-pixel screen-door transparency: each
-//              surface's alpha picks an n-pixel mask, z-buffered on an enlarged buffer, box-filtered.
+//              surface's alpha picks an n-pixel mask, z-buffered on an enlarged buffer, box-filtered;
+//   vdt        Diepstraten, Weiskopf & Ertl's view-dependent transparency (distractors transparent,
+//              targets and impenetrable surfaces opaque; image-space depth peeling of two layers).
 // Guarantees: the GL state of the caller is restored after every call that
 // draws; an effect the frame does not call for (transparency off, no target
 // in view, no target occluded) runs no pass. Never: creates a GL context,
@@ -35,10 +37,14 @@
 
 namespace dtlab::render {
 
-enum class Method { standard, dt_seed, dt_fast, reference, lens, screen_door };
-std::string_view to_string(Method m);  // "standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door"
+enum class Method { standard, dt_seed, dt_fast, reference, lens, screen_door, vdt };
+// "standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door", "vdt"
+std::string_view to_string(Method m);
 std::optional<Method> parse_method(std::string_view s);  // inverse of to_string; nullopt if unknown
-bool uses_transparency(Method m);  // dynamic transparency: dt-seed, dt-fast, reference, screen-door
+// Dynamic transparency (target-driven masks): dt-seed, dt-fast, reference, screen-door. Not vdt: its
+// transparency is per object class and the same whether or not a target is occluded (no masks, no
+// target query).
+bool uses_transparency(Method m);
 
 enum class MaskShape { outline, circle, ellipse };
 std::string_view to_string(MaskShape s);
@@ -131,12 +137,25 @@ struct ScreenDoorSettings {
 };
 // nullopt when fine; else what is wrong ("mask_side must be 8, 16 or 32 (got 5)").
 std::optional<std::string> check(const ScreenDoorSettings& s);
+// The vdt method (docs/render.md, "vdt"): Diepstraten, Weiskopf & Ertl (2002). Distractors are
+// transparent; targets and impenetrable surfaces opaque. A transparent surface's alpha is eq. (2),
+// 1 - (d_min / d_object,max)^k per vertex (d_min: distance to its nearest silhouette edge); the final
+// colour is alpha C_transparent + a_dst C_behind (GL_SRC_ALPHA, GL_DST_ALPHA), where a_dst is the
+// fixed alpha of the opaque object behind, or of the background.
+struct VdtSettings {
+  float falloff = 0.5f;           // k in [0, 1]: the paper's "falling off term"
+  float opaque_alpha = 0.5f;      // [0, 1]: weight of an opaque object seen through a transparent one
+  float background_alpha = 0.5f;  // [0, 1]: weight of the background (the paper suggests 0.5)
+};
+// nullopt when fine; else what is wrong, naming the member ("falloff must be 0..1 (got 2)").
+std::optional<std::string> check(const VdtSettings& s);
 
 struct FrameSettings {
   Method method = Method::standard;
   DtSettings dt;
   LensSettings lens;  // method lens only
   ScreenDoorSettings screen_door;  // method screen-door only
+  VdtSettings vdt;    // method vdt only
   glm::vec3 background{0.80f, 0.82f, 0.86f};  // linear RGB of pixels no object covers
   bool float_color = false;   // RGBA16F colour buffer instead of RGBA8 (tests scan it for NaN)
   bool timed = false;         // glFinish at the end and report frame_ms (benchmarks, --frames)

@@ -180,6 +180,17 @@ Result<render::FrameSettings> lens_settings(const protocol::Protocol& p, const p
   }
   return f;
 }
+// The vdt weights of a [rendering.*] table with method = "vdt" (the protocol checked their ranges;
+// render::check says again which member is wrong, should a caller build a Rendering by hand).
+Result<render::FrameSettings> vdt_settings(const protocol::Protocol& p, const protocol::Rendering& r,
+                                           render::FrameSettings f) {
+  f.vdt.falloff = static_cast<float>(r.falloff);
+  f.vdt.opaque_alpha = static_cast<float>(r.opaque_alpha);
+  f.vdt.background_alpha = static_cast<float>(r.background_alpha);
+  if (const auto problem = render::check(f.vdt))
+    return bad(p, "rendering." + r.name + "." + problem->substr(0, problem->find(' ')), *problem);
+  return f;
+}
 }  // namespace
 
 Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const protocol::Rendering& r, int width,
@@ -190,10 +201,11 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
   const auto method = render::parse_method(r.method);
   if (!method)
     return bad(p, field + ".method", "the renderer has no method '" + r.method +
-                                         "' (standard, dt-seed, dt-fast, reference, lens, screen-door)");
+                                         "' (standard, dt-seed, dt-fast, reference, lens, screen-door, vdt)");
   f.method = *method;
   f.occlusion_culling = r.occlusion_culling;
   if (f.method == render::Method::lens) return lens_settings(p, r, width, height, f);
+  if (f.method == render::Method::vdt) return vdt_settings(p, r, f);
   if (f.method == render::Method::screen_door) {  // then the dynamic-transparency keys below, as dt-seed
     const auto masks = render::parse_screen_door_masks(r.screen_door_generation);
     if (!masks)

@@ -35,7 +35,8 @@ Result<scene::Params> scene_params(const protocol::Protocol& p, const protocol::
 // the protocol's gradient width (mask pixels) becomes output pixels. Active mode puts the
 // searchlight at the viewport centre (a responder may move it); so does a lens (method "lens"),
 // which follows the cursor in active mode (LensSettings::follows_cursor). Screen-door (method
-// "screen-door") takes the dynamic-transparency keys as dt-seed does, plus its mask side and generation.
+// "screen-door") takes the dynamic-transparency keys as dt-seed does, plus its mask side and generation. vdt's
+// keys become VdtSettings.
 Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const protocol::Rendering& rendering,
                                              int width, int height);
 

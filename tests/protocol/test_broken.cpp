@@ -146,6 +146,12 @@ const Case kCases[] = {
      "out of range"},
     {"unknown screen-door generation", {{26, "method = \"screen-door\"\nscreen_door_generation = \"blue-noise\""}}, 27,
      "rendering.on.screen_door_generation", "unknown value"},
+    // the vdt method (docs/protocol.md): k and the two weights in [0, 1]
+    {"vdt falloff above 1", {{26, "method = \"vdt\"\nfalloff = 1.5"}}, 27, "rendering.on.falloff", "out of range"},
+    {"vdt opaque alpha negative", {{26, "method = \"vdt\"\nopaque_alpha = -0.1"}}, 27, "rendering.on.opaque_alpha",
+     "out of range"},
+    {"vdt background alpha a string", {{26, "method = \"vdt\"\nbackground_alpha = \"half\""}}, 27,
+     "rendering.on.background_alpha", "expected"},
     {"unknown scenario kind", {{14, "kind = \"maze\""}}, 14, "scenarios.abstract.kind", "unknown value"},
     // occlusion culling is a boolean
     {"occlusion culling as a string", {{26, "method = \"dt-seed\"\nocclusion_culling = \"yes\""}}, 27,
@@ -397,6 +403,8 @@ const WarningCase kWarnings[] = {
      "no effect"},
     {"transparency keys on a lens", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\naT = 0.2"}}, 29,
      "rendering.on.aT", "no effect"},
+    {"vdt keys on dt-seed", {{26, "method = \"dt-seed\"\nfalloff = 0.5"}}, 27, "rendering.on.falloff", "a vdt key"},
+    {"transparency keys on vdt", {{26, "method = \"vdt\"\naT = 0.2"}}, 27, "rendering.on.aT", "no effect"},
 };
 
 class Warns : public testing::TestWithParam<WarningCase> {};

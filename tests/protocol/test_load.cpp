@@ -17,6 +17,7 @@ using namespace dtlab::protocol;
 const std::string kReference = DTLAB_SOURCE_DIR "/protocols/elmqvist2008.toml";
 const std::string kPilot = DTLAB_SOURCE_DIR "/protocols/pilot.toml";
 const std::string kLens = DTLAB_SOURCE_DIR "/protocols/lens-vs-dt.toml";
+const std::string kVdt = DTLAB_SOURCE_DIR "/protocols/vdt-vs-dt.toml";
 
 std::string read(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -44,7 +45,7 @@ TEST_P(ShippedProtocol, ValidatesWithoutErrorsOrWarnings) {
   EXPECT_EQ(p->sha256.size(), 64u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Protocols, ShippedProtocol, testing::Values(kReference, kPilot, kLens));
+INSTANTIATE_TEST_SUITE_P(Protocols, ShippedProtocol, testing::Values(kReference, kPilot, kLens, kVdt));
 
 TEST(ReferenceProtocol, HasTheDesignOfStudyMd) {
   const auto r = load_protocol(kReference);

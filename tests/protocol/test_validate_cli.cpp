@@ -42,7 +42,8 @@ fs::path edited(const std::string& shipped, const std::string& name, const std::
 }
 
 TEST(ValidateCli, ShippedProtocolsExitZero) {
-  for (const char* name : {"elmqvist2008.toml", "pilot.toml", "lens-vs-dt.toml", "screen-door-vs-dt.toml"}) {
+  for (const char* name : {"elmqvist2008.toml", "pilot.toml", "lens-vs-dt.toml", "screen-door-vs-dt.toml",
+                           "vdt-vs-dt.toml"}) {
     const Outcome r = dtlab(std::string("validate '") + DTLAB_SOURCE_DIR + "/protocols/" + name + "'");
     EXPECT_EQ(r.rc, 0) << name << "\n" << r.err;
     EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;

@@ -243,7 +243,8 @@ INSTANTIATE_TEST_SUITE_P(Methods, CullingIsInvisible,
                          ::testing::Values(Case{Method::standard, "standard"}, Case{Method::lens, "lens"},
                                            Case{Method::dt_seed, "dt_seed_active", true},
                                            Case{Method::dt_fast, "dt_fast_active", true},
-                                           Case{Method::dt_fast, "dt_fast_passive", false, false}),
+                                           Case{Method::dt_fast, "dt_fast_passive", false, false},
+                                           Case{Method::vdt, "vdt", false, false}),  // walls see-through: none
                          [](const auto& info) { return std::string(info.param.name); });
 
 // `reference` (the exact CPU compositor, slower: the start views only) in active mode.

@@ -141,6 +141,18 @@ TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
   fs::remove(out);
 }
 
+// The vdt method (docs/render.md, "vdt"): its passes in the paper's order (section 6.2), and
+// targets seen through the nearest distractor where standard leaves them hidden.
+TEST(RenderCli, VdtRendersItsPassesAndShowsTargetsThroughDistractors) {
+  const fs::path out = png_path("vdt");
+  const auto [standard, standard_passes] = visible("standard", out);
+  const auto [vdt, vdt_passes] = visible("vdt --vdt-falloff 0.5 --vdt-opaque-alpha 0.6", out);
+  EXPECT_EQ(vdt_passes, nlohmann::json({"vdt-nearest", "vdt-second", "vdt-opaque", "vdt-blend", "vdt-foreground",
+                                        "present"}));
+  EXPECT_GT(vdt, standard);
+  fs::remove(out);
+}
+
 // --occlusion-culling: the JSON says what was culled, and the PNG is the same file as without it.
 TEST(RenderCli, OcclusionCullingReportsAndKeepsThePicture) {
   const fs::path on = png_path("culling-on"), off = png_path("culling-off");
@@ -235,6 +247,9 @@ INSTANTIATE_TEST_SUITE_P(
                 "--lens-radius must be finite and > 0"},
         BadCase{"lens_at_not_a_pixel", "--scene abstract --task T1 --seed 1 --method lens --lens-at 3",
                 "--lens-at: expected X,Y"},
+        BadCase{"vdt_option_without_vdt", kAbstract + " --vdt-falloff 0.3", "--method vdt only"},
+        BadCase{"vdt_falloff_above_one", "--scene abstract --task T1 --seed 1 --method vdt --vdt-falloff 2",
+                "--vdt-falloff"},
         BadCase{"protocol_and_lens", "--protocol " + kReference + " --index 0 --trial 1 --lens-shape box",
                 "drop --lens-shape"},
         BadCase{"occlusion_culling_on_abstract", kAbstract + " --occlusion-culling", "walkthrough scenes only"},

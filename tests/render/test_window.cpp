@@ -36,7 +36,7 @@ TEST(Window, EveryMethodGivesTheSamePixelsInAWindowAndHeadless) {
   const scene::Scene s = scene_with_target_behind_wall();
   const Camera cam = testing::front_camera(kW, kH);
   for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens,
-                   Method::screen_door}) {
+                   Method::screen_door, Method::vdt}) {
     SCOPED_TRACE(std::string(to_string(m)));
     FrameSettings settings;
     settings.method = m;
@@ -242,7 +242,7 @@ TEST(Window, RenderingIntoTheWindowRestoresTheCallersGlStateAndIgnoresIt) {
   ASSERT_TRUE(r.ok());
   const Camera cam = testing::front_camera(kW, kH);
   const std::vector<Method> methods{Method::standard, Method::dt_seed, Method::dt_fast,
-                                    Method::reference, Method::lens, Method::screen_door};
+                                    Method::reference, Method::lens, Method::screen_door, Method::vdt};
   std::vector<Image> clean;
   for (Method m : methods) {
     FrameSettings settings;

@@ -127,7 +127,7 @@ std::vector<std::string> documented_values(const std::string& key) {
     }
   }
   const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> enums = {
-      {{"method"}, {"\"standard\"", "\"dt-seed\"", "\"dt-fast\"", "\"reference\""}},
+      {{"method"}, {"\"standard\"", "\"dt-seed\"", "\"dt-fast\"", "\"reference\"", "\"vdt\""}},
       {{"kind"}, {"\"abstract\"", "\"walkthrough\""}},
       {{"type"},
        {"\"count-targets\"", "\"identify-letter\"", "\"find-unique\"", "\"count-kind\"", "\"rating\"", "\"choice\"",

@@ -194,6 +194,30 @@ TEST(Mapping, LensRendering) {
   EXPECT_EQ(f.error().field, "rendering.lens.style");
 }
 
+// The vdt table of the shipped comparison protocol becomes the renderer's VdtSettings key by key;
+// a value the renderer refuses is an error naming the protocol's key.
+TEST(Mapping, VdtRendering) {
+  auto loaded = protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/vdt-vs-dt.toml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
+  protocol::Protocol p = std::move(loaded.value());
+  const protocol::Rendering* r = protocol::find_rendering(p, "vdt");
+  ASSERT_NE(r, nullptr);
+  protocol::Rendering edited = *r;
+  edited.falloff = 0.25;
+  edited.opaque_alpha = 0.75;
+  edited.background_alpha = 0.125;
+  auto f = frame_settings(p, edited, 800, 600);
+  ASSERT_TRUE(f.ok()) << f.error().to_string();
+  EXPECT_EQ(f->method, render::Method::vdt);
+  EXPECT_FLOAT_EQ(f->vdt.falloff, 0.25f);
+  EXPECT_FLOAT_EQ(f->vdt.opaque_alpha, 0.75f);
+  EXPECT_FLOAT_EQ(f->vdt.background_alpha, 0.125f);
+  edited.opaque_alpha = 2.0;
+  f = frame_settings(p, edited, 800, 600);
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.error().field, "rendering.vdt.opaque_alpha");
+}
+
 // occlusion_culling = true in a [rendering.*] table turns the renderer's flag on, for a lens too;
 // absent, it stays off (the default).
 TEST(Mapping, OcclusionCullingKey) {

@@ -155,7 +155,8 @@ std::vector<End> documented_ends() {
 }
 
 TEST(Runnable, TheReferenceProtocolsRun) {
-  for (const char* name : {"elmqvist2008.toml", "pilot.toml", "lens-vs-dt.toml", "screen-door-vs-dt.toml"}) {
+  for (const char* name : {"elmqvist2008.toml", "pilot.toml", "lens-vs-dt.toml", "screen-door-vs-dt.toml",
+                           "vdt-vs-dt.toml"}) {
     auto p = protocol::load_protocol(std::string(DTLAB_SOURCE_DIR) + "/protocols/" + name);
     ASSERT_TRUE(p.ok()) << p.error().to_string();
     EXPECT_EQ(listed(validate_runnable(*p)), "") << name;

@@ -64,6 +64,9 @@ TEST_F(Perception, VisiblePixelsEqualTheRenderersVisibility) {
       // Screen-door (8 x 8 tabular masks): the weight frames box-filtered like its colour frames.
       {scene::Kind::abstract, scene::Task::T1, 11, render::Method::screen_door, 0.0f, 0.0f},
       {scene::Kind::walkthrough, scene::Task::T3, 14, render::Method::screen_door, 2.4f, 0.0f},
+      // vdt (distractors transparent, the nearest one blended): likewise.
+      {scene::Kind::abstract, scene::Task::T1, 11, render::Method::vdt, 0.0f, 0.0f},
+      {scene::Kind::walkthrough, scene::Task::T3, 14, render::Method::vdt, 2.4f, 0.0f},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(scene::kind_name(c.kind)) + " seed " + std::to_string(c.seed) + " " +

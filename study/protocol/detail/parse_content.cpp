@@ -258,6 +258,19 @@ void parse_screen_door_keys(TableReader& rr, Rendering& r, ParseState& s) {
       s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"screen-door\" (exact target masks, no layer limit)");
 }
 
+// The vdt keys (method = "vdt", docs/render.md "vdt"): the paper's falling-off term k and the
+// fixed weights of opaque objects and of the background, each optional in [0, 1]; with another
+// method they are warnings.
+void parse_vdt_keys(TableReader& rr, Rendering& r, ParseState& s) {
+  if (auto v = rr.number("falloff", false, limits::kVdtUnit)) r.falloff = *v;
+  if (auto v = rr.number("opaque_alpha", false, limits::kVdtUnit)) r.opaque_alpha = *v;
+  if (auto v = rr.number("background_alpha", false, limits::kVdtUnit)) r.background_alpha = *v;
+  if (r.method == "vdt") return;
+  for (const char* key : {"falloff", "opaque_alpha", "background_alpha"})
+    if (rr.has(key))
+      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"" + r.method + "\" (a vdt key)");
+}
+
 }  // namespace
 
 void parse_renderings(TableReader& root, ParseState& s) {
@@ -277,7 +290,8 @@ void parse_renderings(TableReader& root, ParseState& s) {
     TableReader rr(*n->as_table(), path, s.d, pos_of(*k));
     Rendering r;
     r.name = name;
-    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door"})) r.method = *v;
+    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door", "vdt"}))
+      r.method = *v;
     if (auto v = rr.number("a0", false, limits::kAlpha)) r.a0 = *v;
     if (auto v = rr.number("aT", false, limits::kAlpha)) r.aT = *v;
     if (auto v = rr.integer("gradient_width", false, limits::kGradientWidth)) r.gradient_width = static_cast<int>(*v);
@@ -287,25 +301,28 @@ void parse_renderings(TableReader& root, ParseState& s) {
     if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
     if (auto v = rr.number("searchlight_radius", false, limits::kSearchlightRadius)) r.searchlight_radius = *v;
     parse_lens_keys(rr, r, s);
+    parse_vdt_keys(rr, r, s);
     if (auto v = rr.boolean("occlusion_culling", false)) r.occlusion_culling = *v;
     parse_screen_door_keys(rr, r, s);
     rr.finish();
-    if (r.method == "standard" || r.method == "lens") {
+    if (r.method == "standard" || r.method == "lens" || r.method == "vdt") {
       for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit"})
         if (rr.has(key))
           s.d.warning(rr.pos(key), rr.field(key),
                       "has no effect with method = \"" + r.method + "\" (no dynamic transparency)");
-      if (r.method == "standard" && rr.has("mode"))
-        s.d.warning(rr.pos("mode"), rr.field("mode"), "has no effect with method = \"standard\" (no transparency)");
-    }
-    if (rr.has("searchlight_radius") && (r.mode != "active" || r.method == "standard" || r.method == "lens")) {
-      s.d.warning(rr.pos("searchlight_radius"), rr.field("searchlight_radius"),
-                  "has no effect without a searchlight (dynamic transparency with mode = \"active\")");
+      if (r.method != "lens" && rr.has("mode"))
+        s.d.warning(rr.pos("mode"), rr.field("mode"),
+                    "has no effect with method = \"" + r.method + "\" (" +
+                        (r.method == "standard" ? "no transparency" : "no searchlight") + ")");
     } else if (r.a0 > r.aT) {
       s.d.warning(rr.pos("a0"), rr.field("a0"),
                   "a0 > aT: the gradient starts more opaque than the surfaces in front of the target "
                   "(the reference design uses a low a0 and a higher aT)");
     }
+    if (rr.has("searchlight_radius") &&
+        (r.mode != "active" || r.method == "standard" || r.method == "lens" || r.method == "vdt"))
+      s.d.warning(rr.pos("searchlight_radius"), rr.field("searchlight_radius"),
+                  "has no effect without a searchlight (dynamic transparency with mode = \"active\")");
     p.renderings.push_back(std::move(r));
   }
   if (names.empty()) {

@@ -112,7 +112,7 @@ std::vector<float> OcclusionCuller::occluder_map(const FrameView& view, const Fr
 namespace {
 
 // Pixels a transparency method or the lens may change: each target's mask support (in active
-// mode cut to the searchlight circle's box, where masks act), or the lens footprint.
+// mode cut to the searchlight circle's box, where masks act), the lens footprint, or (vdt) all.
 std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRect& lens_footprint) {
   std::vector<PixelRect> out;
   if (uses_transparency(method)) {
@@ -125,6 +125,9 @@ std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRe
     for (const TargetView& t : view.targets) out.push_back(t.support.intersect(circle));
   }
   if (method == Method::lens) out.push_back(lens_footprint);
+  // vdt: every distractor (every inner wall) is see-through, so a wall hides nothing by itself;
+  // the whole view is a hole and nothing is culled.
+  if (method == Method::vdt) out.push_back(view.viewport());
   return out;
 }
 

@@ -68,7 +68,7 @@ int Program::loc(const char* name) const {
 }
 
 Result<Program> link_program(const char* vertex_file, const char* fragment_file, const char* defines) {
-  auto vs = compile(GL_VERTEX_SHADER, vertex_file, "");
+  auto vs = compile(GL_VERTEX_SHADER, vertex_file, defines);
   if (!vs) return vs.error();
   auto fs = compile(GL_FRAGMENT_SHADER, fragment_file, defines);
   if (!fs) {
@@ -100,8 +100,9 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 }
 
 void Programs::destroy() {
-  for (Program* p : {&object, &object_sl, &object_lens, &object_alpha, &object_alpha_sl, &quad_alpha, &border, &shape,
-                     &cheb_rows, &cheb_cols, &fast_apply, &fast_apply_counter, &object_sd, &sd_resolve}) {
+  for (Program* p : {&object, &object_sl, &object_lens, &object_vdt, &object_alpha, &object_alpha_peel,
+                     &object_alpha_sl, &quad_alpha, &border, &shape, &cheb_rows, &cheb_cols, &fast_apply,
+                     &fast_apply_counter, &object_sd, &sd_resolve}) {
     if (p->id != 0) glDeleteProgram(p->id);
     p->id = 0;
   }
@@ -119,7 +120,9 @@ Result<Programs> compile_programs() {
       {&ps.object, "object.vert", "object.frag", ""},
       {&ps.object_sl, "object.vert", "object.frag", "SEARCHLIGHT"},
       {&ps.object_lens, "object.vert", "object.frag", "LENS"},
+      {&ps.object_vdt, "object.vert", "object.frag", "VDT"},
       {&ps.object_alpha, "object.vert", "flat_alpha.frag", ""},
+      {&ps.object_alpha_peel, "object.vert", "flat_alpha.frag", "PEEL"},
       {&ps.object_alpha_sl, "object.vert", "flat_alpha.frag", "SEARCHLIGHT"},
       {&ps.quad_alpha, "fullscreen.vert", "flat_alpha.frag", "SEARCHLIGHT"},
       {&ps.border, "fullscreen.vert", "border.frag", ""},

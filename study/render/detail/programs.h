@@ -19,7 +19,7 @@ class Program {
 };
 
 // Compiles and links the embedded `vertex_file` and `fragment_file`; `defines` (e.g. "SEARCHLIGHT")
-// are #defined in the fragment shader, after its #version line.
+// are #defined in both shaders, after their #version lines.
 Result<Program> link_program(const char* vertex_file, const char* fragment_file, const char* defines = "");
 
 // Variants with SEARCHLIGHT may discard; the others never do (a shader that may discard makes
@@ -28,7 +28,9 @@ struct Programs {
   Program object;       // object.vert + object.frag: lit or flat colour
   Program object_sl;    // the same, cut to the searchlight (the R1 guard's repair in active mode)
   Program object_lens;  // the same with LENS: the lens method's second depth test (discards)
+  Program object_vdt;   // the same with VDT: alpha = the per-vertex view-dependent alpha (attribute 3)
   Program object_alpha; // object.vert + flat_alpha.frag: depth-only, queries, silhouettes
+  Program object_alpha_peel;  // the same with PEEL: vdt's second-layer depth pass (discards)
   Program object_alpha_sl;  // the same, cut to the searchlight (or alpha 1 outside it)
   Program quad_alpha;   // fullscreen.vert + flat_alpha.frag (SEARCHLIGHT)
   Program border;       // fullscreen.vert + border.frag (Algorithm 3)

@@ -25,12 +25,14 @@ std::string_view to_string(Method m) {
     case Method::reference: return "reference";
     case Method::lens: return "lens";
     case Method::screen_door: return "screen-door";
+    case Method::vdt: return "vdt";
   }
   return "?";
 }
 
 std::optional<Method> parse_method(std::string_view s) {
-  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens, Method::screen_door})
+  for (Method m : {Method::standard, Method::dt_seed, Method::dt_fast, Method::reference, Method::lens,
+                   Method::screen_door, Method::vdt})
     if (to_string(m) == s) return m;
   return std::nullopt;
 }
@@ -217,6 +219,8 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
     if (const auto problem = check(settings.lens)) throw std::invalid_argument("LensSettings." + *problem);
   if (settings.method == Method::screen_door)
     if (const auto problem = check(settings.screen_door)) throw std::invalid_argument("ScreenDoorSettings." + *problem);
+  if (settings.method == Method::vdt)
+    if (const auto problem = check(settings.vdt)) throw std::invalid_argument("VdtSettings." + *problem);
   if (settings.flat_colors.size() > impl_->gpu->objects().size())
     throw std::invalid_argument("Renderer::render: more flat colours than objects");
   using Clock = std::chrono::steady_clock;
@@ -242,10 +246,13 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   const bool direct = settings.method == Method::dt_fast && targets && impl_->fast_effect_hint &&
                       detail::fast_direct_possible(fc);
   detail::LensGpu lens;
+  detail::VdtFrame vdt_frame;
   if (settings.method == Method::lens) {
     lens = impl_->upload_lens(volume);
     lens.footprint = lens_footprint;
     color = detail::add_lens_passes(fg, fc, lens);
+  } else if (settings.method == Method::vdt && impl_->vdt.prepare(fc, vdt_frame)) {
+    color = detail::add_vdt_passes(fg, fc, vdt_frame);  // else no transparent object in view: standard's frame
   } else if (settings.method == Method::reference) {
     color = detail::add_reference_pass(fg, fc);
   } else if (direct) {

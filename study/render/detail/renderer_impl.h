@@ -16,6 +16,7 @@
 #include "study/render/detail/programs.h"
 #include "study/render/detail/scene_gpu.h"
 #include "study/render/detail/sort.h"
+#include "study/render/detail/vdt.h"
 #include "study/render/render.h"
 
 namespace dtlab::render {
@@ -40,9 +41,12 @@ struct Renderer::Impl {
 
   // The lens method's volume, re-uploaded every lens frame (a few hundred triangles).
   unsigned lens_vao = 0, lens_vbo = 0;
+  // The vdt method's per-vertex alpha buffer and the meshes' edge lists (built on first use).
+  detail::VdtState vdt;
   std::unique_ptr<detail::OcclusionCuller> culler;  // made on the first frame with occlusion culling on
 
   ~Impl() {
+    vdt.destroy();
     culler.reset();
     if (lens_vao != 0) glDeleteVertexArrays(1, &lens_vao);
     if (lens_vbo != 0) glDeleteBuffers(1, &lens_vbo);
