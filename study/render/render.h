@@ -1,4 +1,4 @@
-// The dtlab renderer: draws a scene::Scene with one of six methods through
+// The dtlab renderer: draws a scene::Scene with one of seven methods through
 // a frame graph (detail/frame_graph.h), into a caller-owned target (a window's
 // default framebuffer or an offscreen framebuffer), in any GL 3.3 core
 // context (the platform layer makes one). Methods (docs/render.md):
