@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 #include <map>
 #include <string>
@@ -427,5 +429,27 @@ INSTANTIATE_TEST_SUITE_P(Table, Warns, testing::ValuesIn(kWarnings), [](const au
     if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
   return name;
 });
+
+// occlusion_culling needs a floor plan: in a protocol of ABSTRACT scenarios only (the shipped lens
+// comparison) it is a warning at its own line; with a WALKTHROUGH scenario it is not.
+TEST(Warns, OcclusionCullingWithoutAWalkthroughScenario) {
+  std::ifstream in(std::string(DTLAB_SOURCE_DIR) + "/protocols/lens-vs-dt.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find("method = \"lens\"");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "occlusion_culling = true\n");
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  const auto diags = validate_protocol_text(text, "abstract-only.toml");
+  EXPECT_FALSE(has_errors(diags)) << all(diags);
+  bool found = false;
+  for (const auto& d : diags)
+    found |= d.severity == dtlab::Severity::warning && d.where.line == line &&
+             d.where.field == "rendering.lens.occlusion_culling" &&
+             d.where.message.find("without a walkthrough scenario") != std::string::npos;
+  EXPECT_TRUE(found) << all(diags);
+  // The reference design has a WALKTHROUGH scenario: no such warning.
+  const auto ok = validate_protocol_text(edited({{26, "method = \"dt-seed\"\nocclusion_culling = true"}}), "w.toml");
+  for (const auto& d : ok) EXPECT_EQ(d.where.message.find("walkthrough scenario"), std::string::npos) << all(ok);
+}
 
 }  // namespace

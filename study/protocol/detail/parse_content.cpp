@@ -303,6 +303,11 @@ void parse_renderings(TableReader& root, ParseState& s) {
     parse_lens_keys(rr, r, s);
     parse_vdt_keys(rr, r, s);
     if (auto v = rr.boolean("occlusion_culling", false)) r.occlusion_culling = *v;
+    if (r.occlusion_culling && !p.scenarios.empty() &&
+        std::none_of(p.scenarios.begin(), p.scenarios.end(),
+                     [](const Scenario& sc) { return sc.scene.kind == ScenarioKind::walkthrough; }))
+      s.d.warning(rr.pos("occlusion_culling"), rr.field("occlusion_culling"),
+                  "has no effect without a walkthrough scenario (occlusion culling needs a floor plan)");
     parse_screen_door_keys(rr, r, s);
     rr.finish();
     if (r.method == "standard" || r.method == "lens" || r.method == "vdt") {
