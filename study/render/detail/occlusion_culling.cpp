@@ -112,7 +112,7 @@ std::vector<float> OcclusionCuller::occluder_map(const FrameView& view, const Fr
 namespace {
 
 // Pixels a transparency method or the lens may change: each target's mask support (in active
-// mode cut to the searchlight circle's box, where masks act), the lens footprint, or (vdt) all.
+// mode cut to the searchlight circle's box, where masks act), the lens footprint.
 std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRect& lens_footprint) {
   std::vector<PixelRect> out;
   if (uses_transparency(method)) {
@@ -125,9 +125,6 @@ std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRe
     for (const TargetView& t : view.targets) out.push_back(t.support.intersect(circle));
   }
   if (method == Method::lens) out.push_back(lens_footprint);
-  // vdt: every distractor (every inner wall) is see-through, so a wall hides nothing by itself;
-  // the whole view is a hole and nothing is culled.
-  if (method == Method::vdt) out.push_back(view.viewport());
   return out;
 }
 
@@ -137,6 +134,14 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   CullingReport report;
   if (!scene_.plan) return report;
   report.ran = true;
+  for (std::uint32_t i = 0; i < objects_.size(); ++i)
+    if (!view.rects[i].empty()) {
+      ++report.objects_in_view;
+      report.triangles_in_view += objects_[i].index_count / 3;
+    }
+  // vdt: every distractor (every inner wall) is see-through, so no wall hides anything by itself
+  // and nothing can be culled: no occluder database, no GPU work.
+  if (fc.settings.method == Method::vdt) return report;
   if (!database_) {
     const auto t = Clock::now();
     database_ = std::make_unique<OccluderDatabase>(build_occluder_database(scene_, objects_));
@@ -148,11 +153,6 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
     reduce_ = std::move(p.value());
   }
   const auto t0 = Clock::now();
-  for (std::uint32_t i = 0; i < objects_.size(); ++i)
-    if (!view.rects[i].empty()) {
-      ++report.objects_in_view;
-      report.triangles_in_view += objects_[i].index_count / 3;
-    }
   const auto& occluders = database_->nearest(view.camera.eye);
   if (std::none_of(occluders.begin(), occluders.end(), [&](std::uint32_t i) { return !view.rects[i].empty(); })) {
     report.ms = ms_since(t0);  // no occluder in view: nothing can be hidden, no GPU work
