@@ -414,9 +414,21 @@ Handle add_target_query_pass(FrameGraph& fg, const FrameContext& fc, Handle dept
         fc.use_alpha(fc.view.view_proj, 0.0f, true);
         for (const TargetView& t : fc.view.targets) {
           glStencilFunc(GL_NOTEQUAL, t.code, static_cast<GLuint>(code_bits));
+          // A convex target seen from outside: where its back face is behind another object's
+          // surface, so is its front face (anything between the two would be inside it and hide
+          // the back face only, with the front face frontmost: code equal). Front faces suffice.
+          if (fc.view.single_pass[t.object]) {
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_BACK);
+            glFrontFace(fc.gpu.objects()[t.object].mirrored ? GL_CW : GL_CCW);
+          } else {
+            glDisable(GL_CULL_FACE);
+          }
           fc.draw_alpha(t.object);
         }
         glEndQuery(GL_ANY_SAMPLES_PASSED);
+        glDisable(GL_CULL_FACE);
+        glFrontFace(GL_CCW);
         glDisable(GL_STENCIL_TEST);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       });
