@@ -15,6 +15,12 @@ struct ImportedTarget {
   int height = 0;
 };
 
+// Scene-mesh draw calls and the triangles they submitted.
+struct DrawCounts {
+  long draws = 0;
+  long triangles = 0;
+};
+
 // One record per declared pass, in declaration order.
 struct PassRecord {
   std::string name;
@@ -22,6 +28,8 @@ struct PassRecord {
   bool conditional = false;  // ran under conditional rendering
   std::optional<bool> ran;   // executed (for conditional passes: the query said yes); nullopt: unknown yet
   double ms = 0.0;           // CPU time (all threads) of the pass when profiled (glFinish around it)
+  long draws = 0;            // when profiled: scene-mesh draw calls the pass issued (screen quads not counted)
+  long triangles = 0;        // when profiled: triangles those draws submitted (conditional ones too)
 };
 
 // Occlusion culling's work in one frame (FrameSettings::occlusion_culling; docs/render.md).

@@ -98,6 +98,40 @@ TEST(FrameGraph, CullsPassesWhoseOutputsNothingReads) {
   EXPECT_EQ(be.created, 1) << "the culled chain's texture must never be allocated";
 }
 
+// Profiled with a draw counter, each pass reports the draws and triangles it added to it, and
+// a culled pass none; without profiling nothing is counted.
+TEST(FrameGraph, ProfiledPassesReportTheirOwnDrawsAndTriangles) {
+  for (const bool profile : {true, false}) {
+    FrameGraph fg;
+    RecordingBackend be;
+    DrawCounts counts{5, 500};  // what earlier frames drew: not this frame's
+    const Handle out = fg.import_target("output", {0, 16, 16});
+    const Handle color = fg.add_pass<One>(
+                              "scene", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create("color", kDesc)); },
+                              [&](const One&, PassResources&) { counts.draws += 3, counts.triangles += 120; })
+                             .h;
+    fg.add_pass<One>(
+        "unread", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create("debug", kDesc)); },
+        [&](const One&, PassResources&) { counts.draws += 100, counts.triangles += 100; });
+    fg.add_pass<Two>(
+        "present",
+        [&](FrameGraph::Builder& b, Two& d) {
+          d.a = b.read(color);
+          d.b = b.write(out);
+        },
+        [&](const Two&, PassResources&) { counts.draws += 1, counts.triangles += 2; });
+    fg.compile();
+    fg.execute(be, profile, &counts);
+    const FrameReport rep = fg.report(be, true);
+    ASSERT_EQ(rep.passes.size(), 3u);
+    EXPECT_EQ(rep.passes[0].draws, profile ? 3 : 0);
+    EXPECT_EQ(rep.passes[0].triangles, profile ? 120 : 0);
+    EXPECT_EQ(rep.passes[1].draws, 0) << "culled";
+    EXPECT_EQ(rep.passes[2].draws, profile ? 1 : 0);
+    EXPECT_EQ(rep.passes[2].triangles, profile ? 2 : 0);
+  }
+}
+
 TEST(FrameGraph, SideEffectKeepsAPassWithoutReaders) {
   FrameGraph fg;
   RecordingBackend be;

@@ -14,7 +14,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <ostream>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include "study/protocol/protocol.h"
@@ -150,6 +153,38 @@ TEST(RenderCli, VdtRendersItsPassesAndShowsTargetsThroughDistractors) {
   EXPECT_EQ(vdt_passes, nlohmann::json({"vdt-nearest", "vdt-second", "vdt-opaque", "vdt-blend", "vdt-foreground",
                                         "present"}));
   EXPECT_GT(vdt, standard);
+  fs::remove(out);
+}
+
+// --profile: per pass, the median over the timed frames and the mesh draws and triangles it
+// submitted. dt-fast's mask and query passes each draw every target once; present draws no mesh.
+TEST(RenderCli, ProfileCountsTheDrawsAndTrianglesOfEachPass) {
+  const fs::path out = png_path("profile");
+  auto passes = [&](const std::string& method) {
+    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 7 --width 160 --height 120 --frames 3 "
+                                   "--profile --method " + method + " --out '" + out.string() + "'");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    std::map<std::string, std::pair<long, long>> by_name;  // pass -> (draws, triangles)
+    std::istringstream lines(r.out);
+    const std::regex row(R"(^\s+\S+ ms\s+(\S+) \(median of (\d+) frames; (\d+) mesh draws, (\d+) triangles\)$)");
+    for (std::string line; std::getline(lines, line);) {
+      std::smatch m;
+      if (!std::regex_match(line, m, row)) continue;
+      EXPECT_EQ(m[2], "3") << line;
+      by_name[m[1]] = {std::stol(m[3]), std::stol(m[4])};
+    }
+    return by_name;
+  };
+  const auto standard = passes("standard");
+  ASSERT_EQ(standard.size(), 2u);
+  EXPECT_GT(standard.at("opaque").first, 0);
+  EXPECT_GT(standard.at("opaque").second, standard.at("opaque").first);
+  EXPECT_EQ(standard.at("present"), std::make_pair(0L, 0L));
+  const auto fast = passes("dt-fast");
+  ASSERT_TRUE(fast.count("dt-masks") && fast.count("target-query")) << "passes: " << fast.size();
+  EXPECT_GT(fast.at("target-query").first, 0);
+  EXPECT_EQ(fast.at("dt-masks"), fast.at("target-query"));
+  EXPECT_LT(fast.at("target-query").first, standard.at("opaque").first);
   fs::remove(out);
 }
 

@@ -179,12 +179,13 @@ void FrameGraph::compile() {
 
 // --- execute ----------------------------------------------------------------------------
 
-void FrameGraph::execute(FrameGraphBackend& backend, bool profile) {
+void FrameGraph::execute(FrameGraphBackend& backend, bool profile, const DrawCounts* counts) {
   if (!compiled_) fail("execute() before compile()");
   if (executed_) fail("execute() called twice");
   executed_ = true;
   backend.drain_errors();  // errors from before this frame are not ours
   pass_ms_.assign(passes_.size(), 0.0);
+  pass_counts_.assign(passes_.size(), DrawCounts{});
   if (profile) backend.finish();
   for (std::uint32_t pi = 0; pi < passes_.size(); ++pi) {
     PassNode& p = *passes_[pi];
@@ -199,6 +200,7 @@ void FrameGraph::execute(FrameGraphBackend& backend, bool profile) {
     }
     PassResources res(*this, pi, backend);
     timespec cpu0{};
+    const DrawCounts before = counts ? *counts : DrawCounts{};
     if (profile) clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu0);
     if (p.condition) {
       const unsigned q = resources_[nodes_[*p.condition].resource].gl_name;
@@ -214,6 +216,7 @@ void FrameGraph::execute(FrameGraphBackend& backend, bool profile) {
       timespec cpu1{};
       clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu1);
       pass_ms_[pi] = static_cast<double>(cpu1.tv_sec - cpu0.tv_sec) * 1e3 + static_cast<double>(cpu1.tv_nsec - cpu0.tv_nsec) * 1e-6;
+      if (counts) pass_counts_[pi] = {counts->draws - before.draws, counts->triangles - before.triangles};
     }
     for (auto& e : backend.drain_errors()) errors_.push_back("pass '" + p.name + "': " + e);
     for (auto& r : resources_) {
@@ -236,6 +239,10 @@ FrameReport FrameGraph::report(FrameGraphBackend& backend, bool wait_for_queries
   for (std::uint32_t pi = 0; pi < passes_.size(); ++pi) {
     const PassNode& p = *passes_[pi];
     PassRecord rec{p.name, p.culled, p.condition.has_value(), std::nullopt, pi < pass_ms_.size() ? pass_ms_[pi] : 0.0};
+    if (pi < pass_counts_.size()) {
+      rec.draws = pass_counts_[pi].draws;
+      rec.triangles = pass_counts_[pi].triangles;
+    }
     if (p.culled || !executed_) {
       rec.ran = false;
     } else if (!p.condition) {

@@ -134,8 +134,9 @@ class FrameGraph {
 
   void compile();                              // culls; call once, after the last add_pass
   // Runs the surviving passes, then frees transients. With `profile`, a glFinish after each
-  // pass gives per-pass process CPU times (llvmpipe renders on CPU threads; debugging only).
-  void execute(FrameGraphBackend& backend, bool profile = false);
+  // pass gives per-pass process CPU times (llvmpipe renders on CPU threads; debugging only),
+  // and `counts` (if given) read before and after each pass gives its draws and triangles.
+  void execute(FrameGraphBackend& backend, bool profile = false, const DrawCounts* counts = nullptr);
   // After execute() and before report(): did `query` see samples? nullopt if the query was culled
   // or (without `wait`) its answer is not ready.
   std::optional<bool> answer(Handle query, FrameGraphBackend& backend, bool wait) const;
@@ -188,6 +189,7 @@ class FrameGraph {
   std::vector<unsigned> queries_used_;  // query names held until report()
   std::vector<std::string> errors_;     // GL errors, prefixed with the pass
   std::vector<double> pass_ms_;         // per pass, when profiled
+  std::vector<DrawCounts> pass_counts_;  // per pass, when profiled with counts
   std::vector<std::pair<std::uint32_t, unsigned>> pass_query_;  // conditional pass -> query name
   bool compiled_ = false;
   bool executed_ = false;

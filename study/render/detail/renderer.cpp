@@ -275,7 +275,7 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   detail::add_present_pass(fg, fc, color, output);
   fg.compile();
   detail::set_frame_baseline(impl_->gpu->vao());
-  fg.execute(impl_->backend, settings.profile_passes);
+  fg.execute(impl_->backend, settings.profile_passes, &impl_->gpu->counts());
   if (settings.timed) glFinish();
   const auto t1 = Clock::now();
   // dt-fast picks the next frame's plan from whether this one needed the effect (frame coherence);

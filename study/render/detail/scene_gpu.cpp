@@ -153,6 +153,8 @@ SceneGpu::~SceneGpu() {
 
 void SceneGpu::draw(const ObjectRecord& o) const {
   if (!o.drawable()) return;
+  ++counts_.draws;
+  counts_.triangles += o.index_count / 3;
   glDrawElementsBaseVertex(GL_TRIANGLES, o.index_count, GL_UNSIGNED_INT,
                            reinterpret_cast<const void*>(o.first_index * sizeof(std::uint32_t)), o.base_vertex);
 }

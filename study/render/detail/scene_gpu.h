@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "study/common/error.h"
+#include "study/render/frame_report.h"
 #include "study/scene/scene.h"
 
 namespace dtlab::render::detail {
@@ -45,13 +46,15 @@ class SceneGpu {
   SceneGpu& operator=(const SceneGpu&) = delete;
 
   unsigned vao() const { return vao_; }
-  void draw(const ObjectRecord& o) const;  // glDrawElementsBaseVertex; the VAO must be bound
+  void draw(const ObjectRecord& o) const;  // glDrawElementsBaseVertex; the VAO must be bound (counted)
+  const DrawCounts& counts() const { return counts_; }  // since creation
   const std::vector<ObjectRecord>& objects() const { return objects_; }
 
  private:
   SceneGpu() = default;
   unsigned vao_ = 0, vbo_ = 0, ibo_ = 0;
   std::vector<ObjectRecord> objects_;
+  mutable DrawCounts counts_;
 };
 
 }  // namespace dtlab::render::detail
