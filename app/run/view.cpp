@@ -18,6 +18,7 @@ Result<std::unique_ptr<SceneView>> SceneView::create(const scene::Scene& scene, 
   auto r = render::Renderer::create(scene);
   if (!r) return r.error();
   v->renderer_ = std::move(r.value());
+  v->renderer_->prepare(frame);  // occlusion culling's occluder database now, not in the first frame
   v->yaw_ = scene.camera.yaw;
   v->pitch_ = scene.camera.pitch;
   v->position_ = scene.camera.position;

@@ -309,6 +309,35 @@ TEST(OcclusionCulling, FirstFrameCullsLikeTheNext) {
   EXPECT_EQ(first.objects_culled, second.objects_culled);
 }
 
+// Renderer::prepare builds the occluder database before the first frame (a session calls it so
+// that a trial's first frame is not late by it), and the frames cull as they would without it.
+TEST(OcclusionCulling, PrepareBuildsTheDatabaseBeforeTheFirstFrame) {
+  const auto s = walkthrough(1);
+  auto prepared = renderer_of(s), plain = renderer_of(s);
+  ASSERT_TRUE(prepared && plain);
+  FrameSettings f;
+  EXPECT_EQ(prepared->prepare(f), 0.0) << "culling off: nothing to build";
+  f.method = Method::vdt;
+  f.occlusion_culling = true;
+  EXPECT_EQ(prepared->prepare(f), 0.0) << "vdt culls nothing: nothing to build";
+  f.method = Method::standard;
+  EXPECT_GT(prepared->prepare(f), 0.0);
+  EXPECT_EQ(prepared->prepare(f), 0.0) << "built once per renderer";
+  const Camera cam = camera_from_start(s.camera, static_cast<float>(kW) / kH);
+  const auto a = prepared->render_offscreen(cam, f, kW, kH).culling;
+  const auto b = plain->render_offscreen(cam, f, kW, kH).culling;
+  EXPECT_EQ(a.preprocess_ms, 0.0);
+  EXPECT_GT(b.preprocess_ms, 0.0);
+  EXPECT_GT(a.objects_culled, 0);
+  EXPECT_EQ(a.objects_culled, b.objects_culled);
+  EXPECT_EQ(a.triangles_culled, b.triangles_culled);
+  auto abstract_scene = scene::generate(scene::Kind::abstract, scene::Task::T1, 1);
+  ASSERT_TRUE(abstract_scene.ok());
+  auto no_plan = renderer_of(abstract_scene.value());
+  ASSERT_TRUE(no_plan);
+  EXPECT_EQ(no_plan->prepare(f), 0.0) << "no floor plan: nothing to cull with";
+}
+
 TEST(OcclusionCulling, HolesOnlyRemoveCoverage) {
   const auto s = walkthrough(2);
   auto r = renderer_of(s);

@@ -130,6 +130,13 @@ std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRe
 
 }  // namespace
 
+double OcclusionCuller::prepare() {
+  if (database_) return 0.0;
+  const auto t = Clock::now();
+  database_ = std::make_unique<OccluderDatabase>(build_occluder_database(scene_, objects_));
+  return ms_since(t);
+}
+
 Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& fc, const PixelRect& lens_footprint) {
   CullingReport report;
   if (!scene_.plan) return report;
@@ -142,11 +149,7 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   // vdt: every distractor (every inner wall) is see-through, so no wall hides anything by itself
   // and nothing can be culled: no occluder database, no GPU work.
   if (fc.settings.method == Method::vdt) return report;
-  if (!database_) {
-    const auto t = Clock::now();
-    database_ = std::make_unique<OccluderDatabase>(build_occluder_database(scene_, objects_));
-    report.preprocess_ms = ms_since(t);
-  }
+  report.preprocess_ms = prepare();
   if (reduce_.id == 0) {
     auto p = link_program("fullscreen.vert", "depth_reduce.frag");
     if (!p) return p.error();

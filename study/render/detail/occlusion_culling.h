@@ -22,11 +22,16 @@ namespace dtlab::render::detail {
 
 class OcclusionCuller {
  public:
-  // The hierarchy now; the occluder database on the first frame (timed in that frame's report).
+  // The hierarchy now; the occluder database on prepare() or else on the first frame (timed in
+  // that frame's report).
   OcclusionCuller(const scene::Scene& scene, const std::vector<ObjectRecord>& objects);
   ~OcclusionCuller();  // needs the renderer's context current
   OcclusionCuller(const OcclusionCuller&) = delete;
   OcclusionCuller& operator=(const OcclusionCuller&) = delete;
+
+  // Builds the occluder database if it is not built yet; returns the milliseconds it took (0 if
+  // it was built before). CPU only.
+  double prepare();
 
   // Culls `view` in place (its rects and draw lists) for a frame drawn with `fc` (built on `view`).
   // `lens_footprint`: the lens method's footprint (pixels it may change), else empty.
