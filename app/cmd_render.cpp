@@ -440,7 +440,7 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--out", o->out, "PNG file to write")->required();
   cmd->add_option("--width", o->width, "Image width in pixels")->check(CLI::Range(1, 8192));
   cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 8192));
-  cmd->add_option("--frames", o->frames, "Frames to time (after half a second of untimed frames when K > 1); the median frame time is reported")
+  cmd->add_option("--frames", o->frames, "Frames to time (with more than one, half a second of untimed frames first); the median frame time is reported")
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--camera", o->camera,
                   "Override the start camera: key=value list, keys yaw, pitch, fov (degrees), distance (orbit), "

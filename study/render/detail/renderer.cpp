@@ -208,13 +208,13 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& scene) {
 }
 
 const scene::Scene& Renderer::scene() const { return impl_->scene; }
+const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
 
 double Renderer::prepare(const FrameSettings& settings) {
   if (!settings.occlusion_culling || !impl_->scene.plan || settings.method == Method::vdt) return 0.0;
   if (!impl_->culler) impl_->culler = std::make_unique<detail::OcclusionCuller>(impl_->scene, impl_->gpu->objects());
   return impl_->culler->prepare();
 }
-const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
 
 FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {
   if (target.width <= 0 || target.height <= 0)
