@@ -156,11 +156,14 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
           glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
           glClear(GL_COLOR_BUFFER_BIT);
           draw_tile_coverage(fc, *atlas, static_cast<int>(page), 1.0f);
-          // Two separable passes over the whole page, one quad each: nearest covered texel per row,
-          // then Chebyshev per column (as the texel's mask value). A tile's padding of n' + 1
-          // texels keeps every other tile's coverage more than n' texels from its texels, so
-          // the passes need no tile bounds.
-          auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler) {
+          // Two separable passes, one quad each: nearest covered texel per row, then Chebyshev per
+          // column (as the texel's mask value). A tile's padding of n' + 1 texels keeps every
+          // other tile's coverage more than n' texels from its texels, so the passes need no tile
+          // bounds. They cover the tiles' bounding box and one texel beyond it (a bilinear sample
+          // at a tile's last texel centre reads its neighbour with weight 0, which must not be
+          // unwritten); the rows pass n' rows more, which the columns pass reads.
+          const int w = std::min(pg.width, pg.used_width + 1), h = std::min(pg.height, pg.used_height + 1);
+          auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler, int rows) {
             glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
             fc.use_program(p);
             glActiveTexture(GL_TEXTURE0);
@@ -170,10 +173,11 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
             glUniform1i(p.loc("u_layers"), g.layers);
             glUniform1f(p.loc("u_alpha_target"), dt.alpha_target);
             glUniform1f(p.loc("u_alpha_start"), dt.alpha_start);
-            fc.quad(p, 0.0f, 0.0f, static_cast<float>(pg.width), static_cast<float>(pg.height), pg.width, pg.height);
+            fc.quad(p, 0.0f, 0.0f, static_cast<float>(w), static_cast<float>(rows), pg.width, pg.height);
           };
-          distance_pass(fc.programs.cheb_rows, d.coverage[page], d.rows[page], "u_coverage");
-          distance_pass(fc.programs.cheb_cols, d.rows[page], d.alpha[page], "u_rows");
+          distance_pass(fc.programs.cheb_rows, d.coverage[page], d.rows[page], "u_coverage",
+                        std::min(pg.height, h + g.layers));
+          distance_pass(fc.programs.cheb_cols, d.rows[page], d.alpha[page], "u_rows", h);
         }
         glBindTexture(GL_TEXTURE_2D, 0);
       });
