@@ -321,23 +321,23 @@ void run(const RenderOptions& o) {
   // threads reach their steady state only after a few hundred milliseconds (before, the scheduler
   // often runs a frame's rasterizer threads one after the other: wall time = CPU time), so without
   // this a short run timed the warm-up, not the method (docs/performance.md).
+  // One frame into `report`, its GL errors and preprocessing kept (warm-up frames included).
+  auto render_frame = [&] {
+    report = r.render_offscreen(camera, settings, o.width, o.height);
+    gl_errors.insert(gl_errors.end(), report.gl_errors.begin(), report.gl_errors.end());
+    preprocess_ms += report.culling.preprocess_ms;
+  };
   if (o.frames > 1) {
     const auto w0 = std::chrono::steady_clock::now();
-    for (int f = 0; f < kMaxWarmupFrames && std::chrono::steady_clock::now() - w0 < kWarmup; ++f) {
-      const render::FrameReport warm = r.render_offscreen(camera, settings, o.width, o.height);
-      preprocess_ms += warm.culling.preprocess_ms;
-      gl_errors.insert(gl_errors.end(), warm.gl_errors.begin(), warm.gl_errors.end());
-    }
+    for (int f = 0; f < kMaxWarmupFrames && std::chrono::steady_clock::now() - w0 < kWarmup; ++f) render_frame();
   }
   for (int f = 0; f < o.frames; ++f) {
     timespec c0{}, c1{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
-    report = r.render_offscreen(camera, settings, o.width, o.height);
+    render_frame();
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
     times.push_back(report.frame_ms);
     cpu_times.push_back(static_cast<double>(c1.tv_sec - c0.tv_sec) * 1e3 + static_cast<double>(c1.tv_nsec - c0.tv_nsec) * 1e-6);
-    gl_errors.insert(gl_errors.end(), report.gl_errors.begin(), report.gl_errors.end());
-    preprocess_ms += report.culling.preprocess_ms;
     for (const auto& p : report.passes)
       if (!p.culled && p.ran.value_or(true)) pass_ms[p.name].push_back(p.ms);
   }

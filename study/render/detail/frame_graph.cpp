@@ -200,8 +200,11 @@ void FrameGraph::execute(FrameGraphBackend& backend, bool profile, const DrawCou
     }
     PassResources res(*this, pi, backend);
     timespec cpu0{};
-    const DrawCounts before = counts ? *counts : DrawCounts{};
-    if (profile) clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu0);
+    DrawCounts before;
+    if (profile) {
+      if (counts) before = *counts;
+      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu0);
+    }
     if (p.condition) {
       const unsigned q = resources_[nodes_[*p.condition].resource].gl_name;
       pass_query_.emplace_back(pi, q);

@@ -211,9 +211,9 @@ const scene::Scene& Renderer::scene() const { return impl_->scene; }
 const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
 
 double Renderer::prepare(const FrameSettings& settings) {
-  if (!settings.occlusion_culling || !impl_->scene.plan || settings.method == Method::vdt) return 0.0;
-  if (!impl_->culler) impl_->culler = std::make_unique<detail::OcclusionCuller>(impl_->scene, impl_->gpu->objects());
-  return impl_->culler->prepare();
+  if (settings.method == Method::vdt) return 0.0;  // vdt culls nothing (OcclusionCuller::run)
+  detail::OcclusionCuller* culler = impl_->culler_for(settings);
+  return culler != nullptr ? culler->prepare() : 0.0;
 }
 
 FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {

@@ -71,12 +71,20 @@ struct Renderer::Impl {
     return detail::LensGpu{lens_vao, static_cast<int>(v.triangles.size()), v.eye_inside, {}};
   }
 
+  // The occlusion culler when `settings` ask for culling and the scene has a floor plan to cull
+  // with (made on first use), else nullptr.
+  detail::OcclusionCuller* culler_for(const FrameSettings& settings) {
+    if (!settings.occlusion_culling || !scene.plan) return nullptr;
+    if (!culler) culler = std::make_unique<detail::OcclusionCuller>(scene, gpu->objects());
+    return culler.get();
+  }
+
   // Occlusion culling of `view` (in place) when `settings` ask for it; throws on a shader error.
   CullingReport cull(detail::FrameView& view, const FrameSettings& settings, const detail::PixelRect& lens_footprint) {
-    if (!settings.occlusion_culling || !scene.plan) return {};
-    if (!culler) culler = std::make_unique<detail::OcclusionCuller>(scene, gpu->objects());
+    detail::OcclusionCuller* c = culler_for(settings);
+    if (c == nullptr) return {};
     const detail::FrameContext fc{*gpu, programs, view, settings, scene, TextureFormat::rgba8, {}};
-    auto r = culler->run(view, fc, lens_footprint);
+    auto r = c->run(view, fc, lens_footprint);
     if (!r) throw std::runtime_error("occlusion culling: " + r.error().to_string());
     return r.value();
   }
