@@ -77,6 +77,11 @@ class ScriptPlayer {
   // The screen is being left: the playing section stops, and every key and button it holds down
   // is released (a release lost with its screen would leave the key down on the next one).
   void leave();
+  // The current screen's section has played every step (false without a section for it). The
+  // section of a screen that stays up has nothing more to do: only a person could go on.
+  bool played_out() const { return section_ != nullptr && next_ >= section_->steps.size(); }
+  // The line of the current screen's section (0: none).
+  int section_line() const { return section_ ? section_->line : 0; }
 
  private:
   bool step(const ScriptStep& s, const ItemBoxes& items, Clock::time_point now, Status& error);

@@ -206,6 +206,12 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
       ImGui::End();
     });
     if (!st) return st.error();
+    // A scripted run whose start section has played out while the screen refuses it (a finished
+    // or released participant, a missing field): no step is left to change that, so say why
+    // instead of waiting for a person who is not there.
+    if (!result && !message.empty() && ui.script_played_out())
+      return Error{ui.script()->file, ui.script_section_line(), 0, "start",
+                   "the start screen refused the script's entries: " + message, ErrorKind::invalid_input};
   }
   return *result;
 }

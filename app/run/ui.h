@@ -48,6 +48,11 @@ class Ui {
   // buffer swap. A new screen id, or new_instance(), restarts the script's section for it.
   // Errors: the window was closed (kind conflict: the session stays resumable), a script step failed.
   Status frame(const std::string& screen, const std::function<void()>& draw3d, const std::function<void()>& widgets);
+  // Scripted: the screen's section has played out and the screen is still up (start.cpp turns a
+  // refusal there into an error instead of waiting for a person forever). Its section's line.
+  bool script_played_out() const { return player_ && player_->played_out(); }
+  int script_section_line() const { return player_ ? player_->section_line() : 0; }
+  const Script* script() const { return options_.script; }
   void new_instance() { ++instance_; }                // the next frame starts a new instance of the same screen
   Clock::time_point last_swap() const { return last_swap_; }
   double last_frame_ms() const { return last_frame_ms_; }  // between the last two swaps

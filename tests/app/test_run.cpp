@@ -69,6 +69,20 @@ int wait_exit(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// The exit code, or -1 if it ran past `seconds` (it is killed then: a hang fails the test, it
+// does not stall the suite).
+int wait_exit_within(pid_t pid, double seconds) {
+  const auto until = Clock::now() + std::chrono::duration<double>(seconds);
+  int status = 0;
+  while (Clock::now() < until) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  return -1;
+}
+
 std::string slurp(const fs::path& p) { return dtlab::test::read_text(p); }
 
 store::StudyReader reader(const fs::path& db) {
@@ -302,6 +316,23 @@ TEST_F(RunPilot, TheReportLinksTheWalkedPathsOfEachWalkthroughTask) {
   EXPECT_FALSE(fs::exists(out / "paths/01-pilot-01-T1.svg")) << "ABSTRACT tasks have no floor plan";
 }
 
+// Rerunning the script for a participant whose session finished: the start screen refuses, and
+// with no step left in its section the run ends with that reason (it used to wait forever for a
+// person to type another ID). Exit code 1: the input (the script) is at fault.
+TEST_F(RunPilot, FinishedParticipantScriptRefusedAtOnce) {
+  ASSERT_EQ(rc, 0);
+  const fs::path d = temp_dir("finished");
+  fs::copy_file(*db, d / "pilot.sqlite");
+  const std::string before = outcome(d / "pilot.sqlite");
+  const int again = wait_exit_within(start_run(d / "pilot.sqlite", d / "log.txt", {"--script", kScript}), 120);
+  EXPECT_EQ(again, 1) << slurp(d / "log.txt");
+  const std::string log = slurp(d / "log.txt");
+  EXPECT_NE(log.find("has finished their session"), std::string::npos) << log;
+  EXPECT_NE(log.find(kScript), std::string::npos) << "the error names the script: " << log;
+  EXPECT_EQ(outcome(d / "pilot.sqlite"), before) << "nothing saved is changed";
+  fs::remove_all(d);
+}
+
 // kill -9 at several moments of a scripted session; each rerun with the same script continues.
 // The file stays intact after every kill, and the end result equals the uninterrupted run's.
 TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
@@ -340,7 +371,17 @@ TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
       }
     }
   }
-  if (final_rc < 0) final_rc = wait_exit(start_run(killed, log, {"--script", kScript}));
+  if (final_rc < 0) {
+    // A kill on the end screen leaves the session finished: the rerun's start screen refuses the
+    // participant, and the scripted run says so and stops (FinishedParticipantScriptRefusedAtOnce).
+    const auto before = reader(killed).sessions();
+    const bool finished = before && before->size() == 1 && (*before)[0].status == store::SessionStatus::finished;
+    final_rc = wait_exit_within(start_run(killed, log, {"--script", kScript}), 300);
+    if (finished) {
+      EXPECT_EQ(final_rc, 1) << slurp(log);
+      final_rc = 0;
+    }
+  }
   ASSERT_EQ(final_rc, 0) << slurp(log);
   EXPECT_GE(kills, 2) << "the session should have been interrupted more than once";
   EXPECT_EQ(outcome(killed), outcome(*db));
