@@ -4,8 +4,8 @@
 // region (pixels where some target's exact mask is below 1, where the two
 // methods can differ at all) the mean difference from dt-seed is at most 1.5
 // levels and at most 2% of the pixels differ by more than 4 levels; and
-// dt-fast's two frame plans (standard-first, effect-first) give the same
-// image. Regression: before the two shared one texel grid, one gradient
+// dt-seed's and dt-fast's two frame plans (standard-first, effect-first) each
+// give the same image. Regression: before the two shared one texel grid, one gradient
 // profile and one outline alpha, dt-fast was 9.8-14.1 levels off in the
 // effect region, with 64-84% of its pixels off by more than 4.
 #include <gtest/gtest.h>
@@ -41,11 +41,15 @@ TEST_P(Fidelity, DtFastDrawsDtSeedsPicture) {
   ASSERT_TRUE(r.ok());
   FrameSettings settings;
   settings.dt.gradient_px = gradient_px_from_mask_pixels(8.0f, 128, kW, kH);
-  settings.timed = true;  // the query's answer known at once: the second dt-fast frame takes the other plan
+  settings.timed = true;  // the query's answer known at once: each method's second frame takes the other plan
   const Camera cam = camera_from_start(s->camera, static_cast<float>(kW) / kH);
   settings.method = Method::dt_seed;
   const FrameReport seed_report = (*r)->render_offscreen(cam, settings, kW, kH);
   const Image seed = (*r)->read_color();
+  const FrameReport seed_again = (*r)->render_offscreen(cam, settings, kW, kH);
+  const ImageDiff seed_plans = compare(seed, (*r)->read_color());
+  EXPECT_EQ(seed_plans.max_abs, 0) << "dt-seed's two frame plans differ: " << seed_plans.pixels_off_pct
+                                   << "% of pixels off by > 4";
   settings.method = Method::dt_fast;
   const FrameReport first = (*r)->render_offscreen(cam, settings, kW, kH);
   const Image fast_first = (*r)->read_color();
@@ -68,6 +72,8 @@ TEST_P(Fidelity, DtFastDrawsDtSeedsPicture) {
     return std::find(v.begin(), v.end(), pass) != v.end();
   };
   EXPECT_TRUE(runs(seed_report, "dt-clear")) << "some target must be occluded for the test to mean anything";
+  EXPECT_TRUE(runs(seed_report, "opaque"));
+  EXPECT_FALSE(runs(seed_again, "opaque")) << "the second dt-seed frame must take the effect-first plan";
   EXPECT_TRUE(runs(first, "dt-composite"));
   EXPECT_TRUE(runs(second, "dt-direct"));
 }

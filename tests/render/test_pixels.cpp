@@ -291,32 +291,70 @@ INSTANTIATE_TEST_SUITE_P(Methods, BlendTest,
 namespace dtlab::render {
 namespace {
 
-// dt-fast has two frame plans (standard-first, effect-first) chosen by the previous frame;
-// they must give the same image.
-TEST(DtFastFramePlans, BothPlansGiveTheSameImage) {
+// dt-seed and dt-fast have two frame plans (standard-first, effect-first) chosen by whether the
+// previous frame needed the effect; they must give the same image, also when the guess is wrong
+// (effect-first, then no target occluded: standard-fallback must restore the standard frame).
+class FramePlans : public ::testing::TestWithParam<Method> {};
+
+TEST_P(FramePlans, BothPlansGiveTheSameImage) {
   testing::headless_context();
+  const auto ran = [](const FrameReport& f, const std::string& n) {
+    const auto v = f.passes_run();
+    return std::find(v.begin(), v.end(), n) != v.end();
+  };
+  const std::string effect_pass = GetParam() == Method::dt_seed ? "dt-clear" : "dt-composite";
   for (bool two : {false, true}) {
     const Built b = wall_scene(two);
     auto r = Renderer::create(b.scene);
     ASSERT_TRUE(r.ok());
     FrameSettings s;
-    s.method = Method::dt_fast;
+    s.method = GetParam();
     s.flat_colors = b.flat;
     s.timed = true;
     const FrameReport first = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
     const Image a = (*r)->read_color();
     const FrameReport second = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
     const Image c = (*r)->read_color();
-    const auto ran = [](const FrameReport& f, const std::string& n) {
-      const auto v = f.passes_run();
-      return std::find(v.begin(), v.end(), n) != v.end();
-    };
-    EXPECT_TRUE(ran(first, "dt-composite"));
-    EXPECT_TRUE(ran(second, "dt-direct"));
+    EXPECT_TRUE(ran(first, "opaque"));
+    EXPECT_TRUE(ran(first, effect_pass));
+    EXPECT_FALSE(ran(second, "opaque")) << "the second frame must take the effect-first plan";
+    EXPECT_TRUE(ran(second, "query-invert"));
     EXPECT_FALSE(ran(second, "standard-fallback"));
-    EXPECT_LE(compare(a, c).max_abs, 1);
+    EXPECT_EQ(compare(a, c).max_abs, 0);
   }
+  // A wrong guess: the searchlight leaves the target, so after a frame that needed the effect,
+  // the next one has nothing to uncover.
+  const Built b = wall_scene(false);
+  auto r = Renderer::create(b.scene);
+  ASSERT_TRUE(r.ok());
+  FrameSettings s;
+  s.method = GetParam();
+  s.flat_colors = b.flat;
+  s.timed = true;
+  s.dt.mode = DtMode::active;
+  const glm::vec2 c = project(front_camera(kW, kH), {0, 0, -11}, kW, kH);
+  s.dt.searchlight_center = {c.x, static_cast<float>(kH) - c.y};
+  s.dt.searchlight_radius = 40.0f;
+  const FrameReport on = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+  EXPECT_TRUE(ran(on, effect_pass));
+  s.dt.searchlight_center = {20.0f, 20.0f};
+  s.dt.searchlight_radius = 10.0f;
+  const FrameReport away = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+  const Image fell_back = (*r)->read_color();
+  EXPECT_FALSE(ran(away, "opaque"));
+  EXPECT_TRUE(ran(away, "standard-fallback"));
+  s.method = Method::standard;
+  (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+  EXPECT_EQ(compare(fell_back, (*r)->read_color()).max_abs, 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, FramePlans, ::testing::Values(Method::dt_seed, Method::dt_fast),
+                         [](const ::testing::TestParamInfo<Method>& info) {
+                           std::string n(to_string(info.param));
+                           for (auto& ch : n)
+                             if (ch == '-') ch = '_';
+                           return n;
+                         });
 
 }  // namespace
 }  // namespace dtlab::render

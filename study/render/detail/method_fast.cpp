@@ -282,11 +282,6 @@ void draw_effect(const FrameContext& fc, const MaskAtlas& atlas, const std::vect
   }
 }
 
-void clear_region(const FrameContext& fc, const PixelRect& region) {
-  scissor(region);
-  clear_to_background(fc);
-}
-
 std::vector<unsigned> textures(PassResources& r, const std::vector<Handle>& hs) {
   std::vector<unsigned> out;
   for (Handle h : hs) out.push_back(r.texture(h));
@@ -294,10 +289,6 @@ std::vector<unsigned> textures(PassResources& r, const std::vector<Handle>& hs) 
 }
 
 }  // namespace
-
-bool fast_direct_possible(const FrameContext& fc) {
-  return fc.settings.dt.layer_limit == 0 && !fc.view.codes_exhausted && fc.view.max_code <= 0x3F;
-}
 
 MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
   auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
@@ -330,7 +321,7 @@ MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
   return {comp.color, comp.depth};
 }
 
-FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
+EffectFirst add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
   auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
   auto regions = std::make_shared<const std::vector<PixelRect>>(plan_regions(fc));
   const MaskHandles masks = add_masks_pass(fg, fc, atlas, Handle{});
@@ -378,71 +369,7 @@ FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
         }
         glDisable(GL_SCISSOR_TEST);
       });
-  const Handle query = add_target_query_pass(fg, fc, direct.depth, 0x3F);
-
-  // Q_not = "no target occluded", computed on the GPU: a conditional write to a 1x1 depth
-  // buffer, then a query that passes only where that write did not happen.
-  struct QueryInvertPassData {
-    Handle query, scratch, inverted;
-  };
-  const auto& inv = fg.add_pass<QueryInvertPassData>(
-      "query-invert",
-      [&](FrameGraph::Builder& b, QueryInvertPassData& d) {
-        d.query = b.read(query);
-        d.scratch = b.write(b.create("invert-scratch", {1, 1, TextureFormat::depth32f, false}));
-        d.inverted = b.write(b.create_query("no-target-occluded"));
-      },
-      [&fc](const QueryInvertPassData& d, PassResources& r) {
-        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.scratch));
-        glViewport(0, 0, 1, 1);
-        glDisable(GL_SCISSOR_TEST);
-        glDisable(GL_STENCIL_TEST);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_TRUE);
-        glClearDepth(1.0);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        const Program& p = fc.programs.quad_alpha;
-        fc.use_program(p);
-        glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
-        glBeginConditionalRender(r.query(d.query), GL_QUERY_WAIT);
-        glDepthFunc(GL_ALWAYS);
-        glUniform1f(p.loc("u_z"), -1.0f);  // depth 0 where some target is occluded
-        fc.quad(p, 0.0f, 0.0f, 1.0f, 1.0f, 1, 1);
-        glEndConditionalRender();
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_FALSE);
-        glUniform1f(p.loc("u_z"), 0.0f);  // depth 0.5: passes only if the write above did not happen
-        glBeginQuery(GL_ANY_SAMPLES_PASSED, r.query(d.inverted));
-        fc.quad(p, 0.0f, 0.0f, 1.0f, 1.0f, 1, 1);
-        glEndQuery(GL_ANY_SAMPLES_PASSED);
-        glDepthMask(GL_TRUE);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      });
-
-  struct FallbackPassData {
-    Handle color, depth;
-  };
-  const auto& fb = fg.add_pass<FallbackPassData>(
-      "standard-fallback",
-      [&](FrameGraph::Builder& b, FallbackPassData& d) {
-        b.condition(inv.inverted);
-        d.color = b.write(b.read(direct.color));
-        d.depth = b.write(b.read(direct.depth));
-      },
-      [&fc, regions](const FallbackPassData& d, PassResources& r) {
-        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
-        glViewport(0, 0, fc.width(), fc.height());
-        glEnable(GL_SCISSOR_TEST);
-        for (const PixelRect& region : *regions) {
-          clear_region(fc, region);
-          for (std::uint32_t i = 0; i < fc.view.rects.size(); ++i)
-            if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i);
-        }
-        glDisable(GL_SCISSOR_TEST);
-      });
-  return {fb.color, query};
+  return add_effect_first_tail(fg, fc, {direct.color, direct.depth}, regions);
 }
 
 }  // namespace dtlab::render::detail

@@ -1,6 +1,14 @@
 // dt-seed: the article's image-space dynamic transparency, faithfully
 // (Elmqvist, Assarsson & Tsigas 2008, section V; tech report 2006, 4.1-4.3).
-// Passes, all conditional on the target-query (no target occluded: none run):
+// Two frame plans, as dt-fast's (passes.h EffectFirst), chosen by whether the
+// previous frame needed the effect; both give the same image:
+//   standard-first  opaque, target-query, then the passes below, all
+//                   conditional on the query (no target occluded: none run);
+//   effect-first    the passes below unconditionally, every object writing its
+//                   frontmost code (stencil bits 0-5) as it goes, then
+//                   target-query, query-invert and (conditional on no target
+//                   occluded) standard-fallback, the standard frame again.
+// The passes of the effect:
 //   seed-masks    Algorithm 2, lines 1-8, for every target: its silhouette (or
 //                 circle / ellipse) at aT into a buffer of 1s, then n'
 //                 ping-pong passes of Algorithm 3; each target in its own tile
@@ -17,6 +25,7 @@
 // Never: a per-target pass outside the target's own mask pass.
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -70,6 +79,11 @@ std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
           glClear(GL_COLOR_BUFFER_BIT);
           draw_tile_coverage(fc, *atlas, static_cast<int>(page), dt.alpha_target);
           // Lines 3-8: n' ping-pong passes, each adding one layer of the gradient (Algorithm 3).
+          // Over the tiles' bounding box and one texel beyond it only: a tile's padding keeps
+          // every layer inside the tile, so the texels beyond stay 1 (cleared) in both buffers,
+          // the value a pass over them would write (and a bilinear sample at a tile's last
+          // texel centre reads its neighbour with weight 0).
+          const int w = std::min(pg.width, pg.used_width + 1), h = std::min(pg.height, pg.used_height + 1);
           Handle src = d.ping[page], dst = d.pong[page];
           const Program& border = fc.programs.border;
           fc.use_program(border);
@@ -80,7 +94,7 @@ std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
             glBindTexture(GL_TEXTURE_2D, r.texture(src));
             glUniform1f(border.loc("u_border_alpha"),
                         dt.alpha_start + (1.0f - dt.alpha_start) * static_cast<float>(k - 1) / static_cast<float>(layers));
-            fc.quad(border, 0.0f, 0.0f, static_cast<float>(pg.width), static_cast<float>(pg.height), pg.width, pg.height);
+            fc.quad(border, 0.0f, 0.0f, static_cast<float>(w), static_cast<float>(h), pg.width, pg.height);
             std::swap(src, dst);
           }
         }
@@ -92,11 +106,12 @@ std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
   return out;
 }
 
-}  // namespace
 
-MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
-  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
-  const std::vector<Handle> mask_pages = add_seed_masks_pass(fg, fc, atlas, query);
+// dt-clear onward into `main` (created here when not valid), each pass conditional on `query` when
+// valid. With `codes`, every object writes its code into bits 0-5 where it is frontmost and the
+// mask steps leave those bits alone (the effect-first plan's query reads them).
+MainTargets add_seed_effect(FrameGraph& fg, const FrameContext& fc, const std::shared_ptr<const MaskAtlas>& atlas,
+                            const std::vector<Handle>& mask_pages, MainTargets main, Handle query, bool codes) {
 
   struct DtClearPassData {
     Handle color, depth;
@@ -105,8 +120,10 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
       "dt-clear",
       [&](FrameGraph::Builder& b, DtClearPassData& d) {
         if (query.valid()) b.condition(query);
-        d.color = b.write(main.color);
-        d.depth = b.write(main.depth);
+        d.color = b.write(main.color.valid() ? main.color
+                                             : b.create("color", {fc.width(), fc.height(), fc.color_format, false}));
+        d.depth = b.write(main.depth.valid() ? main.depth
+                                             : b.create("depth", {fc.width(), fc.height(), TextureFormat::depth24_stencil8, false}));
       },
       [&fc](const DtClearPassData& d, PassResources& r) {
         bind_main(fc, r, d.color, d.depth);
@@ -125,9 +142,9 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           d.color = b.write(b.read(cur.color));
           d.depth = b.write(b.read(cur.depth));
         },
-        [&fc](const DrawPassData& d, PassResources& r) {
+        [&fc, codes](const DrawPassData& d, PassResources& r) {
           bind_main(fc, r, d.color, d.depth);
-          for (auto i : fc.view.impenetrable) draw_opaque_object(fc, i, object_stencil(fc, i, false));
+          for (auto i : fc.view.impenetrable) draw_opaque_object(fc, i, object_stencil(fc, i, codes));
         });
     cur = {d.color, d.depth};
   }
@@ -150,10 +167,10 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
             d.color = b.write(b.read(cur.color));
             d.depth = b.write(b.read(cur.depth));
           },
-          [&fc, run = std::move(run)](const DrawPassData& d, PassResources& r) {
+          [&fc, codes, run = std::move(run)](const DrawPassData& d, PassResources& r) {
             bind_main(fc, r, d.color, d.depth);
             for (auto i : run) {
-              draw_transparent_object(fc, i, false, object_stencil(fc, i, false));  // always two passes
+              draw_transparent_object(fc, i, false, object_stencil(fc, i, codes));  // always two passes
               const int slot = fc.view.target_slot[i];
               if (slot >= 0 && fc.guard() && fc.view.targets[static_cast<std::size_t>(slot)].may_be_drawn_late)
                 repair_target(fc, i);
@@ -177,13 +194,13 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
           d.color = b.write(b.read(cur.color));
           d.depth = b.write(b.read(cur.depth));
         },
-        [&fc, slot, atlas](const MaskPassData& d, PassResources& r) {
+        [&fc, slot, atlas, codes](const MaskPassData& d, PassResources& r) {
           // Lines 9-11 on the framebuffer: mark the full-resolution silhouette, multiply the
           // upsampled mask elsewhere, then aT over the silhouette itself.
           bind_main(fc, r, d.color, d.depth);
-          mark_target(fc, slot, false);
+          mark_target(fc, slot, codes);
           if (d.mask.valid()) {
-            begin_apply(fc, false);
+            begin_apply(fc, codes);
             const Program& apply = use_mask_apply(fc, *atlas, r.texture(d.mask), slot);
             // Outside the target's support the upsampled mask is 1.
             const PixelRect& s = fc.view.targets[static_cast<std::size_t>(slot)].support;
@@ -196,6 +213,22 @@ MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets 
     cur = {m.color, m.depth};
   }
   return cur;
+}
+
+}  // namespace
+
+MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
+  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
+  const std::vector<Handle> mask_pages = add_seed_masks_pass(fg, fc, atlas, query);
+  return add_seed_effect(fg, fc, atlas, mask_pages, main, query, false);
+}
+
+EffectFirst add_seed_direct_passes(FrameGraph& fg, const FrameContext& fc) {
+  auto atlas = std::make_shared<const MaskAtlas>(plan_mask_atlas(fc.view));
+  const std::vector<Handle> mask_pages = add_seed_masks_pass(fg, fc, atlas, Handle{});
+  const MainTargets effect = add_seed_effect(fg, fc, atlas, mask_pages, MainTargets{}, Handle{}, true);
+  // dt-seed's effect can change any pixel (its objects are drawn over the whole view).
+  return add_effect_first_tail(fg, fc, effect, std::make_shared<const std::vector<PixelRect>>(1, fc.view.viewport()));
 }
 
 }  // namespace dtlab::render::detail

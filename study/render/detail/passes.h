@@ -6,6 +6,9 @@
 // inherits state from another). Never: a pass draws to a resource it did not
 // declare.
 #pragma once
+#include <memory>
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "study/render/detail/frame_view.h"
@@ -85,16 +88,25 @@ void add_present_pass(FrameGraph& fg, const FrameContext& fc, Handle color, Hand
 // valid: more than 255 targets overlap one another, so no query can decide).
 MainTargets add_seed_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
 MainTargets add_fast_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
-// dt-fast when the previous frame needed the effect: the effect drawn directly (no standard frame
-// first), then the target query on its depth; if no target turns out occluded, the regions the
-// masks touched are re-rendered the standard way (conditional on the inverted query).
-struct FastDirect {
+// dt-seed, dt-fast when the previous frame needed the effect: the effect drawn directly (no
+// standard frame first), each object writing its frontmost code (stencil bits 0-5) as it goes, then
+// the target query on its depth; if no target turns out occluded, the pixels the effect could
+// change are re-rendered the standard way (conditional on the inverted query).
+struct EffectFirst {
   Handle color;     // the final colour
   Handle occluded;  // the target query ("some target is occluded")
 };
-FastDirect add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
-// Whether add_fast_direct_passes can serve this frame (no layer limit, target codes fit in 6 bits).
-bool fast_direct_possible(const FrameContext& fc);
+EffectFirst add_seed_direct_passes(FrameGraph& fg, const FrameContext& fc);
+EffectFirst add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc);
+// Whether the effect-first plan can serve this frame (no layer limit: bits 0-5 hold codes, and
+// the target codes fit in them).
+bool effect_first_possible(const FrameContext& fc);
+// The effect-first plan's tail after the effect: `target-query` on `effect.depth` (codes in bits
+// 0-5), `query-invert` ("no target occluded" as a query of its own, on the GPU), and
+// `standard-fallback`, conditional on that, which clears each of `regions` and draws every object
+// overlapping it exactly as `opaque` does.
+EffectFirst add_effect_first_tail(FrameGraph& fg, const FrameContext& fc, MainTargets effect,
+                                  std::shared_ptr<const std::vector<PixelRect>> regions);
 // reference: per-object layers rendered on the GPU, composited exactly on the CPU.
 Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
 
@@ -139,6 +151,8 @@ StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes)
 // Clears colour (to the background, alpha 1), depth (1) and stencil (0) of the bound framebuffer
 // within the scissor, if enabled; leaves every write mask on.
 void clear_to_background(const FrameContext& fc);
+// clear_to_background over `region` only (scissor set to it; the caller enables the test).
+void clear_region(const FrameContext& fc, const PixelRect& region);
 
 // Draws object `i` of a back-to-front sequence so that only its frontmost surfaces blend with
 // the destination alpha (article V.3): a depth pass, then a colour pass with depth EQUAL; or,

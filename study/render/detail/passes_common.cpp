@@ -122,6 +122,11 @@ void clear_to_background(const FrameContext& fc) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
 }
 
+void clear_region(const FrameContext& fc, const PixelRect& region) {
+  glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
+  clear_to_background(fc);
+}
+
 StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes) {
   const ObjectRecord& o = fc.gpu.objects()[i];
   StencilWrite w;
@@ -340,8 +345,23 @@ void finish_target(const FrameContext& fc, int slot) {
   glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the marked silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
   glStencilMask(0x80);                  // clears the mark, keeps the rest
-  // aT inside the searchlight, 1 (no change) outside it: every marked pixel is visited.
-  draw_target_seed(fc, slot, fc.settings.dt.alpha_target, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true, true);
+  // aT inside the searchlight, 1 (no change) outside it: every marked pixel is visited once (the
+  // first fragment clears its mark). An outline's marks lie inside the target's silhouette
+  // bounds, so one quad over them visits the same pixels as the mesh would, for four vertices
+  // instead of the mesh's triangles; a shape is a quad already.
+  if (fc.settings.dt.shape != MaskShape::outline) {
+    draw_target_seed(fc, slot, fc.settings.dt.alpha_target, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true, true);
+    return;
+  }
+  const Program& p = fc.programs.quad_alpha;
+  fc.use_program(p);
+  glUniform1f(p.loc("u_alpha"), fc.settings.dt.alpha_target);
+  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
+  glUniform1i(p.loc("u_outside_one"), 1);
+  glUniform1f(p.loc("u_z"), 0.0f);
+  const PixelRect& r = fc.view.targets[static_cast<std::size_t>(slot)].rect;
+  fc.quad(p, static_cast<float>(r.x0), static_cast<float>(r.y0), static_cast<float>(r.x1), static_cast<float>(r.y1),
+          fc.width(), fc.height());
 }
 
 // --- opaque, target-query, present -----------------------------------------------------------
@@ -453,6 +473,81 @@ void add_present_pass(FrameGraph& fg, const FrameContext& fc, Handle color, Hand
         glBlitFramebuffer(0, 0, fc.width(), fc.height(), 0, 0, fc.width(), fc.height(), GL_COLOR_BUFFER_BIT,
                           GL_NEAREST);
       });
+}
+
+// --- the effect-first plan's tail (dt-seed, dt-fast) ---------------------------------------
+
+bool effect_first_possible(const FrameContext& fc) {
+  return fc.settings.dt.layer_limit == 0 && !fc.view.codes_exhausted && fc.view.max_code <= 0x3F;
+}
+
+EffectFirst add_effect_first_tail(FrameGraph& fg, const FrameContext& fc, MainTargets effect,
+                                  std::shared_ptr<const std::vector<PixelRect>> regions) {
+  const Handle query = add_target_query_pass(fg, fc, effect.depth, 0x3F);
+
+  // Q_not = "no target occluded", computed on the GPU: a conditional write to a 1x1 depth
+  // buffer, then a query that passes only where that write did not happen.
+  struct QueryInvertPassData {
+    Handle query, scratch, inverted;
+  };
+  const auto& inv = fg.add_pass<QueryInvertPassData>(
+      "query-invert",
+      [&](FrameGraph::Builder& b, QueryInvertPassData& d) {
+        d.query = b.read(query);
+        d.scratch = b.write(b.create("invert-scratch", {1, 1, TextureFormat::depth32f, false}));
+        d.inverted = b.write(b.create_query("no-target-occluded"));
+      },
+      [&fc](const QueryInvertPassData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.scratch));
+        glViewport(0, 0, 1, 1);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_STENCIL_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        const Program& p = fc.programs.quad_alpha;
+        fc.use_program(p);
+        glUniform3f(p.loc("u_searchlight"), 0.0f, 0.0f, -1.0f);
+        glBeginConditionalRender(r.query(d.query), GL_QUERY_WAIT);
+        glDepthFunc(GL_ALWAYS);
+        glUniform1f(p.loc("u_z"), -1.0f);  // depth 0 where some target is occluded
+        fc.quad(p, 0.0f, 0.0f, 1.0f, 1.0f, 1, 1);
+        glEndConditionalRender();
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_FALSE);
+        glUniform1f(p.loc("u_z"), 0.0f);  // depth 0.5: passes only if the write above did not happen
+        glBeginQuery(GL_ANY_SAMPLES_PASSED, r.query(d.inverted));
+        fc.quad(p, 0.0f, 0.0f, 1.0f, 1.0f, 1, 1);
+        glEndQuery(GL_ANY_SAMPLES_PASSED);
+        glDepthMask(GL_TRUE);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      });
+
+  struct FallbackPassData {
+    Handle color, depth;
+  };
+  const auto& fb = fg.add_pass<FallbackPassData>(
+      "standard-fallback",
+      [&](FrameGraph::Builder& b, FallbackPassData& d) {
+        b.condition(inv.inverted);
+        d.color = b.write(b.read(effect.color));
+        d.depth = b.write(b.read(effect.depth));
+      },
+      [&fc, regions](const FallbackPassData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}, d.depth));
+        glViewport(0, 0, fc.width(), fc.height());
+        glEnable(GL_SCISSOR_TEST);
+        for (const PixelRect& region : *regions) {
+          clear_region(fc, region);
+          for (std::uint32_t i = 0; i < fc.view.rects.size(); ++i)
+            if (fc.view.rects[i].overlaps(region)) draw_opaque_object(fc, i);
+        }
+        glDisable(GL_SCISSOR_TEST);
+      });
+  return {fb.color, query};
 }
 
 }  // namespace dtlab::render::detail

@@ -249,8 +249,12 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   const bool targets = !view.targets.empty();
   Handle color;
   Handle occluded;  // "some target is occluded": the effect was called for (none: no query this frame)
-  const bool direct = settings.method == Method::dt_fast && targets && impl_->fast_effect_hint &&
-                      detail::fast_direct_possible(fc);
+  // dt-seed and dt-fast pick the frame plan from whether the last frame of the method needed the
+  // effect (frame coherence): effect-first when it did, standard-first otherwise.
+  bool* effect_hint = settings.method == Method::dt_fast   ? &impl_->fast_effect_hint
+                      : settings.method == Method::dt_seed ? &impl_->seed_effect_hint
+                                                           : nullptr;
+  const bool direct = effect_hint && *effect_hint && targets && detail::effect_first_possible(fc);
   detail::LensGpu lens;
   detail::VdtFrame vdt_frame;
   if (settings.method == Method::lens) {
@@ -262,7 +266,8 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   } else if (settings.method == Method::reference) {
     color = detail::add_reference_pass(fg, fc);
   } else if (direct) {
-    const detail::FastDirect d = detail::add_fast_direct_passes(fg, fc);
+    const detail::EffectFirst d = settings.method == Method::dt_seed ? detail::add_seed_direct_passes(fg, fc)
+                                                                     : detail::add_fast_direct_passes(fg, fc);
     color = d.color;
     occluded = d.occluded;
   } else {
@@ -284,12 +289,12 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   fg.execute(impl_->backend, settings.profile_passes, &impl_->gpu->counts());
   if (settings.timed) glFinish();
   const auto t1 = Clock::now();
-  // dt-fast picks the next frame's plan from whether this one needed the effect (frame coherence);
-  // an answer not ready yet (untimed frame) leaves the guess as it was.
-  if (settings.method == Method::dt_fast) {
-    if (!targets) impl_->fast_effect_hint = false;
-    else if (!occluded.valid()) impl_->fast_effect_hint = true;
-    else if (const auto a = fg.answer(occluded, impl_->backend, settings.timed)) impl_->fast_effect_hint = *a;
+  // The next frame's plan follows whether this one needed the effect; an answer not ready yet
+  // (untimed frame) leaves the guess as it was.
+  if (effect_hint) {
+    if (!targets) *effect_hint = false;
+    else if (!occluded.valid()) *effect_hint = true;
+    else if (const auto a = fg.answer(occluded, impl_->backend, settings.timed)) *effect_hint = *a;
   }
   FrameReport report = fg.report(impl_->backend, settings.timed);
   report.culling = culling;

@@ -32,9 +32,10 @@ struct Renderer::Impl {
   unsigned out_fbo = 0, out_tex = 0;
   int out_w = 0, out_h = 0;
   bool out_float = false;
-  // dt-fast: did the last dt-fast frame need the effect (some target occluded)? Picks the frame
-  // plan (method_fast.cpp): effect-first when it did, standard-first otherwise.
+  // dt-fast, dt-seed: did the last frame of the method need the effect (some target occluded)?
+  // Picks the frame plan (passes.h EffectFirst): effect-first when it did, standard-first otherwise.
   bool fast_effect_hint = false;
+  bool seed_effect_hint = false;
   // Where the last frame was presented (for read_color).
   ImportedTarget last_target;
   bool last_float = false;
