@@ -40,6 +40,9 @@ namespace dtlab::render::detail {
 
 namespace {
 
+// Tiles per instanced draw of the ping-pong passes (fullscreen.vert's kMaxTiles).
+constexpr std::size_t kBorderTilesPerDraw = 64;
+
 void bind_main(const FrameContext& fc, PassResources& r, Handle color, Handle depth) {
   glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({color}, depth));
   glViewport(0, 0, fc.width(), fc.height());
@@ -79,22 +82,35 @@ std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
           glClear(GL_COLOR_BUFFER_BIT);
           draw_tile_coverage(fc, *atlas, static_cast<int>(page), dt.alpha_target);
           // Lines 3-8: n' ping-pong passes, each adding one layer of the gradient (Algorithm 3).
-          // Over the tiles' bounding box and one texel beyond it only: a tile's padding keeps
-          // every layer inside the tile, so the texels beyond stay 1 (cleared) in both buffers,
-          // the value a pass over them would write (and a bilinear sample at a tile's last
-          // texel centre reads its neighbour with weight 0).
-          const int w = std::min(pg.width, pg.used_width + 1), h = std::min(pg.height, pg.used_height + 1);
+          // Pass k can change only texels within k of a target's cover (the rectangle its
+          // silhouette can reach), so it runs over each tile's cover grown by k, every tile of the
+          // page in one instanced draw. Every other texel holds 1 in both buffers (their clears;
+          // no earlier pass wrote there, as the rectangles only grow), which is what a pass over
+          // it would write: the buffers end as whole-page passes leave them.
+          std::vector<glm::vec4> covers;  // atlas texels (x0, y0, x1, y1)
+          const float pad = static_cast<float>(layers + 1);
+          for (const MaskTile& t : atlas->tiles)
+            if (t.w > 0 && t.page == static_cast<int>(page))
+              covers.emplace_back(static_cast<float>(t.x) + pad, static_cast<float>(t.y) + pad,
+                                  static_cast<float>(t.x + t.w) - pad, static_cast<float>(t.y + t.h) - pad);
           Handle src = d.ping[page], dst = d.pong[page];
           const Program& border = fc.programs.border;
           fc.use_program(border);
           glUniform1i(border.loc("u_source"), 0);
+          glUniform2f(border.loc("u_size"), static_cast<float>(pg.width), static_cast<float>(pg.height));
+          glUniform1f(border.loc("u_z"), 0.0f);
           glActiveTexture(GL_TEXTURE0);
           for (int k = 1; k <= layers; ++k) {
             glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
             glBindTexture(GL_TEXTURE_2D, r.texture(src));
             glUniform1f(border.loc("u_border_alpha"),
                         dt.alpha_start + (1.0f - dt.alpha_start) * static_cast<float>(k - 1) / static_cast<float>(layers));
-            fc.quad(border, 0.0f, 0.0f, static_cast<float>(w), static_cast<float>(h), pg.width, pg.height);
+            glUniform1f(border.loc("u_grow"), static_cast<float>(k));
+            for (std::size_t i = 0; i < covers.size(); i += kBorderTilesPerDraw) {
+              const auto n = static_cast<GLsizei>(std::min(kBorderTilesPerDraw, covers.size() - i));
+              glUniform4fv(border.loc("u_tiles"), n, glm::value_ptr(covers[i]));
+              glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, n);
+            }
             std::swap(src, dst);
           }
         }

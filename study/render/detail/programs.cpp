@@ -125,7 +125,7 @@ Result<Programs> compile_programs() {
       {&ps.object_alpha_peel, "object.vert", "flat_alpha.frag", "PEEL"},
       {&ps.object_alpha_sl, "object.vert", "flat_alpha.frag", "SEARCHLIGHT"},
       {&ps.quad_alpha, "fullscreen.vert", "flat_alpha.frag", "SEARCHLIGHT"},
-      {&ps.border, "fullscreen.vert", "border.frag", ""},
+      {&ps.border, "fullscreen.vert", "border.frag", "TILES"},
       {&ps.shape, "fullscreen.vert", "shape.frag", ""},
       {&ps.cheb_rows, "fullscreen.vert", "cheb_rows.frag", ""},
       {&ps.cheb_cols, "fullscreen.vert", "cheb_cols.frag", ""},

@@ -33,7 +33,7 @@ struct Programs {
   Program object_alpha_peel;  // the same with PEEL: vdt's second-layer depth pass (discards)
   Program object_alpha_sl;  // the same, cut to the searchlight (or alpha 1 outside it)
   Program quad_alpha;   // fullscreen.vert + flat_alpha.frag (SEARCHLIGHT)
-  Program border;       // fullscreen.vert + border.frag (Algorithm 3)
+  Program border;       // fullscreen.vert (TILES) + border.frag (Algorithm 3), one rectangle per mask tile
   Program shape;        // fullscreen.vert + shape.frag (circle / ellipse masks)
   Program cheb_rows;    // fullscreen.vert + cheb_rows.frag (dt-fast distances)
   Program cheb_cols;    // fullscreen.vert + cheb_cols.frag
