@@ -3,8 +3,8 @@
 // max(|dy|, rows(x, y + dy)), exact up to n' (Algorithm 3's 8-neighbour
 // dilation grows exactly these rings); written as the value dt-seed's
 // ping-pong passes leave in that texel: aT where covered (d = 0), a0 + (1 -
-// a0)(d - 1)/n' on ring d = 1..n', 1 beyond. Over a whole atlas page, as
-// cheb_rows.frag.
+// a0)(d - 1)/n' on ring d = 1..n', 1 beyond. Over each tile's cover grown
+// by n' (method_fast.cpp).
 #version 330 core
 uniform sampler2D u_rows;
 uniform int u_layers;          // n'

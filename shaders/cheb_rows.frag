@@ -1,4 +1,4 @@
-// dt-fast, mask pass 1 of 2 (rows), over a whole atlas page: for each texel,
+// dt-fast, mask pass 1 of 2 (rows), over each atlas tile's cover rows: for each texel,
 // the distance in texels to the nearest covered texel of the same row up to
 // u_reach, else u_reach + 1. Tiles are padded so that no other tile's
 // coverage is within u_reach of a tile's texels.

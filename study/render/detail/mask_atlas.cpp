@@ -85,6 +85,28 @@ void draw_tile_coverage(const FrameContext& fc, const MaskAtlas& atlas, int page
   glViewport(0, 0, pg.width, pg.height);
 }
 
+std::vector<glm::vec4> tile_covers(const MaskAtlas& atlas, int page, int layers) {
+  std::vector<glm::vec4> covers;
+  const float pad = static_cast<float>(layers + 1);
+  for (const MaskTile& t : atlas.tiles)
+    if (t.w > 0 && t.page == page)
+      covers.emplace_back(static_cast<float>(t.x) + pad, static_cast<float>(t.y) + pad,
+                          static_cast<float>(t.x + t.w) - pad, static_cast<float>(t.y + t.h) - pad);
+  return covers;
+}
+
+void draw_tile_rects(const Program& p, const std::vector<glm::vec4>& covers, glm::vec2 grow, int width, int height) {
+  constexpr std::size_t kTilesPerDraw = 64;  // fullscreen.vert's kMaxTiles
+  glUniform2f(p.loc("u_size"), static_cast<float>(width), static_cast<float>(height));
+  glUniform2f(p.loc("u_grow"), grow.x, grow.y);
+  glUniform1f(p.loc("u_z"), 0.0f);
+  for (std::size_t i = 0; i < covers.size(); i += kTilesPerDraw) {
+    const auto n = static_cast<GLsizei>(std::min(kTilesPerDraw, covers.size() - i));
+    glUniform4fv(p.loc("u_tiles"), n, glm::value_ptr(covers[i]));
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, n);
+  }
+}
+
 const Program& use_mask_apply(const FrameContext& fc, const MaskAtlas& atlas, unsigned texture, int slot) {
   const MaskTile& tile = atlas.tiles[static_cast<std::size_t>(slot)];
   const MaskAtlas::Page& pg = atlas.pages[static_cast<std::size_t>(tile.page)];

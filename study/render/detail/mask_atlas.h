@@ -37,6 +37,13 @@ MaskAtlas plan_mask_atlas(const FrameView& view);
 // already cleared); leaves the scissor test off and the viewport on the whole page.
 void draw_tile_coverage(const FrameContext& fc, const MaskAtlas& atlas, int page, float value);
 
+// The rectangles (atlas texels x0, y0, x1, y1) of page `page`'s tiles' covers: the texels their
+// targets' silhouettes can cover, inside the n' + 1 padding.
+std::vector<glm::vec4> tile_covers(const MaskAtlas& atlas, int page, int layers);
+// Draws `covers`, each grown by `grow` texels (x, y) on each side, with `p` (a TILES program, bound,
+// its other uniforms set) into the bound framebuffer of a `width` x `height` page: instanced draws.
+void draw_tile_rects(const Program& p, const std::vector<glm::vec4>& covers, glm::vec2 grow, int width, int height);
+
 // Binds the program that multiplies target `slot`'s mask (its tile of `texture`) into alpha over
 // window pixels (fast_apply.frag; with a layer limit its variant that discards where the mask is
 // 1, so the layer counter restarts only where alpha drops). Returns it for FrameContext::quad.

@@ -156,15 +156,20 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
           glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
           glClear(GL_COLOR_BUFFER_BIT);
           draw_tile_coverage(fc, *atlas, static_cast<int>(page), 1.0f);
-          // Two separable passes, one quad each: nearest covered texel per row, then Chebyshev per
-          // column (as the texel's mask value). A tile's padding of n' + 1 texels keeps every
-          // other tile's coverage more than n' texels from its texels, so the passes need no tile
-          // bounds. They cover the tiles' bounding box and one texel beyond it (a bilinear sample
-          // at a tile's last texel centre reads its neighbour with weight 0, which must not be
-          // unwritten); the rows pass n' rows more, which the columns pass reads.
-          const int w = std::min(pg.width, pg.used_width + 1), h = std::min(pg.height, pg.used_height + 1);
-          auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler, int rows) {
+          // Two separable passes: nearest covered texel per row, then Chebyshev per column (as the
+          // texel's mask value), each over only the texels of each tile it can change (every tile
+          // of the page in one instanced draw): rows over the cover's rows, n' texels to each side;
+          // columns over the cover grown by n'. Everywhere else the clears leave what a pass would
+          // write: n' + 1 ("no covered texel in reach") in the rows page, 1 in the mask page. A
+          // tile's padding of n' + 1 texels keeps every other tile's coverage more than n' texels
+          // from its texels, so the passes need no tile bounds.
+          const std::vector<glm::vec4> covers = tile_covers(*atlas, static_cast<int>(page), g.layers);
+          const float reach = static_cast<float>(g.layers);
+          auto distance_pass = [&](const Program& p, Handle src, Handle dst, const char* sampler, float clear,
+                                   glm::vec2 grow) {
             glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
+            glClearColor(clear, clear, clear, clear);
+            glClear(GL_COLOR_BUFFER_BIT);
             fc.use_program(p);
             glActiveTexture(GL_TEXTURE0);
             glBindTexture(GL_TEXTURE_2D, r.texture(src));
@@ -173,11 +178,11 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
             glUniform1i(p.loc("u_layers"), g.layers);
             glUniform1f(p.loc("u_alpha_target"), dt.alpha_target);
             glUniform1f(p.loc("u_alpha_start"), dt.alpha_start);
-            fc.quad(p, 0.0f, 0.0f, static_cast<float>(w), static_cast<float>(rows), pg.width, pg.height);
+            draw_tile_rects(p, covers, grow, pg.width, pg.height);
           };
-          distance_pass(fc.programs.cheb_rows, d.coverage[page], d.rows[page], "u_coverage",
-                        std::min(pg.height, h + g.layers));
-          distance_pass(fc.programs.cheb_cols, d.rows[page], d.alpha[page], "u_rows", h);
+          distance_pass(fc.programs.cheb_rows, d.coverage[page], d.rows[page], "u_coverage", reach + 1.0f,
+                        glm::vec2(reach, 0.0f));
+          distance_pass(fc.programs.cheb_cols, d.rows[page], d.alpha[page], "u_rows", 1.0f, glm::vec2(reach, reach));
         }
         glBindTexture(GL_TEXTURE_2D, 0);
       });

@@ -40,9 +40,6 @@ namespace dtlab::render::detail {
 
 namespace {
 
-// Tiles per instanced draw of the ping-pong passes (fullscreen.vert's kMaxTiles).
-constexpr std::size_t kBorderTilesPerDraw = 64;
-
 void bind_main(const FrameContext& fc, PassResources& r, Handle color, Handle depth) {
   glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({color}, depth));
   glViewport(0, 0, fc.width(), fc.height());
@@ -87,30 +84,19 @@ std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
           // page in one instanced draw. Every other texel holds 1 in both buffers (their clears;
           // no earlier pass wrote there, as the rectangles only grow), which is what a pass over
           // it would write: the buffers end as whole-page passes leave them.
-          std::vector<glm::vec4> covers;  // atlas texels (x0, y0, x1, y1)
-          const float pad = static_cast<float>(layers + 1);
-          for (const MaskTile& t : atlas->tiles)
-            if (t.w > 0 && t.page == static_cast<int>(page))
-              covers.emplace_back(static_cast<float>(t.x) + pad, static_cast<float>(t.y) + pad,
-                                  static_cast<float>(t.x + t.w) - pad, static_cast<float>(t.y + t.h) - pad);
+          const std::vector<glm::vec4> covers = tile_covers(*atlas, static_cast<int>(page), layers);
           Handle src = d.ping[page], dst = d.pong[page];
           const Program& border = fc.programs.border;
           fc.use_program(border);
           glUniform1i(border.loc("u_source"), 0);
-          glUniform2f(border.loc("u_size"), static_cast<float>(pg.width), static_cast<float>(pg.height));
-          glUniform1f(border.loc("u_z"), 0.0f);
           glActiveTexture(GL_TEXTURE0);
           for (int k = 1; k <= layers; ++k) {
             glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({dst}));
             glBindTexture(GL_TEXTURE_2D, r.texture(src));
             glUniform1f(border.loc("u_border_alpha"),
                         dt.alpha_start + (1.0f - dt.alpha_start) * static_cast<float>(k - 1) / static_cast<float>(layers));
-            glUniform1f(border.loc("u_grow"), static_cast<float>(k));
-            for (std::size_t i = 0; i < covers.size(); i += kBorderTilesPerDraw) {
-              const auto n = static_cast<GLsizei>(std::min(kBorderTilesPerDraw, covers.size() - i));
-              glUniform4fv(border.loc("u_tiles"), n, glm::value_ptr(covers[i]));
-              glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, n);
-            }
+            const float grow = static_cast<float>(k);
+            draw_tile_rects(border, covers, glm::vec2(grow, grow), pg.width, pg.height);
             std::swap(src, dst);
           }
         }

@@ -35,8 +35,8 @@ struct Programs {
   Program quad_alpha;   // fullscreen.vert + flat_alpha.frag (SEARCHLIGHT)
   Program border;       // fullscreen.vert (TILES) + border.frag (Algorithm 3), one rectangle per mask tile
   Program shape;        // fullscreen.vert + shape.frag (circle / ellipse masks)
-  Program cheb_rows;    // fullscreen.vert + cheb_rows.frag (dt-fast distances)
-  Program cheb_cols;    // fullscreen.vert + cheb_cols.frag
+  Program cheb_rows;    // fullscreen.vert (TILES) + cheb_rows.frag (dt-fast distances)
+  Program cheb_cols;    // fullscreen.vert (TILES) + cheb_cols.frag
   Program fast_apply;   // fullscreen.vert + fast_apply.frag (Algorithm 2, line 10, from an atlas tile)
   Program fast_apply_counter;  // the same with COUNTER (layer limit: discards where the mask is 1)
   Program object_sd;    // object.vert + object.frag with SCREEN_DOOR: keeps the sub-pixels of its mask (discards)
