@@ -303,14 +303,18 @@ TEST_P(FramePlans, BothPlansGiveTheSameImage) {
     return std::find(v.begin(), v.end(), n) != v.end();
   };
   const std::string effect_pass = GetParam() == Method::dt_seed ? "dt-clear" : "dt-composite";
+  const auto settings_for = [this](const Built& b) {
+    FrameSettings s;
+    s.method = GetParam();
+    s.flat_colors = b.flat;
+    s.timed = true;  // query answers known at once: the next frame's plan follows them
+    return s;
+  };
   for (bool two : {false, true}) {
     const Built b = wall_scene(two);
     auto r = Renderer::create(b.scene);
     ASSERT_TRUE(r.ok());
-    FrameSettings s;
-    s.method = GetParam();
-    s.flat_colors = b.flat;
-    s.timed = true;
+    const FrameSettings s = settings_for(b);
     const FrameReport first = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
     const Image a = (*r)->read_color();
     const FrameReport second = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
@@ -327,10 +331,7 @@ TEST_P(FramePlans, BothPlansGiveTheSameImage) {
   const Built b = wall_scene(false);
   auto r = Renderer::create(b.scene);
   ASSERT_TRUE(r.ok());
-  FrameSettings s;
-  s.method = GetParam();
-  s.flat_colors = b.flat;
-  s.timed = true;
+  FrameSettings s = settings_for(b);
   s.dt.mode = DtMode::active;
   const glm::vec2 c = project(front_camera(kW, kH), {0, 0, -11}, kW, kH);
   s.dt.searchlight_center = {c.x, static_cast<float>(kH) - c.y};

@@ -208,12 +208,7 @@ void apply_marked(const FrameContext& fc, const MaskAtlas& atlas, unsigned alpha
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glStencilMask(0x00);
   quads(fc, use_mask_apply(fc, atlas, alpha_texture, slot), rects, fc.view.viewport());
-  const Program& p = fc.programs.quad_alpha;
-  fc.use_program(p);
-  glUniform1f(p.loc("u_alpha"), fc.settings.dt.alpha_target);
-  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
-  glUniform1i(p.loc("u_outside_one"), 1);
-  glUniform1f(p.loc("u_z"), 0.0f);
+  const Program& p = use_target_alpha_quad(fc);
   glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the silhouette
   glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
   glStencilMask(0x80);                  // clears the mark

@@ -189,5 +189,8 @@ void buffer_state();
 void alpha_multiply_state();
 void begin_apply(const FrameContext& fc, bool keep_codes);
 void finish_target(const FrameContext& fc, int slot);
+// Binds the quad program that multiplies aT into alpha inside the searchlight (1, no change,
+// outside it): a marked silhouette's step, for FrameContext::quad under the caller's stencil test.
+const Program& use_target_alpha_quad(const FrameContext& fc);
 
 }  // namespace dtlab::render::detail

@@ -340,6 +340,16 @@ void begin_apply(const FrameContext&, bool keep_codes) {
   glStencilMask(keep_codes ? 0x00 : 0x3F);  // the counter restarts at 1 where the mask is below 1
 }
 
+const Program& use_target_alpha_quad(const FrameContext& fc) {
+  const Program& p = fc.programs.quad_alpha;
+  fc.use_program(p);
+  glUniform1f(p.loc("u_alpha"), fc.settings.dt.alpha_target);
+  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
+  glUniform1i(p.loc("u_outside_one"), 1);
+  glUniform1f(p.loc("u_z"), 0.0f);
+  return p;
+}
+
 void finish_target(const FrameContext& fc, int slot) {
   alpha_multiply_state();
   glStencilFunc(GL_EQUAL, 0x80, 0x80);  // the marked silhouette
@@ -353,12 +363,7 @@ void finish_target(const FrameContext& fc, int slot) {
     draw_target_seed(fc, slot, fc.settings.dt.alpha_target, fc.view.view_proj, glm::vec4(1, 1, 0, 0), true, true);
     return;
   }
-  const Program& p = fc.programs.quad_alpha;
-  fc.use_program(p);
-  glUniform1f(p.loc("u_alpha"), fc.settings.dt.alpha_target);
-  glUniform3fv(p.loc("u_searchlight"), 1, glm::value_ptr(fc.searchlight_uniform(true)));
-  glUniform1i(p.loc("u_outside_one"), 1);
-  glUniform1f(p.loc("u_z"), 0.0f);
+  const Program& p = use_target_alpha_quad(fc);
   const PixelRect& r = fc.view.targets[static_cast<std::size_t>(slot)].rect;
   fc.quad(p, static_cast<float>(r.x0), static_cast<float>(r.y0), static_cast<float>(r.x1), static_cast<float>(r.y1),
           fc.width(), fc.height());
