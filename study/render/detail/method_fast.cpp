@@ -122,8 +122,6 @@ std::vector<PixelRect> later_cover(const FrameContext& fc, std::size_t k, const 
   return out;
 }
 
-void scissor(const PixelRect& r) { glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0); }
-
 // One alpha texture per atlas page.
 struct MaskHandles {
   std::vector<Handle> alpha;

@@ -84,7 +84,7 @@ void draw_scene_class(const FrameContext& fc, const LensGpu& gpu_lens, Class c, 
   const PixelRect area = c == Class::behind ? fc.view.viewport() : gpu_lens.footprint;
   if (c != Class::behind) {
     glEnable(GL_SCISSOR_TEST);
-    glScissor(area.x0, area.y0, area.x1 - area.x0, area.y1 - area.y0);
+    scissor(area);
   }
   const auto& rects = fc.view.rects;
   for (std::uint32_t i = 0; i < rects.size(); ++i) {

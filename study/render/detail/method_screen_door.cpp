@@ -260,7 +260,7 @@ void sd_region(const FrameContext& fc, ScreenDoorState& st, const Chunk& ch, int
   // Resolve: the box filter into the chunk's output pixels.
   glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}));
   glViewport(0, 0, fc.width(), fc.height());
-  glScissor(ch.rect.x0, ch.rect.y0, ch.rect.x1 - ch.rect.x0, ch.rect.y1 - ch.rect.y0);
+  scissor(ch.rect);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   const Program& p = fc.programs.sd_resolve;

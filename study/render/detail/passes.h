@@ -151,6 +151,8 @@ StencilWrite object_stencil(const FrameContext& fc, std::uint32_t i, bool codes)
 // Clears colour (to the background, alpha 1), depth (1) and stencil (0) of the bound framebuffer
 // within the scissor, if enabled; leaves every write mask on.
 void clear_to_background(const FrameContext& fc);
+// Sets the scissor box to `r` (window pixels; the caller enables the test).
+void scissor(const PixelRect& r);
 // clear_to_background over `region` only (scissor set to it; the caller enables the test).
 void clear_region(const FrameContext& fc, const PixelRect& region);
 

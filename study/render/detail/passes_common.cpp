@@ -122,8 +122,10 @@ void clear_to_background(const FrameContext& fc) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
 }
 
+void scissor(const PixelRect& r) { glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0); }
+
 void clear_region(const FrameContext& fc, const PixelRect& region) {
-  glScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
+  scissor(region);
   clear_to_background(fc);
 }
 
