@@ -60,9 +60,9 @@ struct FrameContext {
   };
   struct Bound {
     unsigned program = 0;
-    const Program* lit = nullptr;    // the lit program in use (object or object_sl)
+    const Program* lit = nullptr;    // the lit program in use (object or object_sl, or their FLAT variants)
     const Program* alpha = nullptr;  // the alpha program in use
-    Uniforms uniforms[4];            // object, object_sl, object_alpha, object_alpha_sl
+    Uniforms uniforms[4];            // object or object_flat, their _sl, object_alpha, object_alpha_sl
   };
   mutable Bound bound;
   Uniforms& uniforms_of(const Program& p) const;

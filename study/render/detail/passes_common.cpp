@@ -45,7 +45,10 @@ FrameContext::Uniforms& FrameContext::uniforms_of(const Program& p) const {
 
 void FrameContext::use_lit(const glm::mat4& view_proj, bool searchlight) const {
   const bool cut = searchlight && active();
-  const Program& p = cut ? programs.object_sl : programs.object;
+  // Weight frames (every object a flat colour) take the FLAT variant: the same output for less
+  // work per triangle.
+  const bool flat = !settings.flat_colors.empty();
+  const Program& p = flat ? (cut ? programs.object_flat_sl : programs.object_flat) : (cut ? programs.object_sl : programs.object);
   use_program(p);
   bound.lit = &p;
   Uniforms& u = uniforms_of(p);

@@ -100,7 +100,7 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 }
 
 void Programs::destroy() {
-  for (Program* p : {&object, &object_sl, &object_lens, &object_vdt, &object_alpha, &object_alpha_peel,
+  for (Program* p : {&object, &object_sl, &object_flat, &object_flat_sl, &object_lens, &object_vdt, &object_alpha, &object_alpha_peel,
                      &object_alpha_sl, &quad_alpha, &border, &shape, &cheb_rows, &cheb_cols, &fast_apply,
                      &fast_apply_counter, &object_sd, &sd_resolve}) {
     if (p->id != 0) glDeleteProgram(p->id);
@@ -119,6 +119,8 @@ Result<Programs> compile_programs() {
   const Entry entries[] = {
       {&ps.object, "object.vert", "object.frag", ""},
       {&ps.object_sl, "object.vert", "object.frag", "SEARCHLIGHT"},
+      {&ps.object_flat, "object.vert", "object.frag", "FLAT"},
+      {&ps.object_flat_sl, "object.vert", "object.frag", "FLAT SEARCHLIGHT"},
       {&ps.object_lens, "object.vert", "object.frag", "LENS"},
       {&ps.object_vdt, "object.vert", "object.frag", "VDT"},
       {&ps.object_alpha, "object.vert", "flat_alpha.frag", ""},

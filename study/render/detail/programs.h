@@ -27,6 +27,8 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 struct Programs {
   Program object;       // object.vert + object.frag: lit or flat colour
   Program object_sl;    // the same, cut to the searchlight (the R1 guard's repair in active mode)
+  Program object_flat;  // the same with FLAT: u_flat.rgb only (weight frames; no attribute interpolated)
+  Program object_flat_sl;  // FLAT and SEARCHLIGHT
   Program object_lens;  // the same with LENS: the lens method's second depth test (discards)
   Program object_vdt;   // the same with VDT: alpha = the per-vertex view-dependent alpha (attribute 3)
   Program object_alpha; // object.vert + flat_alpha.frag: depth-only, queries, silhouettes
