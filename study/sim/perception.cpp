@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "study/scene/transform.h"
+
 namespace dtlab::sim {
 
 namespace {
@@ -29,7 +31,7 @@ Rect screen_rect(const glm::mat4& view_proj, const ObjectBounds& b, int width, i
   float nx0 = 1e30f, ny0 = 1e30f, nx1 = -1e30f, ny1 = -1e30f;
   std::size_t behind = 0;
   for (const glm::vec3& q : b.points) {
-    const glm::vec4 p = view_proj * glm::vec4(q, 1.0f);
+    const glm::vec4 p = scene::transform_point(view_proj, q);
     if (p.w <= 1e-4f) {
       ++behind;
       continue;
@@ -64,7 +66,7 @@ long silhouette(const glm::mat4& view_proj, const ObjectBounds& b, const Rect& r
   const glm::mat4 m = view_proj * b.transform;
   std::vector<glm::vec3> screen(b.mesh->vertices.size());  // x, y in pixels (row 0 at the top), w
   for (std::size_t i = 0; i < screen.size(); ++i) {
-    const glm::vec4 p = m * glm::vec4(b.mesh->vertices[i].position, 1.0f);
+    const glm::vec4 p = scene::transform_point(m, b.mesh->vertices[i].position);
     screen[i] = p.w > 1e-4f ? glm::vec3((p.x / p.w + 1.0f) * 0.5f * static_cast<float>(width),
                                         (1.0f - p.y / p.w) * 0.5f * static_cast<float>(height), p.w)
                             : glm::vec3(0.0f, 0.0f, -1.0f);
@@ -113,7 +115,7 @@ std::vector<ObjectBounds> object_bounds(const scene::Scene& scene) {
   for (const scene::Object& o : scene.objects) {
     ObjectBounds b{&scene.meshes[o.mesh], o.transform, {}, glm::vec3(1e30f), glm::vec3(-1e30f)};
     for (const glm::vec3& p : positions[o.mesh]) {
-      const glm::vec3 w(o.transform * glm::vec4(p, 1.0f));
+      const glm::vec3 w(scene::transform_point(o.transform, p));
       b.points.push_back(w);
       b.min = glm::min(b.min, w);
       b.max = glm::max(b.max, w);

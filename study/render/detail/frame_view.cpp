@@ -6,6 +6,7 @@
 
 #include "study/render/detail/frame_view.h"
 #include "study/render/render.h"
+#include "study/scene/transform.h"
 
 namespace dtlab::render::detail {
 
@@ -24,7 +25,7 @@ Projected project(std::size_t n, PointFn point, const glm::mat4& vp, int w, int 
   int outside_mask = 0x3f;
   float x0 = std::numeric_limits<float>::max(), y0 = x0, x1 = -x0, y1 = -x0;
   for (std::size_t i = 0; i < n; ++i) {
-    const glm::vec4 c = vp * glm::vec4(point(i), 1.0f);
+    const glm::vec4 c = scene::transform_point(vp, point(i));
     int m = 0;
     if (c.x < -c.w) m |= 1;
     if (c.x > c.w) m |= 2;
