@@ -52,12 +52,10 @@ void expect_packed(const FrameView& v, const MaskAtlas& a) {
     const MaskAtlas::Page& p = a.pages[static_cast<std::size_t>(t.page)];
     EXPECT_GE(t.x, 0) << i;
     EXPECT_GE(t.y, 0) << i;
-    EXPECT_LE(t.x + t.w, p.used_width) << i;
-    EXPECT_LE(t.y + t.h, p.used_height) << i;
+    EXPECT_LE(t.x + t.w, p.width) << i;
+    EXPECT_LE(t.y + t.h, p.height) << i;
   }
   for (const MaskAtlas::Page& p : a.pages) {
-    EXPECT_LE(p.used_width, p.width);
-    EXPECT_LE(p.used_height, p.height);
     EXPECT_LE(std::max(p.width, p.height), std::max(4096, largest));
   }
   for (std::size_t i = 0; i < a.tiles.size(); ++i)
@@ -69,7 +67,7 @@ void expect_packed(const FrameView& v, const MaskAtlas& a) {
     }
 }
 
-TEST(MaskAtlas, TilesArePaddedCoversInsideTheirPagesUsedBoxWithoutOverlap) {
+TEST(MaskAtlas, TilesArePaddedCoversInsideTheirPagesWithoutOverlap) {
   for (unsigned seed = 1; seed <= 5; ++seed) {
     const FrameView v = view_with_targets(40, 60, seed);
     expect_packed(v, plan_mask_atlas(v));
@@ -84,8 +82,8 @@ TEST(MaskAtlas, ManyLargeTilesSpillOntoMorePages) {
   expect_packed(v, a);
 }
 
-// The used box is what the tiles reach, not the power-of-two page around it.
-TEST(MaskAtlas, UsedBoxIsTheTilesBoundingBox) {
+// A page measures powers of two around its tiles (one 21 x 23 tile: 32 x 32).
+TEST(MaskAtlas, PageIsThePowerOfTwoAroundItsTiles) {
   FrameView v;
   v.grid = MaskGrid{128, 128, 6.25f, 6.25f, 8};
   TargetView t;
@@ -93,8 +91,8 @@ TEST(MaskAtlas, UsedBoxIsTheTilesBoundingBox) {
   v.targets = {t};
   const MaskAtlas a = plan_mask_atlas(v);
   ASSERT_EQ(a.pages.size(), 1u);
-  EXPECT_EQ(a.pages[0].used_width, 21);
-  EXPECT_EQ(a.pages[0].used_height, 23);
+  EXPECT_EQ(a.tiles[0].w, 21);
+  EXPECT_EQ(a.tiles[0].h, 23);
   EXPECT_EQ(a.pages[0].width, 32);
   EXPECT_EQ(a.pages[0].height, 32);
 }

@@ -42,8 +42,8 @@ MaskAtlas plan_mask_atlas(const FrameView& view) {
   for (auto& t : a.tiles)
     if (t.w > 0) order.push_back(&t);
   std::stable_sort(order.begin(), order.end(), [](const MaskTile* p, const MaskTile* q) { return p->h > q->h; });
-  int x = 0, y = 0, shelf = 0, page = 0, used_width = 1;
-  auto close_page = [&] { a.pages.push_back({width, pow2_at_least(y + shelf), used_width, std::max(1, y + shelf)}); };
+  int x = 0, y = 0, shelf = 0, page = 0;
+  auto close_page = [&] { a.pages.push_back({width, pow2_at_least(y + shelf)}); };
   for (MaskTile* t : order) {
     if (x + t->w > width) {  // next shelf
       y += shelf;
@@ -54,14 +54,12 @@ MaskAtlas plan_mask_atlas(const FrameView& view) {
       close_page();
       ++page;
       x = y = shelf = 0;
-      used_width = 1;
     }
     t->page = page;
     t->x = x;
     t->y = y;
     x += t->w;
     shelf = std::max(shelf, t->h);
-    used_width = std::max(used_width, x);
   }
   close_page();
   return a;

@@ -23,8 +23,7 @@ struct MaskTile {
 
 struct MaskAtlas {
   struct Page {
-    int width = 1, height = 1;
-    int used_width = 1, used_height = 1;  // every tile of the page lies in [0, used_width) x [0, used_height)
+    int width = 1, height = 1;  // powers of two around the page's tiles
   };
   std::vector<Page> pages;     // at most 4096 x 4096 texels each (or the largest tile)
   std::vector<MaskTile> tiles;  // by target slot
