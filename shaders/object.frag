@@ -23,10 +23,10 @@
 // Compiled a fifth time with VDT (docs/render.md "vdt"): alpha is the
 // interpolated view-dependent alpha of the vertices (clamped to [0, 1]) in both
 // the lit and the flat branch; the blend state decides what it weighs.
-// Compiled a sixth time with FLAT (weight frames: every object has a flat colour):
-// u_flat.rgb, nothing else; it reads no interpolated attribute, so the linker
-// drops them and the rasterizer sets up only depth per triangle (the same
-// output as the flat branch below, for less work per triangle).
+// Compiled a sixth time with FLAT (weight frames: every object has a flat colour;
+// with SEARCHLIGHT too for the repair): u_flat.rgb, nothing else. It reads no
+// interpolated attribute, so the linker drops them and llvmpipe has fewer
+// inputs to set up per triangle: the flat branch's output for less work.
 // Never outputs NaN: degenerate normals and eye-on-surface fall back safely.
 #version 330 core
 in vec3 v_world;
@@ -72,10 +72,10 @@ vec4 lens_tinted(vec4 c) {
 #endif
 
 void main() {
-#ifdef FLAT
 #ifdef SEARCHLIGHT
   if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
 #endif
+#ifdef FLAT
   frag_color = vec4(u_flat.rgb, 1.0);
 #else
 #ifdef SCREEN_DOOR
@@ -90,9 +90,6 @@ void main() {
       if (((word >> uint(bit % 32)) & 1u) == 0u) discard;
     }
   }
-#endif
-#ifdef SEARCHLIGHT
-  if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
 #endif
 #ifdef LENS
   ivec2 pixel = ivec2(gl_FragCoord.xy);

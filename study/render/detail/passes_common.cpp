@@ -48,7 +48,8 @@ void FrameContext::use_lit(const glm::mat4& view_proj, bool searchlight) const {
   // Weight frames (every object a flat colour) take the FLAT variant: the same output for less
   // work per triangle.
   const bool flat = !settings.flat_colors.empty();
-  const Program& p = flat ? (cut ? programs.object_flat_sl : programs.object_flat) : (cut ? programs.object_sl : programs.object);
+  const Program& p =
+      flat ? (cut ? programs.object_flat_sl : programs.object_flat) : (cut ? programs.object_sl : programs.object);
   use_program(p);
   bound.lit = &p;
   Uniforms& u = uniforms_of(p);

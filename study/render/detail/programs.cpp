@@ -100,9 +100,9 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 }
 
 void Programs::destroy() {
-  for (Program* p : {&object, &object_sl, &object_flat, &object_flat_sl, &object_lens, &object_vdt, &object_alpha, &object_alpha_peel,
-                     &object_alpha_sl, &quad_alpha, &border, &shape, &cheb_rows, &cheb_cols, &fast_apply,
-                     &fast_apply_counter, &object_sd, &sd_resolve}) {
+  for (Program* p : {&object, &object_sl, &object_flat, &object_flat_sl, &object_lens, &object_vdt, &object_alpha,
+                     &object_alpha_peel, &object_alpha_sl, &quad_alpha, &border, &shape, &cheb_rows, &cheb_cols,
+                     &fast_apply, &fast_apply_counter, &object_sd, &sd_resolve}) {
     if (p->id != 0) glDeleteProgram(p->id);
     p->id = 0;
   }
