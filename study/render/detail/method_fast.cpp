@@ -190,9 +190,7 @@ MaskHandles add_masks_pass(FrameGraph& fg, const FrameContext& fc, const std::sh
 void quads(const FrameContext& fc, const Program& p, const std::vector<PixelRect>& rects, const PixelRect& within) {
   for (const PixelRect& r : rects) {
     const PixelRect q = r.intersect(within);
-    if (!q.empty())
-      fc.quad(p, static_cast<float>(q.x0), static_cast<float>(q.y0), static_cast<float>(q.x1), static_cast<float>(q.y1),
-              fc.width(), fc.height());
+    if (!q.empty()) fc.quad(p, q);
   }
 }
 

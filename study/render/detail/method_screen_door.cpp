@@ -269,8 +269,7 @@ void sd_region(const FrameContext& fc, ScreenDoorState& st, const Chunk& ch, int
   glUniform1i(p.loc("u_side"), side);
   glUniform2i(p.loc("u_origin"), ch.rect.x0, ch.rect.y0);
   glBindTexture(GL_TEXTURE_2D, r.texture(d.enlarged));
-  fc.quad(p, static_cast<float>(ch.rect.x0), static_cast<float>(ch.rect.y0), static_cast<float>(ch.rect.x1),
-          static_cast<float>(ch.rect.y1), fc.width(), fc.height());
+  fc.quad(p, ch.rect);
   glBindTexture(GL_TEXTURE_2D, 0);
   glDisable(GL_SCISSOR_TEST);
   glDepthMask(GL_TRUE);

@@ -108,13 +108,11 @@ std::vector<Handle> add_seed_masks_pass(FrameGraph& fg, const FrameContext& fc,
   return out;
 }
 
-
 // dt-clear onward into `main` (created here when not valid), each pass conditional on `query` when
 // valid. With `codes`, every object writes its code into bits 0-5 where it is frontmost and the
 // mask steps leave those bits alone (the effect-first plan's query reads them).
 MainTargets add_seed_effect(FrameGraph& fg, const FrameContext& fc, const std::shared_ptr<const MaskAtlas>& atlas,
                             const std::vector<Handle>& mask_pages, MainTargets main, Handle query, bool codes) {
-
   struct DtClearPassData {
     Handle color, depth;
   };
@@ -205,9 +203,7 @@ MainTargets add_seed_effect(FrameGraph& fg, const FrameContext& fc, const std::s
             begin_apply(fc, codes);
             const Program& apply = use_mask_apply(fc, *atlas, r.texture(d.mask), slot);
             // Outside the target's support the upsampled mask is 1.
-            const PixelRect& s = fc.view.targets[static_cast<std::size_t>(slot)].support;
-            fc.quad(apply, static_cast<float>(s.x0), static_cast<float>(s.y0), static_cast<float>(s.x1),
-                    static_cast<float>(s.y1), fc.width(), fc.height());
+            fc.quad(apply, fc.view.targets[static_cast<std::size_t>(slot)].support);
           }
           finish_target(fc, slot);
           glBindTexture(GL_TEXTURE_2D, 0);

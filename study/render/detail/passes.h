@@ -44,6 +44,8 @@ struct FrameContext {
   void use_program(const Program& p) const;
   // A screen-aligned rectangle in window pixels of a w x h target, with `p` already in use.
   void quad(const Program& p, float x0, float y0, float x1, float y1, int w, int h) const;
+  // The same over `r`, window pixels of this frame's view.
+  void quad(const Program& p, const PixelRect& r) const;
   glm::vec3 searchlight_uniform(bool on) const;  // (x, y, r) or r = -1
   bool active() const { return view.searchlight.z >= 0.0f; }  // active mode (a searchlight)
   bool guard() const { return settings.dt.r1_guard; }

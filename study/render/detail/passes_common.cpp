@@ -113,6 +113,11 @@ void FrameContext::quad(const Program& p, float x0, float y0, float x1, float y1
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
+void FrameContext::quad(const Program& p, const PixelRect& r) const {
+  quad(p, static_cast<float>(r.x0), static_cast<float>(r.y0), static_cast<float>(r.x1), static_cast<float>(r.y1), width(),
+       height());
+}
+
 // --- shared GL sequences -------------------------------------------------------------------
 
 void clear_to_background(const FrameContext& fc) {
@@ -370,9 +375,7 @@ void finish_target(const FrameContext& fc, int slot) {
     return;
   }
   const Program& p = use_target_alpha_quad(fc);
-  const PixelRect& r = fc.view.targets[static_cast<std::size_t>(slot)].rect;
-  fc.quad(p, static_cast<float>(r.x0), static_cast<float>(r.y0), static_cast<float>(r.x1), static_cast<float>(r.y1),
-          fc.width(), fc.height());
+  fc.quad(p, fc.view.targets[static_cast<std::size_t>(slot)].rect);
 }
 
 // --- opaque, target-query, present -----------------------------------------------------------
