@@ -63,10 +63,13 @@ pid_t start_run(const fs::path& db, const fs::path& log, const std::vector<std::
   return pid;
 }
 
+// A waitpid status as a shell reports it: the exit code, or 128 + the signal.
+int exit_code(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status); }
+
 int wait_exit(pid_t pid) {
   int status = 0;
   ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return exit_code(status);
 }
 
 // The exit code, or -1 if it ran past `seconds` (it is killed then: a hang fails the test, it
@@ -75,7 +78,7 @@ int wait_exit_within(pid_t pid, double seconds) {
   const auto until = Clock::now() + std::chrono::duration<double>(seconds);
   int status = 0;
   while (Clock::now() < until) {
-    if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (::waitpid(pid, &status, WNOHANG) == pid) return exit_code(status);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   ::kill(pid, SIGKILL);
