@@ -75,7 +75,8 @@ void add_decision(CLI::App& root, bool exclude) {
               "Exit status: 0 recorded, 1 unknown participant or trial, missing reason, not a dtlab database, "
               "2 bad command line, 3 database or I/O failure.");
   cmd->add_option("database", a->db, kDatabaseHelp)->required();
-  cmd->add_option("--participant", a->participant, "Participant id as enrolled")->required();
+  cmd->add_option("--participant", a->participant, "Participant id as enrolled")
+      ->check(participant_id())->required();
   cmd->add_option("--trial", a->trial, "Only this trial of the participant's session (1-based position)")
       ->check(CLI::PositiveNumber);
   auto* reason = cmd->add_option("--reason", a->reason,

@@ -111,7 +111,8 @@ void add_plan_command(CLI::App& root) {
   auto* db_opt = cmd->add_option("--db", *db,
                                  std::string(kDatabaseHelp) + ": take K and the order row from its participant ledger")
                      ->check(existing_database());
-  auto* participant_opt = cmd->add_option("--participant", *participant, "Participant id enrolled in --db");
+  auto* participant_opt = cmd->add_option("--participant", *participant, "Participant id enrolled in --db")
+      ->check(participant_id());
   index_opt->excludes(db_opt)->excludes(participant_opt);
   db_opt->needs(participant_opt);
   participant_opt->needs(db_opt);

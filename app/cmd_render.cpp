@@ -434,7 +434,8 @@ void add_render_command(CLI::App& root) {
                         ->check(CLI::NonNegativeNumber);
   auto* db_opt = cmd->add_option("--db", o->db, std::string(kDatabaseHelp) + ": K and the order row from its participant ledger")
                      ->check(existing_database());
-  auto* participant_opt = cmd->add_option("--participant", o->participant, "Participant id enrolled in --db");
+  auto* participant_opt = cmd->add_option("--participant", o->participant, "Participant id enrolled in --db")
+      ->check(participant_id());
   auto* trial_opt = cmd->add_option("--trial", o->trial,
                                     "Position N in the participant's plan, 1-based as `dtlab plan` numbers it");
   cmd->add_option("--out", o->out, "PNG file to write")->required();

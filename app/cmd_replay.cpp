@@ -104,7 +104,7 @@ void add_replay_command(CLI::App& root) {
               "Exit status: 0 done, 1 unknown participant or trial, or a scene this build no longer generates, "
               "2 bad command line, 3 GL, database or I/O failure.");
   cmd->add_option("database", a->db, kDatabaseHelp)->required();
-  cmd->add_option("--participant", a->participant, "Participant ID")->required();
+  cmd->add_option("--participant", a->participant, "Participant ID")->check(participant_id())->required();
   cmd->add_option("--trial", a->trial, "Trial position in the session, 1-based")->required()->check(CLI::PositiveNumber);
   cmd->add_option("--out", a->out, "Output directory (created if missing)")->required();
   cmd->add_option("--every", a->every, "Render every K-th pose (the first and the last always)")

@@ -147,7 +147,8 @@ void add_run_command(CLI::App& root) {
       "command line, 3 no display, GL or database failure, 130 window closed mid-session (rerun to resume).");
   cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--db", a->db, std::string(kDatabaseHelp) + "; a file is created if missing")->required();
-  cmd->add_option("--participant", a->participant, "Participant ID to fill in on the start screen");
+  cmd->add_option("--participant", a->participant, "Participant ID to fill in on the start screen")
+      ->check(participant_id());
   cmd->add_flag("--fullscreen", a->fullscreen, "Full screen on the monitor (at its current resolution)");
   cmd->add_option("--monitor", a->monitor, "Monitor to use, 0-based (0 = primary)")->check(CLI::Range(0, 16));
   cmd->add_option("--size", a->size, "Window size WIDTHxHEIGHT in pixels (windowed)")->capture_default_str();

@@ -39,6 +39,7 @@ constexpr KeyName kNamed[] = {
 }  // namespace
 
 Input::Input(GLFWwindow* window) : window_(window) {
+  if (!window) return;  // no window: events come only through the entry points (the script tests)
   glfwSetWindowUserPointer(window, this);
   glfwSetKeyCallback(window, key_cb);
   glfwSetCharCallback(window, char_cb);
@@ -48,6 +49,7 @@ Input::Input(GLFWwindow* window) : window_(window) {
 }
 
 Input::~Input() {
+  if (!window_) return;
   glfwSetKeyCallback(window_, nullptr);
   glfwSetCharCallback(window_, nullptr);
   glfwSetMouseButtonCallback(window_, nullptr);
@@ -189,6 +191,7 @@ bool Input::shift() const { return key_down(GLFW_KEY_LEFT_SHIFT) || key_down(GLF
 void Input::capture_cursor(bool on) {
   if (on == captured_) return;
   captured_ = on;
+  if (!window_) return;
   glfwSetInputMode(window_, GLFW_CURSOR, on ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
   if (on && glfwRawMouseMotionSupported()) glfwSetInputMode(window_, GLFW_RAW_MOUSE_MOTION, GLFW_TRUE);
 }

@@ -39,7 +39,8 @@ class EventLog {
 
 class Input {
  public:
-  // Installs GLFW callbacks on `window` that forward here; `window` outlives this object.
+  // Installs GLFW callbacks on `window` that forward here; `window` outlives this object. A null
+  // window installs nothing: events arrive only through the entry points below.
   explicit Input(GLFWwindow* window);
   ~Input();
   Input(const Input&) = delete;

@@ -27,23 +27,6 @@ std::string scope_text(const session::Question& q) {
   return s;
 }
 
-// Window pixel position of an object's centre (its mesh's bounding-box centre), or nullopt behind the eye.
-std::optional<ImVec2> project(const scene::Scene& s, std::uint32_t id, const render::Camera& cam, float w, float h) {
-  for (const scene::Object& o : s.objects) {
-    if (o.id != id) continue;
-    const scene::Mesh& m = s.meshes[o.mesh];
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const auto& v : m.vertices) {
-      lo = glm::min(lo, v.position);
-      hi = glm::max(hi, v.position);
-    }
-    const glm::vec4 c = cam.view_proj() * o.transform * glm::vec4((lo + hi) * 0.5f, 1.0f);
-    if (c.w <= 0) return std::nullopt;
-    return ImVec2((c.x / c.w * 0.5f + 0.5f) * w, (1.0f - (c.y / c.w * 0.5f + 0.5f)) * h);
-  }
-  return std::nullopt;
-}
-
 }  // namespace
 
 Result<std::vector<session::QuestionAnswer>> WindowResponder::answer_questionnaire(
@@ -62,11 +45,11 @@ Result<std::vector<session::QuestionAnswer>> WindowResponder::answer_questionnai
       for (const auto& v : spec.depth_tests)
         if (v.item == item.id) dv = &v;
       if (!dv) return Error{"", 0, 0, "questionnaire." + item.id, "no depth-test view was prepared", ErrorKind::internal};
-      auto view = SceneView::create(dv->scene, dv->frame);
+      auto view = SceneView::create(dv->scene, dv->frame, dv->camera);
       if (!view) return view.error();
       Status st = loop("depth_test", [&] { (*view)->draw(ui_.width(), ui_.height(), glm::vec2(0)); }, [&] {
-        const render::Camera cam = (*view)->camera(ui_.width(), ui_.height());
         const ImGuiIO& io = ImGui::GetIO();
+        const session::Viewport window{static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y)};
         ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, ui_.text_px() * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0));
         ImGui::SetNextWindowBgAlpha(0.9f);
         ImGui::Begin("##depth", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize);
@@ -77,9 +60,9 @@ Result<std::vector<session::QuestionAnswer>> WindowResponder::answer_questionnai
         const std::uint32_t ids[2] = {q.object_a, q.object_b};
         const char* names[2] = {"A", "B"};
         for (int k = 0; k < 2; ++k) {
-          const auto at = project(dv->scene, ids[k], cam, io.DisplaySize.x, io.DisplaySize.y);
+          const auto at = session::depth_test_marker(*dv, ids[k], window);
           if (!at) continue;
-          ImGui::SetNextWindowPos(*at, ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+          ImGui::SetNextWindowPos(ImVec2(at->x, at->y), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
           ImGui::SetNextWindowBgAlpha(0.0f);
           ImGui::Begin(names[k], nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                               ImGuiWindowFlags_NoBackground);

@@ -247,15 +247,24 @@ Status ScriptPlayer::tick(const std::string& screen, std::uint64_t instance, con
     section_ = script_.for_screen(screen);
     next_ = 0;
     begin_step(now);
+    idle_since_ = now;
   }
-  if (!section_) return {};
   Status error;
-  while (next_ < section_->steps.size()) {
+  while (section_ && next_ < section_->steps.size()) {
     if (!step(section_->steps[next_], items, now, error)) return error;  // waiting (or failed)
     ++next_;
     begin_step(now);
+    idle_since_ = now;
   }
-  return {};
+  // Only the script acts in a scripted run: a screen it has nothing more for would wait forever.
+  if (std::chrono::duration<double>(now - idle_since_).count() <= kIdleTimeoutS) return {};
+  const std::string wait = " and the screen was still up " + std::to_string(int(kIdleTimeoutS)) + " s later";
+  if (!section_)
+    return Error{script_.file, 0, 0, "script", "the script has no section for the screen \"" + screen + "\"" + wait};
+  const ScriptStep& last = section_->steps.back();
+  return Error{script_.file, last.line, 0, "script",
+               "section [" + section_->screen + "] played out at this step" + wait +
+                   " (a click that missed, or a key the screen does not take)"};
 }
 
 // One step; true when it is done. A step that presses and releases spends one frame pressed and
@@ -334,16 +343,19 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
     }
     case Op::click_item: {
       const auto it = items.find(s.text);
-      if (phase_ == 0 && it == items.end()) {
-        if (elapsed > kItemTimeoutS) {
-          std::string shown;
-          for (const auto& [name, box] : items) shown += (shown.empty() ? "" : ", ") + ("\"" + name + "\"");
-          error = Error{script_.file, s.line, 0, "click_item",
-                        "no UI item \"" + s.text + "\" appeared within " + std::to_string(int(kItemTimeoutS)) +
-                            " s (items on screen: " + (shown.empty() ? "none" : shown) + ")"};
-        }
+      if (phase_ == 0 && elapsed > kItemTimeoutS) {
+        std::string shown;
+        for (const auto& [name, box] : items) shown += (shown.empty() ? "" : ", ") + ("\"" + name + "\"");
+        error = Error{script_.file, s.line, 0, "click_item",
+                      it == items.end()
+                          ? "no UI item \"" + s.text + "\" appeared on screen within " +
+                                std::to_string(int(kItemTimeoutS)) + " s (items on screen: " +
+                                (shown.empty() ? "none" : shown) + ")"
+                          : "the UI item \"" + s.text + "\" did not hold still for a frame within " +
+                                std::to_string(int(kItemTimeoutS)) + " s"};
         return false;
       }
+      if (phase_ == 0 && it == items.end()) return false;
       if (phase_ == 0) {
         // A new popup's items are laid out on its first frame and placed on its second: click
         // only a box that held still for one frame, as a person's eye would wait for it.

@@ -8,7 +8,10 @@
 // that was interrupted and resumed half-way. docs/run.md, "Scripts", lists
 // the syntax. Guarantees: a malformed script is an Error naming file:line
 // before anything runs; a step that cannot happen (a UI item that never
-// appears) is an Error naming its line. Never: reads the answer key.
+// appears on screen within kItemTimeoutS) is an Error naming its line, and a
+// screen still up kIdleTimeoutS after its section played out (or with no
+// section) is an Error naming the section's last step: a scripted run never
+// waits for a person. Never: reads the answer key.
 #pragma once
 #include <cstdint>
 #include <map>
@@ -96,12 +99,16 @@ class ScriptPlayer {
   std::size_t next_ = 0;
   int phase_ = 0;
   Clock::time_point step_start_{};
+  Clock::time_point idle_since_{};  // since the screen's last step ended (or the screen appeared)
   double moved_ = 0;  // turn/drag: the share of the motion already fed
   std::optional<ItemBox> seen_;  // click_item: its item's box last frame (clicked once it holds still)
   std::vector<int> held_keys_, held_buttons_;
 };
 
-// How long click_item waits for its item before it fails.
+// How long click_item waits for its item (on screen, holding still) before it fails.
 inline constexpr double kItemTimeoutS = 60.0;
+// How long a screen may stay up once its section has played out (or when the script has no section
+// for it) before the run fails, naming the section's last step: only the script acts in a scripted run.
+inline constexpr double kIdleTimeoutS = 60.0;
 
 }  // namespace dtlab::run

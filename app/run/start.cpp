@@ -79,7 +79,7 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
   Progress progress;
   const int order_rows = protocol::declared_order_rows(p);
   if (Status s = read_progress(store, order_rows, progress); !s) return s.error();
-  char id[65] = {};
+  char id[store::kMaxParticipantId * 4 + 1] = {};  // room for more than the store keeps: too long is refused, never cut
   std::snprintf(id, sizeof id, "%s", preset.c_str());
   std::map<std::string, std::array<char, 128>> demo;
   for (const auto& f : p.demographics) demo[f.id] = {};
@@ -152,6 +152,8 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
         const auto it = progress.status.find(who);
         if (who.empty()) {
           message = "Type the participant's ID first.";
+        } else if (Status ok = store::check_participant_id(who); !ok) {
+          message = ok.error().message + ".";
         } else if (it != progress.status.end() && it->second == "finished") {
           message = "Participant \"" + who + "\" has finished their session; a finished session cannot run again. "
                                             "Use a new ID.";

@@ -114,6 +114,9 @@ Ui::~Ui() {
 
 void Ui::name_item(const std::string& name) {
   const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  // An item whose centre lies off the window cannot be clicked: a script must not find it either.
+  const ImVec2 c((a.x + b.x) * 0.5f, (a.y + b.y) * 0.5f), display = ImGui::GetIO().DisplaySize;
+  if (c.x < 0 || c.y < 0 || c.x >= display.x || c.y >= display.y) return;
   items_next_[name] = ItemBox{a.x, a.y, b.x - a.x, b.y - a.y};
 }
 

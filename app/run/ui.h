@@ -57,7 +57,8 @@ class Ui {
   Clock::time_point last_swap() const { return last_swap_; }
   double last_frame_ms() const { return last_frame_ms_; }  // between the last two swaps
 
-  // Named items: registers the last ImGui item's box under `name` (the script's click_item).
+  // Named items: registers the last ImGui item's box under `name` (the script's click_item), if its
+  // centre lies inside the window.
   void name_item(const std::string& name);
   bool button(const std::string& label, ImVec2 size = ImVec2(0, 0));  // ImGui::Button, named by its label
   ImFont* heading_font() const { return heading_; }

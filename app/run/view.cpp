@@ -14,14 +14,19 @@
 namespace dtlab::run {
 
 Result<std::unique_ptr<SceneView>> SceneView::create(const scene::Scene& scene, const render::FrameSettings& frame) {
-  std::unique_ptr<SceneView> v(new SceneView(scene, frame));
+  return create(scene, frame, scene.camera);
+}
+
+Result<std::unique_ptr<SceneView>> SceneView::create(const scene::Scene& scene, const render::FrameSettings& frame,
+                                                     const scene::CameraStart& start) {
+  std::unique_ptr<SceneView> v(new SceneView(scene, frame, start));
   auto r = render::Renderer::create(scene);
   if (!r) return r.error();
   v->renderer_ = std::move(r.value());
   v->renderer_->prepare(frame);  // occlusion culling's occluder database now, not in the first frame
-  v->yaw_ = scene.camera.yaw;
-  v->pitch_ = scene.camera.pitch;
-  v->position_ = scene.camera.position;
+  v->yaw_ = start.yaw;
+  v->pitch_ = start.pitch;
+  v->position_ = start.position;
   return v;
 }
 
@@ -48,7 +53,7 @@ void SceneView::steer(const Input& input, double dt, bool mouse_free) {
 }
 
 render::Camera SceneView::camera(int width, int height) const {
-  const scene::CameraStart& c = scene_.camera;
+  const scene::CameraStart& c = start_;
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(1, height));
   if (walking()) return render::walk_camera(position_, yaw_, 0.0f, c.fov_y, aspect, c.near_plane, c.far_plane);
   return render::orbit_camera(c.target, c.distance, yaw_, pitch_, c.fov_y, aspect, c.near_plane, c.far_plane);

@@ -29,8 +29,11 @@ inline constexpr double kWalkUnitsPerSecond = 4.5;
 
 class SceneView {
  public:
-  // Uploads the scene; needs the window's GL context current.
+  // Uploads the scene; needs the window's GL context current. The view starts at the scene's own
+  // camera, or at `start` (the depth test's fixed view); `scene` must outlive the view.
   static Result<std::unique_ptr<SceneView>> create(const scene::Scene& scene, const render::FrameSettings& frame);
+  static Result<std::unique_ptr<SceneView>> create(const scene::Scene& scene, const render::FrameSettings& frame,
+                                                   const scene::CameraStart& start);
 
   // One frame of steering from the input (`dt` seconds since the last frame). `mouse_free`:
   // the UI does not want the mouse (no widget under it).
@@ -40,13 +43,15 @@ class SceneView {
   void draw(int width, int height, glm::vec2 cursor);
   store::CameraPose pose(double t_s) const;
   render::Camera camera(int width, int height) const;
-  bool walking() const { return scene_.camera.mode == scene::CameraStart::Mode::walk; }
+  bool walking() const { return start_.mode == scene::CameraStart::Mode::walk; }
   const scene::Scene& scene() const { return scene_; }
 
  private:
-  SceneView(const scene::Scene& scene, const render::FrameSettings& frame) : scene_(scene), frame_(frame) {}
+  SceneView(const scene::Scene& scene, const render::FrameSettings& frame, const scene::CameraStart& start)
+      : scene_(scene), frame_(frame), start_(start) {}
   const scene::Scene& scene_;
   render::FrameSettings frame_;
+  scene::CameraStart start_;  // where the view began: projection, mode, orbit centre and distance
   std::unique_ptr<render::Renderer> renderer_;
   float yaw_ = 0, pitch_ = 0;
   glm::vec3 position_{0.0f};

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "study/design/seeds.h"
+#include "study/render/camera.h"
 #include "study/session/detail/stream.h"
 #include "study/session/session.h"
 #include "study/store/read.h"
@@ -47,8 +48,8 @@ std::vector<Question> expand_questionnaire(const protocol::Protocol& p) {
       case protocol::ItemType::choice: {
         Question q;
         q.item = &item;
-        if (const protocol::Factor* f = protocol::find_factor(p, item.factor)) q.options = f->levels;
-        else q.options = item.options;
+        // The protocol's options: a factor's levels (load_protocol copied them), then the neutral one.
+        q.options = item.options;
         out.push_back(std::move(q));
         break;
       }
@@ -170,6 +171,24 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
   return bad(field + ".pairs", "no view from the start cell shows " + std::to_string(item.pairs) +
                                    " pairs of objects at distinguishable distances; lower pairs or place more "
                                    "objects (scenario '" + scenario->name + "', task " + task.id + ")");
+}
+
+std::optional<glm::vec2> depth_test_marker(const DepthTestView& v, std::uint32_t object, const Viewport& vp) {
+  for (const scene::Object& o : v.scene.objects) {
+    if (o.id != object) continue;
+    const scene::Mesh& m = v.scene.meshes[o.mesh];
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const auto& vertex : m.vertices) {
+      lo = glm::min(lo, vertex.position);
+      hi = glm::max(hi, vertex.position);
+    }
+    const float w = static_cast<float>(vp.width), h = static_cast<float>(vp.height);
+    const render::Camera cam = render::camera_from_start(v.camera, w / h);
+    const glm::vec4 c = cam.view_proj() * o.transform * glm::vec4((lo + hi) * 0.5f, 1.0f);
+    if (c.w <= 0) return std::nullopt;
+    return glm::vec2((c.x / c.w * 0.5f + 0.5f) * w, (1.0f - (c.y / c.w * 0.5f + 0.5f)) * h);
+  }
+  return std::nullopt;
 }
 
 Result<std::vector<RecordedTrial>> recorded_trials(store::Store& store, const std::string& participant_id) {

@@ -175,6 +175,12 @@ struct DepthTestKey {
 Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol::QuestionnaireItem& item,
                                      int enrollment_index, const Viewport& viewport, std::vector<Question>& questions);
 
+// Where object `object` (an Object::id) of depth-test view `v` appears on a viewport of `vp` pixels:
+// its mesh's bounding-box centre projected by the view's camera, in pixels from the top-left corner;
+// nullopt when the object is not in the scene or lies behind the eye. The window draws the pair's
+// A and B markers there.
+std::optional<glm::vec2> depth_test_marker(const DepthTestView& v, std::uint32_t object, const Viewport& vp);
+
 // Seed of depth-test item `item_position` (0-based in the questionnaire) of participant k:
 // mix64(participant_seed(M, k), kDepthTestDomain + item_position).
 std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, int item_position);

@@ -61,7 +61,10 @@ Status validate_study(const std::string& path, const StudyInfo& s) {
 
 Status validate_participant_id(const std::string& path, const std::string& id) {
   auto bad = [&](std::string msg) { return Error{path, 0, 0, "participant", std::move(msg)}; };
-  if (id.empty() || id.size() > 64) return bad("\"" + id + "\" must have 1 to 64 characters");
+  if (id.empty()) return bad("the participant ID is empty");
+  if (id.size() > kMaxParticipantId)
+    return bad("\"" + id + "\" is " + std::to_string(id.size()) + " bytes long; a participant ID has at most " +
+               std::to_string(kMaxParticipantId) + " (bytes of UTF-8: characters, for plain ASCII)");
   for (unsigned char c : id)
     if (c < 0x20 || c == 0x7f) return bad("\"" + id + "\" contains a control character");
   if (id.front() == ' ' || id.back() == ' ') return bad("\"" + id + "\" starts or ends with a space");
@@ -219,6 +222,8 @@ Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
 }
 
 }  // namespace
+
+Status check_participant_id(const std::string& id) { return validate_participant_id("", id); }
 
 const char* to_string(SessionStatus s) {
   switch (s) {

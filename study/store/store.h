@@ -38,6 +38,11 @@ inline constexpr std::int32_t kApplicationId = 0x64746c62;  // PRAGMA applicatio
 bool is_server_uri(const std::string& where);  // true for a PostgreSQL URI
 std::string display_name(const std::string& where);  // what messages show: the path, or the URI without password
 
+// A participant ID as the store keeps it: 1 to kMaxParticipantId bytes, no control character, no
+// space at either end. Never cut to fit: a longer ID is refused (field "participant").
+inline constexpr std::size_t kMaxParticipantId = 64;
+Status check_participant_id(const std::string& id);
+
 // The study a database belongs to, as plain values (no Protocol type, so the
 // store builds on its own). Callers pass what the protocol stage computed.
 struct StudyInfo {

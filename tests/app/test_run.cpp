@@ -336,6 +336,67 @@ TEST_F(RunPilot, FinishedParticipantScriptRefusedAtOnce) {
   fs::remove_all(d);
 }
 
+// The second participant of the same study (enrollment index 1) through the same script with
+// their own ID, choosing the neutral option of the preference question. Regression: the depth
+// test's markers were projected with the scene's start camera instead of the test's fixed view,
+// so for this participant they lay off the window, click_item "A" clicked nothing, and the
+// session waited forever; the neutral option was not shown at all.
+TEST_F(RunPilot, SecondParticipantFinishesTheDepthTestAndCanChooseNoPreference) {
+  ASSERT_EQ(rc, 0);
+  const fs::path d = temp_dir("second");
+  fs::copy_file(*db, d / "pilot.sqlite");
+  std::string script = slurp(kScript);
+  for (auto [from, to] : {std::pair<std::string, std::string>{"type \"pilot-01\"", "type \"pilot-02\""},
+                          {"[questionnaire preference]\nclick_item \"on\"",
+                           "[questionnaire preference]\nclick_item \"no preference\""}}) {
+    const auto at = script.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    script.replace(at, from.size(), to);
+  }
+  { std::ofstream(d / "second.script") << script; }
+  const int second = wait_exit_within(
+      start_run(d / "pilot.sqlite", d / "log.txt", {"--script", (d / "second.script").string()}), 300);
+  ASSERT_EQ(second, 0) << slurp(d / "log.txt");
+  auto r = reader(d / "pilot.sqlite");
+  const auto ledger = r.ledger();
+  ASSERT_EQ(ledger->size(), 2u);
+  EXPECT_EQ((*ledger)[1].participant, "pilot-02");
+  EXPECT_EQ((*ledger)[1].index, 1);
+  std::map<std::string, std::string> answers;
+  const auto stored = r.questionnaire("pilot-02");
+  ASSERT_TRUE(stored);
+  for (const auto& q : *stored) {
+    if (const auto* t = std::get_if<std::string>(&q.value)) answers[q.item + "[" + q.scope + "]"] = *t;
+    else answers[q.item + "[" + q.scope + "]"] = std::to_string(std::get<double>(q.value));
+  }
+  EXPECT_EQ(answers["preference[]"], "no preference");
+  for (const char* pair : {"depth_test[pair=1]", "depth_test[pair=2]", "depth_test[pair=3]"})
+    EXPECT_EQ(answers.count(pair), 1u) << pair;
+  fs::remove_all(d);
+}
+
+// A participant ID longer than the store keeps (64 bytes) is refused on the start screen, whole,
+// with the reason; it used to be cut to 64 characters without a word.
+TEST_F(RunPilot, TooLongAParticipantIdIsRefusedNotCut) {
+  ASSERT_EQ(rc, 0);
+  const fs::path d = temp_dir("long_id");
+  const std::string id(70, 'p');
+  std::string script = slurp(kScript);
+  const std::string from = "type \"pilot-01\"";
+  script.replace(script.find(from), from.size(), "type \"" + id + "\"");
+  { std::ofstream(d / "long.script") << script; }
+  const int code =
+      wait_exit_within(start_run(d / "pilot.sqlite", d / "log.txt", {"--script", (d / "long.script").string()}), 120);
+  EXPECT_EQ(code, 1) << slurp(d / "log.txt");
+  const std::string log = slurp(d / "log.txt");
+  EXPECT_NE(log.find("is 70 bytes long; a participant ID has at most 64"), std::string::npos) << log;
+  if (auto r = store::StudyReader::open((d / "pilot.sqlite").string())) {
+    const auto ledger = r->ledger();
+    EXPECT_TRUE(!ledger || ledger->empty()) << "nobody was enrolled";
+  }
+  fs::remove_all(d);
+}
+
 // kill -9 at several moments of a scripted session; each rerun with the same script continues.
 // The file stays intact after every kill, and the end result equals the uninterrupted run's.
 TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
@@ -343,7 +404,28 @@ TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
   const fs::path d = temp_dir("killed");
   const fs::path killed = d / "pilot.sqlite", log = d / "log.txt";
   int kills = 0, final_rc = -1;
+  // A kill that lands after the session's last commit (on the end screen) leaves it finished: the
+  // next run's start screen refuses the participant, and the scripted run says so and stops with
+  // exit 1 (FinishedParticipantScriptRefusedAtOnce). That counts as the session's end wherever in
+  // the loop it happens (regression: it was handled after the last kill only, and a fresh clone's
+  // suite failed when an earlier kill landed there).
+  auto finished = [&] {
+    if (!fs::exists(killed)) return false;
+    auto r = store::StudyReader::open(killed.string());
+    if (!r) return false;
+    const auto sessions = r->sessions();
+    return sessions && sessions->size() == 1 && (*sessions)[0].status == store::SessionStatus::finished;
+  };
+  auto rerun_finished = [&] {
+    const int rc = wait_exit_within(start_run(killed, log, {"--script", kScript}), 300);
+    EXPECT_EQ(rc, 1) << slurp(log);
+    return rc == 1 ? 0 : rc;
+  };
   for (double delay : {4.0, 9.0, 14.0, 19.0, 24.0, 29.0}) {
+    if (finished()) {
+      final_rc = rerun_finished();
+      break;
+    }
     const pid_t pid = start_run(killed, log, {"--script", kScript});
     const auto until = Clock::now() + std::chrono::duration<double>(delay);
     int status = 0;
@@ -374,17 +456,8 @@ TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
       }
     }
   }
-  if (final_rc < 0) {
-    // A kill on the end screen leaves the session finished: the rerun's start screen refuses the
-    // participant, and the scripted run says so and stops (FinishedParticipantScriptRefusedAtOnce).
-    const auto before = reader(killed).sessions();
-    const bool finished = before && before->size() == 1 && (*before)[0].status == store::SessionStatus::finished;
-    final_rc = wait_exit_within(start_run(killed, log, {"--script", kScript}), 300);
-    if (finished) {
-      EXPECT_EQ(final_rc, 1) << slurp(log);
-      final_rc = 0;
-    }
-  }
+  if (final_rc < 0)
+    final_rc = finished() ? rerun_finished() : wait_exit_within(start_run(killed, log, {"--script", kScript}), 300);
   ASSERT_EQ(final_rc, 0) << slurp(log);
   EXPECT_GE(kills, 2) << "the session should have been interrupted more than once";
   EXPECT_EQ(outcome(killed), outcome(*db));

@@ -3,6 +3,8 @@
 // the player is exercised end to end by the window tests (test_run.cpp).
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "app/run/script.h"
 
 namespace dtlab::run {
@@ -99,6 +101,89 @@ TEST(Script, TheShippedPilotScriptParses) {
                              "questionnaire rating", "questionnaire preference", "questionnaire depth_self",
                              "depth_test", "end"})
     EXPECT_NE(s->for_screen(screen), nullptr) << screen;
+}
+
+
+// The player against a fake clock (no window: Input takes events only through its entry points).
+// Regression: a click_item whose item was drawn off the window "clicked" it and finished, and the
+// depth test then waited forever with the script played out (issue: a second participant's
+// session hung at the depth test). Every step now gives up after its documented timeout.
+struct Played {
+  Script script;
+  Input input{nullptr};
+  std::unique_ptr<ScriptPlayer> player;
+  Clock::time_point t0 = Clock::now();
+  explicit Played(const std::string& text) {
+    auto s = parse_script_text(text, "t.script");
+    EXPECT_TRUE(s) << s.error().to_string();
+    script = std::move(*s);
+    player = std::make_unique<ScriptPlayer>(script, input);
+  }
+  // Ticks screen `screen` every 0.1 s up to `seconds`; the first error, or success.
+  Status run(const std::string& screen, const ItemBoxes& items, double seconds, double from = 0) {
+    for (double t = from; t <= seconds; t += 0.1) {
+      const auto now = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
+      if (Status st = player->tick(screen, 1, items, now); !st) return st;
+    }
+    return {};
+  }
+};
+
+TEST(ScriptPlayer, ClickItemThatNeverAppearsFailsAfterItsTimeoutNamingTheLine) {
+  Played p("[depth_test]\nwait 0.2\nclick_item \"A\"\n");
+  EXPECT_TRUE(p.run("depth_test", {{"B", ItemBox{10, 10, 20, 20}}}, kItemTimeoutS - 1));
+  const Status st = p.run("depth_test", {{"B", ItemBox{10, 10, 20, 20}}}, kItemTimeoutS + 2, kItemTimeoutS - 1);
+  ASSERT_FALSE(st);
+  EXPECT_EQ(st.error().file, "t.script");
+  EXPECT_EQ(st.error().line, 3);
+  EXPECT_NE(st.error().message.find("no UI item \"A\" appeared on screen"), std::string::npos) << st.error().message;
+  EXPECT_NE(st.error().message.find("\"B\""), std::string::npos) << "it lists what was on screen";
+}
+
+TEST(ScriptPlayer, ClickItemWhoseBoxNeverHoldsStillFailsAfterItsTimeout) {
+  Played p("[s]\nclick_item \"A\"\n");
+  Status st;
+  for (double t = 0; t <= kItemTimeoutS + 2 && st; t += 0.1) {
+    const auto now = p.t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
+    st = p.player->tick("s", 1, {{"A", ItemBox{static_cast<float>(t * 10), 0, 20, 20}}}, now);
+  }
+  ASSERT_FALSE(st);
+  EXPECT_EQ(st.error().line, 2);
+  EXPECT_NE(st.error().message.find("did not hold still"), std::string::npos) << st.error().message;
+}
+
+TEST(ScriptPlayer, ClickItemPressesAndReleasesAtTheBoxCentre) {
+  Played p("[s]\nclick_item \"A\"\n");
+  const ItemBoxes items{{"A", ItemBox{100, 50, 40, 20}}};
+  bool pressed = false;
+  for (double t = 0; t < 1.0; t += 0.1) {
+    p.input.new_frame();
+    const auto now = p.t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
+    ASSERT_TRUE(p.player->tick("s", 1, items, now));
+    if (p.input.button_pressed(0)) {
+      pressed = true;
+      EXPECT_EQ(p.input.cursor(), glm::dvec2(120, 60));
+    }
+  }
+  EXPECT_TRUE(pressed);
+  EXPECT_TRUE(p.player->played_out());
+}
+
+TEST(ScriptPlayer, AScreenStillUpAfterItsSectionPlayedOutFailsNamingTheLastStep) {
+  Played p("[questionnaire rating]\nwait 0.2\nkey 7\n");
+  EXPECT_TRUE(p.run("questionnaire rating", {}, kIdleTimeoutS - 1)) << "within the timeout it waits";
+  const Status st = p.run("questionnaire rating", {}, kIdleTimeoutS + 2, kIdleTimeoutS - 1);
+  ASSERT_FALSE(st);
+  EXPECT_EQ(st.error().line, 3);
+  EXPECT_NE(st.error().message.find("played out"), std::string::npos) << st.error().message;
+}
+
+TEST(ScriptPlayer, AScreenWithoutASectionFailsAfterTheTimeout) {
+  Played p("[start]\nkey Enter\n");
+  EXPECT_TRUE(p.run("break", {}, kIdleTimeoutS - 1));
+  const Status st = p.run("break", {}, kIdleTimeoutS + 2, kIdleTimeoutS - 1);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.error().message.find("no section for the screen \"break\""), std::string::npos) << st.error().message;
 }
 
 }  // namespace

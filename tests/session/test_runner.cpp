@@ -82,7 +82,7 @@ class Scripted : public Responder {
     for (const Question& q : spec.questions) {
       switch (q.item->type) {
         case protocol::ItemType::rating: out.emplace_back(static_cast<double>(q.scope.size() % 5)); break;
-        case protocol::ItemType::choice: out.emplace_back(q.options.back()); break;
+        case protocol::ItemType::choice: out.emplace_back(q.options.back()); break;  // the neutral one, if any
         case protocol::ItemType::depth_test:
           depth_pairs.push_back(q.object_a);
           depth_pairs.push_back(q.object_b);
@@ -206,7 +206,7 @@ TEST(Runner, RecordsEveryTrialInPlanOrderWithScoresQuestionnaireAndFinish) {
   for (const char* scope : {"scenario=abstract;transparency=off", "scenario=abstract;transparency=on",
                             "scenario=walkthrough;transparency=off", "scenario=walkthrough;transparency=on"})
     EXPECT_TRUE(q.count(std::string("rating|") + scope)) << scope;
-  EXPECT_EQ(q.at("preference|"), "on");
+  EXPECT_EQ(q.at("preference|"), "no preference");  // the neutral option, shown and stored
   EXPECT_TRUE(q.count("depth_self|"));
   for (const char* pair : {"pair=1", "pair=2", "pair=3"}) {
     ASSERT_TRUE(q.count(std::string("depth_test|") + pair)) << pair;
@@ -262,6 +262,36 @@ TEST(Runner, DepthTestIsScoredAgainstDistanceFromTheEye) {
     EXPECT_EQ(key2->closer, key->closer);
     EXPECT_EQ(key2->view.camera.yaw, key->view.camera.yaw);
   }
+}
+
+// The A and B markers of every pair lie inside the window, for every participant of the pilot's
+// first two Latin-square cycles and the window sizes people use. Regression: the window drew them
+// through the scene's start camera instead of the test's own view, and for the second participant
+// both lay off screen (the depth test could not be answered by mouse, and a script hung there).
+TEST(Runner, DepthTestMarkersLieInsideTheWindowForEveryParticipant) {
+  const protocol::Protocol p = load("pilot.toml");
+  const auto& item = p.questionnaire.back();
+  ASSERT_EQ(item.type, protocol::ItemType::depth_test);
+  for (const Viewport vp : {Viewport{640, 480}, Viewport{800, 600}, Viewport{1280, 800}, Viewport{1920, 1080}})
+    for (int k = 0; k < 8; ++k) {
+      std::vector<Question> qs = expand_questionnaire(p);
+      auto key = depth_test_view(p, item, k, vp, qs);
+      ASSERT_TRUE(key.ok()) << key.error().to_string();
+      for (const Question& q : qs) {
+        if (q.item != &item) continue;
+        const auto a = depth_test_marker(key->view, q.object_a, vp), b = depth_test_marker(key->view, q.object_b, vp);
+        ASSERT_TRUE(a && b) << "index " << k << " pair " << q.pair;
+        for (const glm::vec2 m : {*a, *b}) {
+          EXPECT_GT(m.x, 0.0f) << "index " << k << " pair " << q.pair << " at " << vp.width << "x" << vp.height;
+          EXPECT_LT(m.x, static_cast<float>(vp.width)) << "index " << k << " pair " << q.pair;
+          EXPECT_GT(m.y, 0.0f) << "index " << k << " pair " << q.pair;
+          EXPECT_LT(m.y, static_cast<float>(vp.height)) << "index " << k << " pair " << q.pair;
+        }
+        // The two markers of a pair are apart.
+        EXPECT_NE(*a, *b);
+      }
+    }
+  EXPECT_FALSE(depth_test_marker(DepthTestView{}, 1, Viewport{}).has_value()) << "no such object";
 }
 
 // Interrupted at a trial, at the questionnaire, and after the questionnaire: each rerun resumes,
@@ -356,7 +386,9 @@ TEST(Runner, QuestionnaireExpansion) {
                      "rating|scenario=abstract;transparency=off", "rating|scenario=abstract;transparency=on",
                      "rating|scenario=walkthrough;transparency=off", "rating|scenario=walkthrough;transparency=on",
                      "preference|", "depth_self|", "depth_test|pair=1", "depth_test|pair=2", "depth_test|pair=3"}));
-  EXPECT_EQ(qs[4].options, (std::vector<std::string>{"off", "on"}));
+  // The factor's levels, then the neutral option (regression: it was dropped, and the preference
+  // question silently became a forced choice).
+  EXPECT_EQ(qs[4].options, (std::vector<std::string>{"off", "on", "no preference"}));
   EXPECT_EQ(qs[1].levels, (std::vector<std::pair<std::string, std::string>>{{"scenario", "abstract"}, {"transparency", "on"}}));
 }
 

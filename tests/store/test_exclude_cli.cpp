@@ -84,6 +84,11 @@ TEST_P(ExcludeCli, BadRequestsAreClearErrorsAndChangeNothing) {
       {"exclude " + q + " --participant P1", 2, "--reason"},
       {"exclude " + q + " --participant P1 --trial 0 --reason x", 2, "--trial"},
       {"exclude '" + dir.file("missing.sqlite") + "' --participant P1 --reason x", 1, "no such file"},
+      // Longer than a participant ID can be (64 bytes): refused as such, not "unknown participant"
+      // (regression: the start screen cut a long ID to 64 without a word, and exclude with the
+      // whole ID then failed).
+      {"exclude " + q + " --participant " + std::string(65, 'x') + " --reason x", 2, "at most 64"},
+      {"include " + q + " --participant " + std::string(65, 'x'), 2, "at most 64"},
   };
   for (const Case& c : cases) {
     const auto out = run_dtlab(c.args);

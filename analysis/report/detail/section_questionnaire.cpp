@@ -228,6 +228,7 @@ void section_questionnaire(Context& ctx) {
             std::string chosen = "other: " + *a.text;
             for (const auto& o : options)
               if (lower(o) == lower(*a.text)) chosen = o;
+            if (!item.neutral.empty() && lower(item.neutral) == lower(*a.text)) chosen = item.neutral;
             ++count[chosen];
             ++answered;
             if (options.size() == 2) {
@@ -241,7 +242,7 @@ void section_questionnaire(Context& ctx) {
         const double p = answered ? static_cast<double>(n) / answered : std::nan("");
         const double sd = answered > 1 ? std::sqrt(p * (1 - p) * answered / (answered - 1)) : std::nan("");
         jc[option] = {{"count", n}, {"proportion", num(p)}, {"sd", num(sd)}};
-        const std::string label = factor >= 0 && option.rfind("other: ", 0) != 0
+        const std::string label = factor >= 0 && option.rfind("other: ", 0) != 0 && option != item.neutral
                                       ? d.level_label(factor, static_cast<int>(index_of(options, option)))
                                       : option;
         text += (text.empty() ? "" : "; ") + label + " " + std::to_string(n) + "/" + std::to_string(answered) + " = " +

@@ -129,10 +129,14 @@ Result<std::vector<session::QuestionAnswer>> SimulatedParticipant::answer_questi
         break;
       }
       case protocol::ItemType::choice: {
-        // The option it rated best on average; without ratings, the one it was fastest with.
+        // The option it rated best on average; without ratings, the one it was fastest with. Two
+        // options that score exactly alike (equal mean ratings) leave no preference: the neutral
+        // option, where the item has one.
         std::string best;
         double best_score = -1e300;
+        bool tied = false;
         for (const std::string& o : q.options) {
+          if (o == item.neutral) continue;
           double score = -1e300;
           if (auto it = rating_of_level.find(o); it != rating_of_level.end() && !it->second.empty()) {
             score = 0;
@@ -145,9 +149,13 @@ Result<std::vector<session::QuestionAnswer>> SimulatedParticipant::answer_questi
           if (score > best_score) {
             best_score = score;
             best = o;
+            tied = false;
+          } else if (score == best_score && score != -1e300) {
+            tied = true;
           }
         }
-        if (best.empty() || best_score == -1e300) best = q.options[rng.below(q.options.size())];
+        if (tied && !item.neutral.empty()) best = item.neutral;
+        else if (best.empty() || best_score == -1e300) best = q.options[rng.below(q.options.size())];
         answers.emplace_back(best);
         break;
       }
