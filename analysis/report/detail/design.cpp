@@ -49,7 +49,7 @@ std::string Design::level_label(int f, int level) const {
   if (fac.role != protocol::FactorRole::rendering) return name;
   const auto* r = rendering_named(*protocol, name);
   if (article_names && f == primary) return (name == "off" ? "Standard" : "DynTrans") + std::string(" (") + name + ")";
-  return r ? name + " (" + r->method + ")" : name;
+  return r && r->method != name ? name + " (" + r->method + ")" : name;  // "standard", not "standard (standard)"
 }
 
 const TaskInfo* Design::task(const std::string& id) const {

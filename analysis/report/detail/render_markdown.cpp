@@ -2,6 +2,7 @@
 // image links to figures/<id>.svg, call-outs as block quotes. Text is escaped
 // so that level names with '_' or '*' never turn into emphasis; `code` spans
 // are kept as they are.
+#include <cctype>
 #include <sstream>
 
 #include "analysis/report/detail/document.h"
@@ -9,13 +10,34 @@
 namespace dtlab::report::detail {
 namespace {
 
-// Escapes Markdown emphasis and table characters outside `code` spans.
+// Escapes Markdown emphasis and table characters outside `code` spans, and what would start raw
+// HTML or an entity (GitHub renders both): '<' before a letter, '/', '!' or '?' (a tag, comment or
+// autolink) and '&' before a letter or '#'. A participant ID or an exclusion reason reads as the
+// text typed, never as markup; "p < .001" stays as it is.
 std::string md(const std::string& s, bool in_table = false) {
   std::string out;
   bool code = false;
-  for (char c : s) {
+  // A backtick opens a code span only where another one closes it; a lone one (typed into an ID)
+  // is escaped, so it cannot switch the escaping off for the rest of the text.
+  const std::size_t last_tick = s.rfind('`');
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    const char next = i + 1 < s.size() ? s[i + 1] : '\0';
+    const bool letter = std::isalpha(static_cast<unsigned char>(next)) != 0;
+    if (c == '`' && !code && i == last_tick) {
+      out += "\\`";
+      continue;
+    }
     if (c == '`') code = !code;
     if (!code && (c == '*' || c == '_' || c == '\\' || c == '[' || c == ']')) out += '\\';
+    if (!code && c == '<' && (letter || next == '/' || next == '!' || next == '?')) {
+      out += "&lt;";
+      continue;
+    }
+    if (!code && c == '&' && (letter || next == '#')) {
+      out += "&amp;";
+      continue;
+    }
     if (c == '|' && in_table) out += '\\';
     if (c == '\n' && in_table) {
       out += ' ';
