@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -28,6 +29,39 @@ struct SceneOptions {
   std::uint64_t seed = 0;  // parsed from seed_text by the --seed validator
   bool json = false;
 };
+
+double degrees(float radians) { return static_cast<double>(radians) * 180.0 / M_PI; }
+
+// The start camera: what a lens's `distance` is measured along (an orbit's distance puts the lens on
+// the orbit's centre), in the units `dtlab render --camera` takes (degrees).
+nlohmann::ordered_json camera_json(const scene::CameraStart& c) {
+  auto vec = [](glm::vec3 v) { return nlohmann::ordered_json::array({v.x, v.y, v.z}); };
+  nlohmann::ordered_json j{{"mode", c.mode == scene::CameraStart::Mode::orbit ? "orbit" : "walk"}};
+  if (c.mode == scene::CameraStart::Mode::orbit) {
+    j["target"] = vec(c.target);
+    j["distance"] = c.distance;
+  } else {
+    j["position"] = vec(c.position);
+  }
+  j["yaw_deg"] = degrees(c.yaw);
+  j["pitch_deg"] = degrees(c.pitch);
+  j["fov_y_deg"] = degrees(c.fov_y);
+  j["near"] = c.near_plane;
+  j["far"] = c.far_plane;
+  return j;
+}
+
+std::string camera_text(const scene::CameraStart& c) {
+  char buf[256];
+  if (c.mode == scene::CameraStart::Mode::orbit)
+    std::snprintf(buf, sizeof buf, "orbit around (%.3g, %.3g, %.3g) at distance %.4g, yaw %.1f deg, pitch %.1f deg, "
+                  "field of view %.1f deg", c.target.x, c.target.y, c.target.z, c.distance, degrees(c.yaw),
+                  degrees(c.pitch), degrees(c.fov_y));
+  else
+    std::snprintf(buf, sizeof buf, "walk from (%.3g, %.3g, %.3g), yaw %.1f deg, field of view %.1f deg",
+                  c.position.x, c.position.y, c.position.z, degrees(c.yaw), degrees(c.fov_y));
+  return buf;
+}
 
 nlohmann::ordered_json answer_json(const scene::Answer& a) {
   switch (a.task) {
@@ -80,7 +114,8 @@ void run(const SceneOptions& o) {
     for (const auto& [k, n] : by_kind) objects[k] = n;
     const nlohmann::ordered_json j{{"scene", o.kind},     {"task", o.task},   {"seed", o.seed},
                                    {"hash", s->hash},     {"objects", objects}, {"targets", targets},
-                                   {"triangles", triangles}, {"answer", answer_json(s->answer)}};
+                                   {"triangles", triangles}, {"answer", answer_json(s->answer)},
+                                   {"camera", camera_json(s->camera)}};
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -91,7 +126,8 @@ void run(const SceneOptions& o) {
             << "objects    " << s->objects.size() << ": " << kinds << "\n"
             << "targets    " << targets << " (uncovered by dynamic transparency)\n"
             << "triangles  " << triangles << "\n"
-            << "answer     " << answer_text(s->answer) << "\n";
+            << "answer     " << answer_text(s->answer) << "\n"
+            << "camera     " << camera_text(s->camera) << "\n";
   if (!o.obj.empty())
     std::cout << "obj        " << o.obj << " + " << std::filesystem::path(o.obj).replace_extension(".mtl").string()
               << "\n";
@@ -121,7 +157,8 @@ void add_scene_command(CLI::App& root) {
   cmd->add_option("--seed", o->seed_text, "Trial seed (unsigned 64-bit)")->required()->check(uint64_only);
   cmd->add_flag("--json", o->json,
                 "Print {\"scene\", \"task\", \"seed\", \"hash\", \"objects\": {kind: count}, \"targets\", "
-                "\"triangles\", \"answer\"} as JSON");
+                "\"triangles\", \"answer\", \"camera\": {mode, target and distance (orbit) or position (walk), "
+                "yaw_deg, pitch_deg, fov_y_deg, near, far}} as JSON");
   cmd->add_option("--obj", o->obj, "Also write the scene as Wavefront OBJ to FILE and its materials to FILE.mtl");
   cmd->footer(
       "Parameters are the reference study's (study/scene/generate.h); the hash is SHA-256 of the\n"

@@ -3,6 +3,7 @@
 // unwritable OBJ path (3).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -39,6 +40,29 @@ TEST(SceneCommand, JsonHasTheDocumentedNames) {
   EXPECT_EQ(total, 200);
   EXPECT_EQ(j["answer"]["count"], j["targets"]);
   EXPECT_GE(j["triangles"].get<int>(), 10000);
+}
+
+// The start camera, which a protocol's lens `distance` is measured against (docs/protocol.md). The
+// orbit distance is docs/scene.md's D = margin R / sin(fov_y / 2) with margin 1.05, fov_y 45 deg
+// and R = 100 sqrt(3) / 2 the radius of the 100-unit cube's circumscribed sphere: 237.617...
+TEST(SceneCommand, PrintsTheStartCamera) {
+  const auto a = nlohmann::json::parse(dtlab("scene --scene abstract --task T1 --seed 42 --json").out);
+  ASSERT_TRUE(a.contains("camera"));
+  EXPECT_EQ(a["camera"]["mode"], "orbit");
+  const double d = 1.05 * (100 * std::sqrt(3.0) / 2) / std::sin(22.5 * M_PI / 180);
+  EXPECT_NEAR(a["camera"]["distance"].get<double>(), d, 1e-3 * d);
+  EXPECT_NEAR(a["camera"]["fov_y_deg"].get<double>(), 45.0, 1e-4);
+  EXPECT_EQ(a["camera"]["target"].size(), 3u);
+  const auto w = nlohmann::json::parse(dtlab("scene --scene walkthrough --task T3 --seed 1 --json").out);
+  EXPECT_EQ(w["camera"]["mode"], "walk");
+  EXPECT_EQ(w["camera"]["position"].size(), 3u);
+  EXPECT_FALSE(w["camera"].contains("distance"));
+  EXPECT_NEAR(w["camera"]["fov_y_deg"].get<double>(), 60.0, 1e-4);
+  const Outcome text = dtlab("scene --scene abstract --task T1 --seed 42");
+  char want[64];
+  std::snprintf(want, sizeof want, "at distance %.4g", d);
+  EXPECT_NE(text.out.find(std::string("camera     orbit around")), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find(want), std::string::npos) << want << " in:\n" << text.out;
 }
 
 TEST(SceneCommand, AnswersPerTask) {
