@@ -226,6 +226,7 @@ Result<CopySummary> copy_study(const std::string& src, const std::string& dst, c
   auto src_state = inspect(from);
   if (!src_state) return src_state.error();
   if (auto s = check_dtlab(from, *src_state, false); !s) return s.error();
+  if (auto s = check_tables(from, std::max(src_state->user_version, src_state->migrations)); !s) return s.error();
   const int src_version = std::max(src_state->user_version, src_state->migrations);
 
   const bool new_file = !is_server_uri(dst) && !std::filesystem::exists(dst);

@@ -150,6 +150,7 @@ Result<StudyReader> StudyReader::open(const std::string& path, ReadOptions optio
   auto state = detail::inspect(db);
   if (!state) return state.error();
   if (auto s = detail::check_dtlab(db, *state, false); !s) return s.error();
+  if (auto s = detail::check_tables(db, std::max(state->user_version, state->migrations)); !s) return s.error();
   auto impl = std::make_unique<Impl>();
   impl->own = std::move(db);
   impl->db = &impl->own;

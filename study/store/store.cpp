@@ -254,6 +254,7 @@ Result<std::unique_ptr<Store::Impl>> connect(const std::string& where, const Ope
   auto state = detail::inspect(db);
   if (!state) return state.error();
   if (auto s = detail::check_dtlab(db, *state, create); !s) return s.error();
+  if (auto s = detail::check_tables(db, std::max(state->user_version, state->migrations)); !s) return s.error();
 
   // 2. Connection settings (docs/store.md, "Connection settings").
   if (auto s = db.conn().configure_for_writing(options.busy_timeout_ms); !s) return s.error();

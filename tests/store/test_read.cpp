@@ -346,5 +346,83 @@ TEST(ReadFile, WorksOnReadOnlyMediaAndLeavesNothingBehind) {
   EXPECT_FALSE(fs::exists(copy + "-shm"));
 }
 
+
+// A write refused for permissions is refused before SQLite touches anything (regression: the
+// connection created -wal and -shm beside the read-only file, then failed at its first write).
+TEST(StoreFile, ARefusedWriteOnAReadOnlyFileLeavesNothingBehind) {
+  TempDir dir;
+  const fs::path open_dir = fs::path(dir.file("open"));
+  fs::create_directories(open_dir);
+  ::chmod(dir.file("").c_str(), 0755);
+  ::chmod(open_dir.c_str(), 0777);
+  const std::string path = (open_dir / "study.sqlite").string();
+  write_study(path);
+  ::chmod(path.c_str(), 0444);
+  const int rc = as_nobody([&] {
+    auto s = Store::open_existing(path);
+    if (s) return 1;
+    if (s.error().kind != ErrorKind::environment) return 2;
+    return s.error().message.find("read-only") != std::string::npos ? 0 : 3;
+  });
+  if (rc == 90) GTEST_SKIP() << "cannot drop privileges to nobody here";
+  EXPECT_EQ(rc, 0);
+  EXPECT_FALSE(fs::exists(path + "-wal"));
+  EXPECT_FALSE(fs::exists(path + "-shm"));
+}
+
+// Damage of every kind is invalid input (exit 1 in every command), found when the file is opened.
+TEST(StoreFile, TruncatedFilesAndDirectoriesAreInvalidInputForReaderAndWriter) {
+  TempDir dir;
+  const std::string good = dir.file("good.sqlite");
+  write_study(good);
+  auto read_bytes = [](const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string bytes = read_bytes(good);
+  const std::string truncated = dir.file("truncated.sqlite");
+  { std::ofstream(truncated, std::ios::binary) << bytes.substr(0, bytes.size() / 3); }
+  const std::string directory = dir.file("folder.sqlite");
+  fs::create_directories(directory);
+  for (const std::string& path : {truncated, directory}) {
+    const std::string before = fs::is_directory(path) ? "" : read_bytes(path);
+    auto r = StudyReader::open(path);
+    ASSERT_FALSE(r) << path;
+    EXPECT_EQ(r.error().kind, ErrorKind::invalid_input) << r.error().to_string();
+    auto w = Store::open_existing(path);
+    ASSERT_FALSE(w) << path;
+    EXPECT_EQ(w.error().kind, ErrorKind::invalid_input) << w.error().to_string();
+    auto c = Store::open(path, study_info());
+    ASSERT_FALSE(c) << path;
+    EXPECT_EQ(c.error().kind, ErrorKind::invalid_input) << c.error().to_string();
+    if (!fs::is_directory(path)) {
+      EXPECT_EQ(read_bytes(path), before);
+    }
+  }
+}
+
+// A table missing from a database is found by every opener (regression: commands ran until the
+// first query needed it; `dtlab simulate` left a session running when that came after it began).
+TEST_P(Read, AMissingTableIsFoundWhenTheDatabaseIsOpened) {
+  const std::string path = study();
+  write_study(path);
+  { RawDb db(path); ASSERT_TRUE(db.exec("DROP TABLE notes")) << db.errmsg(); }
+  auto r = StudyReader::open(path);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().kind, ErrorKind::invalid_input);
+  EXPECT_NE(r.error().message.find("lacks the table(s) notes"), std::string::npos) << r.error().to_string();
+  const auto sessions = [&] {
+    RawDb db(path);
+    return std::to_string(db.count("SELECT count(*) FROM sessions")) + " sessions, " +
+           std::to_string(db.count("SELECT count(*) FROM sessions WHERE status = 'running'")) + " running, " +
+           std::to_string(db.count("SELECT count(*) FROM studies")) + " studies";
+  };
+  const std::string before = sessions();
+  auto w = Store::open(path, study_info());
+  ASSERT_FALSE(w);
+  EXPECT_EQ(w.error().kind, ErrorKind::invalid_input);
+  EXPECT_EQ(sessions(), before) << "nothing was written";
+}
+
 }  // namespace
 }  // namespace dtlab::store

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cctype>
+#include <regex>
 #include <string_view>
 
 #include "study/store/detail/schema_sql.h"
@@ -336,6 +337,29 @@ Result<int> applied_schema_version(Db& db) {
   auto v = db.query_int("SELECT max(version) FROM schema_migrations", "reading the schema version");
   if (!v) return v.error();
   return static_cast<int>(v->value_or(0));
+}
+
+Status check_tables(Db& db, int version) {
+  if (version < 1) return {};
+  std::vector<std::string> tables{"schema_migrations"};
+  static const std::regex create(R"(CREATE TABLE ([A-Za-z_][A-Za-z0-9_]*))");
+  for (const Migration& m : migrations(db.backend())) {
+    if (m.version > version) continue;
+    const std::string sql = m.sql();
+    for (auto it = std::sregex_iterator(sql.begin(), sql.end(), create); it != std::sregex_iterator(); ++it)
+      tables.push_back((*it)[1].str());
+  }
+  std::string missing;
+  for (const std::string& t : tables) {
+    auto has = db.conn().has_table(t);
+    if (!has) return has.error();
+    if (!*has) missing += (missing.empty() ? "" : ", ") + t;
+  }
+  if (missing.empty()) return {};
+  return Error{db.path(), 0, 0, "schema",
+               "a damaged dtlab study database: schema version " + std::to_string(version) + " lacks the table(s) " +
+                   missing + "; nothing was read or written (restore it from a copy)",
+               ErrorKind::invalid_input};
 }
 
 Status migrate(Db& db, int from, const std::string& software_version, const std::map<int, AppliedMigration>& history) {

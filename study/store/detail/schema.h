@@ -35,6 +35,12 @@ inline constexpr const char* kDisplayOrder =
 // Highest migration applied (0 for a database without the migrations table).
 Result<int> applied_schema_version(Db& db);
 
+// Every table the migrations up to `version` create (read from their SQL text, so the list cannot
+// drift from the schema), and schema_migrations: a table missing from a database of that version is
+// damage. Refused when the database is opened (kind invalid_input), before any command reads or
+// writes, instead of by the first query that needs the table.
+Status check_tables(Db& db, int version);
+
 // A schema_migrations row as another database recorded it (dtlab copy keeps the history).
 struct AppliedMigration {
   std::string description, applied_at, software_version;

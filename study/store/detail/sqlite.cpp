@@ -20,13 +20,15 @@ namespace dtlab::store::detail {
 namespace {
 
 // The ErrorKind of an SQLite result code: busy (BUSY, LOCKED), conflict (a
-// constraint or trigger refused the write), invalid_input (NOTADB), else environment.
+// constraint or trigger refused the write), invalid_input (NOTADB, CORRUPT: the
+// file is not a sound database, whatever the command), else environment.
 ErrorKind kind_of(int code) {
   switch (code & 0xff) {
     case SQLITE_BUSY:
     case SQLITE_LOCKED: return ErrorKind::busy;
     case SQLITE_CONSTRAINT: return ErrorKind::conflict;
-    case SQLITE_NOTADB: return ErrorKind::invalid_input;
+    case SQLITE_NOTADB:
+    case SQLITE_CORRUPT: return ErrorKind::invalid_input;
     default: return ErrorKind::environment;
   }
 }
@@ -42,6 +44,8 @@ Error sqlite_error(sqlite3* db, const std::string& path, std::string_view what) 
     msg += " (SQLite code " + std::to_string(code) + ")";
     if ((code & 0xff) == SQLITE_BUSY || (code & 0xff) == SQLITE_LOCKED)
       msg += "; another process held the database past the busy timeout: try again";
+    if ((code & 0xff) == SQLITE_CORRUPT)
+      msg += "; the file is damaged (truncated or overwritten): restore the study database from a copy";
   } else {
     msg += "out of memory";
   }
@@ -315,7 +319,6 @@ Result<std::unique_ptr<Connection>> open_for_reading(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path p(path);
-  if (fs::is_directory(p, ec)) return Error{path, 0, 0, "", "is a directory; expected a dtlab study database file"};
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   const bool writable = ::access(path.c_str(), W_OK) == 0 && ::access(dir.c_str(), W_OK) == 0;
   if (writable) {
@@ -343,8 +346,19 @@ Result<std::unique_ptr<Connection>> open_for_reading(const std::string& path) {
 }  // namespace
 
 Result<std::unique_ptr<Connection>> open_sqlite(const std::string& path, Access access, int busy_timeout_ms) {
-  if (access != Access::create && !std::filesystem::exists(path))
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    return Error{path, 0, 0, "", "is a directory; expected a dtlab study database file", ErrorKind::invalid_input};
+  const bool exists = std::filesystem::exists(path, ec);
+  if (access != Access::create && !exists)
     return Error{path, 0, 0, "", "no such file; expected an existing dtlab study database", ErrorKind::not_found};
+  // A write SQLite would refuse only at its first statement, after creating -wal and -shm beside
+  // the file: refused here, before anything is touched.
+  if (access != Access::read && exists && ::access(path.c_str(), W_OK) != 0)
+    return Error{path, 0, 0, "",
+                 "the database file is read-only for this user; nothing was written (this command records to the "
+                 "study: give it a writable copy, or change the file's permissions)",
+                 ErrorKind::environment};
   auto db = access == Access::read
                 ? open_for_reading(path)
                 : open_file(path, SQLITE_OPEN_READWRITE | (access == Access::create ? SQLITE_OPEN_CREATE : 0));
