@@ -1,7 +1,9 @@
 // design_sha256 (protocol.h): the canonical hash of everything in a protocol
 // that changes what a session runs -- factors, conditions, ordering, seeds,
-// time limits, training, every scene parameter, every rendering parameter,
-// the questionnaire's structure -- and of nothing else: comments, white
+// time limits, training, the session's sequence (consent asked, pages,
+// breaks, announcements), every scene parameter, every rendering parameter,
+// the questionnaire's structure -- and of nothing else (labels, instructions,
+// consent and page texts are wording): comments, white
 // space, key order, the title, descriptions and prompt texts leave it
 // unchanged. The store uses it to tell a reworded protocol (sessions go on,
 // analyses pool) from a changed design. A new Protocol field that changes
@@ -88,6 +90,22 @@ std::string design_sha256(const Protocol& p) {
   c.ints("order.nested_fixed", o.nested_fixed);
   c.num("training.time_limit_s", p.training.time_limit_s);
   c.integer("training.practice_trials", p.training.practice_trials);
+  // The session's sequence: each key only when it is not the default, so that every protocol
+  // written before these keys keeps its hash. Its wording (consent and page texts, labels,
+  // instructions) never enters.
+  if (!p.training.practice_label) c.str("training.practice_label", "false");
+  if (p.training.feedback) c.str("training.feedback", "true");
+  if (p.flow.trial_counter) c.str("flow.trial_counter", "true");
+  if (p.flow.announce_blocks) c.str("flow.announce_blocks", "true");
+  if (p.flow.consent) c.str("flow.consent", "asked");
+  for (const Page& page : p.flow.pages)
+    c.str("flow.page", page.id + (page.when == Page::When::start ? "@start" : "@end"));
+  const Breaks& b = p.flow.breaks;
+  if (!b.after_blocks) c.str("flow.breaks.after_blocks", "false");
+  if (b.every_trials != 0) c.integer("flow.breaks.every_trials", b.every_trials);
+  if (b.min_s != 0) c.num("flow.breaks.min_s", b.min_s);
+  if (b.max_s != 0) c.num("flow.breaks.max_s", b.max_s);
+  if (!b.skippable) c.str("flow.breaks.skippable", "false");
   for (const Scenario& s : p.scenarios) {
     c.str("scenario", s.name);
     scene(c, "scenario.scene", s.scene);

@@ -31,6 +31,9 @@ inline constexpr Ints kMasterSeed{0, std::numeric_limits<std::int64_t>::max()};
 inline constexpr Numbers kSessionTimeLimit{1, 86400};
 inline constexpr Numbers kTrainingTimeLimit{0, 7200};
 inline constexpr Ints kPracticeTrials{0, 100};
+// [breaks].
+inline constexpr Ints kBreakEvery{0, 1000};       // every_trials
+inline constexpr Numbers kBreakSeconds{0, 7200};  // min_s, max_s
 // [factors.*], [order].
 inline constexpr Ints kFactors{1, 8};
 inline constexpr Ints kLevels{2, 64};
@@ -77,7 +80,7 @@ inline constexpr Numbers kReferenceSd{0, 1e9};
 // One documented range: the section of docs/protocol.md, the key as its table writes it, and
 // the closed interval (integers up to 2^53 are exact in a double; master_seed's 2^63-1 is rounded).
 struct Documented {
-  std::string_view section;  // "top level", "session", "training", "factors", "order", "scenarios",
+  std::string_view section;  // "top level", "session", "training", "breaks", "factors", "order", "scenarios",
                              // "tasks", "rendering", "questionnaire",
                              // "demographics", "reference_results"
   std::string_view key;      // as the table's first column writes it, e.g. "objects"

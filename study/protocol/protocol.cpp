@@ -346,6 +346,11 @@ const T* by_name(const std::vector<T>& items, std::string_view name) {
 }  // namespace
 
 const Factor* find_factor(const Protocol& p, std::string_view name) { return by_name(p.factors, name); }
+
+const std::string& level_label(const Factor& f, int level) {
+  const auto i = static_cast<std::size_t>(level);
+  return i < f.labels.size() && !f.labels[i].empty() ? f.labels[i] : f.levels.at(i);
+}
 const Scenario* find_scenario(const Protocol& p, std::string_view name) { return by_name(p.scenarios, name); }
 const Rendering* find_rendering(const Protocol& p, std::string_view name) { return by_name(p.renderings, name); }
 

@@ -35,7 +35,15 @@ struct Factor {
   std::string name;
   FactorRole role = FactorRole::none;
   std::vector<std::string> levels;  // unique, at least 2
+  // Wording (never in the design hash), one entry per level: what participants read for the
+  // level ("" = the level's name; level_label() says which), and instructions shown before the
+  // level's first block ("" = none).
+  std::vector<std::string> labels;
+  std::vector<std::string> instructions;
 };
+
+// What participants read for level `level` of `f`: its label, or its name when it has none.
+const std::string& level_label(const Factor& f, int level);
 
 // One cell of the full factorial. Conditions are numbered with the first
 // declared factor varying slowest: 2 x 2 (transparency, scenario) gives
@@ -143,6 +151,39 @@ struct Rendering {
 struct Training {
   double time_limit_s = 300.0;  // free exploration before every task set (block x task)
   int practice_trials = 0;      // unscored trials before every task set
+  bool practice_label = true;   // practice trials show a "Practice" label
+  bool feedback = false;        // after each practice trial: the correct answer
+};
+
+// The session's sequence around the trials (docs/protocol.md, "The session's sequence").
+// Today's order is the default: a protocol that declares none of this runs as before.
+struct Consent {
+  std::string title;  // wording
+  std::string text;   // the text agreed to, as written in the protocol; its SHA-256 is stored
+};
+
+struct Page {  // an information page (briefing, debriefing)
+  enum class When { start, end } when = When::start;  // start: after consent; end: after the last questionnaire
+  std::string id;
+  std::string title;  // wording
+  std::string text;   // wording
+};
+
+struct Breaks {
+  bool after_blocks = true;  // between blocks (today's behaviour)
+  int every_trials = 0;      // also after every N recorded trials inside a block (0: never)
+  double min_s = 0;          // the participant can go on after min_s (unless skippable)
+  double max_s = 0;          // the break ends by itself after max_s (0: when the participant goes on)
+  bool skippable = true;     // Continue from the start, ignoring min_s
+};
+
+struct Flow {
+  bool trial_counter = false;    // trial screens show "Trial k of n"
+  bool announce_blocks = false;  // a page before each block: "Next: <the block's levels>"
+  std::string language;          // the participants' language tag ("de", "el"); informational
+  std::optional<Consent> consent;  // none: no consent page
+  std::vector<Page> pages;         // in file order
+  Breaks breaks;
 };
 
 enum class ItemType {
@@ -214,6 +255,7 @@ struct Protocol {
   std::vector<Condition> conditions;  // the full factorial, first factor slowest
   Ordering order;
   Training training;
+  Flow flow;                          // consent, pages, breaks, announcements, counter
   std::vector<Scenario> scenarios;    // in file order
   std::vector<Rendering> renderings;  // in file order
   std::vector<QuestionnaireItem> questionnaire;  // in file order

@@ -266,6 +266,20 @@ const Case kCases[] = {
      {{29, "[reference_results]\n[[reference_results.results]]\nmeasure = \"time\"\n"
            "mean = { off = 1, on = 2 }\nsd = { off = 1, on = 1 }"}},
      29, "reference_results.source", "missing required key"},
+    // the session's sequence: labels and instructions per level, consent, pages, breaks
+    {"labels not one per level", {{7, "levels = [\"off\", \"on\"]\nlabels = [\"Normal\"]"}}, 8,
+     "factors.transparency.labels", "expected an array of 2 strings, one per level"},
+    {"two levels read alike", {{7, "levels = [\"off\", \"on\"]\nlabels = [\"on\", \"\"]"}}, 8,
+     "factors.transparency.labels[1]", "participants could not tell the two apart"},
+    {"instructions not strings", {{7, "levels = [\"off\", \"on\"]\ninstructions = [\"\", 3]"}}, 8,
+     "factors.transparency.instructions[1]", "expected a string"},
+    {"consent without text", {{29, "[consent]\ntitle = \"Consent\""}}, 29, "consent.text", "missing required key"},
+    {"page at an unknown place", {{29, "[pages.debrief]\nwhen = \"middle\"\ntext = \"Thanks\""}}, 30,
+     "pages.debrief.when", "\"start\", \"end\""},
+    {"page without text", {{29, "[pages.debrief]\nwhen = \"end\""}}, 29, "pages.debrief.text", "missing required key"},
+    {"break shorter than its minimum", {{29, "[breaks]\nmin_s = 60\nmax_s = 30"}}, 31, "breaks.max_s",
+     "give max_s >= min_s"},
+    {"unknown key in breaks", {{29, "[breaks]\nevery = 4"}}, 30, "breaks.every", "unknown key"},
     // TOML syntax errors carry line and column, and the field they are in
     {"unquoted string", {{12, "scheme = latin-square"}}, 12, "order.scheme", "TOML syntax error"},
     {"duplicate key", {{4, "master_seed = 7\nmaster_seed = 8"}}, 5, "master_seed", "TOML syntax error"},

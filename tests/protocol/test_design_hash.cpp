@@ -66,7 +66,13 @@ INSTANTIATE_TEST_SUITE_P(
                       Edit{"published_results", "[demographics.age]",
                            "[reference_results]\nsource = \"A & B (2020)\"\n[[reference_results.results]]\n"
                            "measure = \"time\"\nmean = { off = 60, on = 30 }\nsd = { off = 9, on = 8 }\n"
-                           "F = \"12.1\"\np = \"< .01\"\n[demographics.age]"}),
+                           "F = \"12.1\"\np = \"< .01\"\n[demographics.age]"},
+                      // The session's wording: labels, instructions, consent and page texts.
+                      Edit{"labels", "levels = [\"off\", \"on\"]",
+                           "levels = [\"off\", \"on\"]\nlabels = [\"Normal\", \"X-ray view\"]"},
+                      Edit{"level_instructions", "levels = [\"off\", \"on\"]",
+                           "levels = [\"off\", \"on\"]\ninstructions = [\"\", \"Walls turn see-through.\"]"},
+                      Edit{"no_breaks_table", "[training]", "[breaks]\nafter_blocks = true\n\n[training]"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 INSTANTIATE_TEST_SUITE_P(
@@ -99,7 +105,15 @@ INSTANTIATE_TEST_SUITE_P(
                       Edit{"scale", "scale = [0, 4]", "scale = [1, 5]"},
                       Edit{"per", "per = [\"scenario\", \"transparency\"]", "per = [\"scenario\"]"},
                       Edit{"id", "id = \"pilot\"", "id = \"pilot2\""},
-                      Edit{"occlusion_culling", "method = \"dt-seed\"", "method = \"dt-seed\"\nocclusion_culling = true"}),
+                      Edit{"occlusion_culling", "method = \"dt-seed\"", "method = \"dt-seed\"\nocclusion_culling = true"},
+                      // The session's sequence around the trials.
+                      Edit{"consent", "[training]", "[consent]\ntext = \"I agree.\"\n\n[training]"},
+                      Edit{"page", "[training]", "[pages.debrief]\nwhen = \"end\"\ntext = \"Thanks.\"\n\n[training]"},
+                      Edit{"breaks", "[training]", "[breaks]\nevery_trials = 4\n\n[training]"},
+                      Edit{"break_length", "[training]", "[breaks]\nmin_s = 30\n\n[training]"},
+                      Edit{"feedback", "practice_trials = 0", "practice_trials = 0\nfeedback = true"},
+                      Edit{"counter", "time_limit_s = 1200", "time_limit_s = 1200\ntrial_counter = true"},
+                      Edit{"announce", "time_limit_s = 1200", "time_limit_s = 1200\nannounce_blocks = true"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // A protocol that does not set occlusion_culling hashes as before the key existed; setting it false is

@@ -44,7 +44,7 @@ std::vector<std::string> cells(const std::string& row) {
 std::string section_of(const std::string& heading) {
   if (heading.find("Top level") != std::string::npos) return "top level";
   if (heading.find(".tasks.") != std::string::npos) return "tasks";
-  for (const char* s : {"session", "training", "factors", "order", "scenarios", "rendering", "questionnaire",
+  for (const char* s : {"session", "training", "breaks", "factors", "order", "scenarios", "rendering", "questionnaire",
                         "demographics", "reference_results"})
     if (heading.find(std::string("`[") + s) != std::string::npos) return s;
   return "";
@@ -143,6 +143,9 @@ std::vector<Writer> writers() {
       {"session", "time_limit_s", false, "session.time_limit_s", "time_limit_s = 3600", "time_limit_s = {}"},
       {"training", "time_limit_s", false, "training.time_limit_s", "time_limit_s = 300", "time_limit_s = {}"},
       {"training", "practice_trials", true, "training.practice_trials", "practice_trials = 0", "practice_trials = {}"},
+      {"breaks", "every_trials", true, "breaks.every_trials", "[training]", "[breaks]\nevery_trials = {}\n[training]"},
+      {"breaks", "min_s", false, "breaks.min_s", "[training]", "[breaks]\nmin_s = {}\n[training]"},
+      {"breaks", "max_s", false, "breaks.max_s", "[training]", "[breaks]\nmax_s = {}\n[training]"},
       {"order", "rows", true, "order.rows", "scheme = \"latin-square\"", "scheme = \"random\"\nrows = {}"},
       {"order", "nested_rows", true, "order.nested_rows", "unit = \"conditions\"",
        "unit = \"blocks\"\nblock_factor = \"scenario\"\nnested_scheme = \"random\"\nnested_rows = {}"},

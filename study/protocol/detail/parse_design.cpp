@@ -270,18 +270,7 @@ void parse_document(const toml::table& root, ParseState& s) {
   if (auto v = r.integer("master_seed", true, limits::kMasterSeed))
     p.master_seed = static_cast<std::uint64_t>(*v);
 
-  if (const toml::table* t = r.table("session", false)) {
-    TableReader sr(*t, "session", s.d, r.pos("session"));
-    if (auto v = sr.number("time_limit_s", false, limits::kSessionTimeLimit)) p.session_time_limit_s = *v;
-    sr.finish();
-  }
-  if (const toml::table* t = r.table("training", false)) {
-    TableReader tr(*t, "training", s.d, r.pos("training"));
-    if (auto v = tr.number("time_limit_s", false, limits::kTrainingTimeLimit)) p.training.time_limit_s = *v;
-    if (auto v = tr.integer("practice_trials", false, limits::kPracticeTrials)) p.training.practice_trials = static_cast<int>(*v);
-    tr.finish();
-  }
-
+  parse_flow(r, s);
   parse_factors(r, s);
   parse_scenarios(r, s);
   parse_renderings(r, s);
@@ -340,6 +329,22 @@ void parse_factors(TableReader& root, ParseState& s) {
                     "level name \"" + (*levels)[i] + "\" may hold only letters, digits, '_' and '-'");
       f.levels = *levels;
     }
+    f.labels.assign(f.levels.size(), "");
+    f.instructions.assign(f.levels.size(), "");
+    if (f.levels.empty()) {  // the levels' own error says it; the wording per level cannot be checked
+      fr.has("labels");
+      fr.has("instructions");
+    } else if (auto labels = fr.texts("labels", f.levels.size(), "level")) {
+      f.labels = *labels;
+      for (std::size_t i = 0; i < f.labels.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+          if (level_label(f, static_cast<int>(i)) == level_label(f, static_cast<int>(j)))
+            s.d.error(fr.pos("labels"), indexed(fr.field("labels"), i),
+                      "\"" + level_label(f, static_cast<int>(i)) + "\" is also what level '" + f.levels[j] +
+                          "' reads as; participants could not tell the two apart");
+    }
+    if (!f.levels.empty())
+      if (auto instructions = fr.texts("instructions", f.levels.size(), "level")) f.instructions = *instructions;
     fr.finish();
     const int index = static_cast<int>(p.factors.size());
     for (auto [role, slot] : {std::pair{FactorRole::scenario, &s.scenario_factor},

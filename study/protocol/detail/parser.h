@@ -35,6 +35,9 @@ struct ParseState {
 // Reads the whole document (the root table) into s.p. Entry point.
 void parse_document(const toml::table& root, ParseState& s);
 
+// [session], [training], [consent], [pages.*], [breaks] (parse_flow.cpp).
+void parse_flow(TableReader& root, ParseState& s);
+
 // Sections (parse_design.cpp).
 void parse_factors(TableReader& root, ParseState& s);
 void build_conditions(ParseState& s);

@@ -260,6 +260,32 @@ std::optional<double> TableReader::number(std::string_view key, bool required, l
   return v;
 }
 
+std::optional<std::vector<std::string>> TableReader::texts(std::string_view key, std::size_t size,
+                                                           const std::string& per) {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  const std::string expected = "an array of " + std::to_string(size) + " strings, one per " + per + " (\"\" = none)";
+  const toml::array* a = n->as_array();
+  if (!a) {
+    wrong_type(key, *n, expected);
+    return std::nullopt;
+  }
+  if (a->size() != size) {
+    d_.error(pos_of(*n), field(key), "has " + std::to_string(a->size()) + " entries; expected " + expected);
+    return std::nullopt;
+  }
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    if (!e.is_string()) {
+      d_.error(pos_of(e), indexed(field(key), i), "expected a string, got " + type_name(e));
+      return std::nullopt;
+    }
+    out.push_back(e.as_string()->get());
+  }
+  return out;
+}
+
 std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, bool required, limits::Ints count,
                                                              const std::vector<std::string>& allowed) {
   const auto min_count = static_cast<std::size_t>(count.min), max_count = static_cast<std::size_t>(count.max);

@@ -78,6 +78,9 @@ class TableReader {
   // Array of unique strings, as many as `count` allows, each passing `allowed` (empty = anything non-empty).
   std::optional<std::vector<std::string>> strings(std::string_view key, bool required, limits::Ints count,
                                                   const std::vector<std::string>& allowed = {});
+  // Array of exactly `size` strings, each any text ("" too), duplicates allowed: wording given
+  // per entry of another array (a factor's level labels and instructions).
+  std::optional<std::vector<std::string>> texts(std::string_view key, std::size_t size, const std::string& per);
   // [min, max]: two numbers, each in `range`, min <= max.
   std::optional<Range<double>> number_range(std::string_view key, bool required, limits::Numbers range);
   // [min, max]: two integers, each in `range`, min <= max (min < max if strictly_increasing).
