@@ -261,6 +261,9 @@ struct Protocol {
   std::vector<QuestionnaireItem> questionnaire;  // in file order
   std::vector<DemographicField> demographics;    // in file order; asked at enrollment
   std::optional<ReferenceResults> reference_results;  // [reference_results]; not part of the design
+  // [text]: the protocol's wording of participant-facing strings by key (study/protocol/wording.h
+  // lists the keys and their English defaults); only the keys it sets. Not part of the design.
+  std::vector<std::pair<std::string, std::string>> text;
 };
 
 // The factor whose levels [reference_results] values are given per: the rendering factor, else the

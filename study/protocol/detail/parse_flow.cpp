@@ -6,6 +6,7 @@
 // Never: reads a file; consent and page texts live in the protocol itself, so
 // the study database records exactly what participants read.
 #include "study/protocol/detail/parser.h"
+#include "study/protocol/wording.h"
 
 namespace dtlab::protocol::detail {
 namespace {
@@ -93,6 +94,30 @@ void parse_breaks(TableReader& root, ParseState& s) {
                 "skippable = false with min_s = 0 changes nothing: the participant may go on at once");
 }
 
+// [text]: only the keys of the wording table, each a string whose {placeholders} are the key's own.
+void parse_text(TableReader& root, ParseState& s) {
+  const toml::table* t = root.table("text", false);
+  if (!t) return;
+  TableReader xr(*t, "text", s.d, root.pos("text"));
+  for (const TextKey& k : text_keys()) {
+    auto v = xr.string(k.key, false, /*non_empty=*/false);
+    if (!v) continue;
+    const std::string allowed = " " + std::string(k.placeholders) + " ";
+    for (std::size_t open = v->find('{'); open != std::string::npos; open = v->find('{', open + 1)) {
+      const std::size_t close = v->find('}', open);
+      const std::string name = close == std::string::npos ? "" : v->substr(open + 1, close - open - 1);
+      if (!name.empty() && allowed.find(" " + name + " ") != std::string::npos) continue;
+      s.d.error(xr.pos(k.key), xr.field(k.key),
+                "\"{" + name + (close == std::string::npos ? "" : "}") + "\" is no placeholder of this text" +
+                    (k.placeholders.empty() ? " (it takes none)"
+                                            : " (it takes: " + std::string(k.placeholders) + ")"));
+      break;
+    }
+    s.p.text.emplace_back(std::string(k.key), *v);
+  }
+  xr.finish();
+}
+
 }  // namespace
 
 void parse_flow(TableReader& root, ParseState& s) {
@@ -101,6 +126,7 @@ void parse_flow(TableReader& root, ParseState& s) {
   parse_consent(root, s);
   parse_pages(root, s);
   parse_breaks(root, s);
+  parse_text(root, s);
 }
 
 }  // namespace dtlab::protocol::detail
