@@ -1,6 +1,8 @@
 // `dtlab export DB --csv FILE [--json]`: the study database as a tidy CSV,
 // one row per recorded trial (columns in README.md, "Study database and
-// export"; excluded trials are kept, with the reason in `excluded`). Never
+// export"; excluded trials are kept, with the reason in `excluded`; the
+// trials of participants who withdrew their consent are left out, and the
+// command says how many). Never
 // modifies the database (reads work on read-only media); FILE is written
 // whole or left untouched.
 #include <CLI/CLI.hpp>
@@ -49,6 +51,7 @@ void run_export(const ExportArgs& a) {
   }
   if (a.json) {
     nlohmann::json j{{"database", store::display_name(a.db)}, {"csv", a.csv}, {"rows", sum.rows}, {"excluded_rows", sum.excluded},
+                     {"withdrawn_participants", sum.withdrawn}, {"withdrawn_rows_left_out", sum.withdrawn_rows},
                      {"columns", sum.columns}};
     std::cout << j.dump(2) << "\n";
   } else {
@@ -56,6 +59,9 @@ void run_export(const ExportArgs& a) {
               << count(static_cast<long long>(sum.columns.size()), "column") << ") to " << a.csv;
     if (sum.excluded > 0)
       std::cerr << "; " << sum.excluded << " of them excluded (their `excluded` column holds the reason)";
+    if (sum.withdrawn > 0)
+      std::cerr << "; " << count(sum.withdrawn_rows, "trial") << " of " << count(sum.withdrawn, "participant")
+                << " who withdrew their consent left out";
     std::cerr << "\n";
   }
 }
@@ -68,13 +74,15 @@ void add_export_command(CLI::App& root) {
       "export",
       "Write a study database as a tidy CSV: one row per recorded trial (participant, session, order row, "
       "position, block, one column per factor, task, trial seed, scene hash, answer, truth, scores, completion "
-      "time in seconds, ..., design revision, and `excluded` with the reason of an exclusion). Readable by R's "
-      "read.csv and pandas.read_csv as is; NA marks missing values");
+      "time in seconds, ..., design revision, `excluded` with the reason of an exclusion, and one demo_<field> "
+      "column per demographic field). Participants who withdrew their consent are left out (the summary counts "
+      "them). Readable by R's read.csv and pandas.read_csv as is; NA marks missing values");
   cmd->add_option("database", args->db, std::string(kDatabaseHelp) + ", written by dtlab run or dtlab simulate")
       ->required()
       ->check(existing_database());
   cmd->add_option("--csv", args->csv, "Output CSV file (replaced as a whole)")->required();
-  cmd->add_flag("--json", args->json, "Print {database, csv, rows, excluded_rows, columns} as JSON on stdout");
+  cmd->add_flag("--json", args->json, "Print {database, csv, rows, excluded_rows, withdrawn_participants, withdrawn_rows_left_out, "
+                "columns} as JSON on stdout");
   cmd->callback([args] { run_export(*args); });
 }
 

@@ -56,6 +56,11 @@ const std::vector<TableSpec>& copied_tables() {
       {"trial_attempts", {"session_id", "position", "attempt", "started_at", "owner"}, "session_id, position, attempt", 2},
       {"session_displays", {"session_id", "recorded_at", "kind", "width", "height", "refresh_hz", "renderer", "monitor"},
        kDisplayOrder, 3},
+      {"consents", {"participant_id", "agreed", "text_sha256", "answered_at"}, "participant_id", 4},
+      {"screens", {"session_id", "seq", "screen", "shown", "shown_at", "ended_at", "duration_s", "answer"},
+       "session_id, seq", 4},
+      // after sessions: a withdrawal refuses the participant's session (trigger sessions_not_after_withdrawal)
+      {"withdrawals", {"id", "participant_id", "withdrawn_at", "reason", "decided_by"}, "id", 4},
   };
   return t;
 }
@@ -171,6 +176,9 @@ Status full_copy(Db& src, int src_version, Db& dst, CopySummary& summary) {
     if (std::string(t.name) == "studies") summary.revisions = static_cast<int>(n);
     if (std::string(t.name) == "exclusions") summary.decisions = static_cast<int>(n);
     if (std::string(t.name) == "notes") summary.notes = static_cast<int>(n);
+    if (std::string(t.name) == "consents") summary.consents = static_cast<int>(n);
+    if (std::string(t.name) == "withdrawals") summary.withdrawals = static_cast<int>(n);
+    if (std::string(t.name) == "screens") summary.screens = static_cast<int>(n);
   }
   auto fin = Stmt::prepare(dst, "UPDATE sessions SET status = ?, ended_at = ? WHERE id = ?", "finishing the sessions");
   if (!fin) return fin.error();

@@ -3,9 +3,10 @@
 // station's offline file into the server that already holds other
 // participants. Guarantees: into an empty DST every row of every table is
 // copied as it is (ids, timestamps, protocol texts, design hashes, decisions,
-// pauses, attempts), so the export of DST equals the export of SRC byte for
-// byte; a merge into a DST that holds the study already adds what DST lacks
-// without changing any plan (docs/store.md, "Copying and merging"). All of it
+// pauses, attempts, consents, withdrawals, screens), so the export of DST
+// equals the export of SRC byte for byte; a merge into a DST that holds the
+// study already adds what DST lacks without changing any plan (docs/store.md,
+// "Copying and merging"). All of it
 // is written in ONE transaction of DST: a refused or failed copy writes
 // nothing. Never: writes SRC, copies session claims (who runs a session now
 // is not data), or renumbers a participant whose plan is stored.
@@ -36,6 +37,7 @@ struct CopySummary {
   int trials = 0;                 // trial results added
   int revisions = 0;              // protocol texts added
   int decisions = 0, notes = 0;   // exclusion/inclusion decisions and notes added
+  int consents = 0, withdrawals = 0, screens = 0;  // consent answers, withdrawals and screens added (schema v4)
   std::vector<std::string> changes;  // one line per renumbered participant or added revision
   std::vector<std::pair<std::string, std::int64_t>> rows;  // rows written per table, in copy order
 };

@@ -21,6 +21,7 @@ using detail::Db;
 using detail::Stmt;
 using detail::parse_seed;
 using detail::parse_status;
+using namespace detail::reading;
 
 namespace {
 
@@ -31,16 +32,6 @@ InputEvent::Kind parse_kind(const std::string& s) {
   return K::key_down;
 }
 
-std::optional<std::string> opt_text(const Stmt& st, int c) {
-  return st.is_null(c) ? std::nullopt : std::optional<std::string>(st.text(c));
-}
-std::optional<double> opt_real(const Stmt& st, int c) {
-  return st.is_null(c) ? std::nullopt : std::optional<double>(st.real(c));
-}
-std::optional<std::int64_t> opt_int(const Stmt& st, int c) {
-  return st.is_null(c) ? std::nullopt : std::optional<std::int64_t>(st.int64(c));
-}
-
 Demographics parse_demographics(const std::string& text) {
   Demographics out;
   const auto j = nlohmann::ordered_json::parse(text, nullptr, false);
@@ -48,22 +39,6 @@ Demographics parse_demographics(const std::string& text) {
   for (const auto& [k, v] : j.items()) out.emplace_back(k, v.is_string() ? v.get<std::string>() : v.dump());
   return out;
 }
-
-// Runs `sql` with `bind` applied, calling row(st) per result row.
-template <class Bind, class Row>
-Status each_row(Db& db, const std::string& sql, const char* what, Bind&& bind, Row&& row) {
-  auto st = Stmt::prepare(db, sql, what);
-  if (!st) return st.error();
-  bind(*st);
-  for (;;) {
-    auto r = st->step(what);
-    if (!r) return r.error();
-    if (!*r) return {};
-    row(*st);
-  }
-}
-
-auto no_bind = [](Stmt&) {};
 
 // The answer of one kind from four columns (count, letter, x, z) starting at `c`.
 std::optional<Answer> read_answer(const Stmt& st, const std::string& kind, int c) {
@@ -112,20 +87,6 @@ void StudyReader::Impl::end() {
   if (!in_snapshot) return;
   db->conn().commit("ending the read transaction");  // read only: nothing to lose if it fails
   in_snapshot = false;
-}
-
-template <class F>
-auto StudyReader::Impl::call(F&& f) -> decltype(f()) {
-  // A borrowed connection reads each outermost call in a short transaction of its own (unless its
-  // Store is inside one); an owned one reads in its snapshot.
-  const bool own_tx = !owned && depth == 0 && !db->conn().in_transaction();
-  if (own_tx)
-    if (auto s = db->conn().begin_read("starting a read transaction"); !s) return s.error();
-  ++depth;
-  auto r = f();
-  --depth;
-  if (own_tx) db->conn().commit("ending the read transaction");
-  return r;
 }
 
 StudyReader::StudyReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -218,7 +179,8 @@ Result<std::vector<LedgerEntry>> StudyReader::ledger() {
     std::vector<LedgerEntry> out;
     Status st = each_row(*impl_->db,
                          "SELECT participant, enrollment_index, order_row, study_id, demographics, enrolled_at, "
-                         "released_at FROM participants ORDER BY enrollment_index",
+                         "released_at, " + withdrawn_sql(impl_->schema_version, "participants.id") +
+                             " FROM participants ORDER BY enrollment_index",
                          "reading the participant ledger", no_bind, [&](const Stmt& q) {
                            LedgerEntry e;
                            e.participant = q.text(0);
@@ -228,6 +190,7 @@ Result<std::vector<LedgerEntry>> StudyReader::ledger() {
                            e.demographics = parse_demographics(q.text(4));
                            e.enrolled_at = q.text(5);
                            e.released_at = opt_text(q, 6);
+                           e.withdrawn = q.int64(7) != 0;
                            out.push_back(std::move(e));
                          });
     if (!st) return st.error();
@@ -245,8 +208,8 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
         "SELECT s.id, pa.participant, s.study_id, s.software_version, s.status, s.started_at, s.ended_at, "
         "(SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id), "
         "(SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-        " WHERE p.session_id = s.id) "
-        "FROM sessions s JOIN participants pa ON pa.id = s.participant_id ORDER BY pa.enrollment_index",
+        " WHERE p.session_id = s.id), " + withdrawn_sql(impl_->schema_version, "pa.id") +
+            " FROM sessions s JOIN participants pa ON pa.id = s.participant_id ORDER BY pa.enrollment_index",
         "reading the sessions", no_bind, [&](const Stmt& q) {
           SessionRecord r;
           r.id = q.int64(0);
@@ -258,6 +221,7 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
           r.ended_at = opt_text(q, 6);
           r.planned = static_cast<int>(q.int64(7));
           r.recorded = static_cast<int>(q.int64(8));
+          r.withdrawn = q.int64(9) != 0;
           at[r.id] = out.size();
           out.push_back(std::move(r));
         });
@@ -415,8 +379,9 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
         "r.truth_x, r.truth_z, r.completion_s, r.started_at, r.ended_at, r.frame_count, r.frame_ms_mean, "
         "r.frame_ms_sd, r.frame_ms_p95, r.frame_ms_max, r.event_count, s.study_id, st.protocol_sha256, "
         "r.rel_error, r.signed_error, r.correct, r.distance, " +
-        std::string(impl_->schema_version >= 3 ? "r.frame_first_ms, r.frame_ms_median, r.late_frames, r.refresh_hz "
-                                               : "NULL, NULL, NULL, NULL ") +
+        std::string(impl_->schema_version >= 3 ? "r.frame_first_ms, r.frame_ms_median, r.late_frames, r.refresh_hz, "
+                                               : "NULL, NULL, NULL, NULL, ") +
+        withdrawn_sql(impl_->schema_version, "pa.id") + " " +
         "FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
         "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
         "JOIN studies st ON st.id = s.study_id" + filter + " ORDER BY pa.enrollment_index, p.position",
@@ -455,6 +420,7 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
           t.protocol_sha256 = q.text(26);
           if (auto it = rev.find(t.study_id); it != rev.end()) t.design_revision = it->second->design_revision;
           t.excluded = excluded(t.participant, position);
+          t.withdrawn = q.int64(35) != 0;
           out.push_back(std::move(t));
         });
     if (!st) return st.error();

@@ -1,5 +1,5 @@
 // Reading a study back: the one typed door to everything a study database
-// holds (docs/store.md, "Reading"). A StudyReader opens and validates the
+// holds (docs/store.md). A StudyReader opens and validates the
 // file once -- a dtlab database of a schema this build reads, by the same
 // check Store::open makes -- then every read is a plain struct taken from
 // ONE snapshot (a read transaction), consistent even while sessions write.
@@ -45,6 +45,7 @@ struct LedgerEntry {
   Demographics demographics;         // in stored key order
   std::string enrolled_at;
   std::optional<std::string> released_at;
+  bool withdrawn = false;            // a withdrawal exists (declined consent, or withdrew later; schema v4)
   bool simulated() const;            // demographics has simulated = true|1|yes (dtlab simulate marks its agents)
 };
 
@@ -91,6 +92,7 @@ struct SessionRecord {
   std::vector<Interruption> interruptions;
   std::vector<Display> displays;     // one per start or resume that recorded it (schema v3)
   std::optional<Claim> claim;        // who runs it now, if anyone holds it
+  bool withdrawn = false;            // the participant withdrew (status says abandoned if it was running then)
   double paused_s() const;           // sum of the pauses' durations
 };
 
@@ -121,6 +123,7 @@ struct TrialRow {
   std::string protocol_sha256;
   int design_revision = 0;           // 0 when the design hash is unknown
   std::optional<std::string> excluded;  // the reason, while the trial or its participant is excluded
+  bool withdrawn = false;            // the participant withdrew their consent (the export leaves the row out)
   std::string level(const std::string& factor) const;  // "" if the trial has no such factor
 };
 
@@ -146,6 +149,29 @@ struct QuestionnaireRecord {
   std::string item, scope;
   std::variant<double, std::string> value;
   std::string answered_at;
+};
+
+// A participant's answer on the consent page (schema v4): the first and only one.
+struct ConsentRecord {
+  std::string participant;
+  bool agreed = false;
+  std::string text_sha256;           // SHA-256 of the consent text shown
+  std::string answered_at;           // ISO-8601 UTC
+};
+
+// A withdrawal of consent (schema v4): declined on the consent page (reason "declined consent",
+// by "participant") or withdrawn later (`dtlab withdraw`); at most one per participant.
+struct WithdrawalRecord {
+  std::string participant, withdrawn_at, reason, by;
+};
+
+// A screen of a session as it happened (schema v4; store.h, ScreenRecord).
+struct ScreenRow {
+  std::string participant;
+  int seq = 0;                       // 1, 2, ... in the order recorded
+  std::string screen, shown, shown_at, ended_at;
+  double duration_s = 0;
+  std::optional<std::string> answer;
 };
 
 struct ReadOptions {
@@ -180,6 +206,12 @@ class StudyReader {
   Result<std::vector<QuestionnaireRecord>> questionnaire(const std::string& participant = "");  // by item, scope
   Result<std::vector<Exclusion>> exclusions();          // recording order (the latest decision wins)
   Result<std::vector<Note>> notes();
+  // Consent, withdrawal and the screen log (schema v4; empty lists on an older database, which the
+  // reader never migrates). Consents and withdrawals by enrollment index; screens by participant
+  // (enrollment index), then seq; "" = every participant.
+  Result<std::vector<ConsentRecord>> consents();
+  Result<std::vector<WithdrawalRecord>> withdrawals();
+  Result<std::vector<ScreenRow>> screens(const std::string& participant = "");
   // Per-frame camera poses and input events of one recorded trial; not_found if none is recorded there.
   Result<std::vector<CameraPose>> poses(const std::string& participant, int position);
   Result<std::vector<InputEvent>> events(const std::string& participant, int position);

@@ -289,6 +289,7 @@ Result<Session> Store::begin_session(const std::string& participant_id, const de
   Status st = m.write("beginning the session of \"" + participant_id + "\"", [&]() -> Status {
     auto e = lookup(participant_id);
     if (!e) return e.error();
+    if (e->withdrawn) return withdrawn_error(m.db, participant_id);
     if (e->released)
       return m.invalid("participant", "participant \"" + participant_id + "\" was released; their session is abandoned",
                        ErrorKind::conflict);

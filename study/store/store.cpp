@@ -52,6 +52,9 @@ Status validate_study(const std::string& path, const StudyInfo& s) {
     for (const auto* fixed : {&detail::fixed_trial_columns_before_factors(), &detail::fixed_trial_columns_after_factors()})
       for (const std::string& c : *fixed)
         if (lf == c) return bad("study.factors", "factor \"" + f + "\" has the name of a fixed export column; rename it");
+    if (lf.rfind(detail::kDemographicPrefix, 0) == 0)
+      return bad("study.factors", "factor \"" + f + "\" starts with \"" + detail::kDemographicPrefix +
+                                      "\", which names the export's demographic columns; rename it");
     if (std::find(seen.begin(), seen.end(), lf) != seen.end())
       return bad("study.factors", "factor \"" + f + "\" appears twice (names are case-insensitive)");
     seen.push_back(lf);
@@ -201,11 +204,14 @@ Result<std::pair<std::int64_t, StudyInfo>> current_study(Db& db) {
   return std::make_pair(id, std::move(info));
 }
 
+}  // namespace
+
 Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
   const char* what = "reading the participant ledger";
   auto st = Stmt::prepare(db,
-                          "SELECT enrollment_index, order_row, CASE WHEN released_at IS NULL THEN 0 ELSE 1 END "
-                          "FROM participants WHERE participant = ?",
+                          "SELECT p.enrollment_index, p.order_row, CASE WHEN p.released_at IS NULL THEN 0 ELSE 1 END, "
+                          "CASE WHEN EXISTS (SELECT 1 FROM withdrawals w WHERE w.participant_id = p.id) THEN 1 ELSE 0 END "
+                          "FROM participants p WHERE p.participant = ?",
                           what);
   if (!st) return st.error();
   st->bind(1, participant_id);
@@ -218,10 +224,36 @@ Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
   e.index = static_cast<int>(st->int64(0));
   e.order_row = static_cast<int>(st->int64(1));
   e.released = st->int64(2) != 0;
+  e.withdrawn = st->int64(3) != 0;
   return e;
 }
 
-}  // namespace
+Error withdrawn_error(Db& db, const std::string& participant_id) {
+  std::string when;
+  auto st = Stmt::prepare(db,
+                          "SELECT w.withdrawn_at, w.reason FROM withdrawals w JOIN participants p ON "
+                          "p.id = w.participant_id WHERE p.participant = ?",
+                          "reading the withdrawal");
+  if (st) {
+    st->bind(1, participant_id);
+    if (auto row = st->step("reading the withdrawal"); row && *row) when = " at " + st->text(0) + " (" + st->text(1) + ")";
+  }
+  return Error{db.path(), 0, 0, "participant",
+               "participant \"" + participant_id + "\" withdrew their consent" + when +
+                   "; they never run again and are not enrolled again (a new person gets a new id)",
+               ErrorKind::conflict};
+}
+
+Result<std::string> demographics_json(const std::string& path, const Demographics& demographics) {
+  nlohmann::ordered_json demo = nlohmann::ordered_json::object();  // kept in the order given (the protocol's)
+  for (const auto& [k, v] : demographics) {
+    if (k.empty()) return Error{path, 0, 0, "demographics", "a demographic field name is empty"};
+    if (demo.contains(k)) return Error{path, 0, 0, "demographics." + k, "appears twice"};
+    demo[k] = v;
+  }
+  // Invalid UTF-8 in a demographic value becomes U+FFFD instead of throwing.
+  return demo.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 Status check_participant_id(const std::string& id) { return validate_participant_id("", id); }
 
@@ -311,19 +343,62 @@ Result<Store> Store::open_existing(const std::string& path, OpenOptions options)
 
 StudyReader& Store::read() { return impl_->reader; }
 
+Result<Enrollment> Store::Impl::insert_enrollment(const std::string& participant_id, const std::string& demo_text,
+                                                  const std::string& now) {
+  const char* what = "assigning an order row";
+  auto id = detail::next_id(db, "participants");
+  if (!id) return id.error();
+  auto next = db.query_int("SELECT coalesce(max(enrollment_index) + 1, 0) FROM participants", what);
+  if (!next) return next.error();
+  // Rule (docs/store.md, invariant 4): fewest active participants, ties to the lowest row.
+  std::vector<std::int64_t> fill(static_cast<std::size_t>(study.order_rows), 0);
+  auto f = Stmt::prepare(db, "SELECT order_row, count(*) FROM participants WHERE released_at IS NULL GROUP BY order_row",
+                         what);
+  if (!f) return f.error();
+  for (;;) {
+    auto row = f->step(what);
+    if (!row) return row.error();
+    if (!*row) break;
+    const auto r = f->int64(0);
+    if (r >= 0 && r < study.order_rows) fill[static_cast<std::size_t>(r)] = f->int64(1);
+  }
+  const auto row = std::min_element(fill.begin(), fill.end()) - fill.begin();
+  // A demographic field nobody had before is a new column of trial_table (and of the export).
+  bool new_field = false;
+  if (const auto given = nlohmann::ordered_json::parse(demo_text, nullptr, false); given.is_object() && !given.empty()) {
+    auto known = detail::demographic_fields(db);
+    if (!known) return known.error();
+    for (const auto& [k, v] : given.items())
+      new_field = new_field || std::find(known->begin(), known->end(), k) == known->end();
+  }
+  auto ins = Stmt::prepare(db,
+                           "INSERT INTO participants (id, participant, enrollment_index, order_row, study_id, "
+                           "demographics, enrolled_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                           "enrolling");
+  if (!ins) return ins.error();
+  ins->bind(1, *id).bind(2, participant_id).bind(3, next->value_or(0)).bind(4, static_cast<std::int64_t>(row));
+  ins->bind(5, study_id).bind(6, demo_text).bind(7, now);
+  if (auto s = ins->run("enrolling"); !s) return s.error();
+  if (new_field)
+    if (auto s = detail::create_trial_table_view(db); !s) return s.error();
+  Enrollment e;
+  e.participant_id = participant_id;
+  e.index = static_cast<int>(next->value_or(0));
+  e.order_row = static_cast<int>(row);
+  e.newly_enrolled = true;
+  return e;
+}
+
 Result<Enrollment> Store::enroll(const std::string& participant_id, const Demographics& demographics) {
   Impl& m = *impl_;
   if (auto s = validate_participant_id(m.path, participant_id); !s) return s.error();
-  nlohmann::ordered_json demo = nlohmann::ordered_json::object();  // kept in the order given (the protocol's)
-  for (const auto& [k, v] : demographics) {
-    if (k.empty()) return m.invalid("demographics", "a demographic field name is empty");
-    if (demo.contains(k)) return m.invalid("demographics." + k, "appears twice");
-    demo[k] = v;
-  }
+  auto demo = demographics_json(m.path, demographics);
+  if (!demo) return demo.error();
   Enrollment out;
   Status st = m.write("enrolling participant \"" + participant_id + "\"", [&]() -> Status {
     auto existing = read_enrollment(m.db, participant_id);
     if (existing) {
+      if (existing->withdrawn) return withdrawn_error(m.db, participant_id);
       if (existing->released)
         return m.invalid("participant",
                          "participant \"" + participant_id + "\" was released (abandoned session); enroll them under a new id",
@@ -332,38 +407,11 @@ Result<Enrollment> Store::enroll(const std::string& participant_id, const Demogr
       return {};
     }
     if (existing.error().kind != ErrorKind::not_found) return existing.error();
-    const char* what = "assigning an order row";
-    auto id = detail::next_id(m.db, "participants");
-    if (!id) return id.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
-    auto next = m.db.query_int("SELECT coalesce(max(enrollment_index) + 1, 0) FROM participants", what);
-    if (!next) return next.error();
-    // Rule (docs/store.md, invariant 4): fewest active participants, ties to the lowest row.
-    std::vector<std::int64_t> fill(static_cast<std::size_t>(m.study.order_rows), 0);
-    auto f = Stmt::prepare(m.db,
-                           "SELECT order_row, count(*) FROM participants WHERE released_at IS NULL GROUP BY order_row",
-                           what);
-    if (!f) return f.error();
-    for (;;) {
-      auto row = f->step(what);
-      if (!row) return row.error();
-      if (!*row) break;
-      const auto r = f->int64(0);
-      if (r >= 0 && r < m.study.order_rows) fill[static_cast<std::size_t>(r)] = f->int64(1);
-    }
-    const auto row = std::min_element(fill.begin(), fill.end()) - fill.begin();
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO participants (id, participant, enrollment_index, order_row, study_id, "
-                             "demographics, enrolled_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
-                             "enrolling");
-    if (!ins) return ins.error();
-    ins->bind(1, *id).bind(2, participant_id).bind(3, next->value_or(0)).bind(4, static_cast<std::int64_t>(row));
-    // Invalid UTF-8 in a demographic value becomes U+FFFD instead of throwing.
-    const std::string demo_text = demo.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    ins->bind(5, m.study_id).bind(6, demo_text).bind(7, *now);
-    if (auto s = ins->run("enrolling"); !s) return s;
-    out = Enrollment{participant_id, static_cast<int>(next->value_or(0)), static_cast<int>(row), false, true};
+    auto e = m.insert_enrollment(participant_id, *demo, *now);
+    if (!e) return e.error();
+    out = *e;
     return {};
   });
   if (!st) return st.error();

@@ -1,18 +1,19 @@
-// The study database (schema v3; docs/store.md is the reference) in a file
+// The study database (schema v4; docs/store.md is the reference) in a file
 // (SQLite, the embedded default) or on a lab's PostgreSQL server (a
 // postgresql:// URI, several stations at once):
-// participants and their order rows (the ledger), sessions, planned trials,
-// trial results with events and camera poses, questionnaire answers, and the
-// lab's decisions (exclusions, notes, pauses). This is the writing half;
-// read.h is the reading half (StudyReader, also lent by Store::read()).
+// participants and their order rows (the ledger), consent answers and
+// withdrawals, sessions, planned trials, trial results with events and camera
+// poses, the screens a session showed, questionnaire answers, and the lab's
+// decisions (exclusions, notes, pauses). This is the writing half; read.h is
+// the reading half (StudyReader, also lent by Store::read()).
 // Guarantees: a finished trial is committed in one transaction with all its
 // data, so a crash loses at most the trial in progress; enrollment is atomic
 // across processes and stations sharing the database; a running session is
 // claimed by the one process that runs it; a session resumes with exactly the trials it would
-// have run. It never aborts on bad input or a failing disk (every failure is
-// a dtlab::Error of a kind, naming the file or the URI without its password)
-// and never writes to a database that is not a dtlab database of a schema
-// version it knows.
+// have run; a participant who declined or withdrew consent never runs again. It never aborts on
+// bad input or a failing disk (every failure is a dtlab::Error of a kind, naming the file or the
+// URI without its password) and never writes to a database that is not a dtlab database of a
+// schema version it knows.
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -30,7 +31,7 @@
 
 namespace dtlab::store {
 
-inline constexpr int kSchemaVersion = 3;                 // the newest schema this build reads and writes
+inline constexpr int kSchemaVersion = 4;                 // the newest schema this build reads and writes
 inline constexpr std::int32_t kApplicationId = 0x64746c62;  // PRAGMA application_id of every dtlab database ("dtlb")
 
 // Where a study is: a file path (SQLite) or a postgresql:// / postgres:// URI (PostgreSQL; its
@@ -71,6 +72,7 @@ struct Enrollment {
   int order_row = 0;    // 0-based row of the ordering scheme
   bool released = false;       // the participant's session was abandoned; the row counts as free
   bool newly_enrolled = false; // true only from the enroll() call that created it
+  bool withdrawn = false;      // a withdrawal exists (declined consent, or withdrew later): never runs again
 };
 
 using Demographics = std::vector<std::pair<std::string, std::string>>;  // e.g. {"age","27"}, {"gender","f"}
@@ -135,6 +137,17 @@ struct DisplayInfo {
   std::string monitor;                 // the monitor's name; "" for a window on the default one or headless
 };
 
+// A screen of the session as it happened (docs/store.md, "Schema v4"): which screen ("consent",
+// "page welcome", "announce 2", "level technique=lens", "instructions T1", "break",
+// "feedback T1 3", ...), what it showed (a page id, a text's SHA-256, the levels announced; may be
+// empty), when it was shown and left, and what was answered ("continue", "skipped",
+// "timed out", ...; nullopt: nothing to answer).
+struct ScreenRecord {
+  std::string screen, shown;
+  std::chrono::system_clock::time_point shown_at, ended_at;  // wall clock; ended_at >= shown_at
+  std::optional<std::string> answer;
+};
+
 // One questionnaire answer: item id, the condition it is about ("" if none,
 // else e.g. "scenario=ABSTRACT;transparency=on"), and a number or a text.
 struct QuestionnaireAnswer {
@@ -173,8 +186,30 @@ class Store {
   // the row with the fewest participants not released, ties to the lowest
   // row; equal to index mod order_rows while nothing is released). Atomic
   // across processes. An existing id returns its enrollment unchanged
-  // (newly_enrolled = false); a released id is refused.
+  // (newly_enrolled = false); a released id is refused, and so is one who withdrew (conflict).
   Result<Enrollment> enroll(const std::string& participant_id, const Demographics& demographics = {});
+
+  // The participant's answer on the consent page, with the SHA-256 of the text shown (64 lowercase
+  // hex), in ONE transaction with their enrollment (invariant 13). Agreed: enrolled as enroll() does,
+  // with `demographics`, and the consent stored. Declined: enrolled with NO demographics, the refusal
+  // stored, a withdrawal (reason "declined consent", by "participant") appended and the order row
+  // freed, so the next enrollment takes the row; nothing else of theirs is ever stored (no session,
+  // no screen); `withdrawn` comes back set. The first answer stays: the same answer again returns the
+  // enrollment unchanged (a resumed run, whatever text it names), but an agreement from one who
+  // withdrew since is refused, as enroll() refuses them; a different answer: conflict. One enrolled
+  // before without a consent (enroll()) gets it stored now (demographics stay as enrolled; a decline
+  // withdraws them as withdraw() does); one released or withdrawn without one is refused (enroll()).
+  Result<Enrollment> record_consent(const std::string& participant_id, const Demographics& demographics, bool agreed,
+                                    const std::string& text_sha256);
+
+  // A later withdrawal of consent, appended with who decided (`by`, e.g. the experimenter) and why
+  // (non-empty), in ONE transaction with its effects: a running session ends (status abandoned,
+  // its claim dropped; another live process's claim: busy, as release() does), the order row is
+  // freed if it was not (finished sessions too: the analysis leaves the participant out, so the
+  // row is run again), and the participant never runs again (begin_session and enroll refuse
+  // them: conflict, saying they withdrew). Withdrawing twice is harmless (the first stays).
+  // not_found: unknown participant; invalid_input: empty reason.
+  Status withdraw(const std::string& participant_id, const std::string& reason, const std::string& by);
 
   // The enrollment of `participant_id`; Error if unknown.
   Result<Enrollment> lookup(const std::string& participant_id);
@@ -185,7 +220,7 @@ class Store {
 
   // Starts the participant's session with `plan` (stored once, in one
   // transaction), or resumes it if it is running: then `plan` must equal the
-  // stored one. Either way the session is CLAIMED by this Store in the same
+  // stored one. Refused (conflict) for a participant who was released or withdrew. Either way the session is CLAIMED by this Store in the same
   // transaction; a session claimed by another live process is refused (busy)
   // unless options.take_over. A claim whose process is gone (same host) or
   // whose heartbeat expired is taken over. Refused (conflict) for finished or
@@ -222,6 +257,12 @@ class Store {
 
   // Marks a running session finished (and releases its claim); refused while planned trials remain.
   Status finish_session(const Session& session);
+
+  // Appends a screen of the session as it happened, numbered with the session's next seq (1, 2,
+  // ...) in ONE transaction; duration_s is ended_at - shown_at. Any status: a screen shown before
+  // the session ended may be recorded after (a debrief after finish_session, the screen on which a
+  // participant withdrew). invalid_input: empty screen, ended before shown.
+  Status record_screen(const Session& session, const ScreenRecord& screen);
 
   // Stores questionnaire answers in one transaction (running or finished
   // session). An (item, scope) pair answered before is refused.

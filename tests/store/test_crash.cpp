@@ -1,7 +1,8 @@
 // Crash tests in the manner of SQLite's crash*.test, on both engines (on the
 // server a killed client's transaction is rolled back by the server): for
-// several seeds, a child process runs a study (create, enroll, begin, record
-// trials, finish) and is killed with SIGKILL at increasing delays after its
+// several seeds, a child process runs a study (create, consent and enroll,
+// begin, record a screen and a trial at a time, finish, and a participant who
+// declines consent) and is killed with SIGKILL at increasing delays after its
 // n-th step began;
 // the next child resumes where it died. After every kill, each numbered
 // invariant of docs/store.md is checked with raw SQL, the outcome must be one
@@ -20,6 +21,7 @@
 #include <functional>
 #include <thread>
 
+#include "study/store/read.h"
 #include "tests/store/store_fixtures.h"
 
 namespace dtlab::store {
@@ -27,16 +29,26 @@ namespace {
 
 using namespace dtlab::store::testing;
 
-constexpr int kParticipants = 3;
+constexpr int kParticipants = 3;     // agree and run their sessions
+constexpr int kDecliner = kParticipants;  // then one more declines consent (index 3)
+constexpr int kPeople = kParticipants + 1;
 constexpr int kPer = 2;              // trials per condition -> 8 trials per participant
 constexpr int kTrials = 4 * kPer;
 
-enum Op : std::int32_t { kOpen = 1, kEnroll, kBegin, kRecord, kFinish };
+enum Op : std::int32_t { kOpen = 1, kEnroll, kBegin, kRecord, kFinish, kScreen };
 struct Msg {
   std::int32_t op, done, participant, position;
 };
 
 std::string pid_of(int p) { return "P" + std::to_string(p); }
+
+const std::string kConsentSha = sha256_hex("consent text");
+
+// The screen shown before trial k (screen k of the session), the same in every run.
+ScreenRecord screen_of(int k) {
+  const auto at = at_ms(1'700'000'000'000LL + k * 100'000LL);
+  return ScreenRecord{"trial " + std::to_string(k), "T", at, at + std::chrono::milliseconds(1500), "continue"};
+}
 
 // The study as a simulated participant runs it, resuming whatever is saved.
 [[noreturn]] void child(const std::string& path, std::uint64_t seed, int fd) {
@@ -54,7 +66,7 @@ std::string pid_of(int p) { return "P" + std::to_string(p); }
   say(kOpen, 1);
   for (int p = 0; p < kParticipants; ++p) {
     say(kEnroll, 0, p);
-    auto e = s->enroll(pid_of(p));
+    auto e = s->record_consent(pid_of(p), {{"age", std::to_string(20 + p)}}, true, kConsentSha);
     if (!e) fail(e.error());
     say(kEnroll, 1, p);
     if (auto cur = s->session(pid_of(p)); cur && cur->status == SessionStatus::finished) continue;
@@ -66,6 +78,14 @@ std::string pid_of(int p) { return "P" + std::to_string(p); }
       auto t = s->next_trial(*ses);
       if (!t) fail(t.error());
       if (!*t) break;
+      // Screen k comes before trial k; a resumed run first records the screens a kill lost.
+      auto shown = s->read().screens(pid_of(p));
+      if (!shown) fail(shown.error());
+      for (int k = static_cast<int>(shown->size()) + 1; k <= (*t)->position; ++k) {
+        say(kScreen, 0, p, k);
+        if (auto st = s->record_screen(*ses, screen_of(k)); !st) fail(st.error());
+        say(kScreen, 1, p, k);
+      }
       const TrialRecord r = make_record(seed, **t);
       say(kRecord, 0, p, r.position);
       if (auto st = s->record_trial(*ses, r); !st) fail(st.error());
@@ -75,15 +95,19 @@ std::string pid_of(int p) { return "P" + std::to_string(p); }
     if (auto st = s->finish_session(*ses); !st) fail(st.error());
     say(kFinish, 1, p);
   }
+  say(kEnroll, 0, kDecliner);
+  if (auto d = s->record_consent(pid_of(kDecliner), {{"age", "70"}}, false, kConsentSha); !d) fail(d.error());
+  say(kEnroll, 1, kDecliner);
   ::_exit(0);
 }
 
 // What the parent knows from the child's reports, over all runs so far.
 struct Known {
-  int enroll_done[kParticipants] = {}, enroll_begun[kParticipants] = {};
-  int begin_done[kParticipants] = {}, begin_begun[kParticipants] = {};
-  int rec_done[kParticipants] = {}, rec_begun[kParticipants] = {};  // highest position
-  int fin_done[kParticipants] = {}, fin_begun[kParticipants] = {};
+  int enroll_done[kPeople] = {}, enroll_begun[kPeople] = {};
+  int begin_done[kPeople] = {}, begin_begun[kPeople] = {};
+  int rec_done[kPeople] = {}, rec_begun[kPeople] = {};  // highest position
+  int fin_done[kPeople] = {}, fin_begun[kPeople] = {};
+  int scr_done[kPeople] = {}, scr_begun[kPeople] = {};  // highest screen
   void apply(const Msg& m) {
     if (m.participant < 0) return;
     const int p = m.participant;
@@ -95,6 +119,8 @@ struct Known {
     // so a trial saved just before a kill but never reported counts as done
     // once the next run begins the trial after it.
     if (m.op == kRecord && !m.done) rec_done[p] = std::max(rec_done[p], m.position - 1);
+    if (m.op == kScreen) mark(scr_done, scr_begun, m.position);
+    if (m.op == kScreen && !m.done) scr_done[p] = std::max(scr_done[p], m.position - 1);  // read back first
     if (m.op == kFinish) mark(fin_done, fin_begun, 1);
   }
 };
@@ -160,7 +186,7 @@ const std::vector<Check>& checks() {
          for (std::size_t i = 0; i < rows.size(); ++i)
            if (rows[i][0] != pid_of(static_cast<int>(i)) || rows[i][1] != std::to_string(i))
              return "participant " + rows[i][0] + " has index " + rows[i][1] + " at rank " + std::to_string(i);
-         for (int p = 0; p < kParticipants; ++p) {
+         for (int p = 0; p < kPeople; ++p) {
            const bool in = static_cast<int>(rows.size()) > p;
            if (k.enroll_done[p] && !in) return pid_of(p) + " was reported enrolled but is missing";
            if (!k.enroll_begun[p] && in) return pid_of(p) + " is enrolled though nobody enrolled it";
@@ -233,6 +259,45 @@ const std::vector<Check>& checks() {
          }
          return "";
        }},
+      {"I13 one consent answer per participant, stored with the enrollment; a decline holds only the refusal",
+       [](RawDb& db, const Known& k, std::uint64_t) -> std::string {
+         if (auto w = expect_eq("participants without their answer",
+                                db.one("SELECT count(*) FROM participants p WHERE NOT EXISTS (SELECT 1 FROM consents c "
+                                       "WHERE c.participant_id = p.id AND c.text_sha256 = '" + kConsentSha + "')"),
+                                "0");
+             !w.empty())
+           return w;
+         if (auto w = expect_eq("agreed", db.one("SELECT count(*) FROM consents WHERE agreed = 0"),
+                                db.one("SELECT count(*) FROM participants WHERE participant = '" + pid_of(kDecliner) + "'"));
+             !w.empty())
+           return w;
+         const std::string d = "(SELECT id FROM participants WHERE participant = '" + pid_of(kDecliner) + "')";
+         const auto declined = db.rows("SELECT p.demographics, p.released_at = w.withdrawn_at, w.reason, "
+                                       "(SELECT count(*) FROM sessions s WHERE s.participant_id = p.id) FROM participants "
+                                       "p JOIN withdrawals w ON w.participant_id = p.id WHERE p.id = " + d);
+         if (db.count("SELECT count(*) FROM withdrawals") != static_cast<std::int64_t>(declined.size()))
+           return "a withdrawal of someone who never declined";
+         if (k.enroll_done[kDecliner] && declined.empty()) return "the decline was reported done but is missing";
+         if (!declined.empty() &&
+             declined[0] != std::vector<std::string>{"{}", db.postgres() ? "t" : "1", "declined consent", "0"})
+           return "the decliner holds more than the refusal: " + declined[0][0] + " " + declined[0][1] + " " +
+                  declined[0][2] + " " + declined[0][3];
+         return "";
+       }},
+      {"I14 screens are numbered 1..n per session; every reported screen saved, at most the one in progress lost",
+       [](RawDb& db, const Known& k, std::uint64_t) -> std::string {
+         for (int p = 0; p < kParticipants; ++p) {
+           const auto r = db.rows("SELECT count(*), coalesce(max(x.seq), 0), coalesce(min(x.seq), 1) FROM screens x "
+                                  "JOIN sessions s ON s.id = x.session_id JOIN participants pa ON pa.id = s.participant_id "
+                                  "WHERE pa.participant = '" + pid_of(p) + "'")[0];
+           const int n = std::stoi(r[0]);
+           if (r[0] != r[1] || r[2] != "1") return pid_of(p) + ": screens are not 1.." + r[0];
+           if (n < k.scr_done[p] || n > std::max(k.scr_done[p], k.scr_begun[p]))
+             return pid_of(p) + ": " + r[0] + " screens, reported done " + std::to_string(k.scr_done[p]) +
+                    ", begun " + std::to_string(k.scr_begun[p]);
+         }
+         return "";
+       }},
   };
   return list;
 }
@@ -294,7 +359,7 @@ TEST_P(Crash, KilledAtIncreasingDelaysLosesAtMostTheTrialInProgress) {
           EXPECT_EQ(known.enroll_done[0], 0) << "seed " << seed << ": enrollment reported, no schema";
         }
         for (const Check& c : checks()) {
-          if (!has_schema && std::string(c.name).rfind("I1", 0) != 0) continue;  // nothing created yet
+          if (!has_schema && std::string(c.name).rfind("I1 ", 0) != 0) continue;  // nothing created yet (I1 only, not I13)
           const std::string why = c.fn(db, known, seed);
           EXPECT_TRUE(why.empty()) << c.name << "\n  seed " << seed << ", run " << cycle << ", kill after step "
                                    << trigger << " + " << delay.count() << " us: " << why;
@@ -320,6 +385,14 @@ TEST_P(Crash, KilledAtIncreasingDelaysLosesAtMostTheTrialInProgress) {
     const auto got = a.rows(sql), want = b.rows(sql);
     EXPECT_EQ(got.size(), static_cast<std::size_t>(kParticipants * kTrials));
     EXPECT_EQ(got, want) << "seed " << seed << ": the crashed-and-resumed study differs from a clean run";
+    const std::string answers =
+        "SELECT pa.participant, pa.demographics, pa.released_at IS NULL, c.agreed, c.text_sha256, w.reason, "
+        "x.seq, x.screen, x.shown_at, x.ended_at, x.duration_s, x.answer FROM participants pa "
+        "LEFT JOIN consents c ON c.participant_id = pa.id LEFT JOIN withdrawals w ON w.participant_id = pa.id "
+        "LEFT JOIN sessions s ON s.participant_id = pa.id LEFT JOIN screens x ON x.session_id = s.id "
+        "ORDER BY pa.enrollment_index, x.seq";
+    EXPECT_EQ(a.rows(answers).size(), static_cast<std::size_t>(kParticipants * kTrials + 1));
+    EXPECT_EQ(a.rows(answers), b.rows(answers)) << "seed " << seed << ": consent or screens differ from a clean run";
     for (const Check& c : checks()) EXPECT_EQ(c.fn(a, known, seed), "") << c.name;
   }
   // The loop is only meaningful if kills really landed inside steps.

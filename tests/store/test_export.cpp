@@ -1,10 +1,11 @@
 // `dtlab export` and store::export_trials_csv: the header is exactly the one
 // documented in README.md and docs/store.md, there is one row per recorded
-// trial, fields follow RFC 4180 with NA for missing values, and the command
-// line reports bad input with a non-zero exit, on both engines. The CSV is
-// read back with an
-// independent RFC 4180 reader written here (and Python's csv module if
-// /usr/bin/python3 exists).
+// trial (participants who withdrew left out, and counted), the demographics
+// each participant gave in one column per field, fields follow RFC 4180 with
+// NA for missing values, and the command line reports bad input with a
+// non-zero exit, on both engines. The CSV is read back with an independent
+// RFC 4180 reader written here (and Python's csv module if /usr/bin/python3
+// exists).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -20,13 +21,14 @@ namespace {
 
 using namespace dtlab::store::testing;
 
-// The documented header for a study with factors transparency, scenario.
+// The documented header for a study with factors transparency, scenario, whose participants were
+// enrolled with the demographic fields age and gender (P1), then age and hand (P,2).
 const char* kHeader =
     "participant,enrollment_index,session,session_status,order_row,position,block,transparency,scenario,task,trial,"
     "practice,method,trial_seed,scene_hash,answer_count,answer_letter,answer_x,answer_z,truth_count,truth_letter,"
     "truth_x,truth_z,rel_error,signed_error,correct,distance,completion_time_s,started_at,ended_at,frame_count,"
     "frame_ms_mean,frame_ms_sd,frame_ms_p95,frame_ms_max,frame_first_ms,frame_ms_median,late_frames,refresh_hz,"
-    "protocol_sha256,design_revision,excluded";
+    "protocol_sha256,design_revision,excluded,demo_age,demo_gender,demo_hand";
 
 // Minimal RFC 4180 reader: records of fields, quoted fields may hold , " CR LF.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -53,13 +55,15 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
 }
 
 // A study: P1 finishes 4 trials (the T3 at position 3 unanswered), "P,2 \"x\"" records 2
-// and is released; P3 is enrolled without a session.
+// and is released; P3 is enrolled without a session. P1 and P,2 give demographics (P,2 a field
+// P1 lacks, and a value CSV quotes); P3 none.
 std::string make_db(const std::string& path, int* recorded) {
   auto s = Store::open(path, study_info());
   EXPECT_TRUE(s);
   *recorded = 0;
   for (const std::string id : {"P1", "P,2 \"x\""}) {
-    auto e = s->enroll(id);
+    auto e = id == "P1" ? s->enroll(id, {{"age", "27"}, {"gender", "f"}})
+                        : s->enroll(id, {{"age", "35"}, {"hand", "left, \"mostly\""}});
     const design::Plan plan = make_plan(e->index, e->order_row, 1);
     auto ses = s->begin_session(id, plan);
     const int n = id == "P1" ? 4 : 2;
@@ -123,6 +127,50 @@ TEST_P(Export, HeaderIsAsDocumentedAndOneRowPerRecordedTrial) {
   EXPECT_EQ(rows[5][col("participant")], "P,2 \"x\"");  // quoted and read back intact
   EXPECT_EQ(rows[5][col("session_status")], "abandoned");
   EXPECT_NE(text.find("\"P,2 \"\"x\"\"\""), std::string::npos);
+  // Demographics: one column per field, NA where the participant has none.
+  EXPECT_EQ(rows[1][col("demo_age")], "27");
+  EXPECT_EQ(rows[1][col("demo_gender")], "f");
+  EXPECT_EQ(rows[1][col("demo_hand")], "NA");
+  EXPECT_EQ(rows[5][col("demo_gender")], "NA");
+  EXPECT_EQ(rows[5][col("demo_hand")], "left, \"mostly\"");
+}
+
+// A participant who withdrew their consent is left out of the export (and trial_table), with the
+// count in the summary; their demographic fields still name columns. A factor named like a
+// demographic column is refused at open, so the two never clash.
+TEST_P(Export, LeavesWithdrawnParticipantsOutAndCountsThem) {
+  int recorded = 0;
+  const std::string path = make_db(study(), &recorded);
+  {
+    auto s = Store::open(path, study_info());
+    ASSERT_TRUE(s);
+    auto e = s->enroll("W", {{"age", "50"}, {"glasses", "yes"}});
+    const design::Plan plan = make_plan(e->index, e->order_row, 1);
+    auto ses = s->begin_session("W", plan);
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(s->record_trial(*ses, make_record(5, plan.trials[i], 30)));
+    ASSERT_TRUE(s->withdraw("W", "withdrew consent", "RA"));
+    ASSERT_TRUE(s->withdraw("P1", "withdrew consent", "RA"));
+  }
+  std::ostringstream out;
+  auto sum = export_trials_csv(path, out);
+  ASSERT_TRUE(sum) << sum.error().to_string();
+  EXPECT_EQ(sum->rows, 2);               // P,2's two trials
+  EXPECT_EQ(sum->withdrawn, 2);          // P1 and W
+  EXPECT_EQ(sum->withdrawn_rows, 4 + 3);
+  const auto rows = parse_csv(out.str());
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].back(), "demo_glasses");
+  EXPECT_EQ(rows[1][0], "P,2 \"x\"");
+  RawDb db(path);
+  EXPECT_EQ(db.count("SELECT count(*) FROM trial_table"), 2);
+  EXPECT_EQ(db.columns("SELECT * FROM trial_table"), rows[0]);
+
+  StudyInfo bad = study_info();
+  bad.factors = {"transparency", "Demo_age"};
+  auto refused = Store::open(study("other"), bad);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().field, "study.factors");
+  EXPECT_NE(refused.error().message.find("demographic columns"), std::string::npos) << refused.error().to_string();
 }
 
 TEST(ExportFile, ErrorsNameTheFileAndNeverCreateOne) {
@@ -180,6 +228,10 @@ TEST_P(Export, EqualsTheTrialTableViewCellForCell) {
     ASSERT_TRUE(s->exclude("P,2 \"x\"", 2, "fire alarm", "RA"));
     ASSERT_TRUE(s->include("P1", std::nullopt, "", "PI"));
     ASSERT_TRUE(s->exclude("P1", 3, "looked away", ""));
+    auto e = s->enroll("W", {{"age", "61"}, {"visor", "on"}});  // withdraws: left out of both
+    auto ses = s->begin_session("W", make_plan(e->index, e->order_row, 1));
+    ASSERT_TRUE(s->record_trial(*ses, make_record(5, **s->next_trial(*ses), 30)));
+    ASSERT_TRUE(s->withdraw("W", "withdrew consent", "RA"));
   }
   std::ostringstream out;
   auto sum = export_trials_csv(path, out);
@@ -208,6 +260,10 @@ TEST_P(Export, EqualsTheTrialTableViewCellForCell) {
   EXPECT_EQ(exported[3][col("excluded")], "looked away");
   EXPECT_EQ(exported[6][col("excluded")], "fire alarm");
   EXPECT_EQ(exported[1][col("design_revision")], "1");  // the old text hashed by the caller's function
+  EXPECT_EQ(exported[1][col("demo_age")], "27");
+  EXPECT_EQ(exported[6][col("demo_hand")], "left, \"mostly\"");
+  EXPECT_EQ(header.back(), "demo_visor");  // W's field names a column, W's rows are left out
+  EXPECT_EQ(view.size(), 6u);
 }
 
 // Optional: an independent CSV reader (Python's csv module) agrees on shape.
@@ -224,7 +280,8 @@ TEST(ExportFile, PythonCsvModuleReadsItAsIs) {
       "import csv,sys; r=list(csv.DictReader(open(sys.argv[1], newline=''))); "
       "assert len(r)==" + std::to_string(recorded) + ", len(r); "
       "assert r[4]['participant']=='P,2 \"x\"', r[4]['participant']; "
-      "assert all(len(x)==42 for x in r); float(r[0]['completion_time_s'])";
+      "assert all(len(x)==45 for x in r); assert r[4]['demo_hand']=='left, \"mostly\"', r[4]; "
+      "float(r[0]['completion_time_s'])";
   const std::string cmd = "/usr/bin/python3 -c '" + [&] {
     std::string q;
     for (char c : script) q += c == '\'' ? std::string("'\\''") : std::string(1, c);

@@ -55,9 +55,9 @@ TEST_P(StoreSchema, CreatesTheNewestSchemaWithItsHeaderAndProtocol) {
   if (!pg()) {
     EXPECT_EQ(db.one("PRAGMA journal_mode"), "wal");
   }
-  EXPECT_EQ(db.header(), std::make_pair(std::to_string(kApplicationId), std::string("3")));
-  EXPECT_EQ(db.one("SELECT max(version) FROM schema_migrations"), "3");
-  EXPECT_EQ(db.count("SELECT count(*) FROM schema_migrations"), 3);  // v1, then v2 and v3 on top of it
+  EXPECT_EQ(db.header(), std::make_pair(std::to_string(kApplicationId), std::string("4")));
+  EXPECT_EQ(db.one("SELECT max(version) FROM schema_migrations"), "4");
+  EXPECT_EQ(db.count("SELECT count(*) FROM schema_migrations"), 4);  // v1, then v2, v3 and v4 on top of it
   const StudyInfo info = study_info();
   EXPECT_EQ(db.one("SELECT protocol_text FROM studies"), info.protocol_text);
   EXPECT_EQ(db.one("SELECT protocol_sha256 FROM studies"), info.protocol_sha256);
@@ -215,14 +215,14 @@ TEST_P(StoreOpen, RefusesANewerSchemaVersion) {
   { Store s = open_ok(path); }
   {
     RawDb db(path);
-    ASSERT_TRUE(db.exec(pg() ? "UPDATE dtlab_header SET user_version = 4" : "PRAGMA user_version = 4")) << db.errmsg();
-    ASSERT_TRUE(db.exec("INSERT INTO schema_migrations VALUES (4, 'future', '2030-01-01T00:00:00.000Z', 'dtlab 9')"));
+    ASSERT_TRUE(db.exec(pg() ? "UPDATE dtlab_header SET user_version = 5" : "PRAGMA user_version = 5")) << db.errmsg();
+    ASSERT_TRUE(db.exec("INSERT INTO schema_migrations VALUES (5, 'future', '2030-01-01T00:00:00.000Z', 'dtlab 9')"));
   }
   const std::string before = pg() ? "" : read_bytes(path);
   auto s = Store::open(path, study_info());
   ASSERT_FALSE(s);
   EXPECT_EQ(s.error().field, "schema_migrations.version");
-  EXPECT_NE(s.error().message.find("schema version 4"), std::string::npos) << s.error().to_string();
+  EXPECT_NE(s.error().message.find("schema version 5"), std::string::npos) << s.error().to_string();
   if (!pg()) {
     EXPECT_EQ(read_bytes(path), before);
   }

@@ -7,43 +7,27 @@
 // participant enrolled but never started has no plan yet and takes DST's next
 // free slot and the order row DST's rule gives. A participant in both must
 // hold the same data in both (DST may lack the session, or have more);
-// decisions are merged when one side's list continues the other's. Every
-// check runs before the first row is written; the caller's one transaction
-// makes the merge whole or nothing. Never changes a row DST holds.
+// decisions are merged when one side's list continues the other's (consent,
+// withdrawal and screens likewise: merge_answers.cpp). Every check runs
+// before the first row is written; the caller's one transaction makes the
+// merge whole or nothing. Never changes a row DST holds, except by the
+// effects of a withdrawal SRC adds (the row released, a running session
+// abandoned), as withdraw() would.
 #include <algorithm>
 #include <map>
 #include <tuple>
 
-#include "study/store/detail/copy_rows.h"
+#include "study/store/detail/merge.h"
 #include "study/store/detail/schema.h"
-#include "study/store/store.h"
 
 namespace dtlab::store::detail {
-namespace {
-
-std::string text(const Value& v) {
-  if (const auto* s = std::get_if<std::string>(&v)) return *s;
-  if (const auto* n = std::get_if<std::int64_t>(&v)) return std::to_string(*n);
-  return "";
-}
-std::int64_t num(const Value& v) {
-  if (const auto* n = std::get_if<std::int64_t>(&v)) return *n;
-  if (const auto* d = std::get_if<double>(&v)) return static_cast<std::int64_t>(*d);
-  return 0;
-}
+namespace merging {
 
 Error refuse(const Db& dst, const std::string& field, const std::string& why) {
   return Error{dst.path(), 0, 0, field, why + "; the merge is refused and nothing was written", ErrorKind::conflict};
 }
 
-struct StudyRow {
-  Row row;  // as copied_tables() lists the columns of `studies`
-  std::vector<std::string> factors;
-  std::string design;
-  std::int64_t id() const { return num(row[0]); }
-  std::string sha() const { return text(row[3]); }
-  std::int64_t order_rows() const { return num(row[5]); }
-};
+namespace {
 
 Result<std::vector<StudyRow>> read_studies(Db& db, bool v2, const CopyOptions& options) {
   std::vector<StudyRow> out;
@@ -73,16 +57,6 @@ Result<std::vector<StudyRow>> read_studies(Db& db, bool v2, const CopyOptions& o
   return out;
 }
 
-struct Person {
-  Row row;  // as copied_tables() lists the columns of `participants`
-  std::optional<std::int64_t> session;
-  std::int64_t id() const { return num(row[0]); }
-  std::string name() const { return text(row[1]); }
-  std::int64_t index() const { return num(row[2]); }
-  std::int64_t order_row() const { return num(row[3]); }
-  bool released() const { return !std::holds_alternative<std::monostate>(row[7]); }
-};
-
 Result<std::vector<Person>> read_ledger(Db& db) {
   std::vector<Person> out;
   Status st = each_row(db,
@@ -101,9 +75,9 @@ Result<std::vector<Person>> read_ledger(Db& db) {
   return out;
 }
 
-// The select list of `table`'s copied columns in a database of schema `version`, each prefixed
-// with `alias` (a column that version lacks reads as NULL).
-std::string columns_of(const char* table, const std::string& alias, int version = kSchemaVersion) {
+}  // namespace
+
+std::string columns_of(const char* table, const std::string& alias, int version) {
   for (const TableSpec& t : copied_tables())
     if (std::string(t.name) == table) return t.select_list(version, alias);
   return "";
@@ -115,10 +89,12 @@ const std::vector<std::string>& spec_columns(const char* table) {
   return none;
 }
 
+namespace {
+
 // The rows of a session's tables, keyed by the session's own ids: selects per table, reading a
 // database of schema `version`.
 struct SessionQueries {
-  std::string session, planned, levels, results, events, poses, resumes, answers, pauses, attempts, displays;
+  std::string session, planned, levels, results, events, poses, resumes, answers, pauses, attempts, displays, screens;
 };
 SessionQueries session_queries(int version) {
   return {
@@ -145,15 +121,19 @@ SessionQueries session_queries(int version) {
           " FROM trial_attempts a WHERE a.session_id = ? ORDER BY a.position, a.attempt",
       "SELECT " + columns_of("session_displays", "x") + " FROM session_displays x WHERE x.session_id = ? ORDER BY " +
           kDisplayOrder,
+      "SELECT " + columns_of("screens", "x") + " FROM screens x WHERE x.session_id = ? ORDER BY x.seq",
   };
 }
 
 // Everything recorded in a session that schema `version` records, with its ids replaced (the
 // session's and planned trials' by positions, the study's by its protocol hash): two databases
 // hold the same session exactly when these are equal at SRC's version (what an older SRC could
-// not record is not compared). Also counts the recorded trials.
+// not record is not compared; the screen log is merged on its own). A session abandoned at
+// `withdrawn_at` (by the participant's withdrawal) reads as running, so a session withdrawn on
+// one side equals the same session still running on the other. Also counts the recorded trials.
 Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, int version,
-                                                const std::map<std::int64_t, std::string>& sha, int* recorded) {
+                                                const std::map<std::int64_t, std::string>& sha,
+                                                const std::string& withdrawn_at, int* recorded) {
   std::vector<std::string> out;
   std::map<std::int64_t, std::int64_t> position;  // planned trial id -> position
   const SessionQueries q = session_queries(version);
@@ -167,6 +147,10 @@ Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, in
   };
   Status st = each_row(db, q.session, {session}, [&](Row& r) -> Status {
     r[0] = r[1] = std::int64_t{0};
+    if (!withdrawn_at.empty() && text(r[4]) == "abandoned" && text(r[6]) == withdrawn_at) {
+      r[4] = std::string("running");
+      r[6] = std::monostate{};
+    }
     r[2] = sha.count(num(r[2])) ? sha.at(num(r[2])) : std::string("?");
     out.push_back("S" + canonical(r));
     return {};
@@ -213,51 +197,7 @@ Result<std::vector<Row>> decisions_about(Db& db, const char* table, std::optiona
   return out;
 }
 
-bool same_content(const Row& a, const Row& b) {  // ignoring id and participant_id (columns 0, 1)
-  return std::equal(a.begin() + 2, a.end(), b.begin() + 2, b.end());
-}
-
-class Merger {
- public:
-  Merger(Db& src, int src_version, Db& dst, const CopyOptions& o, CopySummary& sum)
-      : src_(src), dst_(dst), src_version_(src_version), v2_(src_version >= 2), options_(o), sum_(sum) {}
-
-  Status run();
-
- private:
-  using Slots = std::map<std::int64_t, const Person*>;  // DST ledger slots after the merge
-  Status map_studies();
-  Status plan_ledger();
-  Status plan_present(const Person& p, const Person& q);
-  void plan_free_slots(const std::vector<const Person*>& renumber, Slots& used);
-  Status check_no_gaps(const Slots& used) const;
-  Status append_revisions();
-  Status write_participants();
-  Status import_session(std::int64_t src_session, std::int64_t dst_participant);
-  Status merge_decisions(const char* table, std::optional<std::int64_t> src_pid, std::optional<std::int64_t> dst_pid);
-  Result<std::int64_t> next(const char* table);
-  std::string src_name(std::optional<std::int64_t> pid) const;
-
-  Db& src_;
-  Db& dst_;
-  int src_version_;
-  bool v2_;
-  const CopyOptions& options_;
-  CopySummary& sum_;
-  std::vector<StudyRow> src_studies_, dst_studies_;
-  std::map<std::int64_t, std::int64_t> study_;  // SRC study id -> DST study id
-  std::map<std::int64_t, std::string> src_sha_, dst_sha_;
-  std::vector<StudyRow> append_;               // SRC revisions DST lacks (same design)
-  std::vector<Person> src_ledger_, dst_ledger_;
-  struct Plan {
-    const Person* person;
-    std::optional<std::int64_t> existing;  // DST's participant row when DST has them already
-    std::int64_t index = 0, order_row = 0;
-    bool import_session = false;
-  };
-  std::vector<Plan> plans_;
-  std::map<std::string, std::int64_t> next_ids_;
-};
+}  // namespace
 
 Status Merger::run() {
   if (auto s = map_studies(); !s) return s;
@@ -341,9 +281,13 @@ Status Merger::plan_ledger() {
                         " (order row " + std::to_string(p.order_row()) + "), which DST gives to participant \"" +
                         it->second->name() + "\"; another slot would give other trial seeds (design/seeds.h)");
     used[p.index()] = &p;
-    plans_.push_back(Plan{&p, std::nullopt, p.index(), p.order_row(), true});
+    plans_.push_back(Plan{.person = &p, .existing = std::nullopt, .index = p.index(), .order_row = p.order_row(),
+                          .import_session = true});
   }
   plan_free_slots(renumber, used);
+  for (Plan& plan : plans_)  // new to DST: whatever SRC holds of their consent comes with them
+    if (!plan.existing)
+      if (auto s = plan_answers(plan, *plan.person, nullptr); !s) return s;
   return check_no_gaps(used);
 }
 
@@ -351,7 +295,14 @@ Status Merger::plan_ledger() {
 // another slot by an earlier merge), and the same session or none in DST.
 Status Merger::plan_present(const Person& p, const Person& q) {
   const std::string who = "participant \"" + p.name() + "\"";
+  Plan plan{.person = &p, .existing = q.id(), .index = q.index(), .order_row = q.order_row()};
+  if (auto s = plan_answers(plan, p, &q); !s) return s;
+  // A row released by the participant's withdrawal (at its instant) compares as not released, so a
+  // withdrawal on one side only is a decision that side adds, not another enrollment.
+  const std::string src_withdrawn = plan.src.withdrawn_at(), dst_withdrawn = plan.dst.withdrawn_at();
   Row a = p.row, b = q.row;
+  if (!src_withdrawn.empty() && text(a[7]) == src_withdrawn) a[7] = std::monostate{};
+  if (!dst_withdrawn.empty() && text(b[7]) == dst_withdrawn) b[7] = std::monostate{};
   a[0] = b[0] = std::int64_t{0};
   a[4] = src_sha_[num(a[4])];
   b[4] = dst_sha_[num(b[4])];
@@ -363,21 +314,26 @@ Status Merger::plan_present(const Person& p, const Person& q) {
                       (p.released() ? ", released" : "") + "; DST: slot " + std::to_string(q.index()) + ", row " +
                       std::to_string(q.order_row()) + ", enrolled " + text(q.row[6]) +
                       (q.released() ? ", released" : "") + ")");
-  Plan plan{&p, q.id(), q.index(), q.order_row(), false};
   if (p.session && q.session) {
     int in_src = 0, in_dst = 0;
-    auto rs = session_record(src_, *p.session, src_version_, src_sha_, &in_src);
+    auto rs = session_record(src_, *p.session, src_version_, src_sha_, src_withdrawn, &in_src);
     if (!rs) return rs.error();
-    auto rd = session_record(dst_, *q.session, src_version_, dst_sha_, &in_dst);  // what both schemas record
+    auto rd = session_record(dst_, *q.session, src_version_, dst_sha_, dst_withdrawn, &in_dst);  // what both record
     if (!rd) return rd.error();
     if (*rs != *rd)
       return refuse(dst_, "sessions",
                     who + " has a session in both that differs (SRC: " + std::to_string(in_src) +
                         " trials recorded, DST: " + std::to_string(in_dst) + "); sessions are not merged trial by trial");
+    if (auto s = plan_screens(plan, *p.session, *q.session); !s) return s;
   }
   plan.import_session = p.session && !q.session;
-  if (!plan.import_session) ++sum_.unchanged;
-  plans_.push_back(plan);
+  if (plan.import_session && plan.dst.withdrawal)
+    return refuse(dst_, "withdrawals",
+                  who + " withdrew their consent in DST (at " + dst_withdrawn +
+                      "), and SRC holds a session of theirs that DST lacks; a participant who withdrew never runs "
+                      "again");
+  if (!plan.import_session && !plan.adds_answers()) ++sum_.unchanged;
+  plans_.push_back(std::move(plan));
   return {};
 }
 
@@ -397,7 +353,7 @@ void Merger::plan_free_slots(const std::vector<const Person*>& renumber, Slots& 
     const auto row = std::min_element(fill.begin(), fill.end()) - fill.begin();
     used[free_slot] = p;
     count_active(row, p->released());
-    plans_.push_back(Plan{p, std::nullopt, free_slot, row, false});
+    plans_.push_back(Plan{.person = p, .existing = std::nullopt, .index = free_slot, .order_row = row});
     if (free_slot != p->index() || row != p->order_row())
       sum_.changes.push_back("participant \"" + p->name() + "\" (enrolled, never started): ledger slot " +
                              std::to_string(p->index()) + " -> " + std::to_string(free_slot) + ", order row " +
@@ -461,6 +417,7 @@ Status Merger::write_participants() {
     }
     if (p.import_session)
       if (auto s = import_session(*p.person->session, *dst_pid); !s) return s;
+    if (auto s = write_answers(p, *dst_pid); !s) return s;  // after the session: a withdrawal refuses new ones
     if (v2_) {  // a participant new to DST has no decisions there: all of SRC's are added
       if (auto s = merge_decisions("exclusions", p.person->id(), *dst_pid); !s) return s;
       if (auto s = merge_decisions("notes", p.person->id(), *dst_pid); !s) return s;
@@ -484,6 +441,7 @@ Status Merger::import_session(std::int64_t src_session, std::int64_t dst_partici
     if (!st) return st;
     if (auto s = sink.finish(); !s) return s;
     if (std::string(table) == "trial_results") sum_.trials += static_cast<int>(sink.count());
+    if (std::string(table) == "screens") sum_.screens += static_cast<int>(sink.count());
     return {};
   };
   auto by_session = [&](Row& r) -> Status {
@@ -527,6 +485,8 @@ Status Merger::import_session(std::int64_t src_session, std::int64_t dst_partici
       if (auto s = copy(sql, table, by_session); !s) return s;
   if (src_version_ >= 3)
     if (auto s = copy(q.displays, "session_displays", by_session); !s) return s;
+  if (src_version_ >= 4)
+    if (auto s = copy(q.screens, "screens", by_session); !s) return s;
   ++sum_.sessions;
   if (!final_state) return {};
   auto fin = Stmt::prepare(dst_, "UPDATE sessions SET status = ?, ended_at = ? WHERE id = ?", "finishing the session");
@@ -577,10 +537,10 @@ Status Merger::merge_decisions(const char* table, std::optional<std::int64_t> sr
   return dst_.conn().insert_rows(table, spec_columns(table), rows, std::string("adding ") + table);
 }
 
-}  // namespace
+}  // namespace merging
 
 Status merge_study(Db& src, int src_version, Db& dst, const CopyOptions& options, CopySummary& summary) {
-  Merger m(src, src_version, dst, options, summary);
+  merging::Merger m(src, src_version, dst, options, summary);
   return m.run();
 }
 

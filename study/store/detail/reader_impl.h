@@ -1,14 +1,53 @@
-// StudyReader's private state (read.cpp): the connection it reads through --
-// its own, holding one snapshot, or a Store's, borrowed -- and what one
-// snapshot caches (the revisions, which every trial row refers to).
+// StudyReader's private state (read.cpp, read_consent.cpp): the connection it
+// reads through -- its own, holding one snapshot, or a Store's, borrowed --
+// what one snapshot caches (the revisions, which every trial row refers to),
+// and the row helpers the reads share. Reads only; nothing here writes.
 #pragma once
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "study/store/detail/db.h"
 #include "study/store/read.h"
 
 namespace dtlab::store {
+namespace detail::reading {
+
+// Runs `sql` with `bind` applied, calling row(st) per result row.
+template <class Bind, class Row>
+Status each_row(Db& db, const std::string& sql, const char* what, Bind&& bind, Row&& row) {
+  auto st = Stmt::prepare(db, sql, what);
+  if (!st) return st.error();
+  bind(*st);
+  for (;;) {
+    auto r = st->step(what);
+    if (!r) return r.error();
+    if (!*r) return {};
+    row(*st);
+  }
+}
+
+inline constexpr auto no_bind = [](Stmt&) {};
+
+inline std::optional<std::string> opt_text(const Stmt& st, int c) {
+  return st.is_null(c) ? std::nullopt : std::optional<std::string>(st.text(c));
+}
+inline std::optional<double> opt_real(const Stmt& st, int c) {
+  return st.is_null(c) ? std::nullopt : std::optional<double>(st.real(c));
+}
+inline std::optional<std::int64_t> opt_int(const Stmt& st, int c) {
+  return st.is_null(c) ? std::nullopt : std::optional<std::int64_t>(st.int64(c));
+}
+
+// The SQL of a 0/1 column that says whether the participant with row id `participant_id` (an
+// SQL expression) withdrew; a constant 0 below schema v4.
+inline std::string withdrawn_sql(int schema_version, const std::string& participant_id) {
+  if (schema_version < 4) return "0";
+  return "CASE WHEN EXISTS (SELECT 1 FROM withdrawals w WHERE w.participant_id = " + participant_id +
+         ") THEN 1 ELSE 0 END";
+}
+
+}  // namespace detail::reading
 
 struct StudyReader::Impl {
   detail::Db own;           // the reader's own connection (owned readers only)
@@ -23,7 +62,18 @@ struct StudyReader::Impl {
   Status begin();  // owned readers: open the snapshot
   void end();      // owned readers: close it
   template <class F>
-  auto call(F&& f) -> decltype(f());
+  auto call(F&& f) -> decltype(f()) {
+    // A borrowed connection reads each outermost call in a short transaction of its own (unless its
+    // Store is inside one); an owned one reads in its snapshot.
+    const bool own_tx = !owned && depth == 0 && !db->conn().in_transaction();
+    if (own_tx)
+      if (auto s = db->conn().begin_read("starting a read transaction"); !s) return s.error();
+    ++depth;
+    auto r = f();
+    --depth;
+    if (own_tx) db->conn().commit("ending the read transaction");
+    return r;
+  }
   Result<std::vector<Revision>> read_revisions();
   Result<std::vector<Exclusion>> read_exclusions();
   Result<std::int64_t> result_id(const std::string& participant, int position);

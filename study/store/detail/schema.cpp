@@ -5,6 +5,8 @@
 // schema or the whole of it. Never drops or rewrites a table holding data.
 #include "study/store/detail/schema.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <charconv>
 #include <cctype>
@@ -291,11 +293,13 @@ struct Migration {
 const char* const kV1 = "schema v1: studies, ledger, sessions, planned trials, results, events, poses, questionnaire";
 const char* const kV2 = "schema v2: design hashes, exclusions, notes, pauses, trial attempts, session claims";
 const char* const kV3 = "schema v3: warm-up and late frames per trial, the display of each session";
+const char* const kV4 = "schema v4: consent answers, withdrawals, the screen log";
 
 const std::vector<Migration>& migrations(Backend backend) {
-  static const std::vector<Migration> sqlite = {{1, kV1, &schema_v1}, {2, kV2, &schema_v2}, {3, kV3, &schema_v3}};
+  static const std::vector<Migration> sqlite = {
+      {1, kV1, &schema_v1}, {2, kV2, &schema_v2}, {3, kV3, &schema_v3}, {4, kV4, &schema_v4}};
   static const std::vector<Migration> postgres = {
-      {1, kV1, &pg_schema_v1}, {2, kV2, &pg_schema_v2}, {3, kV3, &pg_schema_v3}};
+      {1, kV1, &pg_schema_v1}, {2, kV2, &pg_schema_v2}, {3, kV3, &pg_schema_v3}, {4, kV4, &pg_schema_v4}};
   return backend == Backend::postgresql ? postgres : sqlite;
 }
 
@@ -401,6 +405,23 @@ Status migrate(Db& db, int from, const std::string& software_version, const std:
   return db.conn().mark_as_dtlab(kSchemaVersion);
 }
 
+Result<std::vector<std::string>> demographic_fields(Db& db) {
+  const char* what = "reading the demographic fields";
+  auto st = Stmt::prepare(db, "SELECT demographics FROM participants ORDER BY enrollment_index", what);
+  if (!st) return st.error();
+  std::vector<std::string> fields;
+  for (;;) {
+    auto row = st->step(what);
+    if (!row) return row.error();
+    if (!*row) break;
+    const auto j = nlohmann::ordered_json::parse(st->text(0), nullptr, false);
+    if (!j.is_object()) continue;  // the schema's CHECK makes it an object
+    for (const auto& [k, v] : j.items())
+      if (std::find(fields.begin(), fields.end(), k) == fields.end()) fields.push_back(k);
+  }
+  return fields;
+}
+
 Status create_trial_table_view(Db& db) {
   const std::string what = "creating the trial_table view";
   auto st = Stmt::prepare(db, "SELECT name FROM study_factors GROUP BY name ORDER BY min(study_id), min(position)", what);
@@ -412,6 +433,14 @@ Status create_trial_table_view(Db& db) {
     if (!*row) break;
     factors.push_back(st->text(0));
   }
+  auto fields = demographic_fields(db);
+  if (!fields) return fields.error();
+  // A field's value as text, looked up by its exact name (any characters) on either engine.
+  auto field_value = [&](const std::string& f) {
+    return db.backend() == Backend::postgresql
+               ? "(pa.demographics::json ->> " + quote_literal(f) + ")"
+               : "(SELECT j.value FROM json_each(pa.demographics) j WHERE j.key = " + quote_literal(f) + ")";
+  };
   std::string sql = "DROP VIEW IF EXISTS trial_table;\nCREATE VIEW trial_table AS SELECT\n"
                     "  pa.participant AS participant, pa.enrollment_index AS enrollment_index,\n"
                     "  s.id AS session, s.status AS session_status, pa.order_row AS order_row,\n"
@@ -442,13 +471,17 @@ Status create_trial_table_view(Db& db) {
       "            WHERE x.participant_id = pa.id AND x.position IS NULL ORDER BY x.id DESC LIMIT 1),\n"
       "           (SELECT CASE x.action WHEN 'exclude' THEN x.reason END FROM exclusions x\n"
       "            WHERE x.participant_id = pa.id AND x.position = p.position ORDER BY x.id DESC LIMIT 1))\n"
-      "    AS excluded\n"
-      "FROM trial_results r\n"
+      "    AS excluded";
+  for (const std::string& f : *fields) sql += ",\n  " + field_value(f) + " AS " + quote_identifier(kDemographicPrefix + f);
+  sql +=
+      "\nFROM trial_results r\n"
       "JOIN planned_trials p ON p.id = r.planned_trial_id\n"
       "JOIN sessions s ON s.id = p.session_id\n"
       "JOIN participants pa ON pa.id = s.participant_id\n"
       "JOIN studies st ON st.id = s.study_id\n"
-      "LEFT JOIN study_designs sd ON sd.study_id = st.id;";
+      "LEFT JOIN study_designs sd ON sd.study_id = st.id\n"
+      // Invariant 13: a participant who withdrew their consent is left out of the table.
+      "WHERE NOT EXISTS (SELECT 1 FROM withdrawals w WHERE w.participant_id = pa.id);";
   return db.exec(sql, what);
 }
 

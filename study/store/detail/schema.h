@@ -21,9 +21,16 @@ std::uint64_t parse_seed(const std::string& s);
 SessionStatus parse_status(const std::string& s);
 
 // The fixed columns of trial_table, in order; the factor columns go after
-// "block". A factor may not be named like one of these (case-insensitive).
+// "block", the demographic columns (kDemographicPrefix + field) after the last. A factor may
+// not be named like one of these, nor start with kDemographicPrefix (case-insensitive).
 const std::vector<std::string>& fixed_trial_columns_before_factors();
 const std::vector<std::string>& fixed_trial_columns_after_factors();
+inline constexpr const char* kDemographicPrefix = "demo_";
+
+// The demographic fields the ledger records, each once, in order of first appearance: by
+// enrollment index, then in each participant's stored order. The export's demographic columns
+// (export.h) follow the same rule from the reader's ledger.
+Result<std::vector<std::string>> demographic_fields(Db& db);
 
 // The order session_displays rows are read in, the same on both engines (neither has a rowid the
 // other keeps): by session, the time recorded (distinct within a session: Store::record_display
@@ -53,7 +60,9 @@ Status migrate(Db& db, int from, const std::string& software_version,
                const std::map<int, AppliedMigration>& history = {});
 
 // (Re)creates the trial_table view with one column per factor named in any
-// study of the database, in order of first appearance. Inside a transaction.
+// study of the database, in order of first appearance, and one per demographic field the ledger
+// records (demographic_fields); withdrawn participants' trials are left out, as in the export.
+// Inside a transaction; needs schema v4.
 Status create_trial_table_view(Db& db);
 
 }  // namespace dtlab::store::detail

@@ -1,6 +1,6 @@
-// Schema v1, v2 and v3 on PostgreSQL (docs/store.md, "Schema v1", "Schema
-// v2", "Schema v3", "PostgreSQL"): the same tables, columns, constraints and
-// views as the SQLite text in schema.cpp, schema_v2.cpp and schema_v3.cpp, in
+// Schema v1 to v4 on PostgreSQL (docs/store.md, "Schema v1" to "Schema v4",
+// "PostgreSQL"): the same tables, columns, constraints and views as the
+// SQLite text in schema.cpp and schema_v2.cpp to schema_v4.cpp, in
 // PostgreSQL's dialect.
 // SQLite's STRICT INTEGER/REAL/TEXT are BIGINT/DOUBLE PRECISION/TEXT COLLATE
 // "C" (byte order, as SQLite compares); GLOB checks are regular expressions;
@@ -408,6 +408,57 @@ CREATE INDEX session_displays_by_session ON session_displays(session_id);
 )sql";
   s += append_only("session_displays", "dtlab: a display record is never changed",
                    "dtlab: a display record is never deleted");
+  return c_collated(s);
+}
+
+std::string pg_schema_v4() {
+  std::string s = R"sql(
+CREATE TABLE consents (
+  participant_id BIGINT PRIMARY KEY REFERENCES participants(id),
+  agreed BIGINT NOT NULL CHECK (agreed IN (0, 1)),
+  text_sha256 TEXT NOT NULL )sql" + hex("text_sha256", 64) + R"sql(,
+  answered_at TEXT NOT NULL )sql" + iso("answered_at") + R"sql(
+);
+
+CREATE TABLE withdrawals (
+  id BIGINT PRIMARY KEY,
+  participant_id BIGINT NOT NULL UNIQUE REFERENCES participants(id),
+  withdrawn_at TEXT NOT NULL )sql" + iso("withdrawn_at") + R"sql(,
+  reason TEXT NOT NULL CHECK (length(trim(reason)) > 0),
+  decided_by TEXT NOT NULL
+);
+
+CREATE TABLE screens (
+  session_id BIGINT NOT NULL REFERENCES sessions(id),
+  seq BIGINT NOT NULL CHECK (seq >= 1),
+  screen TEXT NOT NULL CHECK (length(screen) > 0),
+  shown TEXT NOT NULL,
+  shown_at TEXT NOT NULL )sql" + iso("shown_at") + R"sql(,
+  ended_at TEXT NOT NULL )sql" + iso("ended_at") + R"sql(,
+  duration_s DOUBLE PRECISION NOT NULL CHECK (duration_s >= 0),
+  answer TEXT,
+  CHECK (ended_at >= shown_at),
+  PRIMARY KEY (session_id, seq)
+);
+
+-- Invariant 13: a participant who withdrew (or declined consent) never gets a session.
+CREATE FUNCTION dtlab_sessions_not_after_withdrawal() RETURNS trigger LANGUAGE plpgsql
+  SET search_path FROM CURRENT AS $$
+BEGIN
+  IF EXISTS (SELECT 1 FROM withdrawals w WHERE w.participant_id = NEW.participant_id) THEN
+    RAISE EXCEPTION USING ERRCODE = 'integrity_constraint_violation',
+      MESSAGE = 'dtlab: the participant withdrew their consent; they never run a session';
+  END IF;
+  RETURN NEW;
+END $$;
+CREATE TRIGGER sessions_not_after_withdrawal BEFORE INSERT ON sessions
+  FOR EACH ROW EXECUTE FUNCTION dtlab_sessions_not_after_withdrawal();
+)sql";
+  s += append_only("consents", "dtlab: a consent answer is never changed; withdraw instead",
+                   "dtlab: a consent answer is never deleted");
+  s += append_only("withdrawals", "dtlab: a withdrawal is never changed",
+                   "dtlab: a withdrawal is never deleted; the participant withdrew");
+  s += append_only("screens", "dtlab: the screen log is never changed", "dtlab: the screen log is never deleted");
   return c_collated(s);
 }
 

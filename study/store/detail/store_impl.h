@@ -1,6 +1,6 @@
 // Store's private state, shared by store.cpp (open, ledger), session.cpp
-// (sessions, trials), claim.cpp (who runs a session) and annotate.cpp (the
-// lab's decisions). Holds the connection, the current study, this Store's
+// (sessions, trials), claim.cpp (who runs a session), consent.cpp (consent,
+// withdrawal, the screen log) and annotate.cpp (the lab's decisions). Holds the connection, the current study, this Store's
 // identity as a claimant and the sessions it claims; nothing of the study
 // itself, so the database is the only place where study state lives.
 #pragma once
@@ -23,6 +23,17 @@ struct Claimant {
   std::string owner;       // host/pid/start_time/nonce/machine: unique per Store object
 };
 Claimant make_claimant();
+
+// The participant's enrollment as stored now (with released and withdrawn); not_found if unknown.
+Result<Enrollment> read_enrollment(detail::Db& db, const std::string& participant_id);
+
+// Demographics as the ledger stores them: a JSON object's text in the order given (invalid UTF-8
+// becomes U+FFFD); invalid_input for an empty or repeated field name.
+Result<std::string> demographics_json(const std::string& path, const Demographics& demographics);
+
+// The refusal of a participant who withdrew (conflict, field "participant", saying when and why),
+// for enroll, record_consent and begin_session alike.
+Error withdrawn_error(detail::Db& db, const std::string& participant_id);
 
 struct Store::Impl {
   detail::Db db;
@@ -63,6 +74,18 @@ struct Store::Impl {
     }
     return st;
   }
+
+  // The ledger (store.cpp, consent.cpp); each runs inside the caller's write transaction.
+  // A new enrollment with the next index and the row of invariant 4, `demographics_json` as
+  // stored, enrolled at `now`; the trial_table view is recreated when it brings a demographic
+  // field no one had.
+  Result<Enrollment> insert_enrollment(const std::string& participant_id, const std::string& demographics_json,
+                                       const std::string& now);
+  // The effects of a withdrawal and its row (consent.cpp): a running session abandoned (claim
+  // taken, busy if another live process holds it), the row released, the withdrawal appended,
+  // all stamped `now`. No-op when the participant withdrew before.
+  Status withdraw_in(const std::string& participant_id, const std::string& reason, const std::string& by,
+                     const std::string& now);
 
   // Claims (claim.cpp); each runs inside the caller's write transaction.
   Status take_claim(std::int64_t session_id, const std::string& who, bool take_over, bool* took_over);
