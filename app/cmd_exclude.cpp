@@ -9,7 +9,6 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -29,12 +28,6 @@ struct DecisionArgs {
   bool json = false;
 };
 
-std::string default_author() {
-  for (const char* var : {"DTLAB_EXPERIMENTER", "USER", "LOGNAME"})
-    if (const char* v = std::getenv(var); v && *v) return v;
-  return "";
-}
-
 void run_decision(const DecisionArgs& a, bool exclude) {
   const char* name = exclude ? "exclude" : "include";
   auto store = store::Store::open_existing(a.db, session::open_options());
@@ -42,7 +35,7 @@ void run_decision(const DecisionArgs& a, bool exclude) {
     std::cerr << "dtlab " << name << ": " << store.error().to_string() << "\n";
     throw CLI::RuntimeError(exit_code(store.error()));
   }
-  const std::string by = a.by.empty() ? default_author() : a.by;
+  const std::string by = a.by.empty() ? default_experimenter() : a.by;
   Status st = exclude ? store->exclude(a.participant, a.trial, a.reason, by)
                       : store->include(a.participant, a.trial, a.reason, by);
   if (!st) {

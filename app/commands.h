@@ -51,6 +51,7 @@ void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every 
 void add_plan_command(CLI::App& root);  // `dtlab plan PROTOCOL --index K`: one participant's trials, --json
 void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one tidy CSV row per recorded trial, --json
 void add_exclude_command(CLI::App& root);  // `dtlab exclude|include DB --participant ID [--trial N] --reason R`
+void add_withdraw_command(CLI::App& root);  // `dtlab withdraw DB --participant ID [--reason R]`: a withdrawal of consent
 void add_copy_command(CLI::App& root);  // `dtlab copy SRC DST`: a whole study between databases (file, server), or a merge
 void add_analyze_command(CLI::App& root);  // `dtlab analyze DB --out DIR`: study report (report.md, index.html, JSON, CSV)
 void add_power_command(CLI::App& root);  // `dtlab power DB --participants 8,12,16`: power planning from a pilot, --json

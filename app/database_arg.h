@@ -1,11 +1,12 @@
 // How subcommands take a study database on the command line: a file (SQLite)
-// or a postgresql:// URI (a lab's server); and a participant ID, checked as the
-// store would check it (never cut to fit). The check accepts an existing file
+// or a postgresql:// URI (a lab's server); a participant ID, checked as the
+// store would check it (never cut to fit); and who decides, by default. The check accepts an existing file
 // or any URI (the store checks the server when it connects); it never opens
 // the database itself, and never lets a password reach what is printed.
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <string>
 
 #include "study/store/store.h"
@@ -37,6 +38,14 @@ inline CLI::Validator participant_id() {
         return st ? std::string() : st.error().message;
       },
       "ID", "PARTICIPANT_ID");
+}
+
+// Who records a decision (exclude, include, withdraw) when --by is not given: $DTLAB_EXPERIMENTER,
+// else $USER, else $LOGNAME, else "".
+inline std::string default_experimenter() {
+  for (const char* var : {"DTLAB_EXPERIMENTER", "USER", "LOGNAME"})
+    if (const char* v = std::getenv(var); v && *v) return v;
+  return "";
 }
 
 }  // namespace dtlab::app

@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   dtlab::app::add_plan_command(root);
   dtlab::app::add_export_command(root);
   dtlab::app::add_exclude_command(root);
+  dtlab::app::add_withdraw_command(root);
   dtlab::app::add_copy_command(root);
   dtlab::app::add_simulate_command(root);
   dtlab::app::add_demo_command(root);
