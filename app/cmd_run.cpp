@@ -24,6 +24,7 @@
 #include "app/run/start.h"
 #include "app/run/ui.h"
 #include "study/protocol/protocol.h"
+#include "study/protocol/wording.h"
 #include "study/session/mapping.h"
 #include "study/session/runnable.h"
 #include "study/session/session.h"
@@ -33,7 +34,7 @@ namespace dtlab::app {
 namespace {
 
 struct RunArgs {
-  std::string protocol, db, participant, size = "1280x800", script, screenshots, experimenter;
+  std::string protocol, db, participant, size = "1280x800", script, screenshots, experimenter, font;
   bool fullscreen = false, allow_protocol_change = false;
   int monitor = 0;
 };
@@ -85,9 +86,18 @@ void run_person(const RunArgs& a) {
                                                               "runs use dtlab simulate)");
   run::UiOptions uo;
   uo.screenshots = a.screenshots;
+  uo.font = !a.font.empty() ? a.font : std::getenv("DTLAB_FONT") ? std::getenv("DTLAB_FONT") : "";
+  uo.glyph_text = protocol::participant_text(p.value());
   uo.script = script ? &*script : nullptr;
   auto ui = run::Ui::create(**window, uo);
   if (!ui) fail(exit_code(ui.error()), ui.error().to_string());
+  if (!(*ui)->missing_glyphs().empty()) {
+    std::string list;
+    for (const std::string& g : (*ui)->missing_glyphs()) list += (list.empty() ? "" : " ") + g;
+    std::cerr << "dtlab run: warning: the font has no glyph for " << list
+              << " in the protocol's wording; participants would see '?' there. Give a font that has them with "
+                 "--font FILE (or DTLAB_FONT), e.g. one of Debian's fonts-noto-* packages\n";
+  }
 
   auto chosen = run::start_screen(**ui, *store, p.value(), a.participant);
   if (!chosen) fail(chosen.error().kind == ErrorKind::conflict ? kExitInterrupted : exit_code(chosen.error()),
@@ -96,7 +106,7 @@ void run_person(const RunArgs& a) {
     std::cerr << "dtlab run: quit from the start screen; nothing was run\n";
     return;
   }
-  const std::string participant = **chosen;
+  const std::string participant = (*chosen)->participant;
   run::WindowResponder responder(**ui, *store, p.value(), participant, experimenter_name(a.experimenter));
   session::Hooks hooks;
   hooks.on_session_start = [&](const store::Session& s, const design::Plan& plan) { responder.on_session_start(s, plan); };
@@ -105,10 +115,11 @@ void run_person(const RunArgs& a) {
     std::cerr << "dtlab run: " << participant << " trial " << r.position << " of " << t.planned_trials
               << " recorded (" << t.planned.task << ", " << r.completion_s << " s)\n";
   };
-  auto result = session::run_session(*store, p.value(), participant, responder, hooks);
+  auto result = session::run_session(*store, p.value(), participant, responder, hooks, (*chosen)->demographics);
   if (!result) {
     if (responder.aborted()) {
-      run::end_screen(**ui, "end", "Session aborted", "The experimenter ended this session.");
+      run::end_screen(**ui, "end", protocol::text(p.value(), "end.aborted_title"),
+                      protocol::text(p.value(), "end.aborted_text"), protocol::text(p.value(), "end.close"));
       std::cerr << "dtlab run: " << participant << "'s session was aborted from the console (abandoned); every "
                 << "recorded trial is kept\n";
       return;
@@ -119,11 +130,20 @@ void run_person(const RunArgs& a) {
       fail(kExitFailure, result.error().to_string());
     fail(exit_code(result.error()), result.error().to_string());
   }
+  if (result->declined) {
+    Status st = run::end_screen(**ui, "end", protocol::text(p.value(), "consent.title"),
+                                protocol::text(p.value(), "consent.declined"), protocol::text(p.value(), "end.close"));
+    std::cerr << "dtlab run: " << participant << " declined consent; only the refusal is stored in "
+              << store::display_name(a.db) << "\n";
+    if (!st && st.error().field != "window") fail(exit_code(st.error()), st.error().to_string());
+    return;
+  }
   if (result->already_finished)
     std::cerr << "dtlab run: " << participant << " had already finished; nothing to run\n";
-  Status st = run::end_screen(**ui, "end", "Thank you!",
-                              "The session is complete. Thank you for taking part.\n\n(Experimenter: close with the "
-                              "button or Escape.)");
+  Status st = run::end_screen(**ui, "end", protocol::text(p.value(), "end.title"),
+                              protocol::text(p.value(), "end.text") + "\n\n" +
+                                  protocol::text(p.value(), "end.experimenter"),
+                              protocol::text(p.value(), "end.close"));
   std::cerr << "dtlab run: " << participant << "'s session is finished: " << result->trials_recorded
             << " trials recorded in " << store::display_name(a.db) << "\n";
   if (!st && st.error().field != "window") fail(exit_code(st.error()), st.error().to_string());
@@ -157,6 +177,9 @@ void add_run_command(CLI::App& root) {
                   "GLFW's callbacks enter; protocols/pilot-session.script runs the pilot end to end")
       ->check(CLI::ExistingFile);
   cmd->add_option("--screenshots", a->screenshots, "Directory for one PNG per distinct screen");
+  cmd->add_option("--font", a->font,
+                  "TrueType/OpenType font for the window's text (default: DejaVu Sans, which covers Latin, Greek "
+                  "and Cyrillic; $DTLAB_FONT too); for a script it lacks, e.g. a Noto font of that script");
   cmd->add_option("--experimenter", a->experimenter,
                   "Who runs the session (recorded with console actions; default $DTLAB_EXPERIMENTER, else $USER)");
   cmd->add_flag("--allow-protocol-change", a->allow_protocol_change,

@@ -135,6 +135,7 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   say("participants and design (" + std::to_string(ctx.subjects.size()) + " participants, " +
       std::to_string(ctx.analysed_trials) + " trials)");
   section_overview(ctx);
+  section_participants(ctx);
   say("completion time");
   section_time(ctx);
   say("accuracy");

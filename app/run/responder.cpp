@@ -1,10 +1,14 @@
-// WindowResponder (responder.h): the screens around the trials -- break,
-// instructions, training -- and the frame loop every screen shares.
+// WindowResponder (responder.h): the screens around the trials -- the
+// sequence's pages (consent, information, announcements, level instructions,
+// breaks, practice feedback), instructions, training -- and the frame loop
+// every screen shares.
 // run_trial() is in trial.cpp, answer_questionnaire() in questionnaire.cpp.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "app/run/console.h"
@@ -12,27 +16,19 @@
 #include "app/run/screens.h"
 #include "app/run/view.h"
 #include "study/design/seeds.h"
+#include "study/protocol/wording.h"
 #include "study/render/gl_info.h"
 #include "study/scene/generate.h"
 #include "study/session/mapping.h"
 
 namespace dtlab::run {
 
-std::string default_instructions(protocol::TaskType type) {
+std::string default_instructions(const protocol::Protocol& p, protocol::TaskType type) {
   switch (type) {
-    case protocol::TaskType::count_targets:
-      return "Count all the RED objects in the scene. Drag with the left mouse button to turn the scene around "
-             "its centre. When you know how many there are, press Enter and type the number.";
-    case protocol::TaskType::identify_letter:
-      return "The red CONES form one of the letters C, K, R, X or Y. Other red objects are not part of it. Drag with "
-             "the left mouse button to turn the scene. When you know the letter, press Enter and choose it.";
-    case protocol::TaskType::find_unique:
-      return "Find the object shown in the upper left corner. Move with the arrow keys (Up, Down), turn with the "
-             "mouse or Left/Right. When you have found it, press Enter and click where it is on the floor plan.";
-    case protocol::TaskType::count_kind:
-      return "Count the objects of the kind shown in the upper left corner, in the whole building. Move with the "
-             "arrow keys (Up, Down), turn with the mouse or Left/Right. When you are done, press Enter and type the "
-             "number.";
+    case protocol::TaskType::count_targets: return protocol::text(p, "instructions.count_targets");
+    case protocol::TaskType::identify_letter: return protocol::text(p, "instructions.identify_letter");
+    case protocol::TaskType::find_unique: return protocol::text(p, "instructions.find_unique");
+    case protocol::TaskType::count_kind: return protocol::text(p, "instructions.count_kind");
   }
   return "";
 }
@@ -60,11 +56,6 @@ bool WindowResponder::aborted() const { return console_->aborted(); }
 
 void WindowResponder::on_session_start(const store::Session& session, const design::Plan& plan) {
   console_->set_session(session, static_cast<int>(plan.trials.size()));
-  blocks_ = plan.trials.empty() ? 0 : plan.trials.back().block;
-  last_block_ = 0;
-  // A resumed session continues inside a block: no break before its first task set.
-  for (const auto& t : plan.trials)
-    if (t.position <= session.recorded) last_block_ = t.block;
 }
 
 void WindowResponder::on_trial_recorded(const session::TrialSpec&, const store::TrialRecord&) {
@@ -84,21 +75,83 @@ Status WindowResponder::loop(const std::string& screen, const std::function<void
   }
 }
 
-Status WindowResponder::show_break(int finished_block) {
-  const std::string text = "Block " + std::to_string(finished_block) + " of " + std::to_string(blocks_) +
-                           " is done. Take a short break.\n\nPress Space or click Continue when you are ready.";
-  return loop("break", {}, [&] {
-    return message_panel(ui_, "Break", text, "Continue") || ui_.input().key_pressed(GLFW_KEY_SPACE);
+Result<session::PageOutcome> WindowResponder::show_page(const session::PageSpec& page) {
+  using Kind = session::PageSpec::Kind;
+  session::PageOutcome out;
+  out.shown_at = std::chrono::system_clock::now();
+  const Clock::time_point start = Clock::now();
+  const std::string go_on = protocol::text(protocol_, "button.continue");
+  Status st = loop(page.screen, {}, [&] {
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    Input& in = ui_.input();
+    if (page.kind == Kind::pause && page.max_s > 0 && seconds >= page.max_s) {
+      out.answer = "timed out";
+      return true;
+    }
+    const bool may_go_on = page.kind != Kind::pause || page.skippable || seconds >= page.min_s;
+    begin_panel("##page");
+    ImGui::PushFont(ui_.heading_font());
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(page.title.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::PopFont();
+    ImGui::Spacing();
+    // A long text (consent) scrolls inside the panel; the buttons stay in view below it.
+    const float text_h = std::min(ImGui::GetIO().DisplaySize.y * 0.6f,
+                                  ImGui::CalcTextSize(page.text.c_str(), nullptr, false,
+                                                      ImGui::GetContentRegionAvail().x).y + ui_.text_px());
+    ImGui::BeginChild("##text", ImVec2(0, text_h));
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(page.text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndChild();
+    if (page.kind == Kind::pause) {
+      const double wait = page.min_s - seconds, left = page.max_s - seconds;
+      std::string hint = may_go_on ? protocol::text(protocol_, "break.go_on")
+                                   : protocol::text(protocol_, "break.wait",
+                                                    {{"seconds", std::to_string(static_cast<int>(std::ceil(wait)))}});
+      if (page.max_s > 0)
+        hint += "\n" + protocol::text(protocol_, "break.ends_in",
+                                      {{"seconds", std::to_string(static_cast<int>(std::ceil(left)))}});
+      ImGui::TextDisabled("%s", hint.c_str());
+    }
+    ImGui::Spacing();
+    const ImVec2 size(ui_.text_px() * 8, ui_.text_px() * 2);
+    bool done = false;
+    if (page.kind == Kind::consent) {
+      const std::string agree = protocol::text(protocol_, "consent.agree");
+      const std::string decline = protocol::text(protocol_, "consent.decline");
+      const ImVec2 wide(std::max(size.x, ImGui::CalcTextSize(agree.c_str()).x + ui_.text_px() * 2), size.y);
+      if (ui_.button(agree, wide)) out.answer = "agree";
+      ImGui::SameLine();
+      if (ui_.button(decline, ImVec2(std::max(size.x, ImGui::CalcTextSize(decline.c_str()).x + ui_.text_px() * 2),
+                                     size.y)))
+        out.answer = "decline";
+      done = !out.answer.empty();
+    } else {
+      ImGui::BeginDisabled(!may_go_on);
+      done = ui_.button(go_on, size) ||
+             (may_go_on && (in.key_pressed(GLFW_KEY_SPACE) || in.key_pressed(GLFW_KEY_ENTER)));
+      ImGui::EndDisabled();
+      if (done) out.answer = "continue";
+    }
+    ImGui::End();
+    return done;
   });
+  if (!st) return st.error();
+  out.ended_at = std::chrono::system_clock::now();
+  return out;
 }
 
 Status WindowResponder::show_instructions(const session::TaskSetSpec& set) {
   const protocol::Task& task = *set.setup->task;
-  const std::string text = (task.instructions.empty() ? default_instructions(task.type) : task.instructions) +
-                           "\n\nFirst you can practise freely in a scene like the ones to come.";
-  const std::string title = set.resumed ? "Welcome back" : "Next task";
+  const std::string text =
+      (task.instructions.empty() ? default_instructions(protocol_, task.type) : task.instructions) +
+      (set.time_limit_s > 0 ? "\n\n" + protocol::text(protocol_, "instructions.practise_first") : std::string());
+  const std::string title = protocol::text(protocol_, set.resumed ? "instructions.welcome_back" : "instructions.next_task");
+  const std::string go_on = protocol::text(protocol_, "button.continue");
   return loop("instructions " + set.task, {}, [&] {
-    return message_panel(ui_, title, text, "Continue") || ui_.input().key_pressed(GLFW_KEY_ENTER);
+    return message_panel(ui_, title, text, go_on) || ui_.input().key_pressed(GLFW_KEY_ENTER);
   });
 }
 
@@ -132,11 +185,12 @@ Status WindowResponder::show_training(const session::TaskSetSpec& set) {
                      (*view)->steer(ui_.input(), now - last, !ImGui::GetIO().WantCaptureMouse);
                      last = now;
                      const double left = set.time_limit_s - now;
-                     if (icon) find_this_panel(ui_, *icon, sc->answer.target_kind);
-                     char line[160];
-                     std::snprintf(line, sizeof line, "Practice: explore freely (%d:%02d left). Press Enter to start.",
-                                   static_cast<int>(std::max(0.0, left)) / 60, static_cast<int>(std::max(0.0, left)) % 60);
-                     const bool clicked = bottom_bar(ui_, line, "Start the trials");
+                     if (icon) find_this_panel(ui_, protocol_, *icon, sc->answer.target_kind);
+                     char time[32];
+                     std::snprintf(time, sizeof time, "%d:%02d", static_cast<int>(std::max(0.0, left)) / 60,
+                                   static_cast<int>(std::max(0.0, left)) % 60);
+                     const bool clicked = bottom_bar(ui_, protocol::text(protocol_, "training.bar", {{"time", time}}),
+                                                     protocol::text(protocol_, "training.start"));
                      return left <= 0 || clicked || ui_.input().key_pressed(GLFW_KEY_ENTER) ||
                             ui_.input().key_pressed(GLFW_KEY_KP_ENTER) || console_->take_end_training();
                    });
@@ -145,9 +199,6 @@ Status WindowResponder::show_training(const session::TaskSetSpec& set) {
 }
 
 Status WindowResponder::train(const session::TaskSetSpec& set) {
-  if (last_block_ > 0 && set.block != last_block_)
-    if (Status st = show_break(last_block_); !st) return st;
-  last_block_ = set.block;
   if (Status st = show_instructions(set); !st) return st;
   return show_training(set);
 }

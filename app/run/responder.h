@@ -1,7 +1,8 @@
 // A person in front of dtlab: the session::Responder of `dtlab run`. Each
 // call runs its screens in the participant window until the person is done:
-// train() shows the break between blocks, the task's instructions and the
-// free exploration of a practice scene; run_trial() the trial view, the
+// show_page() a page of the sequence (consent with agree / decline, a break
+// with its minimum and maximum length, ...); train() the task's instructions
+// and the free exploration of a practice scene; run_trial() the trial view, the
 // "find this" panel and the answer input; answer_questionnaire() the
 // post-test pages and the static depth test. The experimenter console
 // (Ctrl+Shift+E) is drawn over every screen; everything it does is stored
@@ -35,6 +36,7 @@ class WindowResponder final : public session::Responder {
   Status train(const session::TaskSetSpec& set) override;
   Result<session::TrialOutcome> run_trial(const session::TrialSpec& trial) override;
   Result<std::vector<session::QuestionAnswer>> answer_questionnaire(const session::QuestionnaireSpec& spec) override;
+  Result<session::PageOutcome> show_page(const session::PageSpec& page) override;
 
   // Hooks of the runner (app/cmd_run.cpp installs them).
   void on_session_start(const store::Session& session, const design::Plan& plan);
@@ -45,7 +47,6 @@ class WindowResponder final : public session::Responder {
  private:
   // Runs frames of `screen` until `done` returns true; draw3d may be empty.
   Status loop(const std::string& screen, const std::function<void()>& draw3d, const std::function<bool()>& widgets);
-  Status show_break(int finished_block);
   Status show_instructions(const session::TaskSetSpec& set);
   Status show_training(const session::TaskSetSpec& set);
 
@@ -54,14 +55,12 @@ class WindowResponder final : public session::Responder {
   const protocol::Protocol& protocol_;
   std::string participant_;
   std::unique_ptr<Console> console_;
-  int last_block_ = 0;          // the block of the last task set shown (a break comes between blocks)
-  int blocks_ = 0;              // blocks in the plan
 };
 
 // Seed domain of practice scenes: mix64(participant_seed(M, k), kTrainingDomain + 64 * block + task index).
 inline constexpr std::uint64_t kTrainingDomain = 0x2000000000000000ULL + 0x747261696eULL;  // 2^61 + "train"
 
-// Default instructions of a task type (when the protocol's task gives none).
-std::string default_instructions(protocol::TaskType type);
+// Default instructions of a task type (when the protocol's task gives none), in the protocol's wording.
+std::string default_instructions(const protocol::Protocol& p, protocol::TaskType type);
 
 }  // namespace dtlab::run

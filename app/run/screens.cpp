@@ -2,6 +2,7 @@
 #include <imgui.h>
 
 #include "app/run/screens.h"
+#include "study/protocol/wording.h"
 #include "study/scene/models.h"
 
 namespace dtlab::run {
@@ -48,15 +49,32 @@ bool bottom_bar(Ui& ui, const std::string& hint, const std::string& button) {
   return clicked;
 }
 
-void find_this_panel(Ui& ui, const Texture& icon, const std::string& kind) {
+std::string kind_name(const protocol::Protocol& p, const std::string& kind) {
+  const std::string key = "kind." + kind;
+  if (protocol::find_text_key(key)) return protocol::text(p, key);
+  const scene::ModelInfo* m = scene::find_model(kind);  // a kind the wording table does not list yet
+  return m ? std::string(m->label) : kind;
+}
+
+void find_this_panel(Ui& ui, const protocol::Protocol& p, const Texture& icon, const std::string& kind) {
   ImGui::SetNextWindowPos(ImVec2(ui.text_px() * 0.5f, ui.text_px() * 0.5f), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.9f);
   ImGui::Begin("##find", nullptr, kPanel);
-  ImGui::TextUnformatted("Find this:");
+  ImGui::TextUnformatted(protocol::text(p, "trial.find_this").c_str());
   ImGui::Image(icon.id(), ImVec2(static_cast<float>(icon.width()), static_cast<float>(icon.height())));
   ui.name_item("find this");
-  const scene::ModelInfo* m = scene::find_model(kind);
-  ImGui::TextUnformatted(m ? std::string(m->label).c_str() : kind.c_str());
+  ImGui::TextUnformatted(kind_name(p, kind).c_str());
+  ImGui::End();
+}
+
+void corner_label(Ui& ui, const std::string& text) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - ui.text_px() * 0.5f, ui.text_px() * 0.5f), ImGuiCond_Always,
+                          ImVec2(1.0f, 0.0f));
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  ImGui::Begin("##corner", nullptr, kPanel);
+  ImGui::TextUnformatted(text.c_str());
+  ui.name_item("corner label");
   ImGui::End();
 }
 

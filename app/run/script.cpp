@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/run/script.h"
+#include "study/common/text.h"
 
 namespace dtlab::run {
 
@@ -313,8 +314,8 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
       key(s.key, false);
       phase_ = 2;
       return false;
-    case Op::type:
-      for (unsigned char c : s.text) input_.on_char(c);
+    case Op::type:  // code points, as a keyboard's text input delivers them (UTF-8 decoded)
+      for (const char32_t c : utf8_codepoints(s.text)) input_.on_char(static_cast<unsigned>(c));
       return true;
     case Op::move: input_.on_cursor(s.x0, s.y0); return true;
     case Op::click: return press_release(s.button, s.x0, s.y0);

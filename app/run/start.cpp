@@ -11,6 +11,7 @@
 #include "app/run/screens.h"
 #include "app/run/start.h"
 #include "study/design/design.h"
+#include "study/protocol/wording.h"
 #include "study/store/read.h"
 
 namespace dtlab::run {
@@ -62,19 +63,21 @@ std::string design_text(const protocol::Protocol& p) {
   std::string s;
   for (const auto& f : p.factors) {
     s += (s.empty() ? "" : " x ") + f.name + " {";
-    for (std::size_t i = 0; i < f.levels.size(); ++i) s += (i ? ", " : "") + f.levels[i];
+    for (std::size_t i = 0; i < f.levels.size(); ++i) s += (i ? ", " : "") + protocol::level_label(f, static_cast<int>(i));
     s += "}";
   }
   const std::size_t trials = design::make_plan(p, 0).trials.size();
-  return s + "; " + std::to_string(p.conditions.size()) + " conditions ordered by " +
-         std::string(protocol::to_string(p.order.scheme)) + " (" + std::to_string(protocol::declared_order_rows(p)) +
-         " order rows); " + std::to_string(trials) + " trials per participant; " + std::to_string(p.participants) +
-         " participants planned.";
+  return s + "; " + protocol::text(p, "start.design",
+                                   {{"conditions", std::to_string(p.conditions.size())},
+                                    {"scheme", std::string(protocol::to_string(p.order.scheme))},
+                                    {"rows", std::to_string(protocol::declared_order_rows(p))},
+                                    {"trials", std::to_string(trials)},
+                                    {"participants", std::to_string(p.participants)}});
 }
 
 }  // namespace
 
-Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, const protocol::Protocol& p,
+Result<std::optional<StartChoice>> start_screen(Ui& ui, store::Store& store, const protocol::Protocol& p,
                                                 const std::string& preset) {
   Progress progress;
   const int order_rows = protocol::declared_order_rows(p);
@@ -84,7 +87,7 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
   std::map<std::string, std::array<char, 128>> demo;
   for (const auto& f : p.demographics) demo[f.id] = {};
   std::string message, confirm_release;
-  std::optional<std::optional<std::string>> result;
+  std::optional<std::optional<StartChoice>> result;
   const std::string design = design_text(p);
 
   while (!result) {
@@ -106,7 +109,9 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
       ImGui::TableNextColumn();
       ImGui::TextWrapped("%s", design.c_str());
       if (ImGui::BeginTable("progress", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
-        for (const char* h : {"Order row", "Enrolled", "Finished", "Running", "Abandoned"}) ImGui::TableSetupColumn(h);
+        for (const char* key : {"start.order_row", "start.enrolled", "start.finished_count", "start.running_count",
+                                "start.abandoned_count"})
+          ImGui::TableSetupColumn(protocol::text(p, key).c_str());
         ImGui::TableHeadersRow();
         for (std::size_t r = 0; r < progress.rows.size(); ++r) {
           const RowCount& c = progress.rows[r];
@@ -120,18 +125,20 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
       }
       ImGui::TableNextColumn();
       ImGui::PushFont(ui.heading_font());
-      ImGui::TextUnformatted("Participant");
+      ImGui::TextUnformatted(protocol::text(p, "start.participant").c_str());
       ImGui::PopFont();
       const float field = ImGui::GetContentRegionAvail().x * 0.55f;
       ImGui::SetNextItemWidth(field);
-      ImGui::InputText("Participant ID", id, sizeof id);
+      // The field keeps its script name "Participant ID" whatever the label reads.
+      ImGui::InputText((protocol::text(p, "start.id") + "##participant").c_str(), id, sizeof id);
       ui.name_item("Participant ID");
       for (const auto& f : p.demographics) {
         auto& buf = demo[f.id];
         ImGui::SetNextItemWidth(field);
         const std::string label = f.prompt + (f.required ? " *" : "") + "##" + f.id;
         if (f.type == protocol::DemographicField::Type::choice) {
-          const char* shown = buf[0] ? buf.data() : "(choose)";
+          const std::string choose = protocol::text(p, "start.choose");
+          const char* shown = buf[0] ? buf.data() : choose.c_str();
           const bool open = ImGui::BeginCombo(label.c_str(), shown);
           ui.name_item(f.id);
           if (open) {
@@ -147,31 +154,31 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
           ui.name_item(f.id);
         }
       }
-      if (ui.button("Start session")) {
+      if (ui.button(protocol::text(p, "start.start"))) {
         const std::string who = id;
         const auto it = progress.status.find(who);
         if (who.empty()) {
-          message = "Type the participant's ID first.";
+          message = protocol::text(p, "start.type_id");
         } else if (Status ok = store::check_participant_id(who); !ok) {
           message = ok.error().message + ".";
         } else if (it != progress.status.end() && it->second == "finished") {
-          message = "Participant \"" + who + "\" has finished their session; a finished session cannot run again. "
-                                            "Use a new ID.";
+          message = protocol::text(p, "start.finished", {{"id", who}});
         } else if (it != progress.status.end() && (it->second == "released" || it->second == "abandoned")) {
-          message = "Participant \"" + who + "\" was released (their session is abandoned); enroll them under a "
-                                            "new ID.";
+          message = protocol::text(p, "start.released", {{"id", who}});
         } else if (it != progress.status.end()) {
-          result = std::optional<std::string>(who);  // enrolled or running: (re)start
+          result = std::optional<StartChoice>(StartChoice{who, {}});  // enrolled or running: (re)start
         } else {
           std::vector<std::pair<std::string, std::string>> values;
           for (const auto& f : p.demographics) values.emplace_back(f.id, std::string(demo[f.id].data()));
           std::erase_if(values, [](const auto& v) { return v.second.empty(); });
           if (Status ok = protocol::check_demographics(p, values); !ok) {
             message = ok.error().to_string();
+          } else if (p.flow.consent) {
+            result = std::optional<StartChoice>(StartChoice{who, values});  // stored once consent is given
           } else if (auto e = store.enroll(who, values); !e) {
             message = e.error().to_string();
           } else {
-            result = std::optional<std::string>(who);
+            result = std::optional<StartChoice>(StartChoice{who, values});
           }
         }
       }
@@ -182,27 +189,27 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
       }
       if (!progress.running.empty()) {
         ImGui::Separator();
-        ImGui::TextUnformatted("Running sessions (interrupted, or running at another station):");
+        ImGui::TextUnformatted(protocol::text(p, "start.running").c_str());
         for (const std::string& r : progress.running) {
           ImGui::PushID(r.c_str());
-          if (ui.button("Resume " + r)) result = std::optional<std::string>(r);
+          if (ui.button(protocol::text(p, "start.resume", {{"id", r}}))) result = std::optional<StartChoice>(StartChoice{r, {}});
           ImGui::SameLine();
           if (confirm_release == r) {
-            if (ui.button("Really release " + r + " (abandoned)")) {
+            if (ui.button(protocol::text(p, "start.really_release", {{"id", r}}))) {
               Status rel = store.release(r);
-              message = rel ? "Released " + r + ": the session is abandoned and its order row free."
+              message = rel ? protocol::text(p, "start.released_now", {{"id", r}})
                             : rel.error().to_string();
               confirm_release.clear();
               progress.read_at = {};
             }
-          } else if (ui.button("Release " + r + "...")) {
+          } else if (ui.button(protocol::text(p, "start.release", {{"id", r}}))) {
             confirm_release = r;
           }
           ImGui::PopID();
         }
       }
       ImGui::Separator();
-      if (ui.button("Quit")) result = std::optional<std::string>();
+      if (ui.button(protocol::text(p, "start.quit"))) result = std::optional<StartChoice>();
       ImGui::EndTable();
       ImGui::PopFont();
       ImGui::End();
@@ -218,10 +225,11 @@ Result<std::optional<std::string>> start_screen(Ui& ui, store::Store& store, con
   return *result;
 }
 
-Status end_screen(Ui& ui, const std::string& screen, const std::string& title, const std::string& text) {
+Status end_screen(Ui& ui, const std::string& screen, const std::string& title, const std::string& text,
+                  const std::string& close) {
   for (bool done = false; !done;) {
     Status st = ui.frame(screen, {}, [&] {
-      done = message_panel(ui, title, text, "Close") || ui.input().key_pressed(GLFW_KEY_ESCAPE);
+      done = message_panel(ui, title, text, close) || ui.input().key_pressed(GLFW_KEY_ESCAPE);
     });
     if (!st) return st;
   }

@@ -15,6 +15,7 @@
 #include "app/run/responder.h"
 #include "app/run/screens.h"
 #include "app/run/view.h"
+#include "study/protocol/wording.h"
 #include "study/scene/models.h"
 
 namespace dtlab::run {
@@ -32,14 +33,13 @@ AnswerKind kind_of(scene::Task t) {
 }
 
 // The answer screen's question, naming what was to be counted or found.
-std::string question(const scene::Answer& a) {
-  const scene::ModelInfo* m = a.target_kind.empty() ? nullptr : scene::find_model(a.target_kind);
-  const std::string kind = m ? std::string(m->label) : a.target_kind;
+std::string question(const protocol::Protocol& p, const scene::Answer& a) {
+  const std::string kind = a.target_kind.empty() ? "" : kind_name(p, a.target_kind);
   switch (a.task) {
-    case scene::Task::T1: return "How many red objects?";
-    case scene::Task::T2: return "Which letter do the red cones form?";
-    case scene::Task::T3: return "Where is the " + kind + "? Click its place on the floor plan.";
-    case scene::Task::T4: return "How many of this kind (" + kind + ") in the building?";
+    case scene::Task::T1: return protocol::text(p, "answer.count");
+    case scene::Task::T2: return protocol::text(p, "answer.letter");
+    case scene::Task::T3: return protocol::text(p, "answer.position", {{"kind", kind}});
+    case scene::Task::T4: return protocol::text(p, "answer.kind_count", {{"kind", kind}});
   }
   return "";
 }
@@ -54,11 +54,12 @@ struct AnswerInput {
   std::optional<glm::vec2> mark;
 
   // True when submitted.
-  bool draw(Ui& ui, const scene::Scene& s, std::optional<store::Answer>& answer, std::string& log) {
+  bool draw(Ui& ui, const protocol::Protocol& p, const scene::Scene& s, std::optional<store::Answer>& answer,
+            std::string& log) {
     begin_panel("##answer", kind == AnswerKind::position ? 0.62f : 0.55f);
     ImGui::PushFont(ui.heading_font());
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextUnformatted(question(s.answer).c_str());
+    ImGui::TextUnformatted(question(p, s.answer).c_str());
     ImGui::PopTextWrapPos();
     ImGui::PopFont();
     bool submit = false;
@@ -71,11 +72,11 @@ struct AnswerInput {
                                             ImGuiInputTextFlags_CharsDecimal | ImGuiInputTextFlags_EnterReturnsTrue);
         ui.name_item("Answer");
         ImGui::SameLine();
-        if (ui.button("Done") || enter) {
+        if (ui.button(protocol::text(p, "answer.done")) || enter) {
           long long n = -1;
-          const auto [p, ec] = std::from_chars(number, number + std::strlen(number), n);
-          if (ec != std::errc() || p != number + std::strlen(number) || n < 0 || n > 100000) {
-            problem = "Type a whole number, then press Enter.";
+          const auto [end, ec] = std::from_chars(number, number + std::strlen(number), n);
+          if (ec != std::errc() || end != number + std::strlen(number) || n < 0 || n > 100000) {
+            problem = protocol::text(p, "answer.whole_number");
           } else {
             answer = store::Count{n};
             log = "count " + std::to_string(n);
@@ -97,10 +98,10 @@ struct AnswerInput {
       }
       case AnswerKind::position: {
         const float side = std::min(ImGui::GetIO().DisplaySize.y * 0.7f, ImGui::GetIO().DisplaySize.x * 0.55f);
-        if (auto p = floor_plan(*s.plan, s.camera.position, side, mark)) mark = p;
+        if (auto at = floor_plan(*s.plan, s.camera.position, side, mark, protocol::text(p, "answer.start"))) mark = at;
         ui.name_item("floor plan");
         ImGui::BeginDisabled(!mark);
-        if (ui.button("Confirm") || (mark && ui.input().key_pressed(GLFW_KEY_ENTER))) {
+        if (ui.button(protocol::text(p, "answer.confirm")) || (mark && ui.input().key_pressed(GLFW_KEY_ENTER))) {
           answer = store::Position{mark->x, mark->y};
           char buf[64];
           std::snprintf(buf, sizeof buf, "position %.3f %.3f", mark->x, mark->y);
@@ -112,7 +113,7 @@ struct AnswerInput {
       }
     }
     if (!problem.empty()) ImGui::TextColored(ImVec4(0.75f, 0.1f, 0.1f, 1), "%s", problem.c_str());
-    ImGui::TextDisabled("Escape: back to the scene");
+    ImGui::TextDisabled("%s", protocol::text(p, "answer.back").c_str());
     ImGui::End();
     return submit;
   }
@@ -147,6 +148,14 @@ Result<session::TrialOutcome> WindowResponder::run_trial(const session::TrialSpe
   in.capture_cursor((*view)->walking());
   auto since_t0 = [&] { return started ? std::chrono::duration<double>(Clock::now() - t0).count() : 0.0; };
 
+  // "Practice" on a practice trial, "Trial k of n" where the protocol asks for a counter.
+  std::string corner;
+  if (spec.planned.practice && protocol_.training.practice_label)
+    corner = protocol::text(protocol_, "practice.label");
+  else if (!spec.planned.practice && protocol_.flow.trial_counter)
+    corner = protocol::text(protocol_, "trial.counter",
+                            {{"trial", std::to_string(spec.counted)}, {"trials", std::to_string(spec.counted_of)}});
+
   for (;;) {
     const bool showing_view = !answering && !console_->paused();
     const std::string screen = (answering ? "answer " : "trial ") + spec.planned.task;
@@ -158,15 +167,18 @@ Result<session::TrialOutcome> WindowResponder::run_trial(const session::TrialSpe
         },
         [&] {
           if (console_->paused()) {
-            message_panel(ui_, "Paused", "The experimenter paused the session. Please wait.", "Waiting...");
+            message_panel(ui_, protocol::text(protocol_, "trial.paused_title"),
+                          protocol::text(protocol_, "trial.paused_text"), protocol::text(protocol_, "trial.paused_button"));
             return;
           }
           if (!answering) {
             const double now = since_t0();
             (*view)->steer(in, now - last_steer, !ImGui::GetIO().WantCaptureMouse);
             last_steer = now;
-            if (icon) find_this_panel(ui_, *icon, s.answer.target_kind);
-            const bool clicked = bottom_bar(ui_, "Press Enter when you have your answer.", "Answer");
+            if (icon) find_this_panel(ui_, protocol_, *icon, s.answer.target_kind);
+            if (!corner.empty()) corner_label(ui_, corner);
+            const bool clicked =
+                bottom_bar(ui_, protocol::text(protocol_, "trial.bar"), protocol::text(protocol_, "trial.answer"));
             if (clicked || in.key_pressed(GLFW_KEY_ENTER) || in.key_pressed(GLFW_KEY_KP_ENTER)) {
               answering = true;
               input.focus = true;
@@ -180,7 +192,7 @@ Result<session::TrialOutcome> WindowResponder::run_trial(const session::TrialSpe
             return;
           }
           std::optional<store::Answer> a;
-          if (input.draw(ui_, s, a, log)) {
+          if (input.draw(ui_, protocol_, s, a, log)) {
             out.answer = std::move(a);
             submitted = true;
             submitted_at = Clock::now();

@@ -6,7 +6,9 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <filesystem>
 #include <thread>
 
@@ -14,6 +16,7 @@
 
 #include "app/run/ui.h"
 #include "study/common/file.h"
+#include "study/common/text.h"
 #include "study/render/image.h"
 
 namespace dtlab::run {
@@ -83,10 +86,38 @@ Result<std::unique_ptr<Ui>> Ui::create(platform::Window& window, const UiOptions
   ui->text_px_ = std::clamp(static_cast<float>(window.height()) / 28.0f, 20.0f, 48.0f);
   ImFontConfig cfg;
   cfg.OversampleH = 2;
-  if (std::filesystem::exists(kFontFile)) {
-    io.Fonts->AddFontFromFileTTF(kFontFile, ui->text_px_, &cfg);
-    ui->heading_ = io.Fonts->AddFontFromFileTTF(kFontFile, ui->text_px_ * 1.5f, &cfg);
-    ui->small_ = io.Fonts->AddFontFromFileTTF(kFontFile, std::max(14.0f, ui->text_px_ * 0.7f), &cfg);
+  const std::string font_file = options.font.empty() ? kFontFile : options.font;
+  if (!options.font.empty() && !std::filesystem::is_regular_file(options.font))
+    return Error{options.font, 0, 0, "font", "no such font file (a TrueType or OpenType file, e.g. " +
+                                                 std::string(kFontFile) + ")", ErrorKind::not_found};
+  if (std::filesystem::exists(font_file)) {
+    // The scripts participants are written in: Latin (with Extended-A and -B: Polish, Czech,
+    // Turkish, ...), Greek, Cyrillic, typographic punctuation, and every character the protocol's
+    // wording uses (so a script outside these ranges still shows where the font has it).
+    static const ImWchar kScripts[] = {0x0020, 0x024F, 0x0370, 0x03FF, 0x0400, 0x052F, 0x1E00, 0x1EFF,
+                                       0x2000, 0x206F, 0x20A0, 0x20BF, 0x2100, 0x214F, 0};
+    ImFontGlyphRangesBuilder builder;
+    builder.AddRanges(kScripts);
+    builder.AddText(options.glyph_text.c_str());
+    builder.BuildRanges(&ui->glyph_ranges_);
+    const ImWchar* ranges = ui->glyph_ranges_.Data;
+    ImFont* text = io.Fonts->AddFontFromFileTTF(font_file.c_str(), ui->text_px_, &cfg, ranges);
+    ui->heading_ = io.Fonts->AddFontFromFileTTF(font_file.c_str(), ui->text_px_ * 1.5f, &cfg, ranges);
+    ui->small_ = io.Fonts->AddFontFromFileTTF(font_file.c_str(), std::max(14.0f, ui->text_px_ * 0.7f), &cfg, ranges);
+    if (!text || !ui->heading_ || !ui->small_)
+      return Error{font_file, 0, 0, "font", "the font could not be loaded (not a TrueType or OpenType file?)",
+                   ErrorKind::invalid_input};
+    io.Fonts->Build();
+    // What the font lacks would read as '?': say so before a participant sees it.
+    std::set<char32_t> reported;
+    for (const char32_t c : utf8_codepoints(options.glyph_text)) {
+      if (c < 0x20 || reported.count(c)) continue;
+      if (c <= 0xFFFF && text->FindGlyphNoFallback(static_cast<ImWchar>(c))) continue;  // ImWchar: 16 bits here
+      reported.insert(c);
+      char entry[32];
+      std::snprintf(entry, sizeof entry, "U+%04X", static_cast<unsigned>(c));
+      ui->missing_glyphs_.push_back(entry);
+    }
   } else {  // ImGui's own font, scaled (pixel-like but legible)
     cfg.SizePixels = ui->text_px_;
     io.Fonts->AddFontDefault(&cfg);

@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <imgui.h>
 
@@ -26,6 +27,8 @@ namespace dtlab::run {
 
 struct UiOptions {
   std::string screenshots;        // directory for one PNG per distinct screen; "" = none
+  std::string font;               // a TrueType/OpenType file; "" = DejaVu Sans (Latin, Greek, Cyrillic)
+  std::string glyph_text;         // text whose every character the font atlas must hold (the protocol's wording)
   const Script* script = nullptr; // scripted input, or none
   double frame_limit_hz = 0;      // 0: the display's refresh rate (a cap when vsync does not hold)
 };
@@ -64,6 +67,9 @@ class Ui {
   ImFont* heading_font() const { return heading_; }
   ImFont* small_font() const { return small_; }  // the experimenter's screens (start, console): read at a desk
   float text_px() const { return text_px_; }
+  // Characters of UiOptions::glyph_text the font has no glyph for (ImGui would draw '?'), as
+  // "U+XXXX (c)" entries; empty when the font covers the protocol's wording.
+  const std::vector<std::string>& missing_glyphs() const { return missing_glyphs_; }
 
   // The experimenter console: drawn over every screen while shown (toggled by Ctrl+Shift+E).
   void set_console(std::function<void()> draw) { console_ = std::move(draw); }
@@ -83,6 +89,8 @@ class Ui {
   ImFont* heading_ = nullptr;
   ImFont* small_ = nullptr;
   float text_px_ = 24;
+  ImVector<ImWchar> glyph_ranges_;  // the atlas's ranges; must outlive the atlas
+  std::vector<std::string> missing_glyphs_;
   std::optional<double> refresh_hz_;
   std::string screen_;
   std::uint64_t instance_ = 0, played_instance_ = 0;  // the screen instance now; the one frames run in

@@ -100,7 +100,7 @@ Result<std::unique_ptr<Texture>> icon_texture(const std::string& kind, int size)
 }
 
 std::optional<glm::vec2> floor_plan(const scene::FloorPlan& plan, glm::vec3 start, float side,
-                                    std::optional<glm::vec2> mark) {
+                                    std::optional<glm::vec2> mark, const std::string& start_label) {
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const float cells = static_cast<float>(std::max(plan.width, plan.height));
   const float cell_px = side / cells;
@@ -143,7 +143,7 @@ std::optional<glm::vec2> floor_plan(const scene::FloorPlan& plan, glm::vec3 star
   // The start: a blue disc where the walk began.
   const ImVec2 s = at(start.x / plan.cell_size, start.z / plan.cell_size);
   dl->AddCircleFilled(s, cell_px * 0.35f, IM_COL32(40, 90, 220, 255));
-  dl->AddText(ImVec2(s.x + cell_px * 0.45f, s.y - cell_px * 0.5f), IM_COL32(40, 90, 220, 255), "start");
+  dl->AddText(ImVec2(s.x + cell_px * 0.45f, s.y - cell_px * 0.5f), IM_COL32(40, 90, 220, 255), start_label.c_str());
   if (mark) {
     const ImVec2 m = at(mark->x / plan.cell_size, mark->y / plan.cell_size);
     const float r = cell_px * 0.4f;

@@ -76,10 +76,10 @@ class Texture {
 // The "find this" icon of a WALKTHROUGH object kind (study/icons), side `size` pixels.
 Result<std::unique_ptr<Texture>> icon_texture(const std::string& kind, int size);
 
-// Draws the floor plan (rooms, walls, doorways, the start cell) into the current ImGui window in a
-// box of side `side` pixels at the cursor, registered as an item; returns the world (x, z) of a
-// left click inside it this frame, if any. `mark`: a position to draw a cross at.
+// Draws the floor plan (rooms, walls, doorways, the start cell labelled `start_label`) into the
+// current ImGui window in a box of side `side` pixels at the cursor, registered as an item; returns
+// the world (x, z) of a left click inside it this frame, if any. `mark`: a position to draw a cross at.
 std::optional<glm::vec2> floor_plan(const scene::FloorPlan& plan, glm::vec3 start, float side,
-                                    std::optional<glm::vec2> mark);
+                                    std::optional<glm::vec2> mark, const std::string& start_label);
 
 }  // namespace dtlab::run

@@ -33,4 +33,10 @@ const TextKey* find_text_key(std::string_view key);
 std::string text(const Protocol& p, std::string_view key,
                  std::initializer_list<std::pair<std::string_view, std::string>> values = {});
 
+// Every text of the protocol a participant or the experimenter may read in a session, joined:
+// the wording table's values (the protocol's and the defaults), the title, level labels and
+// instructions, consent and page texts, task instructions, questionnaire prompts and options,
+// demographic prompts and options. The window builds its font atlas for these characters.
+std::string participant_text(const Protocol& p);
+
 }  // namespace dtlab::protocol

@@ -8,6 +8,7 @@
 
 #include "study/design/design.h"
 #include "study/render/gl_info.h"
+#include "study/session/detail/sequence.h"
 #include "study/session/session.h"
 
 namespace dtlab::session {
@@ -110,18 +111,202 @@ Result<PreparedQuestionnaire> prepare_questionnaire(const protocol::Protocol& p,
   return q;
 }
 
+// Shows one page of the sequence and appends it to the session's screen log.
+Status show_page(store::Store& store, const store::Session& session, Responder& responder, const PageSpec& page) {
+  auto shown = responder.show_page(page);
+  if (!shown) return shown.error();
+  return store.record_screen(session, store::ScreenRecord{page.screen, page.shown, shown->shown_at, shown->ended_at,
+                                                          shown->answer});
+}
+
+Status show_pages(store::Store& store, const store::Session& session, Responder& responder,
+                  const std::vector<PageSpec>& pages) {
+  for (const PageSpec& page : pages)
+    if (Status st = show_page(store, session, responder, page); !st) return st;
+  return {};
+}
+
+// CONSENT (docs/session.md): asked once, before anything of the participant is stored. The answer
+// and the text's hash are stored with the enrollment in one transaction; a decline stores only that.
+// Returns the page as shown when it was asked now (for the screen log once the session exists),
+// with answer "agree" or "decline"; nullopt when an earlier call asked it and it was agreed.
+struct Consent {
+  bool agreed = false;
+  std::optional<std::pair<PageSpec, PageOutcome>> asked_now;
+};
+Result<Consent> ask_consent(store::Store& store, const protocol::Protocol& p, const std::string& participant_id,
+                            Responder& responder, const store::Demographics& demographics) {
+  auto consents = store.read().consents();
+  if (!consents) return consents.error();
+  for (const store::ConsentRecord& c : *consents)
+    if (c.participant == participant_id) return Consent{c.agreed, std::nullopt};
+  const PageSpec page = detail::consent_page(p);
+  auto answered = responder.show_page(page);
+  if (!answered) return answered.error();
+  const bool agreed = answered->answer == "agree";
+  auto e = store.record_consent(participant_id, agreed ? demographics : store::Demographics{}, agreed, page.shown);
+  if (!e) return e.error();
+  return Consent{agreed, std::make_pair(page, answered.value())};
+}
 
 }  // namespace
+
+Result<PageOutcome> Responder::show_page(const PageSpec& page) {
+  const auto now = std::chrono::system_clock::now();
+  return PageOutcome{page.kind == PageSpec::Kind::consent ? "agree" : "continue", now, now};
+}
 
 store::DisplayInfo Responder::display() const {
   const Viewport vp = viewport();
   return store::DisplayInfo{"headless", vp.width, vp.height, std::nullopt, render::current_gl_description(), ""};
 }
 
+namespace {
+
+// What run_session's steps share: the store, the protocol, the participant's session.
+struct Run {
+  store::Store& store;
+  const protocol::Protocol& p;
+  const std::string& participant_id;
+  Responder& responder;
+  const Hooks& hooks;
+  SessionSummary& sum;
+  const store::Session& session;
+  std::vector<RecordedTrial>& history;  // every recorded trial, in position order
+};
+
+// The pages before `planned`: a block's break, announcement and level instructions when the
+// session reaches a new block, else a break inside the block (breaks.every_trials).
+Status pages_before(Run& r, const design::PlannedTrial& planned) {
+  const RecordedTrial* last = r.history.empty() ? nullptr : &r.history.back();
+  if (!last || last->planned.block != planned.block)
+    return show_pages(r.store, r.session, r.responder, detail::block_pages(r.p, r.sum.plan, planned.block));
+  if (auto b = detail::trial_break(r.p, r.sum.plan, last->planned, planned))
+    return show_page(r.store, r.session, r.responder, *b);
+  return {};
+}
+
+// One trial: the task set's training when it starts, the trial, its record, practice feedback.
+Status run_one_trial(Run& r, const design::PlannedTrial& planned, std::optional<std::pair<int, std::string>>& task_set,
+                     double& elapsed) {
+  const protocol::Protocol& p = r.p;
+  auto setup = trial_setup(p, planned);
+  if (!setup) return setup.error();
+  if (!task_set || task_set->first != planned.block || task_set->second != planned.task) {
+    TaskSetSpec set{&p, r.participant_id, r.sum.enrollment.index, planned.block, planned.task, &setup.value(),
+                    p.training.time_limit_s, false};
+    // A set is resumed when a trial of it is already in the file.
+    for (const RecordedTrial& t : r.history)
+      if (t.planned.block == planned.block && t.planned.task == planned.task) set.resumed = true;
+    if (r.hooks.on_task_set_start) r.hooks.on_task_set_start(set);
+    if (Status st = r.responder.train(set); !st) return st;
+    task_set = std::make_pair(planned.block, planned.task);
+  }
+
+  auto sc = trial_scene(setup.value(), planned);
+  if (!sc) return sc.error();
+  const Viewport vp = r.responder.viewport();
+  auto frame = frame_settings(p, *setup->rendering, vp.width, vp.height);
+  if (!frame) return frame.error();
+  TrialSpec spec;
+  spec.protocol = &p;
+  spec.participant_id = r.participant_id;
+  spec.enrollment_index = r.sum.enrollment.index;
+  spec.planned = planned;
+  spec.planned_trials = static_cast<int>(r.sum.plan.trials.size());
+  for (const design::PlannedTrial& t : r.sum.plan.trials) {
+    if (t.practice) continue;
+    ++spec.counted_of;
+    if (!planned.practice && t.position <= planned.position) ++spec.counted;
+  }
+  spec.setup = &setup.value();
+  spec.scene = &sc.value();
+  spec.frame = std::move(frame.value());
+  spec.time_limit_s = std::max(0.0, p.session_time_limit_s - elapsed);
+  spec.keep_claim = [&store = r.store, &session = r.session] { return store.heartbeat(session); };
+  if (Status st = r.store.begin_trial(r.session, planned.position); !st) return st;
+  if (r.hooks.on_trial_start) r.hooks.on_trial_start(spec);
+
+  auto outcome = r.responder.run_trial(spec);
+  if (!outcome) return outcome.error();
+  auto record = make_record(spec, std::move(outcome.value()));
+  if (!record) return record.error();
+  if (Status st = r.store.record_trial(r.session, record.value()); !st) return st;
+  ++r.sum.trials_run;
+  elapsed += record->completion_s;
+  r.history.push_back(RecordedTrial{planned, record->completion_s, record->answer.has_value()});
+  if (r.hooks.on_trial_recorded) r.hooks.on_trial_recorded(spec, record.value());
+  if (planned.practice && p.training.feedback)
+    return show_page(r.store, r.session, r.responder, detail::feedback_page(p, planned, record->truth, record->answer));
+  return {};
+}
+
+// Questionnaire: one transaction. If an interrupted run committed it already, nobody is asked
+// again and the session goes straight on.
+Status run_questionnaire(Run& r, PreparedQuestionnaire& prepared) {
+  auto answered = r.store.read().questionnaire(r.participant_id);
+  if (!answered) return answered.error();
+  QuestionnaireSpec q;
+  q.protocol = &r.p;
+  q.participant_id = r.participant_id;
+  q.enrollment_index = r.sum.enrollment.index;
+  q.questions = std::move(prepared.questions);
+  q.history = r.history;
+  const std::vector<DepthTestKey>& keys = prepared.keys;
+  for (const DepthTestKey& key : keys) q.depth_tests.push_back(key.view);
+  if (q.questions.empty() || !answered->empty()) return {};
+  auto answers = r.responder.answer_questionnaire(q);
+  if (!answers) return answers.error();
+  auto stored = score_questionnaire(q.questions, answers.value(), keys);
+  if (!stored) return stored.error();
+  if (Status st = r.store.record_questionnaire(r.session, stored.value()); !st) return st;
+  r.sum.questionnaire_recorded = true;
+  return {};
+}
+
+// The session from BEGUN to FINISHED: the start pages, the trials with the pages between them
+// (RUNNING -> (next_trial, responder, record_trial)* until none is left), the questionnaire, the
+// end pages. Every decision is read from the store, so this is the same after any interruption.
+Status run_begun(Run& r, PreparedQuestionnaire& prepared) {
+  double elapsed = 0;
+  for (const RecordedTrial& t : r.history) elapsed += t.completion_s;
+  if (r.history.empty())
+    if (Status st = show_pages(r.store, r.session, r.responder,
+                               detail::information_pages(r.p, protocol::Page::When::start));
+        !st)
+      return st;
+  std::optional<std::pair<int, std::string>> task_set;  // (block, task) of the last trial run here
+  for (;;) {
+    if (r.hooks.stop_requested && r.hooks.stop_requested()) {
+      r.sum.stopped = true;
+      return {};
+    }
+    auto next = r.store.next_trial(r.session);
+    if (!next) return next.error();
+    if (!next->has_value()) break;
+    if (Status st = pages_before(r, **next); !st) return st;
+    if (Status st = run_one_trial(r, **next, task_set, elapsed); !st) return st;
+  }
+  if (Status st = run_questionnaire(r, prepared); !st) return st;
+  return show_pages(r.store, r.session, r.responder, detail::information_pages(r.p, protocol::Page::When::end));
+}
+
+}  // namespace
+
 Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol& p, const std::string& participant_id,
-                                   Responder& responder, const Hooks& hooks) {
+                                   Responder& responder, const Hooks& hooks, const store::Demographics& demographics) {
   SessionSummary sum;
-  auto enrolled = store.enroll(participant_id);
+  Consent consent{true, std::nullopt};
+  if (p.flow.consent) {
+    auto asked = ask_consent(store, p, participant_id, responder, demographics);
+    if (!asked) return asked.error();
+    consent = std::move(asked.value());
+    if (!consent.agreed) {
+      sum.declined = true;
+      return sum;
+    }
+  }
+  auto enrolled = store.enroll(participant_id, demographics);
   if (!enrolled) return enrolled.error();
   sum.enrollment = enrolled.value();
   sum.plan = design::make_plan(p, sum.enrollment.index, sum.enrollment.order_row);
@@ -150,90 +335,21 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   const store::Session session = begun.value();
   sum.resumed = session.resumed;
   if (Status st = store.record_display(session, responder.display()); !st) return st.error();
+  if (consent.asked_now) {  // the consent page, shown before the session existed, opens its screen log
+    const auto& [page, shown] = *consent.asked_now;
+    if (Status st = store.record_screen(session, store::ScreenRecord{page.screen, page.shown, shown.shown_at,
+                                                                     shown.ended_at, shown.answer});
+        !st)
+      return st.error();
+  }
   if (hooks.on_session_start) hooks.on_session_start(session, sum.plan);
 
   auto history = recorded_trials(store, participant_id);
   if (!history) return history.error();
-  double elapsed = 0;
-  for (const RecordedTrial& t : history.value()) elapsed += t.completion_s;
-  const Viewport vp = responder.viewport();
-
-  // Trials: RUNNING -> (next_trial, responder, record_trial)* until none is left.
-  std::optional<std::pair<int, std::string>> task_set;  // (block, task) of the last trial run here
-  for (;;) {
-    if (hooks.stop_requested && hooks.stop_requested()) {
-      sum.stopped = true;
-      sum.trials_recorded = static_cast<int>(history->size());
-      return sum;
-    }
-    auto next = store.next_trial(session);
-    if (!next) return next.error();
-    if (!next->has_value()) break;
-    const design::PlannedTrial planned = **next;
-
-    auto setup = trial_setup(p, planned);
-    if (!setup) return setup.error();
-    if (!task_set || task_set->first != planned.block || task_set->second != planned.task) {
-      TaskSetSpec set{&p, participant_id, sum.enrollment.index, planned.block, planned.task, &setup.value(),
-                      p.training.time_limit_s, false};
-      // A set is resumed when a trial of it is already in the file.
-      for (const RecordedTrial& t : history.value())
-        if (t.planned.block == planned.block && t.planned.task == planned.task) set.resumed = true;
-      if (hooks.on_task_set_start) hooks.on_task_set_start(set);
-      if (Status st = responder.train(set); !st) return st.error();
-      task_set = std::make_pair(planned.block, planned.task);
-    }
-
-    auto sc = trial_scene(setup.value(), planned);
-    if (!sc) return sc.error();
-    auto frame = frame_settings(p, *setup->rendering, vp.width, vp.height);
-    if (!frame) return frame.error();
-    TrialSpec spec;
-    spec.protocol = &p;
-    spec.participant_id = participant_id;
-    spec.enrollment_index = sum.enrollment.index;
-    spec.planned = planned;
-    spec.planned_trials = static_cast<int>(sum.plan.trials.size());
-    spec.setup = &setup.value();
-    spec.scene = &sc.value();
-    spec.frame = std::move(frame.value());
-    spec.time_limit_s = std::max(0.0, p.session_time_limit_s - elapsed);
-    spec.keep_claim = [&store, &session] { return store.heartbeat(session); };
-    if (Status st = store.begin_trial(session, planned.position); !st) return st.error();
-    if (hooks.on_trial_start) hooks.on_trial_start(spec);
-
-    auto outcome = responder.run_trial(spec);
-    if (!outcome) return outcome.error();
-    auto record = make_record(spec, std::move(outcome.value()));
-    if (!record) return record.error();
-    if (Status st = store.record_trial(session, record.value()); !st) return st.error();
-    ++sum.trials_run;
-    elapsed += record->completion_s;
-    history->push_back(RecordedTrial{planned, record->completion_s, record->answer.has_value()});
-    if (hooks.on_trial_recorded) hooks.on_trial_recorded(spec, record.value());
-  }
+  Run run{store, p, participant_id, responder, hooks, sum, session, *history};
+  if (Status st = run_begun(run, *prepared); !st) return st.error();
   sum.trials_recorded = static_cast<int>(history->size());
-
-  // Questionnaire: one transaction. If an interrupted run committed it already, nobody is asked
-  // again and the session goes straight on to FINISHED.
-  auto answered = store.read().questionnaire(participant_id);
-  if (!answered) return answered.error();
-  QuestionnaireSpec q;
-  q.protocol = &p;
-  q.participant_id = participant_id;
-  q.enrollment_index = sum.enrollment.index;
-  q.questions = std::move(prepared->questions);
-  q.history = history.value();
-  const std::vector<DepthTestKey>& keys = prepared->keys;
-  for (const DepthTestKey& key : keys) q.depth_tests.push_back(key.view);
-  if (!q.questions.empty() && answered->empty()) {
-    auto answers = responder.answer_questionnaire(q);
-    if (!answers) return answers.error();
-    auto stored = score_questionnaire(q.questions, answers.value(), keys);
-    if (!stored) return stored.error();
-    if (Status st = store.record_questionnaire(session, stored.value()); !st) return st.error();
-    sum.questionnaire_recorded = true;
-  }
+  if (sum.stopped) return sum;
 
   if (Status st = store.finish_session(session); !st) return st.error();
   sum.finished = true;

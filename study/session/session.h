@@ -42,6 +42,8 @@ struct TrialSpec {
   int enrollment_index = 0;       // the participant's 0-based index in the ledger
   design::PlannedTrial planned;   // position, block, levels, task, trial, seed, method, practice
   int planned_trials = 0;         // trials in the whole session
+  int counted = 0, counted_of = 0;  // what a trial counter shows: this trial's number among the
+                                    // session's non-practice trials, and how many there are (0 for practice)
   const TrialSetup* setup = nullptr;  // condition, scenario, task and rendering of the protocol
   const scene::Scene* scene = nullptr;  // the generated scene (answer key inside: never show it)
   render::FrameSettings frame;    // the condition's rendering for the responder's viewport()
@@ -109,6 +111,30 @@ struct QuestionnaireSpec {
   std::vector<RecordedTrial> history;   // every recorded trial of the session, in position order
 };
 
+// A page of the session's sequence around the trials (docs/session.md, "The sequence"): the
+// consent page, an information page, a block's announcement, a level's instructions, a break,
+// the feedback after a practice trial. Built by the runner from the protocol (wording included);
+// the responder shows it and says how it ended.
+struct PageSpec {
+  enum class Kind { consent, information, announcement, level_instructions, pause, feedback };
+  Kind kind = Kind::information;
+  const protocol::Protocol* protocol = nullptr;
+  std::string screen;  // its name for scripts and the screen log: "consent", "page <id>",
+                       // "announce <block>", "level <factor>=<level>", "break", "feedback <task>"
+  std::string title, text;
+  std::string shown;   // what the screen log records as shown (a page's id, the text's SHA-256, ...)
+  double min_s = 0;       // pause: the participant can go on after min_s (unless skippable)
+  double max_s = 0;       // pause: it ends by itself after max_s (0: never)
+  bool skippable = true;  // pause: the participant can go on at once
+};
+
+// How a page ended. answer: consent "agree" | "decline"; otherwise "continue" (the participant
+// went on) | "timed out" (a pause reached max_s).
+struct PageOutcome {
+  std::string answer;
+  std::chrono::system_clock::time_point shown_at, ended_at;  // wall clock
+};
+
 // A questionnaire answer: a number (rating; depth test: the Object::id judged closer) or a text (choice).
 using QuestionAnswer = std::variant<double, std::string>;
 
@@ -125,6 +151,9 @@ class Responder {
   virtual Result<TrialOutcome> run_trial(const TrialSpec& trial) = 0;  // one trial, start to answer
   // One answer per question, in the order of spec.questions.
   virtual Result<std::vector<QuestionAnswer>> answer_questionnaire(const QuestionnaireSpec& spec) = 0;
+  // One page of the sequence. Default (headless, simulated): agrees to consent and goes on at
+  // once, stamped now.
+  virtual Result<PageOutcome> show_page(const PageSpec& page);
 };
 
 // Lifecycle hooks (all optional), called on the runner's thread. docs/session.md says what is
@@ -149,15 +178,20 @@ struct SessionSummary {
   bool questionnaire_recorded = false;  // by this call
   bool finished = false;       // the session is finished now
   bool stopped = false;        // stop_requested ended the call early
+  bool declined = false;       // the participant declined consent: only the refusal is stored
 };
 
-// Enrolls `participant_id` (or looks it up), builds the plan with the ledger's index and
-// order row, begins or resumes the session, runs every remaining trial, the questionnaire,
-// and finishes the session. A finished session is left alone (already_finished). Errors:
-// the store's, the protocol mapping's, the responder's; the file then holds every trial
-// committed before the error.
+// Asks for consent where the protocol has a [consent] page and the participant has not answered
+// it (a decline stores only the refusal and ends the call: declined), enrolls `participant_id`
+// with `demographics` (or looks them up), builds the plan with the ledger's index and order row,
+// begins or resumes the session, shows the start pages, runs every remaining trial with the
+// sequence's pages between them (announcements, level instructions, breaks, practice feedback),
+// the questionnaire and the end pages, and finishes the session. A finished session is left alone
+// (already_finished). Every page is recorded in the session's screen log. Errors: the store's,
+// the protocol mapping's, the responder's; the file then holds every trial committed before.
 Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol& protocol,
-                                   const std::string& participant_id, Responder& responder, const Hooks& hooks = {});
+                                   const std::string& participant_id, Responder& responder, const Hooks& hooks = {},
+                                   const store::Demographics& demographics = {});
 
 // The questions of the protocol's questionnaire, in item order: a rating with `per` once per
 // combination of those factors' levels (first factor slowest), a choice once, a depth test

@@ -36,3 +36,23 @@ TEST(Text, CountsAgreeWithTheirNoun) {
 }
 
 }  // namespace
+
+namespace dtlab {
+namespace {
+
+// UTF-8 decoding (a script's typed text, the font atlas's glyphs): valid sequences of every
+// length, and each kind of invalid byte read as U+FFFD without losing the text after it.
+TEST(Utf8Codepoints, DecodesEveryLengthAndReplacesInvalidBytes) {
+  EXPECT_EQ(utf8_codepoints("Aä€𝄞"), (std::u32string{U'A', U'\u00E4', U'\u20AC', U'\U0001D11E'}));
+  EXPECT_EQ(utf8_codepoints("Größe, Ελλάδα, Россия, Łódź"),
+            std::u32string(U"Größe, Ελλάδα, Россия, Łódź"));
+  EXPECT_EQ(utf8_codepoints("a\x80" "b"), (std::u32string{U'a', U'\uFFFD', U'b'}));        // a lone continuation
+  EXPECT_EQ(utf8_codepoints("a\xC3"), (std::u32string{U'a', U'\uFFFD'}));                   // cut short at the end
+  EXPECT_EQ(utf8_codepoints("\xC0\xAF"), (std::u32string{U'\uFFFD', U'\uFFFD'}));          // overlong '/'
+  EXPECT_EQ(utf8_codepoints("\xED\xA0\x80"), (std::u32string{U'\uFFFD', U'\uFFFD', U'\uFFFD'}));  // a surrogate
+  EXPECT_EQ(utf8_codepoints("\xF4\x90\x80\x80").front(), U'\uFFFD');                       // above U+10FFFF
+  EXPECT_TRUE(utf8_codepoints("").empty());
+}
+
+}  // namespace
+}  // namespace dtlab

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "study/protocol/wording.h"
+#include "study/scene/models.h"
 
 namespace dtlab::protocol {
 namespace {
@@ -36,6 +37,16 @@ TEST(Wording, DocsListExactlyTheKeysWithTheirDefaults) {
   for (std::size_t i = 0; i < documented.size(); ++i) {
     EXPECT_EQ(documented[i].first, text_keys()[i].key);
     EXPECT_EQ(documented[i].second, text_keys()[i].english) << documented[i].first;
+  }
+}
+
+// Participants read WALKTHROUGH kinds by name ("Find this: dog"): every kind of the scene
+// generator has its key, defaulting to the model's own label.
+TEST(Wording, EveryObjectKindHasItsKeyWithTheModelsLabel) {
+  for (const scene::ModelInfo& m : scene::model_catalogue()) {
+    const TextKey* k = find_text_key("kind." + std::string(m.kind));
+    ASSERT_NE(k, nullptr) << m.kind;
+    EXPECT_EQ(k->english, m.label) << m.kind;
   }
 }
 

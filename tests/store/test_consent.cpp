@@ -418,14 +418,15 @@ TEST_P(Consent, TheNewTablesAreAppendOnly) {
     EXPECT_FALSE(db.exec(sql)) << sql;
     EXPECT_NE(db.errmsg().find("dtlab: "), std::string::npos) << sql << ": " << db.errmsg();
   }
-  if (pg())
+  if (pg()) {
     for (const char* table : {"consents", "withdrawals", "screens"})
       EXPECT_FALSE(db.exec(std::string("TRUNCATE ") + table + " CASCADE")) << table;
+  }
   EXPECT_EQ(db.count("SELECT count(*) FROM consents"), 2);
   EXPECT_EQ(db.count("SELECT count(*) FROM withdrawals"), 1);
   EXPECT_EQ(db.count("SELECT count(*) FROM screens"), 1);
   // And the CHECKs: a hash that is not 64 lowercase hex digits, an empty reason, a negative duration.
-  for (const std::string sql :
+  for (const std::string& sql :
        {"INSERT INTO consents VALUES (" + q("P3") + ", 1, 'ABC', '2030-01-01T00:00:00.000Z')",
         "INSERT INTO withdrawals VALUES (9, " + q("P3") + ", '2030-01-01T00:00:00.000Z', '  ', 'RA')",
         std::string("INSERT INTO screens VALUES (1, 9, 'x', '', '2030-01-01T00:00:00.000Z', "

@@ -33,8 +33,12 @@ std::string make_db(const std::string& path) {
     auto ses = s.begin_session(id, plan);
     const int n = id == "P1" ? 4 : 2;
     for (int i = 0; i < n; ++i) EXPECT_TRUE(s.record_trial(*ses, make_record(2, plan.trials[i], 4)));
-    if (id == "P1") EXPECT_TRUE(s.finish_session(*ses));
-    if (id == "P2") EXPECT_TRUE(s.release_claim(*ses));  // the station's process quit
+    if (id == "P1") {
+      EXPECT_TRUE(s.finish_session(*ses));
+    }
+    if (id == "P2") {
+      EXPECT_TRUE(s.release_claim(*ses));  // the station's process quit
+    }
   }
   return path;
 }

@@ -59,6 +59,7 @@ struct Context {
 };
 
 void section_overview(Context& ctx);        // title, data summary, warnings, methods
+void section_participants(Context& ctx);    // demographics, pauses and notes per participant
 void section_time(Context& ctx);            // completion time: Table III layout, full ANOVAs, Fig. 9, participants
 void section_errors(Context& ctx);          // accuracy: relative error, correctness, distance
 void section_speed_accuracy(Context& ctx);  // time vs error per condition and participant

@@ -128,6 +128,10 @@ Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with
     const auto it = session_of.find(e.participant);
     const std::int64_t study = it != session_of.end() ? it->second->study_id : e.study_id;
     if (!studies.count(study)) continue;
+    if (e.withdrawn) {  // their data are never analysed: consent was declined or taken back
+      d.withdrawn.push_back(e.participant);
+      continue;
+    }
     members.insert(e.participant);
     ParticipantRow p;
     p.id = e.participant;
@@ -141,8 +145,30 @@ Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with
       p.recorded = it->second->recorded;
       p.resumes = static_cast<int>(it->second->resumes.size());
       p.software_version = it->second->software_version;
+      p.pauses = static_cast<int>(it->second->pauses.size());
+      p.paused_s = it->second->paused_s();
     }
     d.participants.push_back(std::move(p));
+  }
+  // Consent answers of this design's participants (withdrawn ones included).
+  auto consents = reader.consents();
+  if (!consents) return consents.error();
+  for (const store::ConsentRecord& c : *consents)
+    if (members.count(c.participant) ||
+        std::find(d.withdrawn.begin(), d.withdrawn.end(), c.participant) != d.withdrawn.end())
+      (c.agreed ? d.consented : d.declined) += 1;
+
+  auto notes = reader.notes();
+  if (!notes) return notes.error();
+  for (const store::Note& n : *notes) {
+    if (n.participant.empty()) {
+      d.study_notes.push_back(n.text + " (" + n.author + ")");
+      continue;
+    }
+    for (ParticipantRow& p : d.participants)
+      if (p.id == n.participant)
+        p.notes.push_back((n.position ? "trial " + std::to_string(*n.position) + ": " : std::string()) + n.text + " (" +
+                          n.author + ")");
   }
 
   auto exclusions = reader.exclusions();

@@ -56,6 +56,9 @@ struct ParticipantRow {
   std::string session_status;                       // "" when no session was started
   int planned = 0, recorded = 0, resumes = 0;
   std::string software_version;                     // of the session
+  int pauses = 0;                                   // the experimenter's pauses of the session
+  double paused_s = 0;                              // their total length
+  std::vector<std::string> notes;                   // the experimenter's notes about them ("trial 3: ..." for a trial's)
 };
 
 struct AnswerRow {
@@ -77,6 +80,12 @@ struct StudyData {
   long long other_revision_trials = 0;       // recorded under another design revision (not analysed here)
   std::vector<AnswerRow> answers;            // questionnaire answers of the analysed participants
   std::vector<store::Exclusion> exclusions;  // every decision about the analysed participants, in order
+  std::vector<std::string> study_notes;      // notes about the study as a whole, in order
+  // Participants of the design who withdrew their consent (declined it, or withdrew later): never
+  // analysed, not even with_excluded, and not among `participants`; counted here.
+  std::vector<std::string> withdrawn;
+  int declined = 0;                          // of those, the ones who declined consent on its page
+  int consented = 0;                         // participants who agreed on the consent page
   std::vector<std::string> excluded_participants;  // excluded now (left out unless with_excluded)
   long long excluded_trials = 0;             // recorded trials excluded now (theirs or their participant's)
   bool with_excluded = false;                // excluded data are kept in `trials` and `answers`

@@ -462,6 +462,41 @@ TEST(ReportExclusions, AnExcludedParticipantLeavesTheTestsAndIsListedWithTheReas
             7);
 }
 
+// A withdrawn participant (dtlab withdraw) is in no analysis, even with --with-excluded, and the
+// Participants section says how many withdrew and who; pauses and notes reach the report and its CSV.
+TEST(ReportWithdrawal, AWithdrawnParticipantIsLeftOutAndCounted) {
+  TempDir dir;
+  build_statsmodels_2x2(dir.file("s.sqlite"));
+  {
+    auto s = store::Store::open_existing(dir.file("s.sqlite"));
+    ASSERT_TRUE(s) << s.error().to_string();
+    ASSERT_TRUE(s->withdraw("S8", "withdrew consent", "RA"));
+    ASSERT_TRUE(s->add_note("S2", std::nullopt, "RA", "wore glasses"));
+    ASSERT_TRUE(s->add_note("", std::nullopt, "RA", "the lab was warm all week"));
+  }
+  for (bool with_excluded : {false, true}) {
+    ReportOptions options;
+    options.with_excluded = with_excluded;
+    const std::string out = dir.file(with_excluded ? "kept" : "out");
+    auto r = write_report(dir.file("s.sqlite"), out, {}, options);
+    ASSERT_TRUE(r) << r.error().to_string();
+    EXPECT_EQ(r->participants, 7);
+    const auto j = nlohmann::json::parse(read_text(out + "/report.json"));
+    EXPECT_EQ(find_effect(find_test(j, "completion_time", "overall"), "transparency").at("df2").get<double>(), 6);
+    const auto& p = j.at("sample");
+    EXPECT_EQ(p.at("withdrawn"), nlohmann::json::array({"S8"}));
+    EXPECT_EQ(p.at("described"), 7);
+    ASSERT_EQ(p.at("around_sessions").size(), 1u);
+    EXPECT_EQ(p.at("around_sessions")[0].at("participant"), "S2");
+    EXPECT_EQ(p.at("around_sessions")[0].at("notes"), nlohmann::json::array({"wore glasses (RA)"}));
+    EXPECT_EQ(p.at("study_notes"), nlohmann::json::array({"the lab was warm all week (RA)"}));
+    const std::string md = read_text(out + "/report.md");
+    EXPECT_NE(md.find("1 participant withdrew consent"), std::string::npos);
+    EXPECT_NE(md.find("left out of every analysis: S8."), std::string::npos);
+    EXPECT_NE(read_text(out + "/sessions_notes.csv").find("S2,0,0,wore glasses (RA)"), std::string::npos);
+  }
+}
+
 // Text typed by the experimenter reaches every format as text, never as markup. Regression:
 // report.md wrote an exclusion reason's <script> as raw HTML (index.html and report.tex escaped it).
 TEST(ReportExclusions, ReasonsWithMarkupAreTextInEveryFormat) {
