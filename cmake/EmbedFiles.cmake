@@ -12,4 +12,7 @@ function(dtlab_embed_files target name)
     COMMENT "Embedding ${name} files"
     VERBATIM)
   target_sources(${target} PRIVATE ${out_cpp})
+  # The generated file needs nothing but <string_view>: a target's precompiled
+  # header would cost it more than it saves.
+  set_source_files_properties(${out_cpp} PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
 endfunction()

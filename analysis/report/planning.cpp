@@ -2,6 +2,8 @@
 // accuracy sections (their tests are what is planned), plan (planning.h).
 #include "analysis/report/planning.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 
 #include "analysis/report/detail/design.h"

@@ -7,7 +7,7 @@
 // is this code without resampling. Guarantees: reads the database only;
 // deterministic for a seed whatever the number of threads; errors as the report's.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -14,7 +14,7 @@
 
 #include "analysis/report/detail/design.h"
 #include "analysis/report/detail/study_data.h"
-#include "analysis/stats/stats.h"
+#include "analysis/stats/long_data.h"
 
 namespace dtlab::report::detail {
 

@@ -3,6 +3,7 @@
 // of an observed effect against R's power.t.test, the resampling's
 // determinism whatever the thread count, errors and exit codes.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <fstream>
