@@ -5,6 +5,8 @@
 #include <GLFW/glfw3.h>
 
 #include <charconv>
+#include <optional>
+#include <string>
 #include <fstream>
 #include <sstream>
 
@@ -80,6 +82,27 @@ constexpr OpSpec kOps[] = {
     {"click_item", ScriptStep::Op::click_item, 1, 3, "click_item \"NAME\" [FX FY]"},
 };
 
+// The code points of UTF-8 text; nullopt for invalid UTF-8 (a `type` step is refused at parse time).
+std::optional<std::u32string> decode_utf8(const std::string& s) {
+  std::u32string out;
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const std::size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    if (len == 0 || i + len > s.size()) return std::nullopt;
+    char32_t cp = len == 1 ? c : len == 2 ? c & 0x1F : len == 3 ? c & 0x0F : c & 0x07;
+    for (std::size_t k = 1; k < len; ++k) {
+      const auto cc = static_cast<unsigned char>(s[i + k]);
+      if ((cc >> 6) != 0x2) return std::nullopt;
+      cp = (cp << 6) | (cc & 0x3F);
+    }
+    out.push_back(cp);
+    i += len;
+  }
+  return out;
+}
+
+std::u32string code_points(const std::string& s) { return decode_utf8(s).value_or(std::u32string()); }
+
 Error at(const std::string& file, int line, std::string field, std::string message) {
   return Error{file, line, 0, std::move(field), std::move(message)};
 }
@@ -118,7 +141,10 @@ Result<ScriptStep> parse_step(const std::vector<std::string>& w, const std::stri
       st = key(1);
       if (st) st = num(2, s.seconds);
       break;
-    case ScriptStep::Op::type: s.text = w[1]; break;
+    case ScriptStep::Op::type:
+      s.text = w[1];
+      if (!decode_utf8(s.text)) st = at(file, line, w[0], "the text is not UTF-8");
+      break;
     case ScriptStep::Op::move:
       st = num(1, s.x0);
       if (st) st = num(2, s.y0);
@@ -163,6 +189,12 @@ Result<ScriptStep> parse_step(const std::vector<std::string>& w, const std::stri
 const ScriptSection* Script::for_screen(const std::string& screen) const {
   for (const ScriptSection& s : sections)
     if (s.screen == screen) return &s;
+  // "questionnaire tlx.mental" -> "questionnaire tlx": an instrument's items share its section.
+  for (std::string prefix = screen; prefix.rfind('.') != std::string::npos && prefix.rfind('.') > prefix.find(' ');) {
+    prefix.resize(prefix.rfind('.'));
+    for (const ScriptSection& s : sections)
+      if (s.screen == prefix) return &s;
+  }
   const std::string first = screen.substr(0, screen.find(' '));
   for (const ScriptSection& s : sections)
     if (s.screen == first) return &s;
@@ -314,7 +346,7 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
       phase_ = 2;
       return false;
     case Op::type:
-      for (unsigned char c : s.text) input_.on_char(c);
+      for (char32_t c : code_points(s.text)) input_.on_char(static_cast<unsigned>(c));
       return true;
     case Op::move: input_.on_cursor(s.x0, s.y0); return true;
     case Op::click: return press_release(s.button, s.x0, s.y0);

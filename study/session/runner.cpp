@@ -1,13 +1,16 @@
 // run_session (session.h): the session lifecycle of docs/session.md, one
 // function, in the order of its state diagram. Every decision about what to
-// run next is read from the store (next_trial), never from a counter kept
-// here, so the loop is the same after any number of interruptions.
+// run or ask next is read from the store (next_trial; the questionnaire
+// occasions answered), so the loop is the same after any number of
+// interruptions; what is kept here (the elapsed time, the last task set,
+// the history) is rebuilt from the file when a session resumes.
 #include <algorithm>
 #include <cmath>
 #include <set>
 
 #include "study/design/design.h"
 #include "study/render/gl_info.h"
+#include "study/session/detail/occasions.h"
 #include "study/session/session.h"
 
 namespace dtlab::session {
@@ -46,71 +49,6 @@ Result<store::TrialRecord> make_record(const TrialSpec& spec, TrialOutcome&& out
   return r;
 }
 
-// The stored form of the responder's answers; ratings in range, choices among the options,
-// depth-test answers scored against the key (1 = the closer object named, 0 = not).
-Result<std::vector<store::QuestionnaireAnswer>> score_questionnaire(const std::vector<Question>& questions,
-                                                                    const std::vector<QuestionAnswer>& answers,
-                                                                    const std::vector<DepthTestKey>& keys) {
-  if (answers.size() != questions.size())
-    return responder_error("questionnaire", std::to_string(answers.size()) + " answers to " +
-                                                std::to_string(questions.size()) + " questions");
-  std::vector<store::QuestionnaireAnswer> out;
-  for (std::size_t i = 0; i < questions.size(); ++i) {
-    const Question& q = questions[i];
-    const protocol::QuestionnaireItem& item = *q.item;
-    const std::string field = "questionnaire." + item.id + (q.scope.empty() ? "" : "[" + q.scope + "]");
-    const double* num = std::get_if<double>(&answers[i]);
-    const std::string* text = std::get_if<std::string>(&answers[i]);
-    store::QuestionnaireAnswer a{item.id, q.scope, 0.0};
-    switch (item.type) {
-      case protocol::ItemType::rating:
-        if (!num || *num != std::floor(*num) || *num < item.scale_min || *num > item.scale_max)
-          return responder_error(field, "expected an integer rating in [" + std::to_string(item.scale_min) + ", " +
-                                            std::to_string(item.scale_max) + "]");
-        a.value = *num;
-        break;
-      case protocol::ItemType::choice:
-        if (!text || std::find(q.options.begin(), q.options.end(), *text) == q.options.end())
-          return responder_error(field, "expected one of the item's options");
-        a.value = *text;
-        break;
-      case protocol::ItemType::depth_test: {
-        if (!num || (*num != q.object_a && *num != q.object_b))
-          return responder_error(field, "expected the Object::id of one of the pair (" + std::to_string(q.object_a) +
-                                            " or " + std::to_string(q.object_b) + ")");
-        const DepthTestKey* key = nullptr;
-        for (const auto& k : keys)
-          if (k.view.item == item.id) key = &k;
-        if (!key || q.pair < 1 || q.pair > static_cast<int>(key->closer.size()))
-          return responder_error(field, "no depth-test key for this pair");
-        a.value = static_cast<std::uint32_t>(*num) == key->closer[static_cast<std::size_t>(q.pair - 1)] ? 1.0 : 0.0;
-        break;
-      }
-    }
-    out.push_back(std::move(a));
-  }
-  return out;
-}
-
-// The questions and depth-test views of participant `index`, made before the session begins so
-// that a questionnaire that cannot be shown stops the session before its first trial.
-struct PreparedQuestionnaire {
-  std::vector<Question> questions;
-  std::vector<DepthTestKey> keys;  // one per depth-test item
-};
-Result<PreparedQuestionnaire> prepare_questionnaire(const protocol::Protocol& p, int index, const Viewport& vp) {
-  PreparedQuestionnaire q;
-  q.questions = expand_questionnaire(p);
-  for (const protocol::QuestionnaireItem& item : p.questionnaire) {
-    if (item.type != protocol::ItemType::depth_test) continue;
-    auto key = depth_test_view(p, item, index, vp, q.questions);
-    if (!key) return key.error();
-    q.keys.push_back(std::move(key.value()));
-  }
-  return q;
-}
-
-
 }  // namespace
 
 store::DisplayInfo Responder::display() const {
@@ -139,8 +77,10 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
     if (!existing && existing.error().kind != ErrorKind::not_found) return existing.error();
   }
 
-  auto prepared = prepare_questionnaire(p, sum.enrollment.index, responder.viewport());
-  if (!prepared) return prepared.error();
+  // The questionnaire's occasions and depth-test views, made before the session begins so that a
+  // questionnaire that cannot be shown stops the session before its first trial.
+  auto occasions = detail::Occasions::prepare(p, sum.enrollment.index, sum.plan, responder.viewport());
+  if (!occasions) return occasions.error();
 
   auto begun = store.begin_session(participant_id, sum.plan);
   // Another process may have finished the session since the check above (the store refuses to
@@ -157,6 +97,16 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   double elapsed = 0;
   for (const RecordedTrial& t : history.value()) elapsed += t.completion_s;
   const Viewport vp = responder.viewport();
+  // Every questionnaire occasion whose last trial is recorded and whose answers are not: asked and
+  // stored (one transaction each) before the next trial; after an interruption, the ones missed.
+  const auto ask_occasions = [&]() -> Status {
+    const int recorded = history->empty() ? 0 : history->back().planned.position;
+    auto n = occasions->ask_due(store, session, participant_id, sum.enrollment.index, recorded, history.value(), responder);
+    if (!n) return n.error();
+    sum.occasions_recorded += n.value();
+    sum.questionnaire_recorded = sum.occasions_recorded > 0;
+    return {};
+  };
 
   // Trials: RUNNING -> (next_trial, responder, record_trial)* until none is left.
   std::optional<std::pair<int, std::string>> task_set;  // (block, task) of the last trial run here
@@ -166,6 +116,7 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
       sum.trials_recorded = static_cast<int>(history->size());
       return sum;
     }
+    if (Status st = ask_occasions(); !st) return st.error();
     auto next = store.next_trial(session);
     if (!next) return next.error();
     if (!next->has_value()) break;
@@ -214,26 +165,8 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   }
   sum.trials_recorded = static_cast<int>(history->size());
 
-  // Questionnaire: one transaction. If an interrupted run committed it already, nobody is asked
-  // again and the session goes straight on to FINISHED.
-  auto answered = store.read().questionnaire(participant_id);
-  if (!answered) return answered.error();
-  QuestionnaireSpec q;
-  q.protocol = &p;
-  q.participant_id = participant_id;
-  q.enrollment_index = sum.enrollment.index;
-  q.questions = std::move(prepared->questions);
-  q.history = history.value();
-  const std::vector<DepthTestKey>& keys = prepared->keys;
-  for (const DepthTestKey& key : keys) q.depth_tests.push_back(key.view);
-  if (!q.questions.empty() && answered->empty()) {
-    auto answers = responder.answer_questionnaire(q);
-    if (!answers) return answers.error();
-    auto stored = score_questionnaire(q.questions, answers.value(), keys);
-    if (!stored) return stored.error();
-    if (Status st = store.record_questionnaire(session, stored.value()); !st) return st.error();
-    sum.questionnaire_recorded = true;
-  }
+  // The last occasions (the end's among them); those an interrupted run committed are not asked again.
+  if (Status st = ask_occasions(); !st) return st.error();
 
   if (Status st = store.finish_session(session); !st) return st.error();
   sum.finished = true;

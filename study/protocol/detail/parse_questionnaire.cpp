@@ -1,19 +1,180 @@
-// Internal: the [questionnaire.<id>] tables: each item's type, prompt and the
-// keys of its type, checked against the declared factors, scenarios and
-// renderings (a key of another type is an error, a name must exist). Runs
-// after the factors, scenarios and renderings are parsed. Never aborts: every
+// Internal: the [questionnaire.<id>] tables. Each names an item type (`type`)
+// or a standard instrument (`instrument`), optionally `when` it is asked;
+// the type's or instrument's own keys are read as its registration declares
+// them (study/questionnaire: KeySpec), so a new item type needs no change
+// here. A key of another type is an error naming the types it belongs to;
+// the type's check then holds the item against the design (names must
+// exist). An instrument block becomes its published items in its place.
+// Runs after the factors, scenarios and renderings. Never aborts: every
 // problem is a Diagnostic at the key's line.
+#include <algorithm>
+#include <set>
+
 #include "study/protocol/detail/parser.h"
 
 namespace dtlab::protocol::detail {
 
+namespace {
+
+namespace q = dtlab::questionnaire;
+
+// The type's checks report here; keys become positions and field paths of the item's table.
+class ItemProblems final : public q::Problems {
+ public:
+  ItemProblems(TableReader& r, Diagnostics& d) : r_(r), d_(d) {}
+  void error(std::string_view key, const std::string& message) override {
+    d_.error(key.empty() ? r_.pos() : r_.pos(key), key.empty() ? r_.path() : r_.field(key), message);
+  }
+  void error_at(std::string_view key, std::size_t index, const std::string& message) override {
+    const toml::node* n = r_.node(key);
+    const toml::array* a = n ? n->as_array() : nullptr;
+    const toml::node* e = a && index < a->size() ? a->get(index) : nullptr;
+    d_.error(e ? pos_of(*e) : r_.pos(key), indexed(r_.field(key), index), message);
+  }
+  void warning(std::string_view key, const std::string& message) override {
+    d_.warning(key.empty() ? r_.pos() : r_.pos(key), key.empty() ? r_.path() : r_.field(key), message);
+  }
+
+ private:
+  TableReader& r_;
+  Diagnostics& d_;
+};
+
+// One declared key as its kind reads it; nullopt when absent (an error if required) or wrong.
+std::optional<q::KeyValue> read_key(TableReader& r, const q::KeySpec& k, Diagnostics& d) {
+  const limits::Ints ints{static_cast<std::int64_t>(k.min), static_cast<std::int64_t>(k.max)};
+  const limits::Numbers numbers{k.min, k.max};
+  switch (k.kind) {
+    case q::KeyKind::text:
+      if (auto v = r.string(k.name, k.required)) return *v;
+      break;
+    case q::KeyKind::choice:
+      if (auto v = r.choice_of(k.name, k.required, k.allowed)) return *v;
+      break;
+    case q::KeyKind::boolean:
+      if (auto v = r.boolean(k.name, k.required)) return *v;
+      break;
+    case q::KeyKind::integer:
+      if (auto v = r.integer(k.name, k.required, ints)) return *v;
+      break;
+    case q::KeyKind::number:
+      if (auto v = r.number(k.name, k.required, numbers)) return *v;
+      break;
+    case q::KeyKind::strings:
+      if (auto v = r.strings(k.name, k.required, ints)) return *v;
+      break;
+    case q::KeyKind::int_range:
+      if (auto v = r.int_range(k.name, k.required, ints, k.increasing))
+        return q::NumberPair{static_cast<double>(v->min), static_cast<double>(v->max)};
+      break;
+    case q::KeyKind::number_range:
+      if (auto v = r.number_range(k.name, k.required, numbers)) {
+        if (k.increasing && !(v->min < v->max)) {
+          d.error(r.pos(k.name), r.field(k.name), "expected [min, max] with min < max");
+          break;
+        }
+        return q::NumberPair{v->min, v->max};
+      }
+      break;
+  }
+  return std::nullopt;
+}
+
+// Reads `specs` into keys (fallbacks where absent or wrong); records the keys the file sets.
+void read_keys(TableReader& r, const std::vector<q::KeySpec>& specs, q::Keys& keys,
+               std::set<std::string, std::less<>>& written, Diagnostics& d) {
+  for (const q::KeySpec& k : specs) {
+    if (r.has(k.name)) written.insert(k.name);
+    auto v = read_key(r, k, d);
+    keys[k.name] = v ? std::move(*v) : k.fallback;
+  }
+}
+
+// Keys of other types (and instruments) the table sets: an error naming where they belong.
+void foreign_keys(TableReader& r, const std::vector<q::KeySpec>& own, const std::string& what, Diagnostics& d) {
+  std::map<std::string, std::vector<std::string>> owners;  // key -> "type = \"x\"", ...
+  for (const q::ItemType* t : q::item_types())
+    for (const q::KeySpec& k : t->keys) owners[k.name].push_back("type = \"" + t->name + "\"");
+  for (const q::Instrument* i : q::instruments())
+    for (const q::KeySpec& k : i->keys) owners[k.name].push_back("instrument = \"" + i->name + "\"");
+  for (const auto& [key, where] : owners) {
+    if (std::any_of(own.begin(), own.end(), [&](const q::KeySpec& k) { return k.name == key; })) continue;
+    if (!r.has(key)) continue;
+    std::string list;
+    for (std::size_t i = 0; i < where.size(); ++i) list += (i ? " or " : "") + where[i];
+    d.error(r.pos(key), r.field(key), "applies only to " + list + "; this item is " + what);
+  }
+}
+
+std::vector<std::string> type_names() {
+  std::vector<std::string> out;
+  for (const q::ItemType* t : q::item_types()) out.push_back(t->name);
+  return out;
+}
+
+std::vector<std::string> instrument_names() {
+  std::vector<std::string> out;
+  for (const q::Instrument* i : q::instruments()) out.push_back(i->name);
+  return out;
+}
+
+// `when`: "end" (absent), "block", "task" or "level:<factor>" of a declared factor.
+q::When read_when(TableReader& r, ParseState& s) {
+  const auto text = r.string("when", false);
+  if (!text) return {};
+  const auto w = q::parse_when(*text);
+  if (!w) {
+    s.d.error(r.pos("when"), r.field("when"),
+              "unknown value \"" + *text + "\"; expected \"end\", \"block\", \"task\" or \"level:<factor>\"");
+    return {};
+  }
+  if (w->kind == q::When::Kind::level && !find_factor(s.p, w->factor)) {
+    s.d.error(r.pos("when"), r.field("when"),
+              "no factor named '" + w->factor + "' (factors: " + quoted_list(factor_names(s.p)) + ")");
+    return {};
+  }
+  return *w;
+}
+
+void parse_item(const std::string& id, TableReader& r, const q::ItemType& type, const q::DesignNames& names,
+                ParseState& s) {
+  q::Item item;
+  item.id = id;
+  item.type = &type;
+  item.when = read_when(r, s);
+  if (auto v = r.string("prompt", true)) item.prompt = *v;
+  const int errors_before = s.d.errors();
+  read_keys(r, type.keys, item.keys, item.written, s.d);
+  const bool keys_ok = s.d.errors() == errors_before;  // every key of the type read: its check may use them all
+  foreign_keys(r, type.keys, "\"" + type.name + "\"", s.d);
+  r.finish();
+  ItemProblems problems(r, s.d);
+  if (type.check && keys_ok) type.check(item, names, problems);
+  s.p.questionnaire.push_back(std::move(item));
+}
+
+void parse_instrument(const std::string& id, TableReader& r, const q::Instrument& instrument, ParseState& s) {
+  q::InstrumentUse use;
+  use.id = id;
+  use.instrument = &instrument;
+  use.when = read_when(r, s);
+  std::set<std::string, std::less<>> written;
+  read_keys(r, instrument.keys, use.keys, written, s.d);
+  foreign_keys(r, instrument.keys, "instrument = \"" + instrument.name + "\"", s.d);
+  r.finish();
+  for (q::Item& item : q::instrument_items(use)) {
+    use.items.push_back(item.id);
+    s.p.questionnaire.push_back(std::move(item));
+  }
+  s.p.instruments.push_back(std::move(use));
+}
+
+}  // namespace
+
 void parse_questionnaire(TableReader& root, ParseState& s) {
-  Protocol& p = s.p;
   const toml::table* t = root.table("questionnaire", false);
   if (!t) return;
-  std::vector<std::string> scenario_names, rendering_names;
-  for (const auto& sc : p.scenarios) scenario_names.push_back(sc.name);
-  for (const auto& r : p.renderings) rendering_names.push_back(r.name);
+  const q::DesignNames names = design_names(s.p);
   for (const auto& [k, n] : in_file_order(*t)) {
     const std::string id(k->str());
     const std::string path = join("questionnaire", id);
@@ -23,83 +184,27 @@ void parse_questionnaire(TableReader& root, ParseState& s) {
       s.d.error(pos_of(*n), path, "expected a table [" + path + "] with type and prompt, got " + type_name(*n));
       continue;
     }
-    TableReader qr(*n->as_table(), path, s.d, pos_of(*k));
-    QuestionnaireItem item;
-    item.id = id;
-    const auto type = qr.choice("type", true, {"rating", "choice", "depth-test"});
-    if (auto v = qr.string("prompt", true)) item.prompt = *v;
-    const auto scale = qr.int_range("scale", false, limits::kScale, true);
-    const auto per = qr.strings("per", false, limits::kPer);
-    const auto factor = qr.string("factor", false);
-    const auto options = qr.strings("options", false, limits::kOptions);
-    const auto neutral = qr.string("neutral", false);
-    const auto scenario = qr.string("scenario", false);
-    const auto rendering = qr.string("rendering", false);
-    const auto pairs = qr.integer("pairs", false, limits::kPairs);
-    qr.finish();
-    if (!type) continue;
-    item.type = *type == "rating" ? ItemType::rating : *type == "choice" ? ItemType::choice : ItemType::depth_test;
-    const auto only = [&](const char* key, ItemType applies) {
-      if (item.type != applies && qr.has(key))
-        s.d.error(qr.pos(key), qr.field(key),
-                  "applies only to type = \"" + std::string(to_string(applies)) + "\"; this item is \"" + *type +
-                      "\"");
-    };
-    for (const char* key : {"scale", "per"}) only(key, ItemType::rating);
-    for (const char* key : {"factor", "options", "neutral"}) only(key, ItemType::choice);
-    for (const char* key : {"scenario", "rendering", "pairs"}) only(key, ItemType::depth_test);
-    const auto known = [&](const char* key, const std::string& name, const std::vector<std::string>& names,
-                           const char* what) {
-      if (find_index(names, name) >= 0) return true;
-      s.d.error(qr.pos(key), qr.field(key),
-                std::string("no ") + what + " named '" + name + "' (declared: " + quoted_list(names) + ")");
-      return false;
-    };
-    switch (item.type) {
-      case ItemType::rating:
-        if (scale) {
-          item.scale_min = scale->min;
-          item.scale_max = scale->max;
-        }
-        if (per) {
-          const toml::array& a = *qr.node("per")->as_array();
-          for (std::size_t i = 0; i < per->size(); ++i)
-            if (find_index(factor_names(p), (*per)[i]) < 0)
-              s.d.error(pos_of(*a.get(i)), indexed(qr.field("per"), i),
-                        "no factor named '" + (*per)[i] + "' (factors: " + quoted_list(factor_names(p)) + ")");
-          item.per = *per;
-        }
-        break;
-      case ItemType::choice:
-        if (!qr.has("options") && !qr.has("factor"))
-          s.d.error(qr.pos(), path, "a choice needs factor = \"<factor>\" (its levels are the options) or "
-                                    "options = [...]");
-        else if (qr.has("factor") && qr.has("options"))
-          s.d.error(qr.pos("options"), qr.field("options"), "give either factor or options, not both");
-        if (factor && known("factor", *factor, factor_names(p), "factor")) item.factor = *factor;
-        if (options) item.options = *options;
-        if (!item.factor.empty()) item.options = p.factors[find_index(factor_names(p), item.factor)].levels;
-        if (neutral) {
-          if (find_index(item.options, *neutral) >= 0)
-            s.d.error(qr.pos("neutral"), qr.field("neutral"),
-                      "\"" + *neutral + "\" is already one of the options; the neutral option must differ");
-          else {
-            item.neutral = *neutral;
-            item.options.push_back(*neutral);
-          }
-        }
-        break;
-      case ItemType::depth_test:
-        if (!qr.has("scenario"))
-          s.d.error(qr.pos(), qr.field("scenario"), "missing required key 'scenario' (the scenario shown)");
-        if (!qr.has("rendering"))
-          s.d.error(qr.pos(), qr.field("rendering"), "missing required key 'rendering' (the rendering used)");
-        if (scenario && known("scenario", *scenario, scenario_names, "scenario")) item.scenario = *scenario;
-        if (rendering && known("rendering", *rendering, rendering_names, "rendering")) item.rendering = *rendering;
-        if (pairs) item.pairs = static_cast<int>(*pairs);
-        break;
+    TableReader r(*n->as_table(), path, s.d, pos_of(*k));
+    const bool has_type = r.has("type"), has_instrument = r.has("instrument");
+    if (has_type && has_instrument)
+      s.d.error(r.pos("instrument"), r.field("instrument"), "give either type or instrument, not both");
+    if (!has_instrument || has_type) {
+      const auto type = r.choice_of("type", true, type_names());
+      if (const q::ItemType* found = type ? q::find_item_type(*type) : nullptr) {
+        parse_item(id, r, *found, names, s);
+        continue;
+      }
+    } else if (const auto name = r.choice_of("instrument", true, instrument_names())) {
+      parse_instrument(id, r, *q::find_instrument(*name), s);
+      continue;
     }
-    p.questionnaire.push_back(std::move(item));
+    // No usable type: its keys cannot be checked, so do not call them unknown.
+    for (const q::ItemType* type : q::item_types())
+      for (const q::KeySpec& key : type->keys) r.has(key.name);
+    for (const q::Instrument* i : q::instruments())
+      for (const q::KeySpec& key : i->keys) r.has(key.name);
+    for (const char* key : {"prompt", "when", "instrument"}) r.has(key);
+    r.finish();
   }
 }
 
