@@ -3,7 +3,7 @@
 // its script answers a page of every item type the window draws (sliders of
 // NASA-TLX after each block, set by typing and by the arrow keys; a Likert
 // item after each level, by a point's number and by its label; a multiple
-// choice, a choice with its neutral option, free text with
+// choice, a typed number, a choice with its neutral option, free text with
 // Greek letters) and the stored answers are exactly what the script chose.
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -77,7 +77,7 @@ TEST(RunQuestionnaire, EveryItemScreenTakesTheScriptsAnswer) {
       {"tlx.mental[block=2]", "35"},       {"tlx.physical[block=2]", "35"},    {"tlx.temporal[block=2]", "35"},
       {"tlx.performance[block=2]", "35"},  {"tlx.effort[block=2]", "35"},      {"tlx.frustration[block=2]", "60"},
       {"liked[transparency=off]", "4"},    {"liked[transparency=on]", "4"},    {"symptom[]", "1"},
-      {"games[]", "shooters\npuzzles"},    {"view[]", "either"},
+      {"games[]", "shooters\npuzzles"},    {"hours[]", "12.5"},                {"view[]", "either"},
       {"comment[]", "Gut, aber καλό: 5/5."},
   };
   EXPECT_EQ(got, expected);

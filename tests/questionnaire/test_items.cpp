@@ -48,6 +48,7 @@ TEST(ItemTypes, EachTypeStoresWhatItTakesAndNamesTheFieldOfWhatItRefuses) {
   const Item slider = make("slider", {{"range", NumberPair{0, 100}}, {"step", 5.0}});
   const Item vas = make("slider");  // 0..100 in steps of 1
   const Item multi = make("multiple-choice", {{"options", S{"a", "b", "c"}}, {"select", NumberPair{1, 2}}});
+  const Item numeric = make("numeric", {{"range", NumberPair{0, 168}}, {"decimals", std::int64_t{1}}});
   const Item text = make("text", {{"max_length", std::int64_t{5}}});
   const Item required = make("text", {{"required", true}});
   const Item rating = make("rating", {{"scale", NumberPair{1, 7}}});
@@ -69,6 +70,9 @@ TEST(ItemTypes, EachTypeStoresWhatItTakesAndNamesTheFieldOfWhatItRefuses) {
       {"multiple choice, three", multi, S{"a", "b", "c"}, std::nullopt, "1 to 2 options, got 3"},
       {"multiple choice, twice", multi, S{"a", "a"}, std::nullopt, "chosen twice"},
       {"multiple choice, foreign", multi, S{"d"}, std::nullopt, "options of the item only"},
+      {"numeric", numeric, 12.5, StoredValue{12.5}},
+      {"numeric, too many decimals", numeric, 12.25, std::nullopt, "at most 1 decimal"},
+      {"numeric, out of range", numeric, 169.0, std::nullopt, "[0, 168]"},
       {"text, Greek", text, std::string("καλό"), StoredValue{std::string("καλό")}},  // 4 characters, 8 bytes
       {"text, Cyrillic 5", text, std::string("добро"), StoredValue{std::string("добро")}},
       {"text, 6 characters", text, std::string("zażółć"), std::nullopt, "6 characters; at most 5"},

@@ -85,6 +85,7 @@ TEST(SimulatedAnswers, EveryTypeAnswersWhatItStores) {
       plain("slider", {{"range", NumberPair{-5, 5}}, {"step", 0.5}}),
       plain("choice", {{"options", S{"a", "b", "c"}}}),
       plain("multiple-choice", {{"options", S{"a", "b", "c", "d"}}, {"select", NumberPair{2, 3}}}),
+      plain("numeric", {{"range", NumberPair{0.05, 0.95}}, {"decimals", std::int64_t{1}}}),
       plain("text", {{"max_length", std::int64_t{20}}}),
   };
   for (const char* name : {"nasa-tlx", "sus", "ssq"})
