@@ -144,6 +144,8 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   section_speed_accuracy(ctx);
   say("questionnaire");
   section_questionnaire(ctx);
+  say("instruments and questions per condition");
+  section_instruments(ctx);
   say("position effects");
   section_position(ctx);
   say("frame-time audit");

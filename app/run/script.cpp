@@ -5,6 +5,8 @@
 #include <GLFW/glfw3.h>
 
 #include <charconv>
+#include <optional>
+#include <string>
 #include <fstream>
 #include <sstream>
 
@@ -119,7 +121,10 @@ Result<ScriptStep> parse_step(const std::vector<std::string>& w, const std::stri
       st = key(1);
       if (st) st = num(2, s.seconds);
       break;
-    case ScriptStep::Op::type: s.text = w[1]; break;
+    case ScriptStep::Op::type:
+      s.text = w[1];
+      if (!utf8_decode(s.text)) st = at(file, line, w[0], "the text is not UTF-8");
+      break;
     case ScriptStep::Op::move:
       st = num(1, s.x0);
       if (st) st = num(2, s.y0);
@@ -164,6 +169,12 @@ Result<ScriptStep> parse_step(const std::vector<std::string>& w, const std::stri
 const ScriptSection* Script::for_screen(const std::string& screen) const {
   for (const ScriptSection& s : sections)
     if (s.screen == screen) return &s;
+  // "questionnaire tlx.mental" -> "questionnaire tlx": an instrument's items share its section.
+  for (std::string prefix = screen; prefix.rfind('.') != std::string::npos && prefix.rfind('.') > prefix.find(' ');) {
+    prefix.resize(prefix.rfind('.'));
+    for (const ScriptSection& s : sections)
+      if (s.screen == prefix) return &s;
+  }
   const std::string first = screen.substr(0, screen.find(' '));
   for (const ScriptSection& s : sections)
     if (s.screen == first) return &s;

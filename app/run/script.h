@@ -31,7 +31,7 @@ struct ScriptStep {
     key_down,    // key_down NAME
     key_up,      // key_up NAME
     hold,        // hold NAME SECONDS
-    type,        // type "TEXT": characters (as a keyboard's text input)
+    type,        // type "TEXT": characters (UTF-8, any script; as a keyboard's text input)
     move,        // move X Y: the cursor to window coordinates
     click,       // click X Y [left|right]
     drag,        // drag X0 Y0 X1 Y1 SECONDS (left button)
@@ -49,7 +49,7 @@ struct ScriptStep {
 };
 
 struct ScriptSection {
-  std::string screen;  // "trial T1" (exactly that screen) or "trial" (every screen "trial ...")
+  std::string screen;  // "trial T1" (exactly that screen), "questionnaire tlx" (its items), or "trial" (every "trial ...")
   int line = 0;
   std::vector<ScriptStep> steps;
 };
@@ -57,7 +57,8 @@ struct ScriptSection {
 struct Script {
   std::string file;
   std::vector<ScriptSection> sections;
-  // The section for a screen id: an exact match first, then its first word; nullptr if none.
+  // The section for a screen id: an exact match first, then the id cut at its last '.' (so
+  // "questionnaire tlx" serves every "questionnaire tlx.<item>"), then its first word; nullptr if none.
   const ScriptSection* for_screen(const std::string& screen) const;
 };
 

@@ -39,22 +39,44 @@ std::string count(long long n, std::string_view noun, std::string_view plural) {
   return s.append(noun).append("s");
 }
 
+namespace {
+
+// The code point of the UTF-8 sequence at text[i] and its length; length 0 where no valid
+// sequence starts there (a bad lead or continuation byte, truncated, overlong, surrogate, > U+10FFFF).
+std::pair<char32_t, std::size_t> utf8_at(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char b = byte(i);
+  const std::size_t len = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 0;
+  if (len == 0 || i + len > text.size()) return {0, 0};
+  char32_t c = len == 1 ? b : len == 2 ? (b & 0x1F) : len == 3 ? (b & 0x0F) : (b & 0x07);
+  for (std::size_t k = 1; k < len; ++k) {
+    if ((byte(i + k) & 0xC0) != 0x80) return {0, 0};
+    c = (c << 6) | (byte(i + k) & 0x3F);
+  }
+  static constexpr char32_t kMin[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (c < kMin[len] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF)) return {0, 0};
+  return {c, len};
+}
+
+}  // namespace
+
+std::optional<std::u32string> utf8_decode(std::string_view text) {
+  std::u32string out;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto [c, len] = utf8_at(text, i);
+    if (len == 0) return std::nullopt;
+    out.push_back(c);
+    i += len;
+  }
+  return out;
+}
+
 std::u32string utf8_codepoints(std::string_view text) {
   std::u32string out;
-  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
   for (std::size_t i = 0; i < text.size();) {
-    const unsigned char b = byte(i);
-    const int len = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 0;
-    char32_t c = len == 1 ? b : len == 2 ? (b & 0x1F) : len == 3 ? (b & 0x0F) : (b & 0x07);
-    bool ok = len > 0 && i + static_cast<std::size_t>(len) <= text.size();
-    for (int k = 1; ok && k < len; ++k) {
-      ok = (byte(i + static_cast<std::size_t>(k)) & 0xC0) == 0x80;
-      c = (c << 6) | (byte(i + static_cast<std::size_t>(k)) & 0x3F);
-    }
-    static constexpr char32_t kMin[] = {0, 0, 0x80, 0x800, 0x10000};
-    ok = ok && c >= kMin[len] && c <= 0x10FFFF && (c < 0xD800 || c > 0xDFFF);
-    out.push_back(ok ? c : U'\uFFFD');
-    i += ok ? static_cast<std::size_t>(len) : 1;
+    const auto [c, len] = utf8_at(text, i);
+    out.push_back(len ? c : U'\uFFFD');
+    i += len ? len : 1;
   }
   return out;
 }

@@ -7,6 +7,7 @@
 // keys), the command line (unknown subcommands) and every summary line.
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,5 +26,9 @@ std::string count(long long n, std::string_view noun, std::string_view plural = 
 // The Unicode code points of UTF-8 text; a byte that starts no valid sequence (or an overlong,
 // surrogate or out-of-range one) reads as U+FFFD, and decoding goes on with the next byte.
 std::u32string utf8_codepoints(std::string_view text);
+
+// The code points of valid UTF-8 text; nullopt if any byte starts no valid sequence (a bad lead or
+// continuation byte, a truncated, overlong or surrogate sequence, a value past U+10FFFF).
+std::optional<std::u32string> utf8_decode(std::string_view text);
 
 }  // namespace dtlab

@@ -2,14 +2,17 @@
 // that changes what a session runs -- factors, conditions, ordering, seeds,
 // time limits, training, the session's sequence (consent asked, pages,
 // breaks, announcements), every scene parameter, every rendering parameter,
-// the questionnaire's structure -- and of nothing else (labels, instructions,
-// consent and page texts are wording): comments, white
-// space, key order, the title, descriptions and prompt texts leave it
+// the questionnaire's structure (item types, their keys but labels, `when`,
+// instruments) -- and of nothing else (labels, instructions, consent and
+// page texts are wording): comments, white space, key order, the title,
+// descriptions and prompt texts leave it
 // unchanged. The store uses it to tell a reworded protocol (sessions go on,
 // analyses pool) from a changed design. A new Protocol field that changes
 // what runs must be added here (tests/protocol/test_design_hash.cpp lists them).
 #include <cstdio>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "study/common/hash.h"
 #include "study/protocol/protocol.h"
@@ -57,6 +60,55 @@ void scene(Canon& c, const std::string& k, const SceneParams& s) {
   c.list(k + ".letters", s.letters);
   c.integer(k + ".count_range.min", s.count_range.min);
   c.integer(k + ".count_range.max", s.count_range.max);
+}
+
+// The keys of a registration that change what runs (not its wording), in declaration order.
+void keys(Canon& c, const std::string& prefix, const std::vector<questionnaire::KeySpec>& specs,
+          const questionnaire::Keys& values) {
+  for (const questionnaire::KeySpec& k : specs) {
+    if (k.wording) continue;
+    const auto it = values.find(k.name);
+    if (it == values.end()) continue;
+    const std::string key = prefix + "." + k.name;
+    std::visit(
+        [&](const auto& v) {
+          using T = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<T, bool>) c.integer(key, v ? 1 : 0);
+          else if constexpr (std::is_same_v<T, std::int64_t>) c.integer(key, v);
+          else if constexpr (std::is_same_v<T, double>) c.num(key, v);
+          else if constexpr (std::is_same_v<T, std::string>) c.str(key, v);
+          else if constexpr (std::is_same_v<T, std::vector<std::string>>) c.list(key, v);
+          else if constexpr (std::is_same_v<T, questionnaire::NumberPair>) {
+            c.num(key + ".min", v.min);
+            c.num(key + ".max", v.max);
+          }
+        },
+        it->second);
+  }
+}
+
+// One item. The three types older than the item-type seam (rating, choice, depth-test) hash
+// exactly as they did, every field of all three for each item, so that their studies keep their
+// design hash; every other type hashes its own declared keys. `when` counts when it is not "end".
+void questionnaire_item(Canon& c, const QuestionnaireItem& q) {
+  const std::string type = q.type ? q.type->name : "";
+  c.str("item", q.id);
+  c.str("item.type", type);
+  if (type == "rating" || type == "choice" || type == "depth-test") {
+    const auto text = [&](const char* key) { return type == "choice" || type == "depth-test" ? q.text(key) : ""; };
+    const questionnaire::NumberPair scale = type == "rating" ? q.range("scale") : questionnaire::NumberPair{0, 4};
+    c.integer("item.scale_min", static_cast<long long>(scale.min));
+    c.integer("item.scale_max", static_cast<long long>(scale.max));
+    c.list("item.per", type == "rating" ? q.strings("per") : std::vector<std::string>{});
+    c.str("item.factor", type == "choice" ? text("factor") : "");
+    c.list("item.options", type == "choice" ? q.strings("options") : std::vector<std::string>{});
+    c.str("item.scenario", type == "depth-test" ? text("scenario") : "");
+    c.str("item.rendering", type == "depth-test" ? text("rendering") : "");
+    c.integer("item.pairs", type == "depth-test" ? q.integer("pairs") : 3);
+  } else if (q.type) {
+    keys(c, "item", q.type->keys, q.keys);
+  }
+  if (q.when.kind != questionnaire::When::Kind::end) c.str("item.when", questionnaire::to_string(q.when));
 }
 
 }  // namespace
@@ -147,17 +199,11 @@ std::string design_sha256(const Protocol& p) {
       c.num("rendering.background_alpha", r.background_alpha);
     }
   }
-  for (const QuestionnaireItem& q : p.questionnaire) {
-    c.str("item", q.id);
-    c.str("item.type", std::string(to_string(q.type)));
-    c.integer("item.scale_min", q.scale_min);
-    c.integer("item.scale_max", q.scale_max);
-    c.list("item.per", q.per);
-    c.str("item.factor", q.factor);
-    c.list("item.options", q.options);
-    c.str("item.scenario", q.scenario);
-    c.str("item.rendering", q.rendering);
-    c.integer("item.pairs", q.pairs);
+  for (const QuestionnaireItem& q : p.questionnaire) questionnaire_item(c, q);
+  for (const questionnaire::InstrumentUse& u : p.instruments) {
+    c.str("instrument", u.id);
+    c.str("instrument.name", u.instrument ? u.instrument->name : "");
+    if (u.instrument) keys(c, "instrument", u.instrument->keys, u.keys);
   }
   return sha256_hex("dtlab design v1\n" + c.text());
 }

@@ -2,7 +2,11 @@
 // from the same constants the reader checks with.
 #include "study/protocol/limits.h"
 
+#include <algorithm>
 #include <array>
+#include <vector>
+
+#include "study/questionnaire/instrument.h"
 
 namespace dtlab::protocol::limits {
 
@@ -51,9 +55,6 @@ constexpr std::array kDocumented{
     numbers("rendering", "falloff", kVdtUnit),
     numbers("rendering", "opaque_alpha", kVdtUnit),
     numbers("rendering", "background_alpha", kVdtUnit),
-    ints("questionnaire", "scale", kScale),
-    ints("questionnaire", "options", kOptions),
-    ints("questionnaire", "pairs", kPairs),
     ints("demographics", "range", kDemographicRange),
     ints("demographics", "options", kDemographicOptions),
     ints("reference_results", "participants", kReferenceParticipants),
@@ -61,8 +62,33 @@ constexpr std::array kDocumented{
     numbers("reference_results", "sd", kReferenceSd),
 };
 
+// The questionnaire's ranged keys, as the item types and instruments declare them, in registry
+// order (docs/protocol.md has a table per type in the same order).
+void add_questionnaire(std::vector<Documented>& out) {
+  namespace q = dtlab::questionnaire;
+  const auto add = [&](const q::KeySpec& k) {
+    if (k.kind == q::KeyKind::text || k.kind == q::KeyKind::choice || k.kind == q::KeyKind::boolean) return;
+    out.push_back({"questionnaire", k.name, k.min, k.max});
+  };
+  for (const q::ItemType* t : q::item_types())
+    for (const q::KeySpec& k : t->keys) add(k);
+  for (const q::Instrument* i : q::instruments())
+    for (const q::KeySpec& k : i->keys) add(k);
+}
+
 }  // namespace
 
-std::span<const Documented> documented() { return kDocumented; }
+std::span<const Documented> documented() {
+  static const std::vector<Documented> all = [] {
+    std::vector<Documented> v(kDocumented.begin(), kDocumented.end());
+    // After the rendering keys, where docs/protocol.md's [questionnaire.*] section stands.
+    auto at = std::find_if(v.begin(), v.end(), [](const Documented& d) { return d.section == "demographics"; });
+    std::vector<Documented> q;
+    add_questionnaire(q);
+    v.insert(at, q.begin(), q.end());
+    return v;
+  }();
+  return all;
+}
 
 }  // namespace dtlab::protocol::limits

@@ -2,10 +2,12 @@
 // checks each value against these constants and nothing else, and
 // tests/protocol/test_ranges.cpp checks that docs/protocol.md states exactly
 // these ranges and that the ends of each one pass the whole validation.
+// The questionnaire's keys are declared by their item types (study/questionnaire).
 // Guarantees: field-level only (one key at a time); constraints between keys
 // (object radius against the cube, target ratio against objects, pairs
 // against objects) belong to the stages that impose them and are checked by
-// session::validate_runnable. Never: a range written anywhere else in code.
+// session::validate_runnable. Never: a range written anywhere else in code (the
+// questionnaire's keys: only in their item types' declarations).
 #pragma once
 #include <cstdint>
 #include <limits>
@@ -64,11 +66,8 @@ inline constexpr Numbers kSearchlightRadius{0.01, 2};  // share of the view's he
 inline constexpr Numbers kLensSize{0.001, 100000};  // radius, distance, length (world units)
 inline constexpr Ints kScreenDoorMask{8, 32};       // screen_door_mask: 8, 16 or 32
 inline constexpr Numbers kVdtUnit{0, 1};            // falloff (k), opaque_alpha, background_alpha
-// [questionnaire.*].
-inline constexpr Ints kScale{-100, 100};
-inline constexpr Ints kOptions{2, 32};              // entries of a choice's options
-inline constexpr Ints kPer{0, 8};                   // factors a rating is asked per
-inline constexpr Ints kPairs{1, 20};
+// [questionnaire.*]: each item type declares its keys' ranges (study/questionnaire, KeySpec);
+// documented() lists them with these.
 // [demographics.*].
 inline constexpr Ints kDemographicRange{0, 1000000};  // an integer field's accepted values
 inline constexpr Ints kDemographicOptions{2, 64};     // entries of a choice field's options
@@ -88,7 +87,7 @@ struct Documented {
   double max;
 };
 
-// Every numeric range of docs/protocol.md, in its order.
+// Every numeric range of docs/protocol.md, in its order (the questionnaire's from the item types).
 std::span<const Documented> documented();
 
 }  // namespace dtlab::protocol::limits

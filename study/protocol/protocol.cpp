@@ -279,15 +279,6 @@ std::string_view to_string(TaskType type) {
   return "count-targets";
 }
 
-std::string_view to_string(ItemType type) {
-  switch (type) {
-    case ItemType::choice: return "choice";
-    case ItemType::depth_test: return "depth-test";
-    case ItemType::rating: break;
-  }
-  return "rating";
-}
-
 std::int64_t scheme_rows(Scheme scheme, int n, int random_rows) {
   constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
   switch (scheme) {
@@ -358,6 +349,15 @@ const Factor* factor_with_role(const Protocol& p, FactorRole role) {
   for (const Factor& f : p.factors)
     if (f.role == role) return &f;
   return nullptr;
+}
+
+questionnaire::DesignNames design_names(const Protocol& p) {
+  questionnaire::DesignNames n;
+  for (const Factor& f : p.factors) n.factors.push_back({f.name, f.levels});
+  for (const Scenario& sc : p.scenarios) n.scenarios.push_back(sc.name);
+  for (const Rendering& r : p.renderings) n.renderings.push_back(r.name);
+  if (const Factor* f = factor_with_role(p, FactorRole::rendering)) n.rendering_factor = f->name;
+  return n;
 }
 
 }  // namespace dtlab::protocol

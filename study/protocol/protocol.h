@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "study/common/error.h"
+#include "study/questionnaire/instrument.h"
+#include "study/questionnaire/questionnaire.h"
 
 namespace dtlab::protocol {
 
@@ -186,25 +188,9 @@ struct Flow {
   Breaks breaks;
 };
 
-enum class ItemType {
-  rating,      // integer on [scale_min, scale_max], once per combination of `per` levels
-  choice,      // one of `options` (or of the levels of `factor`)
-  depth_test,  // `pairs` object pairs in one view; which of each pair is closer?
-};
-
-struct QuestionnaireItem {
-  std::string id;
-  ItemType type = ItemType::rating;
-  std::string prompt;
-  int scale_min = 0, scale_max = 4;  // rating
-  std::vector<std::string> per;      // rating: factor names
-  std::string factor;                // choice: options are this factor's levels
-  std::vector<std::string> options;  // choice: explicit options (when no factor)
-  std::string scenario;              // depth_test: scenario shown
-  std::string rendering;             // depth_test: rendering used
-  int pairs = 3;                     // depth_test
-  std::string neutral;               // choice: an extra option meaning "no preference" ("" = none); last of options
-};
+// [questionnaire.<id>]: the items (study/questionnaire/questionnaire.h: each item type's keys,
+// checks and answers are its registration there) and the standard instruments' blocks.
+using QuestionnaireItem = questionnaire::Item;
 
 // One thing the experimenter records about a participant at enrollment (age, handedness, ...).
 struct DemographicField {
@@ -258,13 +244,18 @@ struct Protocol {
   Flow flow;                          // consent, pages, breaks, announcements, counter
   std::vector<Scenario> scenarios;    // in file order
   std::vector<Rendering> renderings;  // in file order
-  std::vector<QuestionnaireItem> questionnaire;  // in file order
+  std::vector<QuestionnaireItem> questionnaire;  // in file order; an instrument block's items in its place
+  std::vector<questionnaire::InstrumentUse> instruments;  // the instrument blocks, in file order
   std::vector<DemographicField> demographics;    // in file order; asked at enrollment
   std::optional<ReferenceResults> reference_results;  // [reference_results]; not part of the design
   // [text]: the protocol's wording of participant-facing strings by key (study/protocol/wording.h
   // lists the keys and their English defaults); only the keys it sets. Not part of the design.
   std::vector<std::pair<std::string, std::string>> text;
 };
+
+// The design's names as the questionnaire's item types read them (factors and levels, scenarios,
+// renderings, the rendering factor).
+questionnaire::DesignNames design_names(const Protocol& p);
 
 // The factor whose levels [reference_results] values are given per: the rendering factor, else the
 // first factor; -1 when the protocol has no factor.
@@ -309,7 +300,6 @@ std::string_view to_string(Scheme scheme);       // "latin-square", "williams", 
 std::string_view to_string(OrderUnit unit);
 std::string_view to_string(ScenarioKind kind);   // "abstract" | "walkthrough"
 std::string_view to_string(TaskType type);       // "count-targets", ...
-std::string_view to_string(ItemType type);
 std::string_view to_string(DemographicField::Type type);  // "text", "integer", "choice"
 
 // The number of rows the declared scheme yields for n items (n >= 1):

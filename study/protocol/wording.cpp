@@ -78,6 +78,15 @@ constexpr std::array kKeys{
     TextKey{"answer.whole_number", "Type a whole number, then press Enter.", ""},
     TextKey{"answer.back", "Escape: back to the scene", ""},
     TextKey{"answer.start", "start", ""},
+    // Questionnaire pages (every item type), the depth test.
+    TextKey{"question.progress", "Question {n} of {total}", "n total"},
+    TextKey{"question.next", "Next", ""},
+    TextKey{"question.value", "Value", ""},
+    TextKey{"question.characters", "{used} of {max} characters. Next, or Ctrl+Enter, when done.", "used max"},
+    TextKey{"question.choose", "Choose {min} to {max}.", "min max"},
+    TextKey{"question.number", "Enter a number from {min} to {max}.", "min max"},
+    TextKey{"depth_test.pair", "{progress}. Pair {pair} of {pairs}", "progress pair pairs"},
+    TextKey{"depth_test.click", "Click A or B (or press the key).", ""},
     // The kinds of WALKTHROUGH objects, as the "find this" panel and the questions name them.
     TextKey{"kind.dog", "dog", ""},
     TextKey{"kind.cat", "cat", ""},
@@ -171,7 +180,11 @@ std::string participant_text(const Protocol& p) {
     for (const Task& t : s.tasks) add(t.instructions);
   for (const QuestionnaireItem& q : p.questionnaire) {
     add(q.prompt);
-    for (const std::string& o : q.options) add(o);
+    for (const auto& [key, value] : q.keys) {  // options, labels, anchors, units: whatever text it shows
+      if (const auto* text = std::get_if<std::string>(&value)) add(*text);
+      if (const auto* texts = std::get_if<std::vector<std::string>>(&value))
+        for (const std::string& t : *texts) add(t);
+    }
   }
   for (const DemographicField& d : p.demographics) {
     add(d.prompt);

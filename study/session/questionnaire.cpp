@@ -1,6 +1,7 @@
-// The post-test questionnaire (session.h): items expanded into questions, the
-// depth test's static view and its answer key, and the session's recorded
-// trials read back through the store for the responder's memory.
+// The questionnaire (session.h): the occasions of a plan, the items asked at
+// each expanded into questions, the depth test's static view and its answer
+// key, and the session's recorded trials read back through the store for
+// the responder's memory.
 // Guarantees: the same (protocol, enrollment index, viewport) gives the same
 // questions, view and pairs; the depth-test key is geometry (distance from
 // the eye), never what a renderer shows. Never: writes to the store.
@@ -10,61 +11,29 @@
 
 #include "study/design/seeds.h"
 #include "study/render/camera.h"
-#include "study/session/detail/stream.h"
+#include "study/common/stream.h"
 #include "study/session/session.h"
 #include "study/store/read.h"
 
 namespace dtlab::session {
 
-std::vector<Question> expand_questionnaire(const protocol::Protocol& p) {
+std::vector<Question> expand_questionnaire(const protocol::Protocol& p, const questionnaire::Occasion& o) {
+  const questionnaire::DesignNames names = protocol::design_names(p);
   std::vector<Question> out;
   for (const protocol::QuestionnaireItem& item : p.questionnaire) {
-    switch (item.type) {
-      case protocol::ItemType::rating: {
-        // Every combination of the `per` factors' levels, first factor slowest.
-        std::vector<const protocol::Factor*> per;
-        std::size_t combinations = 1;
-        for (const auto& name : item.per) {
-          const protocol::Factor* f = protocol::find_factor(p, name);
-          if (!f) continue;  // load_protocol checked the names; a hand-built protocol may not have
-          per.push_back(f);
-          combinations *= f->levels.size();
-        }
-        for (std::size_t c = 0; c < combinations; ++c) {
-          Question q;
-          q.item = &item;
-          std::size_t rest = c, stride = combinations;
-          for (const protocol::Factor* f : per) {
-            stride /= f->levels.size();
-            const std::string& level = f->levels[rest / stride];
-            rest %= stride;
-            q.levels.emplace_back(f->name, level);
-            q.scope += (q.scope.empty() ? "" : ";") + f->name + "=" + level;
-          }
-          out.push_back(std::move(q));
-        }
-        break;
-      }
-      case protocol::ItemType::choice: {
-        Question q;
-        q.item = &item;
-        // The protocol's options: a factor's levels (load_protocol copied them), then the neutral one.
-        q.options = item.options;
-        out.push_back(std::move(q));
-        break;
-      }
-      case protocol::ItemType::depth_test:
-        for (int k = 1; k <= item.pairs; ++k) {
-          Question q;
-          q.item = &item;
-          q.pair = k;
-          q.scope = "pair=" + std::to_string(k);
-          out.push_back(std::move(q));
-        }
-        break;
-    }
+    if (!questionnaire::asked_at(item, o)) continue;
+    for (Question& q : questionnaire::expand(item, names)) out.push_back(std::move(q));
   }
   return out;
+}
+
+std::vector<questionnaire::Occasion> questionnaire_occasions(const protocol::Protocol& p, const design::Plan& plan) {
+  std::vector<questionnaire::PlanPoint> points;
+  points.reserve(plan.trials.size());
+  for (const design::PlannedTrial& t : plan.trials) points.push_back({t.position, t.block, t.task, t.levels});
+  std::vector<std::string> factors;
+  for (const protocol::Factor& f : p.factors) factors.push_back(f.name);
+  return questionnaire::occasions(p.questionnaire, points, factors);
 }
 
 std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, int item_position) {
@@ -76,10 +45,13 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
                                      int enrollment_index, const Viewport& vp, std::vector<Question>& questions) {
   const std::string field = "questionnaire." + item.id;
   auto bad = [&](const std::string& f, const std::string& m) { return protocol::error_at(p, f, m); };
-  const protocol::Scenario* scenario = find_scenario(p, item.scenario);
-  const protocol::Rendering* rendering = find_rendering(p, item.rendering);
-  if (!scenario || scenario->tasks.empty()) return bad(field + ".scenario", "no scenario '" + item.scenario + "' with tasks");
-  if (!rendering) return bad(field + ".rendering", "no rendering '" + item.rendering + "'");
+  const std::string& scenario_name = item.text("scenario");
+  const std::string& rendering_name = item.text("rendering");
+  const int pairs_wanted = static_cast<int>(item.integer("pairs"));
+  const protocol::Scenario* scenario = find_scenario(p, scenario_name);
+  const protocol::Rendering* rendering = find_rendering(p, rendering_name);
+  if (!scenario || scenario->tasks.empty()) return bad(field + ".scenario", "no scenario '" + scenario_name + "' with tasks");
+  if (!rendering) return bad(field + ".rendering", "no rendering '" + rendering_name + "'");
   if (scenario->scene.kind != protocol::ScenarioKind::walkthrough)
     return bad(field + ".scenario", "scenario '" + scenario->name + "' is kind = \"" +
                                         std::string(protocol::to_string(scenario->scene.kind)) +
@@ -132,18 +104,18 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
   for (int k = 0; k < 16; ++k) steps.emplace_back(-static_cast<int>(in_view(k * 6.283185307179586 / 16).size()), k);
   std::sort(steps.begin(), steps.end());
 
-  detail::Stream rng(seed);
+  Stream rng(seed);
   for (const double lo : {1.2, 1.05}) {
     const double hi = lo == 1.2 ? 2.0 : 3.0;
     for (const auto& [neg, k] : steps) {
-      if (-neg < 2 * item.pairs) break;
+      if (-neg < 2 * pairs_wanted) break;
       const double yaw = k * 6.283185307179586 / 16;
       std::vector<Seen> seen = in_view(yaw);
       // Seeded shuffle, then greedy disjoint pairs whose distance ratio lies in [lo, hi].
       for (std::size_t i = seen.size(); i > 1; --i) std::swap(seen[i - 1], seen[rng.below(i)]);
       std::vector<std::pair<Seen, Seen>> pairs;
       std::vector<char> used(seen.size(), 0);
-      for (std::size_t i = 0; i < seen.size() && static_cast<int>(pairs.size()) < item.pairs; ++i) {
+      for (std::size_t i = 0; i < seen.size() && static_cast<int>(pairs.size()) < pairs_wanted; ++i) {
         if (used[i]) continue;
         for (std::size_t j = i + 1; j < seen.size(); ++j) {
           if (used[j]) continue;
@@ -155,7 +127,7 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
           }
         }
       }
-      if (static_cast<int>(pairs.size()) < item.pairs) continue;
+      if (static_cast<int>(pairs.size()) < pairs_wanted) continue;
       cam.yaw = static_cast<float>(yaw);
       key.view.camera = cam;
       for (Question& q : questions) {
@@ -168,7 +140,7 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
       return key;
     }
   }
-  return bad(field + ".pairs", "no view from the start cell shows " + std::to_string(item.pairs) +
+  return bad(field + ".pairs", "no view from the start cell shows " + std::to_string(pairs_wanted) +
                                    " pairs of objects at distinguishable distances; lower pairs or place more "
                                    "objects (scenario '" + scenario->name + "', task " + task.id + ")");
 }

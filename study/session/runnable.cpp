@@ -85,23 +85,26 @@ void check_work(const Protocol& p, const protocol::Rendering& r, const std::vect
             ": lower mask_resolution or gradient_width, or use method = \"dt-fast\""));
 }
 
+bool is_depth_test(const protocol::QuestionnaireItem& item) { return item.type && item.type->name == "depth-test"; }
+
 // The depth test of `item`: enough objects for its pairs, the work of its view, and the view
 // and pairs themselves for the first participants.
 void check_depth_test(const Protocol& p, const protocol::QuestionnaireItem& item, Report& report) {
   const std::string field = "questionnaire." + item.id;
-  const protocol::Scenario* s = find_scenario(p, item.scenario);
-  const protocol::Rendering* r = find_rendering(p, item.rendering);
+  const protocol::Scenario* s = find_scenario(p, item.text("scenario"));
+  const protocol::Rendering* r = find_rendering(p, item.text("rendering"));
+  const int pairs = static_cast<int>(item.integer("pairs"));
   if (!s || !r || s->tasks.empty()) return;  // load_protocol reports these
   const protocol::Task& shown = s->tasks.front();  // depth_test_view's scene
   if (report.has(task_field(*s, shown)) || report.has("rendering." + r->name)) return;  // reported already
-  if (s->scene.kind == protocol::ScenarioKind::walkthrough && 2 * item.pairs > shown.scene.objects) {
+  if (s->scene.kind == protocol::ScenarioKind::walkthrough && 2 * pairs > shown.scene.objects) {
     report.add(protocol::error_at(p, field + ".pairs",
-                                  "pairs = " + std::to_string(item.pairs) + " needs " + std::to_string(2 * item.pairs) +
+                                  "pairs = " + std::to_string(pairs) + " needs " + std::to_string(2 * pairs) +
                                       " distinct objects; the depth test's scene (task " + shown.id + " of scenario '" +
                                       s->name + "') places " + std::to_string(shown.scene.objects)));
     return;
   }
-  std::vector<Question> questions = expand_questionnaire(p);
+  std::vector<Question> questions = questionnaire::expand(item, protocol::design_names(p));
   const int indexes = std::min(p.participants, kDepthTestIndexesChecked);
   for (int k = 0; k < indexes; ++k) {
     for (const Viewport vp : {Viewport{160, 120}, Viewport{1920, 1080}}) {
@@ -181,16 +184,15 @@ std::vector<Diagnostic> validate_runnable(const Protocol& p, const std::vector<V
       for (const protocol::Task& t : p.scenarios[static_cast<std::size_t>(si)].tasks)
         meets.push_back({&p.scenarios[static_cast<std::size_t>(si)], &t});
     for (const protocol::QuestionnaireItem& item : p.questionnaire) {
-      const protocol::Scenario* s = find_scenario(p, item.scenario);
-      if (item.type == protocol::ItemType::depth_test && item.rendering == p.renderings[ri].name && s &&
-          !s->tasks.empty())
-        meets.push_back({s, &s->tasks.front()});
+      if (!is_depth_test(item)) continue;
+      const protocol::Scenario* s = find_scenario(p, item.text("scenario"));
+      if (item.text("rendering") == p.renderings[ri].name && s && !s->tasks.empty()) meets.push_back({s, &s->tasks.front()});
     }
     check_work(p, p.renderings[ri], meets, report);
   }
 
   for (const protocol::QuestionnaireItem& item : p.questionnaire)
-    if (item.type == protocol::ItemType::depth_test) check_depth_test(p, item, report);
+    if (is_depth_test(item)) check_depth_test(p, item, report);
 
   std::stable_sort(out.begin(), out.end(), [](const Diagnostic& a, const Diagnostic& b) {
     return std::pair(a.where.line, a.where.column) < std::pair(b.where.line, b.where.column);

@@ -1,7 +1,9 @@
 // run_session (session.h): the session lifecycle of docs/session.md, one
 // function, in the order of its state diagram. Every decision about what to
-// run next is read from the store (next_trial), never from a counter kept
-// here, so the loop is the same after any number of interruptions.
+// run or ask next is read from the store (next_trial; the questionnaire
+// occasions answered), so the loop is the same after any number of
+// interruptions; what is kept here (the elapsed time, the last task set,
+// the history) is rebuilt from the file when a session resumes.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -9,6 +11,7 @@
 #include "study/design/design.h"
 #include "study/render/gl_info.h"
 #include "study/session/detail/sequence.h"
+#include "study/session/detail/occasions.h"
 #include "study/session/session.h"
 
 namespace dtlab::session {
@@ -45,70 +48,6 @@ Result<store::TrialRecord> make_record(const TrialSpec& spec, TrialOutcome&& out
   r.events = std::move(out.events);
   r.poses = std::move(out.poses);
   return r;
-}
-
-// The stored form of the responder's answers; ratings in range, choices among the options,
-// depth-test answers scored against the key (1 = the closer object named, 0 = not).
-Result<std::vector<store::QuestionnaireAnswer>> score_questionnaire(const std::vector<Question>& questions,
-                                                                    const std::vector<QuestionAnswer>& answers,
-                                                                    const std::vector<DepthTestKey>& keys) {
-  if (answers.size() != questions.size())
-    return responder_error("questionnaire", std::to_string(answers.size()) + " answers to " +
-                                                std::to_string(questions.size()) + " questions");
-  std::vector<store::QuestionnaireAnswer> out;
-  for (std::size_t i = 0; i < questions.size(); ++i) {
-    const Question& q = questions[i];
-    const protocol::QuestionnaireItem& item = *q.item;
-    const std::string field = "questionnaire." + item.id + (q.scope.empty() ? "" : "[" + q.scope + "]");
-    const double* num = std::get_if<double>(&answers[i]);
-    const std::string* text = std::get_if<std::string>(&answers[i]);
-    store::QuestionnaireAnswer a{item.id, q.scope, 0.0};
-    switch (item.type) {
-      case protocol::ItemType::rating:
-        if (!num || *num != std::floor(*num) || *num < item.scale_min || *num > item.scale_max)
-          return responder_error(field, "expected an integer rating in [" + std::to_string(item.scale_min) + ", " +
-                                            std::to_string(item.scale_max) + "]");
-        a.value = *num;
-        break;
-      case protocol::ItemType::choice:
-        if (!text || std::find(q.options.begin(), q.options.end(), *text) == q.options.end())
-          return responder_error(field, "expected one of the item's options");
-        a.value = *text;
-        break;
-      case protocol::ItemType::depth_test: {
-        if (!num || (*num != q.object_a && *num != q.object_b))
-          return responder_error(field, "expected the Object::id of one of the pair (" + std::to_string(q.object_a) +
-                                            " or " + std::to_string(q.object_b) + ")");
-        const DepthTestKey* key = nullptr;
-        for (const auto& k : keys)
-          if (k.view.item == item.id) key = &k;
-        if (!key || q.pair < 1 || q.pair > static_cast<int>(key->closer.size()))
-          return responder_error(field, "no depth-test key for this pair");
-        a.value = static_cast<std::uint32_t>(*num) == key->closer[static_cast<std::size_t>(q.pair - 1)] ? 1.0 : 0.0;
-        break;
-      }
-    }
-    out.push_back(std::move(a));
-  }
-  return out;
-}
-
-// The questions and depth-test views of participant `index`, made before the session begins so
-// that a questionnaire that cannot be shown stops the session before its first trial.
-struct PreparedQuestionnaire {
-  std::vector<Question> questions;
-  std::vector<DepthTestKey> keys;  // one per depth-test item
-};
-Result<PreparedQuestionnaire> prepare_questionnaire(const protocol::Protocol& p, int index, const Viewport& vp) {
-  PreparedQuestionnaire q;
-  q.questions = expand_questionnaire(p);
-  for (const protocol::QuestionnaireItem& item : p.questionnaire) {
-    if (item.type != protocol::ItemType::depth_test) continue;
-    auto key = depth_test_view(p, item, index, vp, q.questions);
-    if (!key) return key.error();
-    q.keys.push_back(std::move(key.value()));
-  }
-  return q;
 }
 
 // Shows one page of the sequence and appends it to the session's screen log.
@@ -241,33 +180,22 @@ Status run_one_trial(Run& r, const design::PlannedTrial& planned, std::optional<
   return {};
 }
 
-// Questionnaire: one transaction. If an interrupted run committed it already, nobody is asked
-// again and the session goes straight on.
-Status run_questionnaire(Run& r, PreparedQuestionnaire& prepared) {
-  auto answered = r.store.read().questionnaire(r.participant_id);
-  if (!answered) return answered.error();
-  QuestionnaireSpec q;
-  q.protocol = &r.p;
-  q.participant_id = r.participant_id;
-  q.enrollment_index = r.sum.enrollment.index;
-  q.questions = std::move(prepared.questions);
-  q.history = r.history;
-  const std::vector<DepthTestKey>& keys = prepared.keys;
-  for (const DepthTestKey& key : keys) q.depth_tests.push_back(key.view);
-  if (q.questions.empty() || !answered->empty()) return {};
-  auto answers = r.responder.answer_questionnaire(q);
-  if (!answers) return answers.error();
-  auto stored = score_questionnaire(q.questions, answers.value(), keys);
-  if (!stored) return stored.error();
-  if (Status st = r.store.record_questionnaire(r.session, stored.value()); !st) return st;
-  r.sum.questionnaire_recorded = true;
+// Every questionnaire occasion whose last trial is recorded and whose answers are not: asked and
+// stored (one transaction each) before the next trial's pages; after an interruption, the ones missed.
+Status ask_occasions(Run& r, detail::Occasions& occasions) {
+  const int recorded = r.history.empty() ? 0 : r.history.back().planned.position;
+  auto n = occasions.ask_due(r.store, r.session, r.participant_id, r.sum.enrollment.index, recorded, r.history,
+                             r.responder);
+  if (!n) return n.error();
+  r.sum.occasions_recorded += n.value();
+  r.sum.questionnaire_recorded = r.sum.occasions_recorded > 0;
   return {};
 }
 
 // The session from BEGUN to FINISHED: the start pages, the trials with the pages between them
 // (RUNNING -> (next_trial, responder, record_trial)* until none is left), the questionnaire, the
 // end pages. Every decision is read from the store, so this is the same after any interruption.
-Status run_begun(Run& r, PreparedQuestionnaire& prepared) {
+Status run_begun(Run& r, detail::Occasions& occasions) {
   double elapsed = 0;
   for (const RecordedTrial& t : r.history) elapsed += t.completion_s;
   if (r.history.empty())
@@ -281,13 +209,15 @@ Status run_begun(Run& r, PreparedQuestionnaire& prepared) {
       r.sum.stopped = true;
       return {};
     }
+    if (Status st = ask_occasions(r, occasions); !st) return st;
     auto next = r.store.next_trial(r.session);
     if (!next) return next.error();
     if (!next->has_value()) break;
     if (Status st = pages_before(r, **next); !st) return st;
     if (Status st = run_one_trial(r, **next, task_set, elapsed); !st) return st;
   }
-  if (Status st = run_questionnaire(r, prepared); !st) return st;
+  // The last occasions (the end's among them); those an interrupted run committed are not asked again.
+  if (Status st = ask_occasions(r, occasions); !st) return st;
   return show_pages(r.store, r.session, r.responder, detail::information_pages(r.p, protocol::Page::When::end));
 }
 
@@ -324,8 +254,10 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
     if (!existing && existing.error().kind != ErrorKind::not_found) return existing.error();
   }
 
-  auto prepared = prepare_questionnaire(p, sum.enrollment.index, responder.viewport());
-  if (!prepared) return prepared.error();
+  // The questionnaire's occasions and depth-test views, made before the session begins so that a
+  // questionnaire that cannot be shown stops the session before its first trial.
+  auto occasions = detail::Occasions::prepare(p, sum.enrollment.index, sum.plan, responder.viewport());
+  if (!occasions) return occasions.error();
 
   auto begun = store.begin_session(participant_id, sum.plan);
   // Another process may have finished the session since the check above (the store refuses to
@@ -347,7 +279,7 @@ Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol
   auto history = recorded_trials(store, participant_id);
   if (!history) return history.error();
   Run run{store, p, participant_id, responder, hooks, sum, session, *history};
-  if (Status st = run_begun(run, *prepared); !st) return st.error();
+  if (Status st = run_begun(run, *occasions); !st) return st.error();
   sum.trials_recorded = static_cast<int>(history->size());
   if (sum.stopped) return sum;
 

@@ -77,15 +77,8 @@ struct TaskSetSpec {
   bool resumed = false;           // the set was begun before an interruption (its first trial is recorded)
 };
 
-// One question of the post-test questionnaire, expanded from a protocol item.
-struct Question {
-  const protocol::QuestionnaireItem* item = nullptr;
-  std::string scope;  // "" | "scenario=abstract;transparency=on" (rating per factors) | "pair=2" (depth test)
-  std::vector<std::pair<std::string, std::string>> levels;  // rating: the factor levels it is about
-  std::vector<std::string> options;  // choice: what may be answered
-  int pair = 0;                      // depth test: 1-based pair number
-  std::uint32_t object_a = 0, object_b = 0;  // depth test: Object::id of the two objects shown
-};
+// One question of a questionnaire, expanded from a protocol item (study/questionnaire).
+using Question = questionnaire::Question;
 
 // The static view of a depth-test item: one scene, one camera, transparency as the item says.
 struct DepthTestView {
@@ -102,13 +95,15 @@ struct RecordedTrial {
   bool answered = false;
 };
 
+// One occasion's questionnaire (after a block, a task set, the last block of a level, or at the end).
 struct QuestionnaireSpec {
   const protocol::Protocol* protocol = nullptr;
   std::string participant_id;
   int enrollment_index = 0;
-  std::vector<Question> questions;      // in protocol item order, then scope order
-  std::vector<DepthTestView> depth_tests;  // one per depth-test item
-  std::vector<RecordedTrial> history;   // every recorded trial of the session, in position order
+  questionnaire::Occasion occasion;     // when it is asked; scope "" at the end
+  std::vector<Question> questions;      // the items asked at this occasion, in protocol order, then scope order
+  std::vector<DepthTestView> depth_tests;  // one per depth-test item asked here
+  std::vector<RecordedTrial> history;   // every trial recorded so far, in position order
 };
 
 // A page of the session's sequence around the trials (docs/session.md, "The sequence"): the
@@ -135,8 +130,9 @@ struct PageOutcome {
   std::chrono::system_clock::time_point shown_at, ended_at;  // wall clock
 };
 
-// A questionnaire answer: a number (rating; depth test: the Object::id judged closer) or a text (choice).
-using QuestionAnswer = std::variant<double, std::string>;
+// An answer: a number (rating, Likert, slider, numeric; depth test: the Object::id judged closer),
+// a text (choice, free text) or several (multiple choice); questionnaire::encode checks and stores it.
+using QuestionAnswer = questionnaire::Answer;
 
 // Who does the trials. Calls come in session order from one thread; a responder may keep
 // state between calls, but a resumed session must not need it (the file is the memory).
@@ -149,7 +145,8 @@ class Responder {
   virtual store::DisplayInfo display() const;
   virtual Status train(const TaskSetSpec& set) = 0;            // before the first trial of a task set run here
   virtual Result<TrialOutcome> run_trial(const TrialSpec& trial) = 0;  // one trial, start to answer
-  // One answer per question, in the order of spec.questions.
+  // One answer per question, in the order of spec.questions; once per occasion (spec.occasion),
+  // right after the block, task set, level or session it follows.
   virtual Result<std::vector<QuestionAnswer>> answer_questionnaire(const QuestionnaireSpec& spec) = 0;
   // One page of the sequence. Default (headless, simulated): agrees to consent and goes on at
   // once, stamped now.
@@ -164,7 +161,7 @@ struct Hooks {
   std::function<void(const TaskSetSpec&)> on_task_set_start;   // before training
   std::function<void(const TrialSpec&)> on_trial_start;        // scene generated; not in the file yet
   std::function<void(const TrialSpec&, const store::TrialRecord&)> on_trial_recorded;  // committed
-  std::function<void(const store::Session&)> on_session_finished;  // questionnaire stored, status finished
+  std::function<void(const store::Session&)> on_session_finished;  // questionnaires stored, status finished
   std::function<bool()> stop_requested;  // polled before each trial: true = return now (resumable)
 };
 
@@ -175,7 +172,8 @@ struct SessionSummary {
   int trials_recorded = 0;     // trials in the file now
   bool resumed = false;        // the session was running before this call
   bool already_finished = false;  // nothing to do: the session had finished before
-  bool questionnaire_recorded = false;  // by this call
+  bool questionnaire_recorded = false;  // some occasion's answers were recorded by this call
+  int occasions_recorded = 0;  // questionnaire occasions recorded by this call
   bool finished = false;       // the session is finished now
   bool stopped = false;        // stop_requested ended the call early
   bool declined = false;       // the participant declined consent: only the refusal is stored
@@ -185,18 +183,24 @@ struct SessionSummary {
 // it (a decline stores only the refusal and ends the call: declined), enrolls `participant_id`
 // with `demographics` (or looks them up), builds the plan with the ledger's index and order row,
 // begins or resumes the session, shows the start pages, runs every remaining trial with the
-// sequence's pages between them (announcements, level instructions, breaks, practice feedback),
-// the questionnaire and the end pages, and finishes the session. A finished session is left alone
-// (already_finished). Every page is recorded in the session's screen log. Errors: the store's,
-// the protocol mapping's, the responder's; the file then holds every trial committed before.
+// sequence's pages between them (announcements, level instructions, breaks, practice feedback)
+// and each questionnaire occasion right after the trial it follows (one transaction each; a
+// resumed session asks only the occasions not in the file), then the end pages, and finishes the
+// session. A finished session is left alone (already_finished). Every page is recorded in the
+// session's screen log. Errors: the store's, the protocol mapping's, the responder's; the file
+// then holds every trial committed before.
 Result<SessionSummary> run_session(store::Store& store, const protocol::Protocol& protocol,
                                    const std::string& participant_id, Responder& responder, const Hooks& hooks = {},
                                    const store::Demographics& demographics = {});
 
-// The questions of the protocol's questionnaire, in item order: a rating with `per` once per
-// combination of those factors' levels (first factor slowest), a choice once, a depth test
-// once per pair (objects filled in by depth_test_view).
-std::vector<Question> expand_questionnaire(const protocol::Protocol& p);
+// The questions asked at occasion `o` (default: the end), in protocol item order: each item
+// whose `when` is the occasion's, expanded by its type (a rating with `per` once per combination
+// of those factors' levels, first factor slowest; a depth test once per pair, objects filled in by
+// depth_test_view).
+std::vector<Question> expand_questionnaire(const protocol::Protocol& p, const questionnaire::Occasion& o = {});
+
+// The occasions of participant plan `plan` at which the protocol asks something, in order.
+std::vector<questionnaire::Occasion> questionnaire_occasions(const protocol::Protocol& p, const design::Plan& plan);
 
 // The view and object pairs of depth-test `item` for participant `index`: a scene of the item's
 // scenario (seed depth_test_seed), a camera from the start cell facing the most objects, and

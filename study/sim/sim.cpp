@@ -17,7 +17,7 @@ std::uint64_t agent_seed(std::uint64_t master_seed, int enrollment_index, std::u
 }
 
 Traits draw_traits(std::uint64_t seed) {
-  session::detail::Stream r(mix64(seed, 0x747261697473ULL));  // "traits"
+  Stream r(mix64(seed, 0x747261697473ULL));  // "traits"
   Traits t;
   t.speed = std::exp(r.normal(0.0, 0.30));
   t.attention = std::clamp(r.normal(0.95, 0.03), 0.8, 1.0);

@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -43,10 +44,11 @@ fs::path temp_dir(const std::string& name) {
   return d;
 }
 
-// Starts `dtlab run` with the pilot and its script; stdout and stderr to `log`.
-pid_t start_run(const fs::path& db, const fs::path& log, const std::vector<std::string>& extra = {},
-                const std::vector<std::pair<std::string, std::string>>& env = {}) {
-  std::vector<std::string> args{DTLAB_BINARY, "run", kPilot, "--db", db.string(), "--size", kSize};
+// Starts `dtlab run` with `protocol`; stdout and stderr to `log`.
+pid_t start_protocol(const std::string& protocol, const fs::path& db, const fs::path& log,
+                     const std::vector<std::string>& extra = {},
+                     const std::vector<std::pair<std::string, std::string>>& env = {}) {
+  std::vector<std::string> args{DTLAB_BINARY, "run", protocol, "--db", db.string(), "--size", kSize};
   args.insert(args.end(), extra.begin(), extra.end());
   const pid_t pid = ::fork();
   if (pid == 0) {
@@ -61,6 +63,12 @@ pid_t start_run(const fs::path& db, const fs::path& log, const std::vector<std::
     ::_exit(127);
   }
   return pid;
+}
+
+// Starts `dtlab run` with the pilot; stdout and stderr to `log`.
+pid_t start_run(const fs::path& db, const fs::path& log, const std::vector<std::string>& extra = {},
+                const std::vector<std::pair<std::string, std::string>>& env = {}) {
+  return start_protocol(kPilot, db, log, extra, env);
 }
 
 // A waitpid status as a shell reports it: the exit code, or 128 + the signal.
@@ -372,6 +380,51 @@ TEST_F(RunPilot, SecondParticipantFinishesTheDepthTestAndCanChooseNoPreference) 
   EXPECT_EQ(answers["preference[]"], "no preference");
   for (const char* pair : {"depth_test[pair=1]", "depth_test[pair=2]", "depth_test[pair=3]"})
     EXPECT_EQ(answers.count(pair), 1u) << pair;
+  fs::remove_all(d);
+}
+
+// The shipped German study (protocols/technik-de.toml) with its script: consent agreed, every page
+// of the sequence in the screen log in its place, the NASA-TLX after each technique clicked by its
+// German wording, SUS by number keys, the preference by a level's label, the comment in UTF-8 as typed.
+TEST(RunGerman, TheShippedGermanStudyRunsToTheEndInGerman) {
+  const fs::path d = temp_dir("german");
+  const std::string protocol = std::string(DTLAB_SOURCE_DIR) + "/protocols/technik-de.toml";
+  const int rc = wait_exit_within(
+      start_protocol(protocol, d / "de.sqlite", d / "log.txt",
+                     {"--script", std::string(DTLAB_SOURCE_DIR) + "/protocols/technik-de.script"}),
+      400);
+  ASSERT_EQ(rc, 0) << slurp(d / "log.txt");
+  auto r = reader(d / "de.sqlite");
+  const auto consents = r.consents();
+  ASSERT_TRUE(consents);
+  ASSERT_EQ(consents->size(), 1u);
+  EXPECT_TRUE(consents->front().agreed);
+  const auto screens = r.screens("de-01");
+  ASSERT_TRUE(screens);
+  std::vector<std::string> names;
+  for (const auto& s : *screens) names.push_back(s.screen);
+  ASSERT_GE(names.size(), 4u);
+  EXPECT_EQ(names[0], "consent");
+  EXPECT_EQ(names[1], "page willkommen");
+  EXPECT_EQ(names.back(), "page abschluss");
+  for (const char* level : {"level technique=standard", "level technique=xray", "level technique=lens"})
+    EXPECT_EQ(std::count(names.begin(), names.end(), level), 1) << level;
+  EXPECT_EQ(std::count(names.begin(), names.end(), "break"), 2);
+  for (const auto& s : *screens) {
+    if (s.screen == "break") EXPECT_GE(s.duration_s, 5.0);  // min_s = 5, not skippable
+  }
+  std::map<std::string, std::string> answers;
+  const auto stored = r.questionnaire("de-01");
+  ASSERT_TRUE(stored);
+  for (const auto& q : *stored) {
+    if (const auto* t = std::get_if<std::string>(&q.value)) answers[q.item + "[" + q.scope + "]"] = *t;
+    else answers[q.item + "[" + q.scope + "]"] = std::to_string(std::get<double>(q.value));
+  }
+  for (const char* technique : {"standard", "xray", "lens"})
+    EXPECT_EQ(answers["tlx.mental[technique=" + std::string(technique) + "]"], std::to_string(40.0)) << technique;
+  for (int q = 1; q <= 10; ++q) EXPECT_EQ(answers["sus.q" + std::to_string(q) + "[]"], std::to_string(3.0)) << q;
+  EXPECT_EQ(answers["vorliebe[]"], "xray");
+  EXPECT_EQ(answers["kommentar[]"], "Der Röntgenblick war angenehm; die Lupe verdeckte manchmal zu viel.");
   fs::remove_all(d);
 }
 

@@ -79,6 +79,30 @@ INSTANTIATE_TEST_SUITE_P(
                       Bad{"bad_header", "[start\n", 1, "expected [SCREEN]"}),
     [](const auto& info) { return std::string(info.param.name); });
 
+// An instrument's items share its section ("questionnaire tlx" serves "questionnaire tlx.mental");
+// a section of its own wins, the most specific first ("questionnaire tlx.w" for the pairs).
+TEST(Script, AnInstrumentsItemsShareItsSection) {
+  const auto s = parse_script_text("[questionnaire tlx]\nkey Enter\n[questionnaire tlx.w]\nkey 1\n"
+                                   "[questionnaire tlx.effort]\nkey 2\n[questionnaire]\nkey 3\n",
+                                   "s.script");
+  ASSERT_TRUE(s) << s.error().to_string();
+  EXPECT_EQ(s->for_screen("questionnaire tlx.mental"), &s->sections[0]);
+  EXPECT_EQ(s->for_screen("questionnaire tlx.w.mental-physical"), &s->sections[1]);
+  EXPECT_EQ(s->for_screen("questionnaire tlx.effort"), &s->sections[2]);
+  EXPECT_EQ(s->for_screen("questionnaire sus.q1"), &s->sections[3]);
+  EXPECT_EQ(s->for_screen("questionnaire"), &s->sections[3]);
+}
+
+// `type` takes any script as UTF-8 (each code point one character); bytes that are not UTF-8 are
+// refused at the step's line before anything runs.
+TEST(Script, TypeTakesUtf8AndRefusesOtherBytes) {
+  EXPECT_TRUE(parse_script_text("[s]\ntype \"καλό, добро, żółć\"\n", "s.script"));
+  const auto bad = parse_script_text("[s]\nwait 1\ntype \"ab\xff\"\n", "s.script");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().line, 3);
+  EXPECT_NE(bad.error().message.find("not UTF-8"), std::string::npos) << bad.error().message;
+}
+
 TEST(Script, ANulByteIsRefused) {
   const auto s = parse_script_text(std::string("[start]\nwa\0it 1\n", 16), "nul.script");
   ASSERT_FALSE(s);

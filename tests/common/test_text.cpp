@@ -54,5 +54,13 @@ TEST(Utf8Codepoints, DecodesEveryLengthAndReplacesInvalidBytes) {
   EXPECT_TRUE(utf8_codepoints("").empty());
 }
 
+// The strict form refuses what the lenient one replaces: any invalid sequence makes the whole text invalid.
+TEST(Text, Utf8DecodeRefusesEveryInvalidSequence) {
+  EXPECT_EQ(utf8_decode("Größe, Ελλάδα, Россия, Łódź 𝄞"), std::u32string(U"Größe, Ελλάδα, Россия, Łódź 𝄞"));
+  EXPECT_EQ(utf8_decode(""), std::u32string());
+  for (const char* bad : {"a\x80" "b", "a\xC3", "\xC0\xAF", "\xED\xA0\x80", "\xF4\x90\x80\x80", "\xFF"})
+    EXPECT_FALSE(utf8_decode(bad).has_value()) << bad;
+}
+
 }  // namespace
 }  // namespace dtlab

@@ -125,6 +125,44 @@ TEST(DesignHash, OcclusionCullingOffIsTheDefault) {
   EXPECT_EQ(hash_of(off, "off"), hash_of(text, "pilot"));
 }
 
+// Regression (issue 24): the item-type seam must not change the design hash of a protocol with the
+// three types older than it, or every study recorded before would need --allow-protocol-change.
+// The values were recorded from the databases the build before the seam wrote (study_designs).
+TEST(DesignHash, TheQuestionnaireSeamKeepsTheHashesOfExistingStudies) {
+  EXPECT_EQ(hash_of(pilot_text(), "pilot"), "5fe8b466c3c82e3d336e98e437c831733778073f779d2f9aac3392a02bb1046b");
+  std::ifstream in(std::string(DTLAB_SOURCE_DIR) + "/protocols/elmqvist2008.toml");
+  std::stringstream ref;
+  ref << in.rdbuf();
+  EXPECT_EQ(hash_of(ref.str(), "elmqvist2008"), "6997f652ac35e1f7e095f8423f6794617743baff6cc921e103769c456e612ee4");
+}
+
+// Questionnaire items of the seam: what changes what is asked or stored changes the hash (`when`,
+// a type's keys, an instrument and its keys); what is only read (labels, anchors, units) does not.
+TEST(DesignHash, QuestionnaireStructureCountsItsWordingDoesNot) {
+  const std::string items = "\n[questionnaire.ease]\ntype = \"likert\"\nprompt = \"Easy?\"\npoints = 5\n"
+                            "labels = [\"no\", \"yes\"]\nwhen = \"block\"\n"
+                            "[questionnaire.vas]\ntype = \"slider\"\nprompt = \"Effort?\"\nanchors = [\"low\", \"high\"]\n"
+                            "[questionnaire.tlx]\ninstrument = \"nasa-tlx\"\nwhen = \"level:transparency\"\n";
+  const std::string base = pilot_text() + items;
+  const std::string h = hash_of(base, "items");
+  EXPECT_NE(h, hash_of(pilot_text(), "pilot"));
+  const auto edit = [&](const std::string& from, const std::string& to) {
+    std::string t = base;
+    t.replace(t.find(from), from.size(), to);
+    return hash_of(t, from.c_str());
+  };
+  EXPECT_EQ(edit("labels = [\"no\", \"yes\"]", "labels = [\"nein\", \"ja\"]"), h);
+  EXPECT_EQ(edit("anchors = [\"low\", \"high\"]", "anchors = [\"niedrig\", \"hoch\"]"), h);
+  EXPECT_EQ(edit("prompt = \"Easy?\"", "prompt = \"Leicht?\""), h);
+  EXPECT_NE(edit("when = \"block\"", "when = \"task\""), h);
+  EXPECT_NE(edit("points = 5", "points = 7"), h);
+  EXPECT_NE(edit("anchors = [\"low\", \"high\"]", "anchors = [\"low\", \"high\"]\nstep = 5"), h);
+  EXPECT_NE(edit("instrument = \"nasa-tlx\"", "instrument = \"nasa-tlx\"\nweights = true"), h);
+  EXPECT_NE(edit("instrument = \"nasa-tlx\"", "instrument = \"sus\""), h);
+  // A `when` written as its default is the default.
+  EXPECT_EQ(edit("[questionnaire.vas]", "[questionnaire.vas]\nwhen = \"end\""), h);
+}
+
 TEST(DesignHash, OfTextEqualsOfTheParsedProtocolAndRefusesBrokenText) {
   const std::string text = pilot_text();
   EXPECT_EQ(design_sha256_of_text(text), std::optional<std::string>(hash_of(text, "pilot")));

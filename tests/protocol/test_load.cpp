@@ -133,19 +133,19 @@ TEST(ReferenceProtocol, HasTheRenderingAndQuestionnaireOfStudyMd) {
     EXPECT_EQ(p.scenarios[c.scenario].name, p.factors[1].levels[c.levels[1]]);
   }
   ASSERT_EQ(p.questionnaire.size(), 4u);
-  EXPECT_EQ(p.questionnaire[0].type, ItemType::rating);
-  EXPECT_EQ(p.questionnaire[0].scale_min, 0);
-  EXPECT_EQ(p.questionnaire[0].scale_max, 4);
-  EXPECT_EQ(p.questionnaire[0].per, (std::vector<std::string>{"scenario", "transparency"}));
-  EXPECT_EQ(p.questionnaire[1].type, ItemType::choice);
+  EXPECT_EQ(p.questionnaire[0].type->name, "rating");
+  EXPECT_EQ(p.questionnaire[0].range("scale"), (dtlab::questionnaire::NumberPair{0, 4}));
+  EXPECT_EQ(p.questionnaire[0].strings("per"), (std::vector<std::string>{"scenario", "transparency"}));
+  EXPECT_EQ(p.questionnaire[1].type->name, "choice");
   // The factor's levels, then the neutral option (the study's "overall preference, or none").
-  EXPECT_EQ(p.questionnaire[1].options, (std::vector<std::string>{"off", "on", "no preference"}));
-  EXPECT_EQ(p.questionnaire[1].neutral, "no preference");
-  EXPECT_EQ(p.questionnaire[2].type, ItemType::rating);
-  EXPECT_EQ(p.questionnaire[3].type, ItemType::depth_test);
-  EXPECT_EQ(p.questionnaire[3].pairs, 3);
-  EXPECT_EQ(p.questionnaire[3].scenario, "walkthrough");
-  EXPECT_EQ(p.questionnaire[3].rendering, "on");
+  EXPECT_EQ(p.questionnaire[1].strings("options"), (std::vector<std::string>{"off", "on", "no preference"}));
+  EXPECT_EQ(p.questionnaire[1].text("neutral"), "no preference");
+  EXPECT_EQ(p.questionnaire[2].type->name, "rating");
+  EXPECT_EQ(p.questionnaire[3].type->name, "depth-test");
+  EXPECT_EQ(p.questionnaire[3].integer("pairs"), 3);
+  EXPECT_EQ(p.questionnaire[3].text("scenario"), "walkthrough");
+  EXPECT_EQ(p.questionnaire[3].text("rendering"), "on");
+  for (const auto& item : p.questionnaire) EXPECT_EQ(item.when.kind, dtlab::questionnaire::When::Kind::end) << item.id;
 }
 
 // A minimal protocol: every optional key left to its documented default.

@@ -68,6 +68,34 @@ TEST(Wording, ATextTableReplacesDefaultsAndFillsPlaceholders) {
   EXPECT_EQ(design_sha256(*german), design_sha256(*english)) << "wording is not design";
 }
 
+// An instrument worded in another language: prompts and anchors replaced, the pairwise comparisons
+// named by the reworded titles, the published scoring and the design hash unchanged.
+TEST(Wording, AnInstrumentTakesItsItemsWordingInAnotherLanguage) {
+  const std::string tlx = "\n[questionnaire.tlx]\ninstrument = \"nasa-tlx\"\nweights = true\n";
+  const auto english = load_protocol_text(pilot() + tlx, "pilot.toml");
+  ASSERT_TRUE(english) << english.error().to_string();
+  const auto german = load_protocol_text(
+      pilot() + tlx +
+          "[questionnaire.tlx.wording.mental]\nprompt = \"Geistige Anforderung\\nWie viel geistige Anstrengung?\"\n"
+          "anchors = [\"Sehr gering\", \"Sehr hoch\"]\n"
+          "[questionnaire.tlx.wording.w]\nprompt = \"Was trug mehr zur Beanspruchung bei?\"\n",
+      "pilot-de.toml");
+  ASSERT_TRUE(german) << german.error().to_string();
+  const auto item = [](const Protocol& p, const std::string& id) -> const QuestionnaireItem& {
+    for (const QuestionnaireItem& q : p.questionnaire)
+      if (q.id == id) return q;
+    throw std::runtime_error("no item " + id);
+  };
+  EXPECT_EQ(item(*german, "tlx.mental").prompt, "Geistige Anforderung\nWie viel geistige Anstrengung?");
+  EXPECT_EQ(item(*german, "tlx.mental").strings("anchors"), (std::vector<std::string>{"Sehr gering", "Sehr hoch"}));
+  EXPECT_EQ(item(*german, "tlx.physical").prompt, item(*english, "tlx.physical").prompt) << "not reworded: published";
+  const QuestionnaireItem& pair = item(*german, "tlx.w.mental-physical");
+  EXPECT_EQ(pair.prompt, "Was trug mehr zur Beanspruchung bei?");
+  EXPECT_EQ(pair.strings("labels"), (std::vector<std::string>{"Geistige Anforderung", "Physical Demand"}));
+  EXPECT_EQ(pair.strings("options"), item(*english, "tlx.w.mental-physical").strings("options")) << "answers stay ids";
+  EXPECT_EQ(design_sha256(*german), design_sha256(*english)) << "wording is not design";
+}
+
 TEST(Wording, UnknownKeysAndPlaceholdersAreErrorsWithTheirField) {
   struct Case {
     std::string toml, field, says;

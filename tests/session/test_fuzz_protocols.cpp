@@ -326,7 +326,7 @@ Verdict check(const std::string& text) {
   // The questionnaire of participant 0 at the simulation's viewport.
   std::vector<Question> questions = expand_questionnaire(*p);
   for (const protocol::QuestionnaireItem& item : p->questionnaire) {
-    if (item.type != protocol::ItemType::depth_test) continue;
+    if (item.type->name != "depth-test") continue;
     auto key = depth_test_view(*p, item, 0, Viewport{160, 120}, questions);
     if (!key) fail(v, "depth test: " + key.error().to_string());
   }

@@ -68,10 +68,19 @@ struct End {
   Edits edits;
 };
 
+// A questionnaire key's range as its item type declares it (study/questionnaire).
+protocol::limits::Ints item_key(const char* type, const char* key) {
+  for (const auto& k : questionnaire::find_item_type(type)->keys)
+    if (k.name == key) return {static_cast<long long>(k.min), static_cast<long long>(k.max)};
+  ADD_FAILURE() << type << " has no key " << key;
+  return {0, 0};
+}
+
 // Each documented end, written into the reference; the constraints between keys that
 // docs/protocol.md names are met by the other edits of the case.
 std::vector<End> documented_ends() {
   using namespace protocol::limits;
+  const Ints kScale = item_key("rating", "scale"), kPairs = item_key("depth-test", "pairs");
   const auto n = [](double v) { std::ostringstream s; s.precision(17); s << v; return s.str(); };
   const auto i = [](long long v) { return std::to_string(v); };
   return {
@@ -290,8 +299,8 @@ class Quick : public Responder {
   Result<std::vector<QuestionAnswer>> answer_questionnaire(const QuestionnaireSpec& spec) override {
     std::vector<QuestionAnswer> out;
     for (const Question& q : spec.questions) {
-      if (q.item->type == protocol::ItemType::rating) out.emplace_back(static_cast<double>(q.item->scale_min));
-      else if (q.item->type == protocol::ItemType::choice) out.emplace_back(q.options.front());
+      if (q.item->type->name == "rating") out.emplace_back(q.item->range("scale").min);
+      else if (q.item->type->name == "choice") out.emplace_back(q.options.front());
       else out.emplace_back(static_cast<double>(q.object_a));
     }
     return out;

@@ -102,9 +102,10 @@ class PageRecorder : public Responder {
   Result<std::vector<QuestionAnswer>> answer_questionnaire(const QuestionnaireSpec& spec) override {
     std::vector<QuestionAnswer> out;
     for (const Question& q : spec.questions) {
-      if (q.item->type == protocol::ItemType::rating) out.emplace_back(static_cast<double>(q.item->scale_min));
-      else if (q.item->type == protocol::ItemType::choice) out.emplace_back(q.options.front());
-      else out.emplace_back(static_cast<double>(q.object_a));
+      const std::string& type = q.item->type->name;
+      if (type == "rating") out.emplace_back(1.0);
+      else if (type == "choice") out.emplace_back(q.options.front());
+      else out.emplace_back(static_cast<double>(q.object_a));  // the pilot asks nothing else
     }
     pages.push_back(PageSpec{PageSpec::Kind::information, nullptr, "questionnaire", "", "", ""});
     return out;

@@ -253,7 +253,7 @@ TEST_F(Sim, QuestionnaireFollowsExperience) {
   spec.enrollment_index = 0;
   spec.questions = session::expand_questionnaire(*protocol_);
   // Drop the depth test here (it needs a view); keep ratings and the preference.
-  std::erase_if(spec.questions, [](const session::Question& q) { return q.item->type == protocol::ItemType::depth_test; });
+  std::erase_if(spec.questions, [](const session::Question& q) { return q.item->type->name == "depth-test"; });
   for (const auto& pt : design::make_plan(*protocol_, 0).trials) {
     const bool on = pt.levels[0].second == "on";
     spec.history.push_back({pt, on ? 20.0 : 40.0, true});
@@ -267,13 +267,13 @@ TEST_F(Sim, QuestionnaireFollowsExperience) {
     ASSERT_EQ(a->size(), spec.questions.size());
     for (std::size_t i = 0; i < spec.questions.size(); ++i) {
       const auto& q = spec.questions[i];
-      if (q.item->type == protocol::ItemType::rating && !q.levels.empty()) {
+      if (q.item->type->name == "rating" && !q.levels.empty()) {
         const double r = std::get<double>((*a)[i]);
         EXPECT_GE(r, 0);
         EXPECT_LE(r, 4);
         (q.scope.find("transparency=on") != std::string::npos ? on_sum : off_sum) += r;
       }
-      if (q.item->type == protocol::ItemType::choice) on_pref += std::get<std::string>((*a)[i]) == "on";
+      if (q.item->type->name == "choice") on_pref += std::get<std::string>((*a)[i]) == "on";
     }
   }
   EXPECT_GT(on_sum, off_sum + 8 * 2);  // two scenarios, eight agents: clearly higher

@@ -66,14 +66,36 @@ size_t index_of(const std::vector<std::string>& v, const std::string& x) {
   return static_cast<size_t>(std::find(v.begin(), v.end(), x) - v.begin());
 }
 
+// A key of the item's type, or `none` when its type does not declare it (a rating's per, ...).
+const std::vector<std::string>& strings_or_none(const protocol::QuestionnaireItem& item, const char* key) {
+  static const std::vector<std::string> none;
+  if (!item.type) return none;
+  for (const auto& k : item.type->keys)
+    if (k.name == key) return item.strings(key);
+  return none;
+}
+
+using questionnaire::Measure;
+
+// The items this section reports: asked at the end, not part of an instrument, not free text
+// (section_instruments.cpp reports the others).
+bool reported_here(const protocol::QuestionnaireItem& item) {
+  return item.type && !item.instrument && item.when.kind == questionnaire::When::Kind::end &&
+         item.type->measure != Measure::text;
+}
+
 }  // namespace
 
 void section_questionnaire(Context& ctx) {
   const Design& d = ctx.design;
-  const auto& items = d.protocol->questionnaire;
+  std::vector<protocol::QuestionnaireItem> items;
+  for (const auto& item : d.protocol->questionnaire)
+    if (reported_here(item)) items.push_back(item);
   Section s{"questionnaire", "Questionnaire", 2, {}};
   if (items.empty()) {
-    s.text("The protocol has no questionnaire.");
+    s.text(d.protocol->questionnaire.empty()
+               ? "The protocol has no questionnaire."
+               : "The protocol asks nothing at the end of the session apart from instruments and free text (see below).");
     ctx.doc.sections.push_back(std::move(s));
     return;
   }
@@ -120,12 +142,14 @@ void section_questionnaire(Context& ctx) {
 
   for (const auto& item : items) {
     const auto subjects = answered_by(ctx.data, item.id);
-    nlohmann::json ji{{"type", std::string(protocol::to_string(item.type))}, {"prompt", item.prompt}, {"n", subjects.size()}};
-    const bool per_primary = std::find(item.per.begin(), item.per.end(), d.factor(pf).name) != item.per.end();
-    if (item.type == protocol::ItemType::rating && per_primary) {
+    nlohmann::json ji{{"type", item.type->name}, {"prompt", item.prompt}, {"n", subjects.size()}};
+    const Measure measure = item.type->measure;
+    const std::vector<std::string>& per = strings_or_none(item, "per");
+    const bool per_primary = std::find(per.begin(), per.end(), d.factor(pf).name) != per.end();
+    if (measure == Measure::ordinal && per_primary) {
       // Split by the other `per` factors' level combinations; keyed by their levels.
       std::vector<int> others;
-      for (const auto& name : item.per)
+      for (const auto& name : per)
         for (int f : d.all_factors)
           if (d.factor(f).name == name && f != pf) others.push_back(f);
       std::map<std::vector<int>, CellMatrix> split;
@@ -185,7 +209,7 @@ void section_questionnaire(Context& ctx) {
       }
       if (!others.empty()) report_one(all, "overall");
       ji["tests"] = jt;
-    } else if (item.type == protocol::ItemType::rating || item.type == protocol::ItemType::depth_test) {
+    } else if (measure == Measure::ordinal || measure == Measure::interval || measure == Measure::correct) {
       // Per participant: a rating (mean if asked several times) or the depth-test pairs correct (summed).
       std::vector<double> v;
       for (const auto& who : subjects) {
@@ -196,26 +220,29 @@ void section_questionnaire(Context& ctx) {
             sum += *a.number;
             ++n;
           }
-        if (n) v.push_back(item.type == protocol::ItemType::depth_test ? sum : sum / n);
+        if (n) v.push_back(measure == Measure::correct ? sum : sum / n);
       }
       const auto ds = stats::describe(v);
-      const bool depth = item.type == protocol::ItemType::depth_test;
-      std::string scope = depth ? "pairs correct of " + std::to_string(item.pairs)
-                                : "scale " + std::to_string(item.scale_min) + "–" + std::to_string(item.scale_max);
+      const bool depth = measure == Measure::correct;
+      const int pairs = depth ? static_cast<int>(item.integer("pairs")) : 0;
+      const questionnaire::NumberPair b = item.type->bounds ? item.type->bounds(item) : questionnaire::NumberPair{};
+      std::string scope = depth ? "pairs correct of " + std::to_string(pairs) : "scale " + csv_number(b.min) + "–" + csv_number(b.max);
       std::vector<std::string> row = {item.id, item.prompt + " (" + scope + ")",
                                       "mean (SD) " + mean_sd(ds.mean, ds.sd, 2) + ", median " + fixed(ds.median, 1) +
-                                          (depth ? ", " + percent(ds.mean / item.pairs) + " of pairs" : ""),
+                                          (depth ? ", " + percent(ds.mean / pairs) + " of pairs" : ""),
                                       std::to_string(ds.n), kDash, kDash};
       ji["descriptives"] = to_json(ds);
-      if (depth) ji["proportion_correct"] = num(ds.mean / item.pairs);
+      if (depth) ji["proportion_correct"] = num(ds.mean / pairs);
       if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
       if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
       others.rows.push_back(row);
-    } else if (item.type == protocol::ItemType::choice) {
-      std::vector<std::string> options = item.options;
+    } else if (measure == Measure::nominal || measure == Measure::multiple) {
+      std::vector<std::string> options = item.strings("options");
+      const std::string& item_factor = measure == Measure::nominal ? item.text("factor") : std::string();
+      const std::string& neutral = measure == Measure::nominal ? item.text("neutral") : std::string();
       int factor = -1;
       for (int f : d.all_factors)
-        if (!item.factor.empty() && d.factor(f).name == item.factor) {
+        if (!item_factor.empty() && d.factor(f).name == item_factor) {
           factor = f;
           options = d.factor(f).levels;
         }
@@ -225,12 +252,17 @@ void section_questionnaire(Context& ctx) {
       for (const auto& who : subjects)
         for (const auto& a : ctx.data.answers)
           if (a.item == item.id && a.participant == who && a.text) {
+            ++answered;
+            if (measure == Measure::multiple) {  // each option chosen counts once
+              for (const auto& o : options)
+                if (("\n" + *a.text + "\n").find("\n" + o + "\n") != std::string::npos) ++count[o];
+              continue;
+            }
             std::string chosen = "other: " + *a.text;
             for (const auto& o : options)
               if (lower(o) == lower(*a.text)) chosen = o;
-            if (!item.neutral.empty() && lower(item.neutral) == lower(*a.text)) chosen = item.neutral;
+            if (!neutral.empty() && lower(neutral) == lower(*a.text)) chosen = neutral;
             ++count[chosen];
-            ++answered;
             if (options.size() == 2) {
               first.push_back(chosen == options[0] ? 1 : 0);
               second.push_back(chosen == options[1] ? 1 : 0);
@@ -242,7 +274,7 @@ void section_questionnaire(Context& ctx) {
         const double p = answered ? static_cast<double>(n) / answered : std::nan("");
         const double sd = answered > 1 ? std::sqrt(p * (1 - p) * answered / (answered - 1)) : std::nan("");
         jc[option] = {{"count", n}, {"proportion", num(p)}, {"sd", num(sd)}};
-        const std::string label = factor >= 0 && option.rfind("other: ", 0) != 0 && option != item.neutral
+        const std::string label = factor >= 0 && option.rfind("other: ", 0) != 0 && option != neutral
                                       ? d.level_label(factor, static_cast<int>(index_of(options, option)))
                                       : option;
         text += (text.empty() ? "" : "; ") + label + " " + std::to_string(n) + "/" + std::to_string(answered) + " = " +
@@ -250,7 +282,7 @@ void section_questionnaire(Context& ctx) {
       }
       ji["choices"] = jc;
       std::vector<std::string> row = {item.id, item.prompt, text, std::to_string(answered), kDash, kDash};
-      if (options.size() == 2 && answered > 0) {
+      if (measure == Measure::nominal && options.size() == 2 && answered > 0) {
         const auto st = stats::sign_test(second, first);
         row[4] = "sign test: " + std::to_string(st.positive) + " for " + options[1] + ", " +
                  std::to_string(st.negative) + " for " + options[0];

@@ -2,7 +2,7 @@
 // the Context, runs its tests and adds to the Context: document sections,
 // report.json entries, plots and CSV files. The order in report.cpp is the
 // order of a paper's results: data and method, completion time, accuracy,
-// speed-accuracy, questionnaire, position effects, frame-time audit, then planning
+// speed-accuracy, questionnaire, instruments, position effects, frame-time audit, then planning
 // the next study.
 // Sections never write files and never touch the database.
 #pragma once
@@ -63,7 +63,8 @@ void section_participants(Context& ctx);    // demographics, pauses and notes pe
 void section_time(Context& ctx);            // completion time: Table III layout, full ANOVAs, Fig. 9, participants
 void section_errors(Context& ctx);          // accuracy: relative error, correctness, distance
 void section_speed_accuracy(Context& ctx);  // time vs error per condition and participant
-void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test
+void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test (asked at the end)
+void section_instruments(Context& ctx);     // instruments' scores and items asked per condition; free text
 void section_position(Context& ctx);        // position in the session, order rows of the counterbalancing
 void section_frames(Context& ctx);          // frame-time audit per condition
 void section_planning(Context& ctx);        // planning the next study: analytic power of every ANOVA effect

@@ -46,6 +46,7 @@ void parse_order(TableReader& root, ParseState& s);
 // Sections (parse_content.cpp).
 void parse_scenarios(TableReader& root, ParseState& s);
 void parse_renderings(TableReader& root, ParseState& s);
+// [questionnaire.*] (parse_questionnaire.cpp); after factors, scenarios and renderings.
 void parse_questionnaire(TableReader& root, ParseState& s);
 
 // Sections (parse_people.cpp).

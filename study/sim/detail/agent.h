@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "study/render/camera.h"
-#include "study/session/detail/stream.h"
+#include "study/common/stream.h"
 #include "study/sim/perception.h"
 #include "study/sim/sim.h"
 
 namespace dtlab::sim::detail {
 
-using session::detail::Stream;
+using dtlab::Stream;
 
 class TrialRun {
  public:

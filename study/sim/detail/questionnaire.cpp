@@ -1,10 +1,11 @@
-// The simulated participant's post-test questionnaire (docs/sim.md,
-// "Questionnaire"): ratings from its own recorded completion times per
-// condition, the preferred level from its own ratings, the depth test from
-// what the renderer shows of each pair (apparent size against the model's
-// known size), self-reported depth perception from how sure the depth test
-// felt. Randomness: mix64(agent seed, "questionnaire"). Never reads the
-// depth test's key (the session scores the answers).
+// The simulated participant's questionnaires (docs/sim.md, "Questionnaire"):
+// the depth test from what the renderer shows of each pair (apparent size
+// against the model's known size); every other answer from its item type's
+// (or instrument's) model in study/questionnaire, fed with the agent's own
+// recorded trials, its traits, and how sure the depth test felt. Randomness:
+// one stream per occasion, mix64(agent seed, "quest") at the end (as before
+// occasions existed) and mixed with the occasion's scope elsewhere. Never
+// reads the depth test's key (the session scores the answers).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -21,43 +22,15 @@ struct Judgement {
   double margin = 0;  // |log ratio| of the two distance estimates
 };
 
-// The rendering factor's name, or "".
-std::string rendering_factor(const protocol::Protocol& p) {
-  const protocol::Factor* f = protocol::factor_with_role(p, protocol::FactorRole::rendering);
-  return f ? f->name : "";
-}
-
-bool matches(const design::PlannedTrial& t, const std::vector<std::pair<std::string, std::string>>& levels,
-             const std::string& except) {
-  for (const auto& [factor, level] : levels) {
-    if (factor == except) continue;
-    const auto it = std::find_if(t.levels.begin(), t.levels.end(), [&](const auto& l) { return l.first == factor; });
-    if (it == t.levels.end() || it->second != level) return false;
-  }
-  return true;
-}
-
-struct CellTimes {
-  double mean = 0;
-  double unanswered = 0;  // share of trials without an answer
-  int n = 0;
-};
-
-CellTimes cell_times(const std::vector<session::RecordedTrial>& history,
-                     const std::vector<std::pair<std::string, std::string>>& levels, const std::string& except) {
-  CellTimes c;
-  int none = 0;
-  for (const auto& t : history) {
-    if (t.planned.practice || !matches(t.planned, levels, except)) continue;
-    c.mean += t.completion_s;
-    none += !t.answered;
-    ++c.n;
-  }
-  if (c.n > 0) {
-    c.mean /= c.n;
-    c.unanswered = static_cast<double>(none) / c.n;
-  }
-  return c;
+// The stream of one occasion: the end's is the one the reference study's answers were drawn
+// from before questionnaires had occasions; every other occasion's is its own, so an answer never
+// depends on which occasions this process asked before.
+std::uint64_t occasion_seed(std::uint64_t agent, const questionnaire::Occasion& o) {
+  const std::uint64_t end = mix64(agent, 0x7175657374ULL);  // "quest"
+  if (o.scope.empty()) return end;
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a of the occasion's scope
+  for (unsigned char c : o.scope) h = (h ^ c) * 0x100000001b3ULL;
+  return mix64(end, h);
 }
 
 }  // namespace
@@ -66,7 +39,7 @@ Result<std::vector<session::QuestionAnswer>> SimulatedParticipant::answer_questi
     const session::QuestionnaireSpec& spec) {
   const std::uint64_t seed = agent_seed(spec.protocol->master_seed, spec.enrollment_index, options_.seed);
   const Traits traits = draw_traits(seed);
-  detail::Stream rng(mix64(seed, 0x7175657374ULL));  // "quest"
+  Stream rng(occasion_seed(seed, spec.occasion));
   const ModelParams& m = options_.model;
 
   // Depth tests first: self-reported depth perception draws on how they felt.
@@ -104,67 +77,30 @@ Result<std::vector<session::QuestionAnswer>> SimulatedParticipant::answer_questi
     }
   }
 
-  const std::string rendering = rendering_factor(*spec.protocol);
+  // Every question through its item type's (or instrument's) model, in order, with what the
+  // participant did so far and what it answered before at this occasion.
+  const questionnaire::DesignNames names = protocol::design_names(*spec.protocol);
+  questionnaire::Experience e;
+  e.design = &names;
+  e.occasion = &spec.occasion;
+  for (const session::RecordedTrial& t : spec.history)
+    e.history.push_back({t.planned.position, t.planned.block, t.planned.task, t.planned.levels, t.completion_s,
+                         t.answered, t.planned.practice});
+  e.seed = seed;
+  e.rating_bias = traits.rating_bias;
+  e.rating_gain = m.rating_gain;
+  e.rating_noise = m.rating_noise;
+  if (margins > 0) e.depth_confidence = margin_sum / margins;
+  e.depth_choice = [&](const session::Question& q) -> std::optional<std::uint32_t> {
+    const auto it = judged.find({q.item->id, q.pair});
+    if (it == judged.end()) return std::nullopt;
+    return it->second.closer;
+  };
+  e.rng = &rng;
   std::vector<session::QuestionAnswer> answers;
-  std::map<std::string, std::vector<double>> rating_of_level;  // level of the rendering factor -> ratings given
   for (const session::Question& q : spec.questions) {
-    const protocol::QuestionnaireItem& item = *q.item;
-    switch (item.type) {
-      case protocol::ItemType::rating: {
-        const double lo = item.scale_min, hi = item.scale_max, mid = 0.5 * (lo + hi), unit = (hi - lo) / 4.0;
-        double raw = mid;
-        if (!q.levels.empty()) {
-          // Ease of a condition: its mean time against the same scenario under every rendering.
-          const CellTimes cell = cell_times(spec.history, q.levels, "");
-          const CellTimes ref = cell_times(spec.history, q.levels, rendering);
-          if (cell.n > 0 && ref.n > 0 && cell.mean > 0 && ref.mean > 0)
-            raw = mid + unit * (m.rating_gain * std::log2(ref.mean / cell.mean) - 2.0 * cell.unanswered);
-        } else if (margins > 0) {
-          raw = lo + (hi - lo) * margin_sum / margins;  // how sure the depth judgements felt
-        }
-        const double r = std::clamp(std::round(raw + unit * (traits.rating_bias + rng.normal(0.0, m.rating_noise))), lo, hi);
-        for (const auto& [factor, level] : q.levels)
-          if (factor == rendering) rating_of_level[level].push_back(r);
-        answers.emplace_back(r);
-        break;
-      }
-      case protocol::ItemType::choice: {
-        // The option it rated best on average; without ratings, the one it was fastest with. Two
-        // options that score exactly alike (equal mean ratings) leave no preference: the neutral
-        // option, where the item has one.
-        std::string best;
-        double best_score = -1e300;
-        bool tied = false;
-        for (const std::string& o : q.options) {
-          if (o == item.neutral) continue;
-          double score = -1e300;
-          if (auto it = rating_of_level.find(o); it != rating_of_level.end() && !it->second.empty()) {
-            score = 0;
-            for (double r : it->second) score += r;
-            score /= static_cast<double>(it->second.size());
-          } else if (!rendering.empty()) {
-            const CellTimes c = cell_times(spec.history, {{rendering, o}}, "");
-            if (c.n > 0) score = -c.mean;
-          }
-          if (score > best_score) {
-            best_score = score;
-            best = o;
-            tied = false;
-          } else if (score == best_score && score != -1e300) {
-            tied = true;
-          }
-        }
-        if (tied && !item.neutral.empty()) best = item.neutral;
-        else if (best.empty() || best_score == -1e300) best = q.options[rng.below(q.options.size())];
-        answers.emplace_back(best);
-        break;
-      }
-      case protocol::ItemType::depth_test: {
-        const auto it = judged.find({item.id, q.pair});
-        answers.emplace_back(static_cast<double>(it != judged.end() ? it->second.closer : q.object_a));
-        break;
-      }
-    }
+    answers.push_back(questionnaire::simulate(q, e));
+    e.given.emplace_back(&q, answers.back());
   }
   return answers;
 }

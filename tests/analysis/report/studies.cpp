@@ -12,6 +12,8 @@
 #include <tuple>
 
 #include "analysis/stats/csv.h"
+#include "study/design/design.h"
+#include "study/protocol/protocol.h"
 
 namespace dtlab::report::testing {
 namespace {
@@ -263,6 +265,60 @@ nlohmann::json run_report(const std::string& db, const std::string& out, const R
     throw std::runtime_error("write_report failed");
   }
   return nlohmann::json::parse(read_text(out + "/report.json"));
+}
+
+void build_instruments(const std::string& path) {
+  StudySpec s;
+  s.protocol_text = source_file("protocols/pilot.toml") + R"(
+[questionnaire.tlx]
+instrument = "nasa-tlx"
+when = "block"
+
+[questionnaire.ease]
+type = "likert"
+prompt = "The view was easy to use."
+points = 7
+labels = ["Strongly disagree", "Strongly agree"]
+when = "level:transparency"
+
+[questionnaire.comment]
+type = "text"
+prompt = "Anything else?"
+)";
+  for (int i = 1; i <= 8; ++i) s.participants.push_back("P" + std::to_string(i));
+  s.trial = [](size_t, const design::PlannedTrial& t) -> std::optional<Outcome> {
+    Outcome o;
+    o.time_s = 20 + t.position;
+    return o;
+  };
+  const auto tlx = read_csv("tests/analysis/data/instruments_tlx.csv");
+  const auto ease = read_csv("tests/analysis/data/instruments_ease.csv");
+  auto proto = protocol::load_protocol_text(s.protocol_text, "instruments.toml");
+  if (!proto) throw std::runtime_error(proto.error().to_string());
+  s.questionnaire = [tlx, ease, p = proto.value()](size_t i) {
+    const std::string who = "P" + std::to_string(i + 1);
+    // The ledger gives participant i order row i mod 4 (nobody released): its plan names the blocks.
+    const design::Plan plan = design::make_plan(p, static_cast<int>(i), static_cast<int>(i % 4));
+    std::vector<store::QuestionnaireAnswer> a;
+    const int pc = tlx.column("participant"), tc = tlx.column("transparency"), sc = tlx.column("scenario");
+    for (const auto& r : tlx.rows) {
+      if (r[static_cast<size_t>(pc)] != who) continue;
+      int block = 0;
+      for (const auto& t : plan.trials)
+        if (level(t, "transparency") == r[static_cast<size_t>(tc)] && level(t, "scenario") == r[static_cast<size_t>(sc)])
+          block = t.block;
+      for (const char* d : {"mental", "physical", "temporal", "performance", "effort", "frustration"})
+        a.push_back({std::string("tlx.") + d, "block=" + std::to_string(block),
+                     std::stod(r[static_cast<size_t>(tlx.column(d))])});
+    }
+    for (const auto& r : ease.rows)
+      if (r[static_cast<size_t>(ease.column("participant"))] == who)
+        a.push_back({"ease", "transparency=" + r[static_cast<size_t>(ease.column("transparency"))],
+                     std::stod(r[static_cast<size_t>(ease.column("ease"))])});
+    a.push_back({"comment", "", i % 3 == 0 ? "Participant " + who + " found the lens \"slow\"; für mich gut." : std::string()});
+    return a;
+  };
+  build_study(path, s);
 }
 
 const nlohmann::json& find_test(const nlohmann::json& report, const std::string& section, const std::string& scope,

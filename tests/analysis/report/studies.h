@@ -46,6 +46,11 @@ void build_reference_participants(const std::string& path, const std::vector<std
 // {500, 100, 100} ms (a warm-up first frame, then 10 fps); times 20 + position s (+5 s off); answers and
 // questionnaire as the reference study's fixtures.
 void build_pilot_simulated(const std::string& path);
+// protocols/pilot.toml with NASA-TLX after every block (`tlx`), a 7-point Likert item after each
+// transparency level (`ease`) and a free-text comment at the end, 8 participants P1..P8: the answers
+// of tests/analysis/data/instruments_tlx.csv and instruments_ease.csv (each TLX row stored under the
+// block that ran its condition); P1, P4 and P7 write a comment, the others leave it empty.
+void build_instruments(const std::string& path);
 // Runs write_report into `out` (gnuplot from PATH); fails the test on error.
 nlohmann::json run_report(const std::string& db, const std::string& out, const ReportOptions& options = {});
 

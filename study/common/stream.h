@@ -1,6 +1,7 @@
-// A small deterministic random stream for the session and the simulated
-// participants: SplitMix64 (mix64 of a counter) with bounded integers by
-// rejection, uniform doubles from 53 bits, normals by Box-Muller.
+// A small deterministic random stream for the session, the simulated
+// participants and their questionnaire answers: SplitMix64 (mix64 of a
+// counter) with bounded integers by rejection, uniform doubles from 53 bits,
+// normals by Box-Muller.
 // Guarantees: the same seed gives the same integers on every machine; the
 // doubles go through libm (log, cos), so they are the same on every run of
 // one build, which is what simulated participants promise. Never: a global
@@ -11,7 +12,7 @@
 
 #include "study/common/hash.h"
 
-namespace dtlab::session::detail {
+namespace dtlab {
 
 class Stream {
  public:
@@ -41,4 +42,4 @@ class Stream {
   std::uint64_t state_;
 };
 
-}  // namespace dtlab::session::detail
+}  // namespace dtlab
