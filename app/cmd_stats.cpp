@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -53,6 +54,7 @@ struct StatsOptions : StatsInput {
 
 // The optional follow-ups of rm-anova (--simple-effects, --within-ci, --normality).
 struct Followups {
+  std::vector<std::string> between;  // the design's between factors (their contrasts' effect size is d, not d_z)
   std::vector<st::SimpleEffects> simple;
   std::vector<st::CellInterval> intervals;
   std::optional<st::ShapiroWilkResult> normality;
@@ -248,6 +250,7 @@ void require_subject_design(const StatsOptions& o, const char* test) {
 
 Followups followups(const StatsOptions& o, const st::LongData& data, const st::RmAnovaResult& r) {
   Followups f;
+  f.between = r.between;
   // Every pair of within factors; with between factors every pair of factors (emmeans on the afex fit).
   std::vector<std::string> factors = r.between;
   factors.insert(factors.end(), r.within.begin(), r.within.end());
@@ -321,7 +324,9 @@ void print_followups(const Followups& f) {
       else if (row.test == "paired t" || row.test == "emmeans t")
         std::cout << row.contrast.a << " - " << row.contrast.b << " = " << fmt(row.contrast.estimate) << " [" << fmt(row.contrast.ci_low)
                   << ", " << fmt(row.contrast.ci_high) << "], t(" << fmt(row.contrast.df) << ") = " << fmt(row.contrast.statistic)
-                  << ", p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ", d_z = " << fmt(row.contrast.dz) << "\n";
+                  << ", p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ", "
+                  << (std::find(f.between.begin(), f.between.end(), row.factor) != f.between.end() ? "d" : "d_z")
+                  << " = " << fmt(row.contrast.dz) << "\n";
       else
         std::cout << st::apa_effect(row.anova, st::Correction::none) << " (p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ")\n";
     }

@@ -26,6 +26,9 @@
 //     more levels: joint_tests(fit, by = "B")'s row for A: the Wald F of
 //       the level contrasts on (levels - 1, N - g) df (test "emmeans F"; the
 //       Effect carries name, df1, df2, F, p, log10_p, the rest NaN).
+//   The contrast's dz is the estimate over the pooled SD of the subjects'
+//   scores: d_z for a within factor, Cohen's d (SD pooled over the groups)
+//   for a between factor (the text output labels it d).
 //   Holm within each family as above. (joint_tests(fit, by = "B") also tests
 //   interactions of the other factors at B = b; those are not computed.)
 // Missing data: the subject x cell rules of rm_anova (listwise deletion,

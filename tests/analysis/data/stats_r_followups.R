@@ -51,6 +51,10 @@ cat("simple effects (emmeans levels are alphabetical: expert before novice)\n")
 print(as.data.frame(joint_tests(fit, by = "group")))
 print(as.data.frame(joint_tests(fit, by = "task")))
 print(as.data.frame(pairs(emmeans(fit, ~ group | task))))
+cat("Cohen's d of novice - expert at task = count: the estimate over the SD pooled over the groups\n")
+x <- d[d$task == "count", ]
+pooled <- sqrt(sum(tapply(x$time, x$group, function(v) sum((v - mean(v))^2))) / (nrow(x) - 2))
+print(unname(diff(tapply(x$time, x$group, mean)) / pooled))
 
 cat("\n== 4. obk_long.csv: treatment x gender (between) x phase x hour (within)\n")
 o <- read.csv(file.path(data_dir, "obk_long.csv"))

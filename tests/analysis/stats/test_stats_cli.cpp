@@ -357,6 +357,9 @@ TEST(StatsCli, MixedFollowUpsAggregatedTiesAndExactNotes) {
   const CliRun mt = dtlab("stats rm-anova --data " + data("mixed_posthoc.csv") +
                           " --dv time --subject id --within task --between group --simple-effects");
   EXPECT_NE(mt.out.find("task at group=novice: F(2, 10) = 16.6228"), std::string::npos) << mt.out;
+  // A between factor's contrast has Cohen's d (SD pooled over the groups), labelled d, not d_z.
+  // R (stats_r_followups.R, section 3): diff(tapply(time, group, mean)) / pooled SD at task = count: 2.37416216015944
+  EXPECT_NE(mt.out.find("p_holm = 0.00922188, d = 2.37416\n"), std::string::npos) << mt.out;
 
   // R: friedman.test on aggregate(time ~ participant + condition, aggregate_ties.csv, mean): 1.333333333333
   const CliRun f = dtlab("stats friedman --data " + data("aggregate_ties.csv") +
