@@ -4,7 +4,9 @@
 // simulated; analysis/report/planning.h, docs/stats.md "Power"). For every
 // effect of the report's completion-time and accuracy ANOVAs: power at each
 // size by resampling participants (with a Monte Carlo 95% CI) beside the
-// analytic power of the observed effect, and the smallest n for 80% and 90%.
+// analytic power of the observed effect, and the smallest n for 80% and 90%
+// with the next n that keeps the counterbalancing's order rows balanced. The
+// pilot's F is printed with the df of its p (Greenhouse-Geisser where corrected).
 // Progress on stderr. Never modifies the database. Exit 1: not a study
 // database or nothing to plan; 2: bad command line; 3: I/O or database failure.
 #include <CLI/CLI.hpp>
@@ -49,10 +51,24 @@ std::string p_text(double p) {
 
 std::string n_text(double n) { return std::isfinite(n) ? std::to_string(static_cast<long long>(n)) : "more than 10^7"; }
 
-void print_effect(const report::PlannedEffect& e, bool resampled) {
+// A df as APA writes it: an integer, or two decimals when corrected.
+std::string df_text(double df) { return fmt(df, df == std::floor(df) ? 0 : 2); }
+
+// "13 (analytic; 16 keeps the 4 order rows of the latin-square balanced)" when n is not a multiple of them.
+std::string n_with_balance(double n, double balanced, const report::PowerPlan& plan) {
+  std::string t = n_text(n) + " (analytic";
+  if (std::isfinite(n) && balanced != n)
+    t += "; " + n_text(balanced) + " keeps the " + std::to_string(plan.order_rows) + " order rows of the " +
+         plan.order_scheme + " balanced";
+  return t + ")";
+}
+
+void print_effect(const report::PlannedEffect& e, const report::PowerPlan& plan, bool resampled) {
+  // The df printed are those of the p: Greenhouse-Geisser corrected where p is.
+  const bool corrected = e.p_df1 != e.df1;
   std::cout << "\n" << (e.scope == "overall" ? std::string("all tasks") : e.scope) << ", " << e.measure << ": "
-            << e.effect << "\n  pilot: N = " << e.pilot_n << ", F(" << fmt(e.df1, e.df1 == std::floor(e.df1) ? 0 : 2)
-            << ", " << fmt(e.df2, e.df2 == std::floor(e.df2) ? 0 : 2) << ") = " << fmt(e.F, 2) << ", p = " << p_text(e.p)
+            << e.effect << "\n  pilot: N = " << e.pilot_n << ", F(" << df_text(e.p_df1) << ", " << df_text(e.p_df2)
+            << ") = " << fmt(e.F, 2) << ", p = " << p_text(e.p) << (corrected ? " (Greenhouse-Geisser)" : "")
             << ", eta_p2 = " << fmt(e.eta_p2);
   if (e.df1 == 1) std::cout << ", d_z = " << fmt(e.dz);
   else std::cout << ", GG epsilon = " << fmt(e.epsilon);
@@ -68,9 +84,9 @@ void print_effect(const report::PlannedEffect& e, bool resampled) {
   }
   const auto tried = [](int n) { return n ? std::to_string(n) : std::string("none of the sizes tried"); };
   const bool finite = std::isfinite(e.F);
-  std::cout << "  smallest n for 80% power: " << (finite ? n_text(e.n80) : "-") << " (analytic)";
+  std::cout << "  smallest n for 80% power: " << (finite ? n_with_balance(e.n80, e.n80_balanced, plan) : "- (analytic)");
   if (resampled) std::cout << ", " << tried(e.resampled_n80) << " (resampled)";
-  std::cout << "\n  smallest n for 90% power: " << (finite ? n_text(e.n90) : "-") << " (analytic)";
+  std::cout << "\n  smallest n for 90% power: " << (finite ? n_with_balance(e.n90, e.n90_balanced, plan) : "- (analytic)");
   if (resampled) std::cout << ", " << tried(e.resampled_n90) << " (resampled)";
   std::cout << "\n";
 }
@@ -107,7 +123,19 @@ void run_power(PowerArgs& a) {
   if (resampled) std::cout << ", " << a.options.replications << " resamples per size, seed " << a.options.seed;
   std::cout << "\nResampled: participants drawn with replacement, the report's test rerun; analytic: from the "
                "observed effect (noncentral t for 1-df effects, noncentral F with the observed GG epsilon otherwise)\n";
-  for (const auto& e : plan->effects) print_effect(e, resampled);
+  std::vector<int> unbalanced;
+  for (int n : a.options.sizes)
+    if (plan->order_rows > 1 && n % plan->order_rows != 0) unbalanced.push_back(n);
+  if (!unbalanced.empty()) {
+    std::cout << "Note: the " << plan->order_scheme << " has " << plan->order_rows << " order rows; ";
+    for (std::size_t i = 0; i < unbalanced.size(); ++i) {
+      const long long up = (unbalanced[i] / plan->order_rows + 1) * plan->order_rows;
+      std::cout << (i ? ", " : "") << unbalanced[i] << " (next balanced: " << up << ")";
+    }
+    std::cout << (unbalanced.size() == 1 ? " is not a multiple" : " are not multiples")
+              << ", so some orders would be used more often than others\n";
+  }
+  for (const auto& e : plan->effects) print_effect(e, *plan, resampled);
   for (const auto& why : plan->not_planned) std::cout << "\nnot planned: " << why << "\n";
 }
 

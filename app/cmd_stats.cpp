@@ -6,11 +6,13 @@
 // (analysis/stats/json.h: NaN as null, infinities as "Infinity"/"-Infinity").
 // Warnings (listwise deletion naming the subjects, degenerate data) go to
 // stderr and into the JSON "warnings" array; Monte Carlo progress to stderr.
+// Mixed designs' follow-ups are emmeans' on the afex fit (posthoc.h, followup.h).
 // Exit codes: 1 bad CSV or data, 3 unreadable file, 2 bad command line.
 // Never writes any file.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -23,6 +25,7 @@
 #include "analysis/stats/apa.h"
 #include "analysis/stats/assumptions.h"
 #include "analysis/stats/csv.h"
+#include "analysis/stats/effect_size.h"
 #include "analysis/stats/followup.h"
 #include "analysis/stats/friedman.h"
 #include "analysis/stats/json.h"
@@ -51,6 +54,7 @@ struct StatsOptions : StatsInput {
 
 // The optional follow-ups of rm-anova (--simple-effects, --within-ci, --normality).
 struct Followups {
+  std::vector<std::string> between;  // the design's between factors (their contrasts' effect size is d, not d_z)
   std::vector<st::SimpleEffects> simple;
   std::vector<st::CellInterval> intervals;
   std::optional<st::ShapiroWilkResult> normality;
@@ -170,21 +174,24 @@ void print_effects(const std::vector<st::Effect>& effects) {
                   fmt(e.eta_g2).c_str());
     std::cout << b;
   }
+  std::cout << "(df, MSE and p uncorrected; 90% CI of eta_p2: noncentral F, lambda / (lambda + df1 + df2 + 1) as "
+               "MBESS / apaTables, not effectsize's lambda / (lambda + df2))\n";
   bool any = false;
   for (const auto& e : effects) any = any || (e.within && !std::isnan(e.mauchly_W));
   if (any) {
-    std::cout << "\nsphericity            Mauchly W     p(W)     GG eps            df (GG)      p[GG]     HF eps"
-                 "            df (HF)      p[HF]\n";
+    std::cout << "\nsphericity            Mauchly W     p(W)     GG eps            df (GG)    MSE (GG)      p[GG]"
+                 "     HF eps            df (HF)      p[HF]\n";
     for (const auto& e : effects) {
       if (!e.within || std::isnan(e.mauchly_W)) continue;
       char b[512];
-      std::snprintf(b, sizeof b, "%-20s %11s %8s %10s %18s %10s %10s %18s %10s\n", e.name.c_str(),
+      std::snprintf(b, sizeof b, "%-20s %11s %8s %10s %18s %11s %10s %10s %18s %10s\n", e.name.c_str(),
                     fmt(e.mauchly_W).c_str(), fmt(e.mauchly_p).c_str(), fmt(e.gg_epsilon).c_str(),
-                    (fmt(e.df1_gg) + ", " + fmt(e.df2_gg)).c_str(), fmt_p(e.p_gg, e.log10_p_gg).c_str(),
-                    fmt(e.hf_epsilon).c_str(), (fmt(e.df1_hf) + ", " + fmt(e.df2_hf)).c_str(),
-                    fmt_p(e.p_hf, e.log10_p_hf).c_str());
+                    (fmt(e.df1_gg) + ", " + fmt(e.df2_gg)).c_str(), fmt(e.mse_gg).c_str(),
+                    fmt_p(e.p_gg, e.log10_p_gg).c_str(), fmt(e.hf_epsilon).c_str(),
+                    (fmt(e.df1_hf) + ", " + fmt(e.df2_hf)).c_str(), fmt_p(e.p_hf, e.log10_p_hf).c_str());
       std::cout << b;
     }
+    std::cout << "(MSE (GG) = SS_error / df2 (GG), as afex prints it beside corrected df)\n";
   }
   std::cout << "\nAPA (Greenhouse-Geisser df and p for within effects with more than one df)\n";
   for (const auto& e : effects) std::cout << "  " << e.name << ": " << st::apa_effect(e) << "\n";
@@ -212,6 +219,7 @@ void run_anova(const StatsOptions& o) {
   if (o.json) {
     json j = header_json("anova", o, in.selection);
     j["n"] = r->n;
+    j["eta_p2_ci90_method"] = st::kEtaP2IntervalMethod;
     j["effects"] = json::array({st::effect_json(r->effect)});
     json groups = json::array();
     for (const auto& g : r->groups) {
@@ -242,14 +250,18 @@ void require_subject_design(const StatsOptions& o, const char* test) {
 
 Followups followups(const StatsOptions& o, const st::LongData& data, const st::RmAnovaResult& r) {
   Followups f;
+  f.between = r.between;
+  // Every pair of within factors; with between factors every pair of factors (emmeans on the afex fit).
+  std::vector<std::string> factors = r.between;
+  factors.insert(factors.end(), r.within.begin(), r.within.end());
+  if (o.simple_effects && factors.size() < 2) fail(kExitUsage, "--simple-effects needs two factors or more");
   if (o.simple_effects)
-    for (std::size_t i = 0; i < r.within.size(); ++i)
-      for (std::size_t j = i + 1; j < r.within.size(); ++j) {
-        auto se = st::simple_effects(data, r.within[i], r.within[j]);
+    for (std::size_t i = 0; i < factors.size(); ++i)
+      for (std::size_t j = i + 1; j < factors.size(); ++j) {
+        auto se = st::simple_effects(data, factors[i], factors[j]);
         if (!se) fail(kExitInvalid, se.error().to_string());
         f.simple.push_back(*se);
       }
-  if (o.simple_effects && r.within.size() < 2) fail(kExitUsage, "--simple-effects needs two within factors or more");
   if (o.within_ci) {
     auto ci = st::within_subject_intervals(data);
     if (!ci) fail(kExitInvalid, ci.error().to_string());
@@ -279,7 +291,8 @@ void followups_json(json& j, const Followups& f) {
       for (const auto& row : se.rows) {
         json r{{"factor", row.factor}, {"at", {{row.at_factor, row.at_level}}}, {"test", row.test}, {"n", row.n},
                {"p", st::json_number(row.p)}, {"p_holm", st::json_number(row.p_holm)}};
-        if (row.test == "paired t") r["contrast"] = st::comparison_json(row.contrast);
+        if (row.test == "paired t" || row.test == "emmeans t") r["contrast"] = st::comparison_json(row.contrast);
+        else if (row.test == "emmeans F") r["joint_test"] = st::joint_test_json(row.anova);
         else r["anova"] = st::effect_json(row.anova);
         rows.push_back(r);
       }
@@ -300,13 +313,20 @@ void followups_json(json& j, const Followups& f) {
 
 void print_followups(const Followups& f) {
   for (const auto& se : f.simple) {
-    std::cout << "\nSimple effects (Holm within each family)\n";
+    const bool emmeans = !se.rows.empty() && se.rows[0].test.rfind("emmeans", 0) == 0;
+    std::cout << "\nSimple effects (Holm within each family"
+              << (emmeans ? "; emmeans on the multivariate afex fit: groups weighted equally, pooled error)" : ")") << "\n";
     for (const auto& row : se.rows) {
       std::cout << "  " << row.factor << " at " << row.at_factor << "=" << row.at_level << ": ";
-      if (row.test == "paired t")
+      if (row.test == "emmeans F")
+        std::cout << "F(" << fmt(row.anova.df1) << ", " << fmt(row.anova.df2) << ") = " << fmt(row.anova.F)
+                  << ", p = " << fmt_p(row.p, row.anova.log10_p) << ", p_holm = " << fmt(row.p_holm) << " (emmeans joint test)\n";
+      else if (row.test == "paired t" || row.test == "emmeans t")
         std::cout << row.contrast.a << " - " << row.contrast.b << " = " << fmt(row.contrast.estimate) << " [" << fmt(row.contrast.ci_low)
                   << ", " << fmt(row.contrast.ci_high) << "], t(" << fmt(row.contrast.df) << ") = " << fmt(row.contrast.statistic)
-                  << ", p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ", d_z = " << fmt(row.contrast.dz) << "\n";
+                  << ", p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ", "
+                  << (std::find(f.between.begin(), f.between.end(), row.factor) != f.between.end() ? "d" : "d_z")
+                  << " = " << fmt(row.contrast.dz) << "\n";
       else
         std::cout << st::apa_effect(row.anova, st::Correction::none) << " (p = " << fmt(row.p) << ", p_holm = " << fmt(row.p_holm) << ")\n";
     }
@@ -346,6 +366,7 @@ void run_rm_anova(const StatsOptions& o) {
     j["within"] = r->within;
     j["n_subjects"] = r->n_subjects;
     j["dropped_subjects"] = r->dropped_subjects;
+    j["eta_p2_ci90_method"] = st::kEtaP2IntervalMethod;
     j["effects"] = json::array();
     for (const auto& e : r->effects) {
       json ej = st::effect_json(e);
@@ -511,9 +532,12 @@ void add_stats_command(CLI::App& root) {
   auto* rm = stats->add_subcommand("rm-anova", "Repeated-measures (and mixed) ANOVA with sphericity corrections");
   add_common(rm, *o);
   rm->add_option("--observed", o->observed, "Measured (not manipulated) factors, for generalized eta squared")->delimiter(',');
-  rm->add_flag("--posthoc", o->posthoc, "Holm-corrected pairwise paired t tests for each within factor");
+  rm->add_flag("--posthoc", o->posthoc,
+               "Holm-corrected pairwise comparisons of each within factor: paired t; with a between factor, emmeans "
+               "contrasts on the afex fit (groups weighted equally, pooled error, N - g df)");
   rm->add_flag("--simple-effects", o->simple_effects,
-               "Simple effects of every two-way within interaction (paired t or one-way ANOVA, Holm per family)");
+               "Simple effects of every pair of within factors (paired t or one-way ANOVA); with a between factor, of "
+               "every pair of factors as emmeans joint_tests / pairs(emmeans(fit, ~ A | B)) give them (Holm per family)");
   rm->add_flag("--within-ci", o->within_ci, "Within-subject 95% CIs of the cell means (Cousineau-Morey)");
   rm->add_flag("--normality", o->normality, "Shapiro-Wilk test of the ANOVA residuals");
   rm->callback([o] { run_rm_anova(*o); });

@@ -4,12 +4,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/report/detail/design.h"
 #include "analysis/report/detail/planning.h"
 #include "analysis/report/detail/sections.h"
 #include "analysis/report/detail/study_data.h"
+#include "study/protocol/protocol.h"
 
 namespace dtlab::report {
 
@@ -47,6 +49,8 @@ Result<PowerPlan> plan_power(store::StudyReader& reader, const PlanningOptions& 
   plan.database = data->path;
   plan.design_revision = data->design_revision;
   plan.participants = ctx.subjects.size();
+  plan.order_rows = std::max<long long>(1, protocol::declared_order_rows(data->protocol));
+  plan.order_scheme = std::string(protocol::to_string(data->protocol.order.scheme));
   plan.options = options;
   plan.options.progress = nullptr;
   plan.effects = plan_effects(ctx, options, plan.not_planned);
@@ -59,6 +63,8 @@ nlohmann::json to_json(const PowerPlan& plan) {
   return {{"database", plan.database},
           {"design_revision", plan.design_revision},
           {"participants", plan.participants},
+          {"order_rows", plan.order_rows},
+          {"order_scheme", plan.order_scheme},
           {"sizes", plan.options.sizes},
           {"replications", plan.options.replications},
           {"alpha", plan.options.alpha},

@@ -47,24 +47,29 @@ struct PlannedEffect {
   std::string effect;    // "transparency", "transparency:scenario"
   std::size_t pilot_n = 0;
   double df1 = 0, df2 = 0, F = 0, p = 0;  // the pilot's test (p: GG-corrected when df1 > 1)
+  double p_df1 = 0, p_df2 = 0;            // the df that go with p: df1, df2 times GG epsilon where p is GG-corrected
   double eta_p2 = 0, epsilon = 1;         // observed partial eta squared; GG epsilon (1 for 1-df effects)
   double dz = 0;                          // 1-df effects: sqrt(F / N), the standardized paired difference
   std::vector<PowerAt> at;                // one per planned size
   double n80 = 0, n90 = 0;                // analytic smallest n reaching 80% / 90% (NaN: none up to 10^7)
+  double n80_balanced = 0, n90_balanced = 0;  // the same rounded up to a multiple of the order rows (balanced counterbalancing)
   int resampled_n80 = 0, resampled_n90 = 0;  // smallest planned size whose resampled power reaches it; 0: none
 };
 
 struct PowerPlan {
   std::string database;
   int design_revision = 1;
+  long long order_rows = 1;      // rows of the protocol's counterbalancing (e.g. a Latin square's): each is used
+                                 // equally often only when n is a multiple of them
+  std::string order_scheme;      // "latin-square", "williams", ...
   std::size_t participants = 0;  // participants with analysed trials
   PlanningOptions options;       // as used (progress dropped)
   std::vector<PlannedEffect> effects;
   std::vector<std::string> not_planned;  // tests that could not be planned, with the reason
 };
 
-// The plan as JSON (NaN as null): {database, design_revision, participants, sizes, replications,
-// alpha, seed, effects: [...], not_planned}.
+// The plan as JSON (NaN as null): {database, design_revision, participants, order_rows, order_scheme,
+// sizes, replications, alpha, seed, effects: [...], not_planned}.
 nlohmann::json to_json(const PowerPlan& plan);
 
 // Plans from the study `reader` reads (its design revision options.revision).

@@ -125,14 +125,23 @@ Result<OneWayResult> compute(const std::string& factor, const std::string& sourc
   e.ss_error = ssw.value();
   e.eta_p2 = e.eta_g2 = e.ss + e.ss_error > 0 ? e.ss / (e.ss + e.ss_error) : kNaN;
   test_effect(e, k, r.warnings);
+  const bool positive = e.ss > 0 || e.ss_error > 0;
   e.ss = std::ldexp(e.ss, 2 * exponent);
   e.ss_error = std::ldexp(e.ss_error, 2 * exponent);
   if (!std::isfinite(e.ss) || !std::isfinite(e.ss_error)) return overflow;
+  if (positive && std::max(e.ss, e.ss_error) < std::numeric_limits<double>::min())
+    r.warnings.push_back(underflow_warning());
   complete_effect(e);
   return r;
 }
 
 }  // namespace
+
+std::string underflow_warning() {
+  return "the sums of squares are below the smallest normal double (about 2.2e-308): SS, SS_error and MSE are "
+         "printed rounded (0 or a subnormal), while F, p and the effect sizes are computed on the values scaled by a "
+         "power of two and do not depend on the scale";
+}
 
 Result<OneWayResult> one_way_anova(const LongData& data) {
   if (data.between.size() != 1 || !data.within.empty())

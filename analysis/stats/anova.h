@@ -42,17 +42,25 @@ struct Effect {
   bool within = false;                // involves a within-subject factor
   double df1 = 0, df2 = 0;            // uncorrected degrees of freedom
   double ss = 0, ss_error = 0;        // effect and error sums of squares (type III = type I when balanced)
-  double mse = 0;                     // mean square error = ss_error / df2
+  double mse = 0;                     // mean square error = ss_error / df2 (uncorrected df)
   double F = 0, p = 0, log10_p = 0;
   double eta_p2 = 0, eta_g2 = 0;      // partial and generalized eta squared
   double eta_p2_ci_low = 0, eta_p2_ci_high = 0;  // 90% CI of eta_p2 from the noncentral F (Steiger 2004)
   double mauchly_W = 0, mauchly_p = 0;
   double gg_epsilon = 0, hf_epsilon = 0;  // HF as car/afex compute it: may exceed 1
   double df1_gg = 0, df2_gg = 0;      // df1, df2 times GG epsilon (the df of p_gg); NaN for between effects
+  double mse_gg = 0;                  // ss_error / df2_gg: the MSE afex prints beside GG df (anova(fit), nice())
   double df1_hf = 0, df2_hf = 0;      // df1, df2 times min(1, HF epsilon) (the df of p_hf)
+  double mse_hf = 0;                  // ss_error / df2_hf (afex with correction = "HF")
   double p_gg = 0, log10_p_gg = 0;    // p with df1, df2 times GG epsilon
   double p_hf = 0, log10_p_hf = 0;    // p with df1, df2 times min(1, HF epsilon)
 };
+
+// The warning given when sums of squares fall below the smallest normal double
+// (about 2.2e-308, e.g. data near 1e-160 or smaller): SS, SS_error and MSE are
+// then printed rounded (subnormal or 0), while F, p and the effect sizes are
+// computed on the data scaled by a power of two and do not depend on it.
+std::string underflow_warning();
 
 struct GroupSummary {
   std::string level;

@@ -70,7 +70,7 @@ void complete_effect(Effect& e) {
   e.eta_p2_ci_low = ci.low;
   e.eta_p2_ci_high = ci.high;
   if (!e.within) {
-    e.df1_gg = e.df2_gg = e.df1_hf = e.df2_hf = kNaN;
+    e.df1_gg = e.df2_gg = e.df1_hf = e.df2_hf = e.mse_gg = e.mse_hf = kNaN;
     return;
   }
   const double gg = e.gg_epsilon;  // 1 for a 1-dimensional within term
@@ -79,6 +79,8 @@ void complete_effect(Effect& e) {
   e.df2_gg = e.df2 * gg;
   e.df1_hf = e.df1 * hf;
   e.df2_hf = e.df2 * hf;
+  e.mse_gg = e.df2_gg > 0 ? e.ss_error / e.df2_gg : kNaN;
+  e.mse_hf = e.df2_hf > 0 ? e.ss_error / e.df2_hf : kNaN;
 }
 
 }  // namespace dtlab::stats

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/stats/detail/design.h"
+#include "analysis/stats/detail/multivariate.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
 #include "analysis/stats/rm_anova.h"
@@ -29,16 +30,44 @@ using Marginals = std::vector<std::vector<std::vector<double>>>;
 Marginals marginals(const detail::CellDesign& d, std::size_t fa, std::size_t fb) {
   const std::size_t La = d.within_levels[fa].size(), Lb = d.within_levels[fb].size();
   Marginals m(d.subjects.size(), std::vector<std::vector<double>>(La, std::vector<double>(Lb, 0.0)));
-  std::vector<std::vector<double>> count(La, std::vector<double>(Lb, 0.0));
+  std::vector<std::vector<std::vector<std::size_t>>> cells(La, std::vector<std::vector<std::size_t>>(Lb));
   for (std::size_t c = 0; c < d.cells; ++c) {
     const auto lv = d.cell_levels(c);
-    count[lv[fa]][lv[fb]] += 1.0;
-    for (std::size_t s = 0; s < d.subjects.size(); ++s) m[s][lv[fa]][lv[fb]] += d.delta[s][c];
+    cells[lv[fa]][lv[fb]].push_back(c);
   }
-  for (auto& per : m)
+  for (std::size_t s = 0; s < d.subjects.size(); ++s)
     for (std::size_t i = 0; i < La; ++i)
-      for (std::size_t j = 0; j < Lb; ++j) per[i][j] /= count[i][j];
+      for (std::size_t j = 0; j < Lb; ++j) m[s][i][j] = detail::subject_mean(d, s, cells[i][j]).delta;
   return m;
+}
+
+// Holm's p over the rows from `first` on (one family).
+void holm_family(std::vector<SimpleEffect>& out, std::size_t first) {
+  std::vector<double> ps;
+  for (std::size_t i = first; i < out.size(); ++i) ps.push_back(out[i].p);
+  const auto adj = holm(ps);
+  for (std::size_t i = first; i < out.size(); ++i) {
+    out[i].p_holm = adj[i - first];
+    const bool contrast = out[i].test == "paired t" || out[i].test == "emmeans t";
+    out[i].contrast.p_holm = contrast ? out[i].p_holm : kNaN;
+  }
+}
+
+// A joint test as an ANOVA row: name, df, F, p (sums of squares and effect sizes NaN).
+Effect joint_effect(const std::string& name, const detail::JointTest& j) {
+  Effect e;
+  e.name = name;
+  e.within = false;
+  e.df1 = j.df1;
+  e.df2 = j.df2;
+  e.F = j.F;
+  const Tail t = f_upper(j.F, j.df1, j.df2);
+  e.p = t.p;
+  e.log10_p = t.log10_p;
+  e.ss = e.ss_error = e.mse = e.eta_p2 = e.eta_g2 = e.eta_p2_ci_low = e.eta_p2_ci_high = kNaN;
+  e.mauchly_W = e.mauchly_p = e.gg_epsilon = e.hf_epsilon = kNaN;
+  e.df1_gg = e.df2_gg = e.df1_hf = e.df2_hf = e.p_gg = e.log10_p_gg = e.p_hf = e.log10_p_hf = kNaN;
+  return e;
 }
 
 // One family: the effect of factor `f` (index fa, levels along `first`) at each level of the other.
@@ -83,25 +112,73 @@ Status family(const detail::CellDesign& d, const Marginals& m, bool a_varies, st
     }
     out.push_back(se);
   }
-  std::vector<double> ps;
-  for (std::size_t i = first; i < out.size(); ++i) ps.push_back(out[i].p);
-  const auto adj = holm(ps);
-  for (std::size_t i = first; i < out.size(); ++i) {
-    out[i].p_holm = adj[i - first];
-    out[i].contrast.p_holm = out[i].test == "paired t" ? out[i].p_holm : kNaN;
-  }
+  holm_family(out, first);
   return {};
+}
+
+// Mixed designs: the effect of factor `tested` at each level of `held` (any
+// two factors, between first in the model's order), as emmeans' joint_tests /
+// pairs(emmeans(fit, ~ tested | held)) on the afex fit: a t contrast for two
+// levels, the joint F otherwise; Holm within the family.
+void multivariate_family(const detail::MultivariateModel& m, std::size_t tested, std::size_t held,
+                         std::vector<SimpleEffect>& out) {
+  const std::size_t first = out.size();
+  for (std::size_t h = 0; h < m.levels(held); ++h) {
+    SimpleEffect se;
+    se.factor = m.name(tested);
+    se.at_factor = m.name(held);
+    se.at_level = m.label(held, h);
+    se.n = m.subjects();
+    detail::FactorWeights w = m.averaging();
+    w[held].assign(m.levels(held), 0.0);
+    w[held][h] = 1.0;
+    if (m.levels(tested) == 2) {
+      se.test = "emmeans t";
+      se.contrast = m.pair(tested, 0, 1, w);
+      se.p = se.contrast.p;
+    } else {
+      const detail::JointTest j = m.levels_differ(tested, w);
+      se.test = "emmeans F";
+      se.anova = joint_effect(se.factor, j);
+      se.p = se.anova.p;
+    }
+    out.push_back(se);
+  }
+  holm_family(out, first);
+}
+
+Result<SimpleEffects> multivariate_simple_effects(const LongData& data, const detail::CellDesign& d, std::size_t fa,
+                                                  std::size_t fb) {
+  auto m = detail::MultivariateModel::fit(d, data.source);
+  if (!m) return m.error();
+  SimpleEffects r;
+  r.dropped_subjects = d.dropped;
+  r.warnings = d.warnings;
+  multivariate_family(*m, fa, fb, r.rows);
+  multivariate_family(*m, fb, fa, r.rows);
+  return r;
 }
 
 }  // namespace
 
 Result<SimpleEffects> simple_effects(const LongData& data, const std::string& a, const std::string& b) {
-  if (!data.between.empty())
-    return Error{data.source, 0, 0, data.between.front().name,
-                 "simple effects are computed for all-within designs; this one has a between-subject factor"};
   auto built = detail::build_cell_design(data);
   if (!built) return built.error();
   const detail::CellDesign& d = *built;
+  if (!d.between_names.empty()) {  // factors in the model's order: between first, then within
+    std::vector<std::string> names = d.between_names;
+    names.insert(names.end(), d.within_names.begin(), d.within_names.end());
+    auto at = [&](const std::string& name) -> Result<std::size_t> {
+      const auto it = std::find(names.begin(), names.end(), name);
+      if (it == names.end()) return Error{data.source, 0, 0, name, "not a factor of the design"};
+      return static_cast<std::size_t>(it - names.begin());
+    };
+    auto fa = at(a), fb = at(b);
+    if (!fa) return fa.error();
+    if (!fb) return fb.error();
+    if (*fa == *fb) return Error{data.source, 0, 0, a, "simple effects need two different factors"};
+    return multivariate_simple_effects(data, d, *fa, *fb);
+  }
   auto index = [&](const std::string& name) -> Result<std::size_t> {
     const auto it = std::find(d.within_names.begin(), d.within_names.end(), name);
     if (it == d.within_names.end()) return Error{data.source, 0, 0, name, "not a within-subject factor of the design"};

@@ -15,11 +15,28 @@
 // grand mean (within the subject's between group for mixed designs); per cell
 //   SE = sd(y'_.c) / sqrt(N) * sqrt(C / (C - 1)), CI = mean +- t(1 - (1 - level)/2, N - 1) SE,
 // with C the number of within cells. The mean is the ordinary cell mean.
+// Mixed designs (any between factor): a and b may be any two factors,
+//   between or within, and each row follows emmeans on the afex fit
+//   (afex_options(emmeans_model = "multivariate"), detail/multivariate.h):
+//   the effect of A at B = b averages every other factor with equal weights
+//   (between cells too, whatever their sizes) and uses the residual
+//   covariance pooled over the between cells, N - g df:
+//     2 levels: pairs(emmeans(fit, ~ A | B)): estimate (first level - second,
+//       levels in file order; emmeans sorts them), SE, 95% CI, t, p (test "emmeans t");
+//     more levels: joint_tests(fit, by = "B")'s row for A: the Wald F of
+//       the level contrasts on (levels - 1, N - g) df (test "emmeans F"; the
+//       Effect carries name, df1, df2, F, p, log10_p, the rest NaN).
+//   The contrast's dz is the estimate over the pooled SD of the subjects'
+//   scores: d_z for a within factor, Cohen's d (SD pooled over the groups)
+//   for a between factor (the text output labels it d).
+//   Holm within each family as above. (joint_tests(fit, by = "B") also tests
+//   interactions of the other factors at B = b; those are not computed.)
 // Missing data: the subject x cell rules of rm_anova (listwise deletion,
-// repeated rows only with an aggregation). Between factors: simple effects
-// are for all-within designs (an Error otherwise); the CIs are per between group.
+// repeated rows only with an aggregation). The CIs are per between group.
 // Validated against: R 4.2.2 t.test(paired = TRUE) and aov() on the subsets,
-// p.adjust(p, "holm"), and the Cousineau-Morey formula evaluated in R (tests).
+// p.adjust(p, "holm"), the Cousineau-Morey formula evaluated in R, and
+// emmeans 1.8.4.1 joint_tests / pairs on afex 1.2.1 fits (tests).
+// Usage: auto se = simple_effects(data, "angle", "noise");
 #pragma once
 #include <string>
 #include <vector>
@@ -34,10 +51,10 @@ namespace dtlab::stats {
 struct SimpleEffect {
   std::string factor;                // the factor whose effect is tested (A)
   std::string at_factor, at_level;   // where it is tested (B = b)
-  std::string test;                  // "paired t" (2 levels) or "rm-anova"
+  std::string test;                  // "paired t" (2 levels) or "rm-anova"; mixed designs: "emmeans t" or "emmeans F"
   std::size_t n = 0;                 // subjects
-  Comparison contrast;               // paired t: first level - second level (test "paired t")
-  Effect anova;                      // rm-anova: the one row of the subset's ANOVA
+  Comparison contrast;               // paired t / emmeans t: first level - second level
+  Effect anova;                      // rm-anova: the one row of the subset's ANOVA; emmeans F: the joint test
   double p = 0, p_holm = 0;          // the test's p and its Holm-adjusted p within the family
 };
 
@@ -47,7 +64,7 @@ struct SimpleEffects {
   std::vector<std::string> warnings;
 };
 
-// Simple effects of within factors a and b (see above).
+// Simple effects of factors a and b (within factors; any two factors of a mixed design; see above).
 Result<SimpleEffects> simple_effects(const LongData& data, const std::string& a, const std::string& b);
 
 struct CellInterval {

@@ -8,14 +8,23 @@
 //   p_exact = P(Q' >= Q) under the permutation distribution that permutes the
 //     (mid-)ranks within each block independently: exact for untied data
 //     (the classical null distribution), the exact conditional distribution
-//     with ties. Computed by dynamic programming over the sorted vector of
-//     rank sums (Kendall & Babington Smith), or by Monte Carlo with a seed:
-//     p = (b + 1) / (N + 1) with b the resamples at or above Q (Phipson & Smyth 2010).
-// Exact modes: automatic = exact if the enumeration fits the work budget
-// (about a second), else none (p_exact NaN, exact_note says why: the
-// chi-square p is then the answer, as in R); always = exact (NaN with a
-// warning if beyond 50 times the budget); never = no p_exact; monte_carlo =
-// N resamples, only on request, reporting progress through the callback.
+//     with ties. Computed by dynamic programming over the blocks on the sorted
+//     vector of rank sums (Kendall & Babington Smith; detail/friedman_exact.h:
+//     dense lexicographic index, mirror symmetry without ties, the last block
+//     summed directly, states settled early once the tail is decided), or by
+//     Monte Carlo with a seed: p = (b + 1) / (N + 1) with b the resamples at
+//     or above Q (Phipson & Smyth 2010).
+// Exact modes: automatic = exact if the DP's work bound is at most 3e8 state
+// updates (about a second of CPU at most; untied data: k = 3 up to n = 349,
+// k = 4 up to 88, k = 5 up to 24, k = 6 up to 9, k = 7 up to 4, k = 8 up
+// to 2), else none; always = up to 3e9 (k = 3 beyond 400, k = 4 up to 159,
+// k = 5 up to 39, k = 6 up to 14, k = 7 up to 6, k = 8 up to 3; at most
+// about 8 s of CPU; k = 6, n = 12 takes 2-4 s); ties cost more (a single tied
+// block puts k = 6, n = 12 beyond); beyond that, or for k > 8, p_exact is NaN and
+// exact_note says why and what applies instead (decided before any
+// enumeration, so a refusal is instant; with `always` also a warning);
+// never = no p_exact; monte_carlo = N resamples, only on request, reporting
+// progress through the callback.
 // Missing data: blocks with a missing cell are removed (R drops incomplete
 // blocks; we warn and name them); several rows per cell are an error unless
 // the data ask for an aggregation (LongData::aggregate).
@@ -63,7 +72,7 @@ struct FriedmanResult {
   double Q = 0, df = 0, p = 0, log10_p = 0;
   double p_exact = 0;                   // NaN when not computed
   std::string exact_method = "none";    // "exact", "monte-carlo" or "none"
-  std::string exact_note;               // why p_exact was not computed ("" when it was, or when never asked)
+  std::string exact_note;               // why p_exact was not computed (auto or always; "" when it was, or never asked)
   std::size_t monte_carlo_samples = 0;
   std::uint64_t seed = 0;
   double kendall_W = 0;

@@ -50,10 +50,12 @@ J effect_json(const Effect& e) {
            {"hf_epsilon", n(e.hf_epsilon)},
            {"df1_gg", n(e.df1_gg)},
            {"df2_gg", n(e.df2_gg)},
+           {"mse_gg", n(e.mse_gg)},
            {"p_gg", n(e.p_gg)},
            {"log10_p_gg", n(e.log10_p_gg)},
            {"df1_hf", n(e.df1_hf)},
            {"df2_hf", n(e.df2_hf)},
+           {"mse_hf", n(e.mse_hf)},
            {"p_hf", n(e.p_hf)},
            {"log10_p_hf", n(e.log10_p_hf)}};
 }
@@ -90,6 +92,14 @@ J comparisons_json(const std::vector<Comparison>& cs) {
   J a = J::array();
   for (const auto& c : cs) a.push_back(comparison_json<J>(c));
   return a;
+}
+
+// A joint (Wald) F test of several contrasts, as emmeans' joint_tests: the
+// effect, df1, df2, F, p and log10_p of an Effect row (its other fields do not apply).
+template <class J = nlohmann::ordered_json>
+J joint_test_json(const Effect& e) {
+  auto n = [](double v) { return json_number<J>(v); };
+  return J{{"effect", e.name}, {"df1", n(e.df1)}, {"df2", n(e.df2)}, {"F", n(e.F)}, {"p", n(e.p)}, {"log10_p", n(e.log10_p)}};
 }
 
 template <class J = nlohmann::ordered_json>

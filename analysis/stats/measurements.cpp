@@ -1,6 +1,7 @@
 // Exact decimal parsing and differences; see measurements.h.
 #include "analysis/stats/measurements.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -179,6 +180,97 @@ double decimal_difference(const Decimal& a, const Decimal& b, bool* exact) {
   return difference_rounded(A + B, e, a.negative, exact);
 }
 
+namespace {
+
+unsigned digits_of(uint128 v) {
+  unsigned d = 0;
+  for (; v > 0; v /= 10) ++d;
+  return d;
+}
+
+constexpr unsigned kMeanDigits = 37;  // kept digits of a mean; a 38th marks an inexact rest
+
+// The first kMeanDigits significant digits of sum * 10^exp / n, with a sticky 1 digit if more follow.
+Decimal truncated_quotient(uint128 sum, int exp, bool negative, uint128 n) {
+  Decimal d;
+  d.negative = negative;
+  uint128 q = sum / n, r = sum % n;
+  bool sticky = false;
+  const unsigned have = digits_of(q);
+  if (have > kMeanDigits) {
+    const uint128 cut = pow10_128(static_cast<int>(have - kMeanDigits));
+    sticky = q % cut != 0 || r != 0;
+    q /= cut;
+    exp += static_cast<int>(have - kMeanDigits);
+    r = 0;
+  }
+  while (r != 0 && digits_of(q) < kMeanDigits) {  // long division, one digit at a time (r < n, so 10 r fits)
+    r *= 10;
+    q = q * 10 + r / n;
+    r %= n;
+    --exp;
+  }
+  sticky = sticky || r != 0;
+  if (sticky) {
+    q = q * 10 + 1;
+    --exp;
+  }
+  d.magnitude = q;
+  d.exponent = q == 0 ? 0 : exp;
+  d.exact = !sticky;
+  d.value = round_to_double(d.magnitude, d.exponent, d.negative);
+  return d;
+}
+
+// Exact order of two decimals on their digits (the double difference where they cannot be aligned).
+bool decimal_less(const Decimal& a, const Decimal& b) {
+  Decimal x = a, y = b;
+  x.exact = y.exact = true;
+  return decimal_difference(x, y) < 0;
+}
+
+}  // namespace
+
+std::optional<Decimal> decimal_mean(const std::vector<Decimal>& xs) {
+  if (xs.empty()) return std::nullopt;
+  int e = std::numeric_limits<int>::max();  // the smallest exponent of a nonzero value
+  for (const auto& x : xs) {
+    if (!x.exact) return std::nullopt;
+    if (x.magnitude != 0) e = std::min(e, x.exponent);
+  }
+  if (e == std::numeric_limits<int>::max()) e = 0;  // every value is zero
+  uint128 pos = 0, neg = 0;
+  for (const auto& x : xs) {
+    if (x.magnitude == 0) continue;
+    const int shift = x.exponent - e;
+    if (shift > kMaxDigits) return std::nullopt;
+    uint128 m = 0;
+    if (__builtin_mul_overflow(x.magnitude, pow10_128(shift), &m)) return std::nullopt;
+    uint128& acc = x.negative ? neg : pos;
+    if (__builtin_add_overflow(acc, m, &acc)) return std::nullopt;
+  }
+  const bool negative = neg > pos;
+  return truncated_quotient(negative ? neg - pos : pos - neg, e, negative, static_cast<uint128>(xs.size()));
+}
+
+std::optional<Decimal> decimal_median(std::vector<Decimal> xs) {
+  if (xs.empty()) return std::nullopt;
+  std::sort(xs.begin(), xs.end(), decimal_less);
+  const size_t h = xs.size() / 2;
+  if (xs.size() % 2) return xs[h];
+  return decimal_mean({xs[h - 1], xs[h]});
+}
+
+void Measurements::describe(const Decimal& x, double& v, double& d, double& n) const {
+  Decimal a = x, b = offset_decimal;
+  a.exact = b.exact = true;  // difference on the digits kept (a mean's are its first 37)
+  bool exact = false;
+  v = x.value;
+  d = decimal_difference(a, b, &exact);
+  exact = exact && x.exact && offset_decimal.exact;
+  n = exact ? 0.0 : std::ldexp(std::fabs(d), -53) + std::fabs(v) * 1e-36 + std::numeric_limits<double>::denorm_min();
+}
+
 bool Measurements::missing(size_t i) const { return std::isnan(value[i]); }
 
 Measurements Measurements::from_doubles(std::vector<double> values) {
@@ -228,12 +320,17 @@ Measurements Measurements::from_decimals(const std::vector<std::optional<Decimal
       ref = i;
     }
   m.offset = values[ref]->value;
+  m.offset_decimal = *values[ref];
+  m.decimal.resize(n);
   for (size_t i = 0; i < n; ++i)
     if (values[i]) {
       bool exact = false;
+      m.decimal[i] = *values[i];
       m.delta[i] = decimal_difference(*values[i], *values[ref], &exact);
-      // Inexact: the one rounding of the exact difference, at most half an ulp.
-      m.noise[i] = exact ? 0.0 : std::ldexp(std::fabs(m.delta[i]), -53);
+      // Inexact: the one rounding of the exact difference, at most half an ulp
+      // (and at least half the smallest subnormal, where ulps stop shrinking).
+      m.noise[i] = exact ? 0.0 : std::max(std::ldexp(std::fabs(m.delta[i]), -53),
+                                          std::numeric_limits<double>::denorm_min());
     }
   return m;
 }

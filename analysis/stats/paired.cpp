@@ -176,12 +176,10 @@ WilcoxonResult wilcoxon_signed_rank(const std::vector<double>& x, const std::vec
       if (signed_rank_exact(w, v2, budget, up, lo)) {
         r.p_exact = pick(o.alternative, above_mean, up, lo);
         r.exact_method = "exact";
-      } else if (o.exact.mode == ExactMode::always) {
-        r.warnings.push_back("exact signed-rank distribution too large for n = " + std::to_string(r.n) +
-                             ": p_exact not computed (use monte-carlo=N)");
       } else {
         r.exact_note = "the exact signed-rank distribution is too large to enumerate for n = " + std::to_string(r.n) +
                        "; the normal approximation applies (a Monte Carlo estimate on request)";
+        if (o.exact.mode == ExactMode::always) r.warnings.push_back("p_exact not computed: " + r.exact_note);
       }
     }
   }

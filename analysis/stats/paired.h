@@ -61,7 +61,7 @@ struct WilcoxonResult {
   double p_normal = 0;
   double p_exact = 0;                       // NaN when not computed
   std::string exact_method = "none";        // "exact", "monte-carlo" or "none"
-  std::string exact_note;                   // why p_exact was not computed in automatic mode ("" otherwise)
+  std::string exact_note;                   // why p_exact was not computed (auto or always; "" otherwise)
   std::vector<std::string> warnings;
 };
 

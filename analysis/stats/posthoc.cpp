@@ -9,6 +9,7 @@
 
 #include "analysis/stats/descriptives.h"
 #include "analysis/stats/detail/design.h"
+#include "analysis/stats/detail/multivariate.h"
 #include "analysis/stats/distributions.h"
 
 namespace dtlab::stats {
@@ -63,6 +64,16 @@ Result<std::vector<Comparison>> pairwise_within(const LongData& data, const std:
   if (it == d.within_names.end()) return Error{data.source, 0, 0, factor, "not a within-subject factor of the design"};
   const std::size_t f = static_cast<std::size_t>(it - d.within_names.begin());
   const std::size_t L = d.within_levels[f].size();
+  if (!d.between_names.empty() && test == PairwiseTest::paired_t) {  // a mixed design: emmeans on the afex fit
+    auto model = detail::MultivariateModel::fit(d, data.source);
+    if (!model) return model.error();
+    const std::size_t factor = d.between_names.size() + f;
+    std::vector<Comparison> out;
+    for (std::size_t i = 0; i < L; ++i)
+      for (std::size_t j = i + 1; j < L; ++j) out.push_back(model->pair(factor, i, j, model->averaging()));
+    adjust_holm(out);
+    return out;
+  }
   const detail::FactorMarginals m = detail::factor_marginals(d, f);
   const std::vector<std::vector<double>>& val = m.value;
   const std::vector<std::vector<double>>& del = m.delta;

@@ -5,8 +5,17 @@
 //   within factor, Wilcoxon:  pairwise.wilcox.test(y, g, paired = TRUE) (R's exact/normal rule, correct = TRUE)
 //   between factor, pooled t: pairwise.t.test(y, g) (pool.sd = TRUE: one SD
 //     pooled over all groups, df = N - k)
+//   within factor of a mixed design (between factors present), paired t:
+//     pairs(emmeans(afex fit, ~ W), adjust = "holm") with afex's default
+//     multivariate model (detail/multivariate.h): marginal means over the
+//     between cells weighted equally (not over subjects), SE from the
+//     residual covariance pooled over the groups, t on N - g df (g between
+//     cells); test "emmeans t", d_z = estimate / pooled SD of the differences.
+//     (A paired t over all subjects ignores the groups: mixed_posthoc.csv
+//     gave p = .024 where emmeans gives .055, .111 after Holm.)
 // With several within factors, each subject's values are first averaged over
-// the other within factors (marginal means). Holm (1979): sort the m p-values,
+// the other within factors (marginal means, on the decimal digits when the
+// data came as text: detail/design.h). Holm (1979): sort the m p-values,
 // p_(i) -> min(1, max_{j <= i} (m - j + 1) p_(j)); NaN p-values are kept and
 // not counted in m (R's p.adjust).
 // Every row describes the difference a - b whatever the test: n pairs (or
@@ -16,7 +25,9 @@
 // for between). Missing data: the subject x cell rules of detail/design.h.
 // Validated against: R 4.2 p.adjust(p, "holm") values, t.test(paired = TRUE)
 // and pairwise.t.test(pool.sd = TRUE) on the sleep and PlantGrowth data
-// (tests/analysis/stats/test_posthoc_descriptives.cpp).
+// (tests/analysis/stats/test_posthoc_descriptives.cpp); emmeans 1.8.4.1 on
+// afex 1.2.1 fits of mixed_posthoc.csv and obk_long.csv (test_mixed_followups.cpp).
+// Usage: auto rows = pairwise_within(data, "angle", PairwiseTest::paired_t);
 #pragma once
 #include <string>
 #include <vector>
@@ -31,7 +42,7 @@ std::vector<double> holm(const std::vector<double>& p);  // same order as p
 
 struct Comparison {
   std::string a, b;     // levels compared; differences are a - b
-  std::string test;     // "paired t", "wilcoxon", "pooled t"
+  std::string test;     // "paired t", "wilcoxon", "pooled t", "emmeans t" (mixed designs)
   std::size_t n = 0;    // pairs (within) or observations in a and b (between)
   double estimate = 0;  // mean difference a - b
   double se = 0;        // its standard error
@@ -39,7 +50,7 @@ struct Comparison {
   double statistic = 0; // t or V
   double df = 0;        // NaN for Wilcoxon
   double p = 0, p_holm = 0;
-  double dz = 0;        // Cohen's d_z (within); NaN between
+  double dz = 0;        // Cohen's d_z (within; emmeans t: estimate / pooled SD of the subjects' scores); NaN pooled t
 };
 
 // A paired-t comparison row from two paired samples (x = level a, y = level b).

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -188,7 +189,7 @@ Matrix stratum_residual(const Matrix& Y, const Groups& g, const CellDesign& d, c
   return out;
 }
 
-// car's Mauchly test from the residual R (E = R'R): {W, p}.
+// car's Mauchly test from the residual contrast scores R (E = R'R): {W, p}.
 std::pair<double, double> mauchly(const Matrix& R, double tr, double n, size_t cells) {
   const double pp = static_cast<double>(R.cols);
   if (n < pp) return {0.0, kNaN};
@@ -205,33 +206,42 @@ std::pair<double, double> mauchly(const Matrix& R, double tr, double n, size_t c
   return {w, std::min(1.0, std::max(0.0, pr1 + w2 * (pr2 - pr1)))};
 }
 
-// One within term's stratum: contrasts, residual, error SS, sphericity.
+// One within term's stratum: contrast scores, residual, error SS, sphericity.
 struct Stratum {
   std::vector<size_t> S;
-  Matrix M;                // p x C orthonormal contrasts
-  Matrix Z;                // N x p transformed data
+  size_t p = 0;            // contrasts of the term (rows of M_S)
+  Matrix Z;                // N x p transformed data Y M_S'
   double ss_error = 0;     // scaled units
   bool zero_error = false;
   double gg = 1, hf = 1, mauchly_W = kNaN, mauchly_p = kNaN;
 };
 
+// Which factors M_S contrasts (the others it averages), and the levels of all.
+std::vector<bool> in_term(const std::vector<size_t>& S, size_t factors) {
+  std::vector<bool> in(factors, false);
+  for (size_t f : S) in[f] = true;
+  return in;
+}
+
+size_t contrast_count(const std::vector<size_t>& S, const CellDesign& d) {
+  size_t p = 1;
+  for (size_t f : S) p *= d.within_levels[f].size() - 1;
+  return p;
+}
+
 Stratum within_stratum(const std::vector<size_t>& S, const Matrix& Y, const Groups& g, const CellDesign& d, double dfe,
                        double zero_threshold) {
   Stratum st;
   st.S = S;
-  Matrix M(1, 1, 1.0);
-  for (size_t f = 0; f < d.within_levels.size(); ++f) {
-    const size_t L = d.within_levels[f].size();
-    M = detail::kronecker(M, contains(S, f) ? detail::orthonormal_contrasts(L) : detail::normalized_mean_row(L));
-  }
-  st.M = M;
-  const size_t p = M.rows;
+  st.p = contrast_count(S, d);
+  const size_t p = st.p;
   if (p == 0) return st;
-  const Matrix Mt = detail::transpose(M);
-  st.Z = detail::multiply(Y, Mt);
-  const Matrix R = detail::multiply(stratum_residual(Y, g, d, S), Mt);
-  const Matrix E = detail::crossprod(R);
-  st.ss_error = detail::trace(E);
+  std::vector<size_t> levels;
+  for (const auto& lv : d.within_levels) levels.push_back(lv.size());
+  const std::vector<bool> in = in_term(S, levels.size());
+  st.Z = detail::contrast_scores(Y, levels, in);
+  const Matrix R = detail::contrast_scores(stratum_residual(Y, g, d, S), levels, in);
+  st.ss_error = detail::sum_of_squares(R);
   st.zero_error = dfe > 0 && st.ss_error <= zero_threshold;
   if (st.zero_error) st.ss_error = 0.0;
   if (S.empty()) {
@@ -245,7 +255,7 @@ Stratum within_stratum(const std::vector<size_t>& S, const Matrix& Y, const Grou
         st.gg = 1.0 / pd;
         st.hf = kNaN;
       } else {
-        st.gg = st.ss_error * st.ss_error / (pd * detail::trace(detail::multiply(E, E)));
+        st.gg = st.ss_error * st.ss_error / (pd * detail::gram_square_trace(R));
         st.hf = ((dfe + 1.0) * pd * st.gg - 2.0) / (pd * (dfe - pd * st.gg));
       }
       std::tie(st.mauchly_W, st.mauchly_p) = mauchly(R, st.ss_error, dfe, d.cells);
@@ -279,7 +289,7 @@ void set_sphericity(Effect& e, const Stratum& st) {
   e.hf_epsilon = st.hf;
   e.mauchly_W = st.mauchly_W;
   e.mauchly_p = st.mauchly_p;
-  if (st.M.rows == 1 || st.zero_error) {
+  if (st.p == 1 || st.zero_error) {
     e.p_gg = e.p_hf = e.p;
     e.log10_p_gg = e.log10_p_hf = e.log10_p;
     return;
@@ -308,22 +318,21 @@ struct Pending {
 };
 
 // What every stratum's effects share: the between design, its inverse cross
-// product, X', the error df and the power of two the deltas were scaled by.
+// product, X' and the error df.
 struct Regression {
   const BetweenDesign& bd;
   const Matrix& V;
   const Matrix& Xt;
   double dfe;
-  int exponent;
 };
 
 // The rows of within term st.S crossed with every between term (type III
-// multivariate SS). Result false: a sum of squares overflowed; Error: a
-// singular between term.
-Result<bool> stratum_effects(const Stratum& st, const Regression& reg, const CellDesign& d, size_t stratum,
-                             std::vector<Pending>& pending) {
-  const size_t p = st.M.rows;
-  const auto unscale = [&](double ss) { return std::ldexp(ss, 2 * reg.exponent); };
+// multivariate SS), in the scaled units of the deltas (F and the effect sizes
+// do not depend on the scale; unscale() converts SS and MSE afterwards).
+// Error: a singular between term.
+Status stratum_effects(const Stratum& st, const Regression& reg, const CellDesign& d, size_t stratum,
+                       std::vector<Pending>& pending) {
+  const size_t p = st.p;
   Matrix B = detail::multiply(reg.V, detail::multiply(reg.Xt, st.Z));
   const Matrix fit = detail::multiply(reg.bd.X, B);  // one step of iterative refinement of B
   Matrix res = st.Z;
@@ -339,9 +348,8 @@ Result<bool> stratum_effects(const Stratum& st, const Regression& reg, const Cel
     const Matrix Bt = submatrix(B, reg.bd.columns[ti], all_indices(p));
     const auto Vinv = detail::spd_inverse(submatrix(reg.V, reg.bd.columns[ti], reg.bd.columns[ti]));
     if (!Vinv) return Error{"", 0, 0, "", "singular between-subjects term " + e.name};
-    e.ss = unscale(detail::trace(detail::multiply(detail::transpose(Bt), detail::multiply(*Vinv, Bt))));
-    e.ss_error = unscale(st.ss_error);
-    if (!std::isfinite(e.ss) || !std::isfinite(e.ss_error)) return false;
+    e.ss = detail::trace(detail::multiply(detail::transpose(Bt), detail::multiply(*Vinv, Bt)));
+    e.ss_error = st.ss_error;
     e.df1 = static_cast<double>(reg.bd.df[ti] * p);
     e.df2 = std::max(0.0, reg.dfe) * static_cast<double>(p);
     set_test(e, st.zero_error);
@@ -352,8 +360,25 @@ Result<bool> stratum_effects(const Stratum& st, const Regression& reg, const Cel
       e.gg_epsilon = e.hf_epsilon = e.mauchly_W = e.mauchly_p = kNaN;
       e.p_gg = e.log10_p_gg = e.p_hf = e.log10_p_hf = kNaN;
     }
-    complete_effect(e);
     pending.push_back({e, stratum, T, st.S});
+  }
+  return {};
+}
+
+// SS, SS_error and MSE back in the data's units (times 2^(2 exponent)), the
+// derived columns, and whether a sum of squares underflowed (printed as a
+// subnormal or 0 while F and the effect sizes, computed scaled, stay exact).
+// false: a sum of squares overflowed.
+bool unscale(std::vector<Pending>& pending, int exponent, bool& underflow) {
+  for (auto& pe : pending) {
+    Effect& e = pe.e;
+    const double ss = e.ss, ss_error = e.ss_error;
+    e.ss = std::ldexp(ss, 2 * exponent);
+    e.ss_error = std::ldexp(ss_error, 2 * exponent);
+    if (!std::isfinite(e.ss) || !std::isfinite(e.ss_error)) return false;
+    underflow = underflow || (ss > 0 && e.ss < std::numeric_limits<double>::min()) ||
+                (ss_error > 0 && e.ss_error < std::numeric_limits<double>::min());
+    complete_effect(e);
   }
   return true;
 }
@@ -408,6 +433,29 @@ std::vector<CellSummary> cell_summaries(const CellDesign& d, const Groups& g) {
   return out;
 }
 
+Status check_size(const CellDesign& d, const std::string& source) {
+  std::vector<size_t> levels;
+  for (const auto& lv : d.within_levels) levels.push_back(lv.size());
+  const double work = rm_anova_work(d.subjects.size(), levels);
+  if (work <= kRmAnovaWorkBound) return {};
+  const double N = static_cast<double>(d.subjects.size());
+  double worst = 0;
+  std::vector<size_t> worst_term;
+  for (const auto& S : terms(levels.size())) {
+    const double p = static_cast<double>(contrast_count(S, d));
+    if (N * p * std::min(N, p) > worst) worst = N * p * std::min(N, p), worst_term = S;
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "%.2g", work);
+  return Error{source, 0, 0, "",
+               "design too large for rm-anova: " + std::to_string(d.subjects.size()) + " subjects and " +
+                   std::to_string(contrast_count(worst_term, d)) + " contrasts in the within term " +
+                   term_name({}, worst_term, d) + " need about " + text +
+                   " multiply-adds for the sphericity statistics (N x p x min(N, p) summed over the within terms), "
+                   "above the bound of 4e9 (about ten seconds of CPU); average levels into fewer (e.g. --where or "
+                   "--aggregate on a coarser factor) or analyse subsets"};
+}
+
 Error overflow_error(const std::string& source, const std::string& dv, const char* what) {
   return Error{source, 0, 0, name_for_message(dv),
                std::string("overflow: ") + what +
@@ -416,6 +464,17 @@ Error overflow_error(const std::string& source, const std::string& dv, const cha
 }
 
 }  // namespace
+
+double rm_anova_work(size_t subjects, const std::vector<size_t>& within_levels) {
+  const double N = static_cast<double>(subjects);
+  double work = 0;
+  for (const auto& S : terms(within_levels.size())) {
+    double p = 1;
+    for (size_t f : S) p *= static_cast<double>(within_levels[f]) - 1;
+    work += N * p * std::min(N, p);
+  }
+  return work;
+}
 
 Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& options) {
   auto built = detail::build_cell_design(data);
@@ -445,6 +504,7 @@ Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& optio
   const Matrix Xt = detail::transpose(bd.X);
   const double dfe = static_cast<double>(N) - static_cast<double>(bd.X.cols);
   if (N > 1 && dfe == 0) r.warnings.push_back("as many subjects as between-subject cells: no error degrees of freedom");
+  if (auto s = check_size(d, data.source); !s) return s.error();
 
   // Deltas scaled by a power of two (exact) so that no square over- or underflows.
   double largest = 0;
@@ -465,23 +525,24 @@ Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& optio
   // Zero error SS: at most twice the rounding error of the data in norm (0 for
   // exact data), or the double-double floor of the residual.
   const double zero_threshold = 4.0 * noise2.value() + 1e-60 * sumsq.value();
-  auto unscale = [&](double ss) { return std::ldexp(ss, 2 * exponent); };
 
   std::vector<Pending> pending;
-  std::vector<double> stratum_error;
+  std::vector<double> stratum_error;  // scaled, as the pending effects
   for (const auto& S : terms(d.within_names.size())) {
     const Stratum st = within_stratum(S, Y, g, d, dfe, zero_threshold);
-    const size_t p = st.M.rows;
-    if (p == 0) continue;
-    stratum_error.push_back(unscale(st.ss_error));
+    if (st.p == 0) continue;
+    stratum_error.push_back(st.ss_error);
     if (st.zero_error)
       r.warnings.push_back(std::string("zero error variance in stratum ") + (S.empty() ? "between subjects" : "of the within term") +
                            ": F is infinite (or 0/0) there");
-    auto added = stratum_effects(st, {bd, *V, Xt, dfe, exponent}, d, stratum_error.size() - 1, pending);
-    if (!added) return Error{data.source, 0, 0, "", added.error().message};
-    if (!*added) return overflow_error(data.source, data.dv_name, "the sums of squares");
+    if (auto added = stratum_effects(st, {bd, *V, Xt, dfe}, d, stratum_error.size() - 1, pending); !added)
+      return Error{data.source, 0, 0, "", added.error().message};
   }
   if (auto s = generalized_eta(pending, stratum_error, d, options.observed, data.source); !s) return s.error();
+  bool underflow = false;
+  if (!unscale(pending, exponent, underflow)) return overflow_error(data.source, data.dv_name, "the sums of squares");
+  if (underflow)
+    r.warnings.push_back(underflow_warning());
   for (const auto& pe : pending) r.effects.push_back(pe.e);
   r.cells = cell_summaries(d, g);
   return r;

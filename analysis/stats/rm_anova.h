@@ -25,6 +25,10 @@
 //   from the exact deltas, and the deltas are scaled by a power of two, so
 //   residuals far below the effects keep their digits and nothing under- or
 //   overflows short of a sum of squares beyond the double range (an Error).
+// Cost: M_S is never formed: the contrast scores Y M_S' are applied factor by
+//   factor (O(N C) per stratum), tr(E) is the scores' sum of squares and
+//   tr(E^2) comes from the smaller Gram matrix (N x N or p x p); see the
+//   size bound below.
 // 1-df within terms: GG = HF = 1, Mauchly NaN. Between terms: sphericity NaN.
 // Effect sizes (afex es = "pes", "ges"): eta_p2 = SS / (SS + SS_error);
 //   eta_g2 = SS / (SS + sum of the distinct error SS of all strata, including
@@ -44,7 +48,11 @@
 // where the error SS is rounding noise of the input; we report it as exactly
 // 0 (above). Where the residual is real but tiny beside the effects (data of
 // size 2.5e14, SS_error 163/6), R's aov/car lose digits and we do not.
-// Post-hoc comparisons (posthoc.h) cover within factors only.
+// Post-hoc comparisons (posthoc.h) cover within factors only (emmeans
+// contrasts in mixed designs). Values whose sums of squares fall below the
+// smallest normal double (data near 1e-160 and smaller) keep F, p and the
+// effect sizes, computed on the scaled deltas; SS, SS_error and MSE are then
+// printed rounded (0 or subnormal) with a warning (anova.h underflow_warning).
 // References: car 3.x summary.Anova.mlm; afex anova.afex_aov; Maxwell &
 // Delaney (2004) ch. 11-12, 14; Huynh & Feldt (1976); Mauchly (1940).
 // Validated against: Maxwell & Delaney Table 12.1 (published F and SS; car
@@ -53,6 +61,7 @@
 // rational arithmetic and car 3.1-1 for the nearly singular and tiny-residual
 // cases (test_edge_cases.cpp). Each row also carries MSE, corrected df and
 // the eta_p2 interval (effect_size.h).
+// Usage: auto r = rm_anova(*long_data_from_csv(table, {"rt", "id", {"angle", "noise"}, {}}));
 #pragma once
 #include <string>
 #include <utility>
@@ -85,7 +94,18 @@ struct RmAnovaResult {
 
 // data.subject must name the subject of every row; data.within / data.between
 // give the factors. Input problems (between level changing within a subject,
-// empty between cell, no complete subject) are Errors.
+// empty between cell, no complete subject) are Errors, and so is a design
+// whose work exceeds kRmAnovaWorkBound (the message names the term and sizes).
 Result<RmAnovaResult> rm_anova(const LongData& data, const RmAnovaOptions& options = {});
+
+// The size bound: rm_anova's sphericity statistics of a within term with p
+// contrasts cost about N p min(N, p) multiply-adds (the smaller Gram matrix of
+// its residual scores; Mauchly's QR when N > p); everything else is O(N C).
+// rm_anova_work sums that over the within terms (levels: of each within
+// factor); above kRmAnovaWorkBound (about ten seconds of CPU on the
+// development machine) rm_anova refuses. 3 subjects x 3000 levels: 2.7e7
+// (0.05 s); 1500 x 1000: 1.5e9 (2.5 s); 2000 x 2000: 8e9 (about 20 s: refused).
+inline constexpr double kRmAnovaWorkBound = 4e9;
+double rm_anova_work(size_t subjects, const std::vector<size_t>& within_levels);
 
 }  // namespace dtlab::stats

@@ -3,10 +3,13 @@
 // chooses the tests and the data each resample sees.
 #include "analysis/report/detail/planning.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "analysis/report/detail/format.h"
+#include "analysis/stats/apa.h"
+#include "study/protocol/protocol.h"
 
 namespace dtlab::report::detail {
 namespace {
@@ -51,8 +54,15 @@ int resampled_smallest(const PlannedEffect& pe, double target) {
   return 0;
 }
 
+// n rounded up to a multiple of the order rows (NaN stays NaN).
+double balanced(double n, long long rows) {
+  if (!std::isfinite(n) || rows <= 1) return n;
+  return std::ceil(n / static_cast<double>(rows)) * static_cast<double>(rows);
+}
+
 // The effects of one tested ANOVA, with analytic power (resampling is added by the caller).
-std::vector<PlannedEffect> effects_of(const TestReport& r, const std::string& section, const PlanningOptions& o) {
+std::vector<PlannedEffect> effects_of(const TestReport& r, const std::string& section, const PlanningOptions& o,
+                                      long long order_rows) {
   std::vector<PlannedEffect> out;
   for (const auto& e : r.anova->effects) {
     PlannedEffect pe;
@@ -65,6 +75,9 @@ std::vector<PlannedEffect> effects_of(const TestReport& r, const std::string& se
     pe.df2 = e.df2;
     pe.F = e.F;
     pe.p = reported_p(e);
+    const bool gg = stats::applied_correction(e, stats::Correction::greenhouse_geisser) != stats::Correction::none;
+    pe.p_df1 = gg ? e.df1_gg : e.df1;
+    pe.p_df2 = gg ? e.df2_gg : e.df2;
     pe.eta_p2 = e.eta_p2;
     pe.epsilon = e.df1 > 1 && std::isfinite(e.gg_epsilon) ? e.gg_epsilon : 1.0;
     pe.dz = e.df1 == 1 && e.F >= 0 ? std::sqrt(e.F / static_cast<double>(pe.pilot_n)) : kNaN;
@@ -79,6 +92,8 @@ std::vector<PlannedEffect> effects_of(const TestReport& r, const std::string& se
     const bool finite = std::isfinite(at_n(2.0));
     pe.n80 = finite ? stats::smallest_n(at_n, 0.8) : kNaN;
     pe.n90 = finite ? stats::smallest_n(at_n, 0.9) : kNaN;
+    pe.n80_balanced = balanced(pe.n80, order_rows);
+    pe.n90_balanced = balanced(pe.n90, order_rows);
     out.push_back(std::move(pe));
   }
   return out;
@@ -103,8 +118,10 @@ nlohmann::json to_json(const PlannedEffect& e) {
   const auto n_or_null = [](int n) { return n ? nlohmann::json(n) : nlohmann::json(nullptr); };
   return {{"section", e.section}, {"measure", e.measure}, {"scope", e.scope}, {"effect", e.effect},
           {"pilot_n", e.pilot_n}, {"df1", num(e.df1)},    {"df2", num(e.df2)},    {"F", num(e.F)},
-          {"p", num(e.p)},        {"eta_p2", num(e.eta_p2)}, {"epsilon", num(e.epsilon)}, {"dz", num(e.dz)},
+          {"p", num(e.p)},        {"p_df1", num(e.p_df1)}, {"p_df2", num(e.p_df2)},
+          {"eta_p2", num(e.eta_p2)}, {"epsilon", num(e.epsilon)}, {"dz", num(e.dz)},
           {"power", at},          {"n_for_80", num(e.n80)}, {"n_for_90", num(e.n90)},
+          {"n_for_80_balanced", num(e.n80_balanced)}, {"n_for_90_balanced", num(e.n90_balanced)},
           {"resampled_n_for_80", n_or_null(e.resampled_n80)}, {"resampled_n_for_90", n_or_null(e.resampled_n90)}};
 }
 
@@ -131,9 +148,10 @@ std::vector<PlannedEffect> plan_effects(const Context& ctx, const PlanningOption
   std::vector<PlannedEffect> out;
   const std::size_t steps = tests.size() * o.sizes.size();
   std::size_t done = 0;
+  const long long rows = std::max<long long>(1, protocol::declared_order_rows(ctx.data.protocol));
   for (std::size_t t = 0; t < tests.size(); ++t) {
     const TestReport& r = *tests[t];
-    std::vector<PlannedEffect> effects = effects_of(r, sections[t], o);
+    std::vector<PlannedEffect> effects = effects_of(r, sections[t], o, rows);
     if (o.replications > 0) {
       const auto test = [&](const std::vector<std::size_t>& draw) {
         const CellMatrix m = resampled(*r.m, r.kept, draw);

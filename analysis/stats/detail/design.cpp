@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <unordered_map>
@@ -59,19 +60,40 @@ double median_of(std::vector<double> x) {
   return x.size() % 2 ? x[h] : x[h - 1] / 2 + x[h] / 2;
 }
 
+// One value from several: on the decimal digits when `decimals` is given
+// (result in *exact_value), else on the doubles.
+struct Reduced {
+  double delta = 0, value = 0, noise = 0;
+  std::optional<Decimal> decimal;
+};
+
+Reduced reduce_values(const Measurements& dv, const std::vector<Decimal>& decimals, const std::vector<double>& deltas,
+                      const std::vector<double>& values, double worst_noise, bool median) {
+  Reduced r;
+  if (!decimals.empty()) r.decimal = median ? decimal_median(decimals) : decimal_mean(decimals);
+  if (r.decimal) {
+    dv.describe(*r.decimal, r.value, r.delta, r.noise);
+    r.noise += worst_noise;
+    return r;
+  }
+  r.delta = median ? median_of(deltas) : mean_of(deltas);
+  r.value = median ? median_of(values) : mean_of(values);
+  r.noise = worst_noise + std::ldexp(std::fabs(r.delta), -52);  // the division's rounding
+  return r;
+}
+
 // One value from the several rows of a subject x cell (only with an aggregation).
-void reduce(const LongData& data, const std::vector<size_t>& rows, double& delta, double& value, double& noise) {
+Reduced reduce(const LongData& data, const std::vector<size_t>& rows) {
   std::vector<double> d, v;
+  std::vector<Decimal> dec;
   double worst = 0;
   for (size_t r : rows) {
     d.push_back(data.dv.delta[r]);
     v.push_back(data.dv.value[r]);
+    if (!data.dv.decimal.empty()) dec.push_back(data.dv.decimal[r]);
     worst = std::max(worst, row_noise(data.dv, r));
   }
-  const bool median = data.aggregate == Aggregate::median;
-  delta = median ? median_of(d) : mean_of(d);
-  value = median ? median_of(v) : mean_of(v);
-  noise = worst + std::ldexp(std::fabs(delta), -52);  // the division's rounding
+  return reduce_values(data.dv, dec, d, v, worst, data.aggregate == Aggregate::median);
 }
 
 }  // namespace
@@ -100,25 +122,31 @@ std::string CellDesign::cell_name(size_t cell) const {
   return s;
 }
 
+CellMean subject_mean(const CellDesign& d, size_t s, const std::vector<size_t>& cells) {
+  if (cells.size() == 1) return {d.value[s][cells[0]], d.delta[s][cells[0]]};
+  std::vector<double> dl, vl;
+  std::vector<Decimal> dec;
+  for (size_t c : cells) {
+    dl.push_back(d.delta[s][c]);
+    vl.push_back(d.value[s][c]);
+    if (!d.decimal.empty()) dec.push_back(d.decimal[s][c]);
+  }
+  const Reduced r = reduce_values(d.dv_scale, dec, dl, vl, 0.0, false);
+  return {r.value, r.delta};
+}
+
 FactorMarginals factor_marginals(const CellDesign& d, size_t f) {
   const size_t L = d.within_levels[f].size(), N = d.subjects.size();
   FactorMarginals m{std::vector<std::vector<double>>(L, std::vector<double>(N, 0.0)),
                     std::vector<std::vector<double>>(L, std::vector<double>(N, 0.0))};
-  std::vector<double> count(L, 0.0);
-  for (size_t c = 0; c < d.cells; ++c) {
-    const size_t l = d.cell_levels(c)[f];
-    count[l] += 1.0;
-    for (size_t s = 0; s < N; ++s) {
-      m.value[l][s] += d.value[s][c];
-      m.delta[l][s] += d.delta[s][c];
-    }
-  }
+  std::vector<std::vector<size_t>> cells(L);
+  for (size_t c = 0; c < d.cells; ++c) cells[d.cell_levels(c)[f]].push_back(c);
   for (size_t l = 0; l < L; ++l)
-    if (count[l] > 1)
-      for (size_t s = 0; s < N; ++s) {
-        m.value[l][s] /= count[l];
-        m.delta[l][s] /= count[l];
-      }
+    for (size_t s = 0; s < N; ++s) {
+      const CellMean cm = subject_mean(d, s, cells[l]);
+      m.value[l][s] = cm.value;
+      m.delta[l][s] = cm.delta;
+    }
   return m;
 }
 
@@ -204,6 +232,7 @@ Result<Slots> fill_slots(const LongData& data, const CellDesign& d, const Rows& 
 void keep_complete(const LongData& data, CellDesign& d, const Rows& rows, const Slots& slots) {
   const size_t C = d.cells, nb = data.between.size();
   size_t aggregated = 0;
+  bool all_decimal = !data.dv.decimal.empty();
   std::vector<std::string> dropped_text;
   for (size_t s = 0; s < rows.subjects.names.size(); ++s) {
     size_t first_missing = C;
@@ -216,26 +245,37 @@ void keep_complete(const LongData& data, CellDesign& d, const Rows& rows, const 
       continue;
     }
     std::vector<double> dl(C), vl(C), nl(C);
+    std::vector<Decimal> dec(data.dv.decimal.empty() ? 0 : C);
+    bool decimal = !dec.empty();
     for (size_t c = 0; c < C; ++c) {
       const size_t k = s * C + c;
       if (slots.count[k] > 1) {
         ++aggregated;
-        reduce(data, slots.rows_of[k], dl[c], vl[c], nl[c]);
+        const Reduced r = reduce(data, slots.rows_of[k]);
+        dl[c] = r.delta;
+        vl[c] = r.value;
+        nl[c] = r.noise;
+        if (r.decimal) dec[c] = *r.decimal;
+        else decimal = false;
       } else {
         const size_t r = slots.first[k];
         dl[c] = data.dv.delta[r];
         vl[c] = data.dv.value[r];
         nl[c] = row_noise(data.dv, r);
+        if (decimal) dec[c] = data.dv.decimal[r];
       }
     }
+    if (!decimal) all_decimal = false;
     d.subjects.push_back(rows.subjects.names[s]);
     d.delta.push_back(std::move(dl));
     d.value.push_back(std::move(vl));
     d.noise.push_back(std::move(nl));
+    d.decimal.push_back(std::move(dec));
     std::vector<size_t> g(nb);
     for (size_t f = 0; f < nb; ++f) g[f] = rows.group[slots.group_row[s] * nb + f];
     d.group.push_back(std::move(g));
   }
+  if (!all_decimal) d.decimal.clear();  // one cell without its decimal: every mean is taken on the doubles
   if (!d.dropped.empty()) {
     std::string text;
     for (const auto& t : dropped_text) text += (text.empty() ? "" : "; ") + t;
@@ -262,6 +302,8 @@ Result<CellDesign> build_cell_design(const LongData& data) {
     if (f.level.size() != n) throw std::invalid_argument("build_cell_design: factor '" + f.name + "' needs one level per row");
   CellDesign d;
   d.offset = data.dv.offset;
+  d.dv_scale.offset = data.dv.offset;
+  d.dv_scale.offset_decimal = data.dv.offset_decimal;
   for (const auto& f : data.within) d.within_names.push_back(f.name);
   for (const auto& f : data.between) d.between_names.push_back(f.name);
   const Rows rows = index_rows(data, d);

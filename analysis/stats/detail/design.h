@@ -3,7 +3,9 @@
 // levels and subjects keep their order of first appearance; several rows for
 // one subject and cell are an Error naming both lines unless the data ask for
 // an aggregation (LongData::aggregate: mean or median, as afex's
-// fun_aggregate); a cell with no row, or with a missing value among its rows,
+// fun_aggregate), taken on the decimal digits (measurements.h decimal_mean),
+// so cell means equal as decimals are equal doubles and rank tests see their
+// ties, as on R's aggregate(); a cell with no row, or with a missing value among its rows,
 // is missing, and a subject with any missing cell is removed (listwise
 // deletion) with a warning that names the subject and the cell. A between-
 // subject factor that changes within a subject is an Error naming both lines.
@@ -28,6 +30,9 @@ struct CellDesign {
   std::vector<std::vector<double>> delta;               // delta[s][c]: cell value minus the dv offset (exact offset removed)
   std::vector<std::vector<double>> value;               // value[s][c]: cell value (as R holds it)
   std::vector<std::vector<double>> noise;               // noise[s][c]: bound on the rounding error of delta[s][c]
+  std::vector<std::vector<Decimal>> decimal;            // decimal[s][c]: the cell value as a decimal (empty for data
+                                                        // given as doubles); aggregated cells hold their exact mean
+  Measurements dv_scale;                                // the dv's offset and offset_decimal (no rows), for describe()
   double offset = 0.0;                                  // dv offset (value = offset + delta)
   std::vector<std::string> dropped;                     // subjects removed by listwise deletion
   std::vector<std::string> warnings;
@@ -39,6 +44,15 @@ struct CellDesign {
 
 // Requires data.subject to be filled (one id per row).
 Result<CellDesign> build_cell_design(const LongData& data);
+
+// Subject s's mean over `cells` (indices into its cells): {value, delta}.
+// Taken on the decimal digits when the data came as text, so means equal as
+// decimals are equal doubles (ties stay ties for rank tests and zero
+// differences stay zero); else a compensated sum over the count.
+struct CellMean {
+  double value = 0, delta = 0;
+};
+CellMean subject_mean(const CellDesign& d, size_t s, const std::vector<size_t>& cells);
 
 // Each subject's mean over the other within factors at every level of within
 // factor f, [level][subject]: of the values (as R holds them, for rank tests)

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -16,13 +17,22 @@ namespace dtlab::stats::detail {
 
 // The whole distribution: (S, probability) pairs in increasing S; nullopt as below.
 std::optional<std::vector<std::pair<std::int64_t, double>>> friedman_exact_distribution(
-    const std::vector<std::vector<int>>& doubled_ranks, double budget);
+    const std::vector<std::vector<int>>& doubled_ranks, double budget, std::string* why = nullptr);
 
-// P(S >= s_obs) by dynamic programming over the sorted vector of column sums;
-// nullopt when the work (states x permutations, summed over blocks) would
-// exceed `budget` or k > 8.
+// P(S >= s_obs) by dynamic programming over the sorted vector of column sums.
+// nullopt, with the reason in *why, when the work bound (friedman_exact_work)
+// exceeds `budget`, a step would hold more than 8.4e6 vectors or an index
+// table of more than 4.2e6 entries (k = 2, 3 with large n), or k > 8;
+// decided before any enumeration (the bound is counted only up to the
+// budget), so a refusal costs little.
 std::optional<double> friedman_exact_tail(const std::vector<std::vector<int>>& doubled_ranks, std::int64_t s_obs,
-                                          double budget);
+                                          double budget, std::string* why = nullptr);
+
+// Upper bound on the DP's work: state updates (states reachable before each
+// block x the block's distinct arrangements, summed) plus the entries of each
+// step's index tables; infinity for k > 8 or beyond 1e15. About 1e8 take a
+// third of a second on one core of the development machine.
+double friedman_exact_work(const std::vector<std::vector<int>>& doubled_ranks);
 
 // Monte Carlo estimate (b + 1) / (N + 1) with b the resamples with S >= s_obs;
 // progress (if set) is called about 100 times.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/stats/detail/dd.h"
 #include "analysis/stats/detail/sum.h"
 
 namespace dtlab::stats::detail {
@@ -28,21 +29,15 @@ Matrix multiply(const Matrix& x, const Matrix& y) {
   return p;
 }
 
-Matrix kronecker(const Matrix& x, const Matrix& y) {
-  Matrix k(x.rows * y.rows, x.cols * y.cols);
-  for (size_t a = 0; a < x.rows; ++a)
-    for (size_t b = 0; b < x.cols; ++b)
-      for (size_t c = 0; c < y.rows; ++c)
-        for (size_t d = 0; d < y.cols; ++d) k(a * y.rows + c, b * y.cols + d) = x(a, b) * y(c, d);
-  return k;
-}
-
 Matrix crossprod(const Matrix& x) {
+  const Matrix t = transpose(x);  // columns of x as contiguous rows
   Matrix p(x.cols, x.cols);
   for (size_t i = 0; i < x.cols; ++i)
     for (size_t j = 0; j <= i; ++j) {
+      const double* a = &t.a[i * t.cols];
+      const double* b = &t.a[j * t.cols];
       Sum s;
-      for (size_t r = 0; r < x.rows; ++r) s.add(x(r, i) * x(r, j));
+      for (size_t r = 0; r < t.cols; ++r) s.add(a[r] * b[r]);
       p(i, j) = p(j, i) = s.value();
     }
   return p;
@@ -54,20 +49,63 @@ double trace(const Matrix& m) {
   return s.value();
 }
 
-Matrix orthonormal_contrasts(size_t levels) {
-  // Row j (0-based) contrasts level j+1 with the mean of levels 0..j.
-  Matrix h(levels > 0 ? levels - 1 : 0, levels);
-  for (size_t j = 0; j + 1 < levels; ++j) {
-    const double k = static_cast<double>(j + 1);
-    const double norm = std::sqrt(k * (k + 1.0));
-    for (size_t i = 0; i <= j; ++i) h(j, i) = -1.0 / norm;
-    h(j, j + 1) = k / norm;
+Matrix contrast_scores(const Matrix& y, const std::vector<size_t>& levels, const std::vector<bool>& contrast) {
+  assert(levels.size() == contrast.size() && "contrast_scores: one flag per factor");
+  // x holds, per row of y, the tensor (done, L_f, rest): factors before f already
+  // transformed (their output sizes multiply to `done`), f and those after not yet.
+  std::vector<double> x = y.a;
+  size_t rest = y.cols, done = 1;
+  for (size_t f = 0; f < levels.size(); ++f) {
+    const size_t L = levels[f];
+    rest /= L;
+    const size_t out = contrast[f] ? L - 1 : 1, in_row = done * L * rest, out_row = done * out * rest;
+    std::vector<double> z(y.rows * out_row);
+    for (size_t s = 0; s < y.rows; ++s)
+      for (size_t a = 0; a < done; ++a)
+        for (size_t r = 0; r < rest; ++r) {
+          const double* in = &x[s * in_row + a * L * rest + r];  // level l at in[l * rest]
+          double* o = &z[s * out_row + a * out * rest + r];      // output j at o[j * rest]
+          DD prefix(in[0]);
+          for (size_t j = 0; j + 1 < L; ++j) {  // prefix = sum of levels 0..j
+            const double k = static_cast<double>(j + 1), v = in[(j + 1) * rest];
+            if (contrast[f]) {
+              const double hi = k * v;
+              const DD scaled(hi, std::fma(k, v, -hi));  // k v exactly
+              o[j * rest] = (scaled - prefix).value() / std::sqrt(k * (k + 1.0));
+            }
+            prefix = prefix + DD(v);
+          }
+          if (!contrast[f]) o[0] = prefix.value() / std::sqrt(static_cast<double>(L));
+        }
+    x = std::move(z);
+    done *= out;
   }
-  return h;
+  Matrix m(y.rows, done);
+  m.a = std::move(x);
+  return m;
 }
 
-Matrix normalized_mean_row(size_t levels) {
-  return Matrix(1, levels, 1.0 / std::sqrt(static_cast<double>(levels)));
+double sum_of_squares(const Matrix& r) {
+  Sum s;
+  for (double v : r.a) s.add(v * v);
+  return s.value();
+}
+
+double gram_square_trace(const Matrix& r) {
+  Sum s;
+  if (r.rows <= r.cols) {  // r r' (rows x rows): one pass over pairs of rows
+    for (size_t i = 0; i < r.rows; ++i)
+      for (size_t j = 0; j <= i; ++j) {
+        Sum dot;
+        for (size_t c = 0; c < r.cols; ++c) dot.add(r(i, c) * r(j, c));
+        const double g = dot.value();
+        s.add((i == j ? 1.0 : 2.0) * g * g);
+      }
+    return s.value();
+  }
+  const Matrix e = crossprod(r);
+  for (double v : e.a) s.add(v * v);
+  return s.value();
 }
 
 namespace {
@@ -119,29 +157,32 @@ std::optional<Matrix> spd_inverse(const Matrix& m) {
 
 double gram_log_det(const Matrix& r) {
   assert(r.rows >= r.cols && "gram_log_det: needs at least as many rows as columns");
-  Matrix a = r;
+  Matrix a = transpose(r);  // column j of r is row j of a (contiguous)
+  const size_t n = r.rows;
   double log_det = 0.0;
-  for (size_t j = 0; j < a.cols; ++j) {
-    // Householder reflection zeroing a(j+1.., j); the new a(j, j) is -+ the column norm.
+  std::vector<double> v;
+  for (size_t j = 0; j < a.rows; ++j) {
+    // Householder reflection zeroing r(j+1.., j); the new r(j, j) is -+ the column norm.
+    const double* col = &a.a[j * n];
     double scale = 0.0;
-    for (size_t i = j; i < a.rows; ++i) scale = std::max(scale, std::fabs(a(i, j)));
+    for (size_t i = j; i < n; ++i) scale = std::max(scale, std::fabs(col[i]));
     if (scale == 0.0) return -std::numeric_limits<double>::infinity();
     Sum ss;
-    for (size_t i = j; i < a.rows; ++i) ss.add((a(i, j) / scale) * (a(i, j) / scale));
+    for (size_t i = j; i < n; ++i) ss.add((col[i] / scale) * (col[i] / scale));
     const double norm = scale * std::sqrt(ss.value());
-    const double alpha = a(j, j) > 0 ? -norm : norm;
+    const double alpha = col[j] > 0 ? -norm : norm;
     log_det += 2.0 * std::log(norm);
-    std::vector<double> v(a.rows - j);
-    for (size_t i = j; i < a.rows; ++i) v[i - j] = a(i, j);
+    v.assign(col + j, col + n);
     v[0] -= alpha;
     Sum vv;
     for (double x : v) vv.add(x * x);
     if (vv.value() == 0.0) continue;
-    for (size_t c = j + 1; c < a.cols; ++c) {
+    for (size_t c = j + 1; c < a.rows; ++c) {
+      double* other = &a.a[c * n];
       Sum dot;
-      for (size_t i = j; i < a.rows; ++i) dot.add(v[i - j] * a(i, c));
+      for (size_t i = j; i < n; ++i) dot.add(v[i - j] * other[i]);
       const double f = 2.0 * dot.value() / vv.value();
-      for (size_t i = j; i < a.rows; ++i) a(i, c) -= f * v[i - j];
+      for (size_t i = j; i < n; ++i) other[i] -= f * v[i - j];
     }
   }
   return log_det;

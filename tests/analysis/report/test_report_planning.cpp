@@ -133,6 +133,25 @@ TEST(Planning, BadOptionsAreInputErrors) {
   EXPECT_TRUE(plan(dir.file("s.sqlite"), o).ok());
 }
 
+// Broke: `dtlab power` printed the Greenhouse-Geisser p beside the uncorrected df.
+// R (tests/analysis/data/stats_r_followups.R, section 8): anova(aov_car(score ~ Error(id/week), complete
+// subjects of pingouin_rm_anova_wide.csv), correction = "GG") -> num Df 2.08298799390625,
+// den Df 16.66390395125, Pr(>F) 0.0166993073368505.
+TEST(PowerCli, ThePrintedDfAreThoseOfTheP) {
+  TempDir dir;
+  build_pingouin_wide(dir.file("w.sqlite"));
+  const auto r = test::run_dtlab("power " + dir.file("w.sqlite") + " --replications 0 --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const json j = json::parse(r.out);
+  const json& week = planned(j.at("effects"), "T1", "completion time", "week");
+  EXPECT_NEAR(number(week.at("p_df1")), 2.08298799390625, 1e-9);
+  EXPECT_NEAR(number(week.at("p_df2")), 16.66390395125, 1e-9);
+  EXPECT_NEAR(number(week.at("p")), 0.0166993073368505, 1e-10);
+  EXPECT_EQ(number(week.at("df1")), 3);
+  const auto text = test::run_dtlab("power " + dir.file("w.sqlite") + " --replications 0 --quiet");
+  EXPECT_NE(text.out.find("F(2.08, 16.66) = 5.20, p = 0.0167 (Greenhouse-Geisser)"), std::string::npos) << text.out;
+}
+
 TEST(PowerCli, JsonTextAndExitCodes) {
   TempDir dir;
   build_statsmodels_t1(dir.file("s.sqlite"));
@@ -159,7 +178,16 @@ TEST(PowerCli, JsonTextAndExitCodes) {
   const auto text = test::run_dtlab("power " + db + " --replications 20 --quiet");
   ASSERT_EQ(text.rc, 0) << text.err;
   EXPECT_NE(text.out.find("T1, completion time: transparency"), std::string::npos) << text.out;
-  EXPECT_NE(text.out.find("smallest n for 80% power: 6 (analytic)"), std::string::npos) << text.out;
+  // The reference protocol's 4 x 4 Latin square: 6 leaves two rows used once more than the others.
+  EXPECT_NE(text.out.find("smallest n for 80% power: 6 (analytic; 8 keeps the 4 order rows of the latin-square balanced)"),
+            std::string::npos) << text.out;
+  EXPECT_EQ(j.at("order_rows"), 4);
+  EXPECT_EQ(j.at("order_scheme"), "latin-square");
+  EXPECT_EQ(number(t1.at("n_for_80")), 6);
+  EXPECT_EQ(number(t1.at("n_for_80_balanced")), 8);
+  EXPECT_EQ(number(t1.at("p_df1")), 1);  // a 1-df effect: its p is uncorrected
+  const auto sizes = test::run_dtlab("power " + db + " --participants 6,8 --replications 0 --quiet");
+  EXPECT_NE(sizes.out.find("6 (next balanced: 8) is not a multiple"), std::string::npos) << sizes.out;
 
   EXPECT_EQ(test::run_dtlab("power " + db + " --participants 1").rc, 2);
   EXPECT_EQ(test::run_dtlab("power " + db + " --alpha 2").rc, 2);

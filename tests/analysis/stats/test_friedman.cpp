@@ -132,6 +132,122 @@ TEST(Friedman, ExactDistributionMatchesTheNullTables) {
   EXPECT_GT(checked, 2500u);
 }
 
+// s_obs (doubled ranks: 4 sum R_j^2) of an untied design's Q.
+std::int64_t doubled_s(double q, int k, int n) {
+  const double sum_r2 = q * n * k * (k + 1) / 12.0 + n * n * k * (k + 1.0) * (k + 1.0) / 4.0;
+  return static_cast<std::int64_t>(std::llround(4.0 * sum_r2));
+}
+
+std::vector<std::vector<int>> untied(int k, int n) {
+  std::vector<std::vector<int>> ranks(n, std::vector<int>(k));
+  for (auto& row : ranks)
+    for (int j = 0; j < k; ++j) row[j] = 2 * (j + 1);
+  return ranks;
+}
+
+// Exact critical values (k = 3..6, n up to 15, 10, 8 and 5; beyond the null
+// tables for k = 3..5): the tail at each Q_crit is the listed exact size.
+TEST(Friedman, ExactTailsAtTheCriticalValues) {
+  std::ifstream in(test::data_path("friedman_exact_critical_values.txt"));
+  ASSERT_TRUE(in.good());
+  std::string line;
+  size_t checked = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    int k, n;
+    double alpha, q, size;
+    ss >> k >> n >> alpha >> q >> size;
+    const auto tail = detail::friedman_exact_tail(untied(k, n), doubled_s(q, k, n), 1e10);
+    ASSERT_TRUE(tail.has_value()) << line;
+    EXPECT_TRUE(printed(*tail, [&] {
+      std::ostringstream t;
+      t << size;
+      return t.str();
+    }())) << line;
+    EXPECT_LE(*tail, alpha) << line;
+    ++checked;
+  }
+  EXPECT_GT(checked, 120u);
+}
+
+// Broke: --exact always at k = 6, n = 12 took about 280 s (a hash map of
+// sorted rank-sum vectors over 720 arrangements per block); now 1.5-3.5 s of
+// CPU. The whole distribution against integer counts from an independent
+// program (data/friedman_exact_counts.cpp): every attainable S of k = 6, n = 12.
+TEST(Friedman, ExactDistributionKSixNTwelveMatchesIntegerCounts) {
+  std::ifstream in(test::data_path("friedman_exact_k6_n12.txt"));
+  ASSERT_TRUE(in.good());
+  const auto dist = detail::friedman_exact_distribution(untied(6, 12), 3e9);
+  ASSERT_TRUE(dist.has_value());
+  std::map<std::int64_t, double> tail;  // P(S' >= S), S of the undoubled ranks
+  double above = 0;
+  for (auto it = dist->rbegin(); it != dist->rend(); ++it) tail[it->first / 4] = (above += it->second);
+  std::string line;
+  size_t checked = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    long long s;
+    double q;
+    std::string count, tail_count, total;
+    ss >> s >> q >> count >> tail_count >> total;
+    // counts up to 1.9e34: their ratio in long double is exact to far below the tolerance
+    const double expected = static_cast<double>(std::strtold(tail_count.c_str(), nullptr) / std::strtold(total.c_str(), nullptr));
+    ASSERT_EQ(tail.count(s), 1u) << "S = " << s << " attainable in the reference";
+    EXPECT_TRUE(near_rel(tail[s], expected, 1e-12)) << "S = " << s;
+    ++checked;
+  }
+  EXPECT_EQ(checked, dist->size());
+  EXPECT_EQ(checked, 1233u);
+}
+
+// The same through friedman() on data: --exact always at k = 6, n = 12
+// (untied blocks, Q = 6.047619048): tail_count / total =
+// 5984015105972443171753432509655680 / 19408409961765342806016000000000000.
+TEST(Friedman, ExactAlwaysComputesKSixNTwelve) {
+  const std::vector<std::vector<double>> y{
+      {79, 32, 94, 45, 88, 83}, {67, 6, 65, 108, 43, 98}, {6, 20, 14, 47, 60, 31}, {48, 72, 19, 82, 43, 16},
+      {93, 27, 52, 35, 23, 98}, {49, 23, 103, 18, 29, 94}, {79, 56, 16, 0, 26, 99}, {27, 24, 43, 49, 37, 84},
+      {86, 80, 26, 23, 88, 25}, {49, 41, 8, 55, 65, 36}, {18, 33, 8, 42, 38, 77}, {75, 3, 82, 95, 102, 58}};
+  ExactOptions always;
+  always.mode = ExactMode::always;
+  const FriedmanResult r = friedman_blocks(y, always);
+  EXPECT_FALSE(r.ties);
+  EXPECT_EQ(r.exact_method, "exact");
+  EXPECT_TRUE(r.exact_note.empty());
+  EXPECT_TRUE(near_rel(r.Q, 6.047619047619048, 1e-12));
+  EXPECT_TRUE(near_rel(r.p_exact, 5984015105972443171753432509655680.0L / 19408409961765342806016000000000000.0L, 1e-12));
+  // --exact auto (3e8 state updates) leaves it (9.4e8) and says why.
+  const FriedmanResult automatic = friedman_blocks(y);
+  EXPECT_EQ(automatic.exact_method, "none");
+  EXPECT_NE(automatic.exact_note.find("state updates for n = 12, k = 6"), std::string::npos) << automatic.exact_note;
+}
+
+// Broke: at k = 8, n = 12 `always` spent 25 s and gave no p_exact with an
+// empty exact_note. The work is bounded before any enumeration: the note
+// says why at once, and p_exact is null.
+TEST(Friedman, BeyondTheBudgetTheNoteSaysWhy) {
+  std::vector<std::vector<double>> y;
+  for (int i = 0; i < 12; ++i) {
+    std::vector<double> row;
+    for (int j = 0; j < 8; ++j) row.push_back((i * 5 + j * 3) % 8 + 0.5 * j);
+    y.push_back(row);
+  }
+  ExactOptions always;
+  always.mode = ExactMode::always;
+  const FriedmanResult r = friedman_blocks(y, always);
+  EXPECT_TRUE(std::isnan(r.p_exact));
+  EXPECT_EQ(r.exact_method, "none");
+  EXPECT_NE(r.exact_note.find("not enumerated: it needs more than 3e+09 state updates for n = 12, k = 8 (the limit)"),
+            std::string::npos)
+      << r.exact_note;
+  EXPECT_NE(r.exact_note.find("monte-carlo=N"), std::string::npos) << r.exact_note;
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("p_exact not enumerated"), std::string::npos);
+  EXPECT_GT(detail::friedman_exact_work(untied(8, 12)), 3e9);
+}
+
 TEST(Friedman, MonteCarloIsSeededAndAgreesWithExact) {
   ExactOptions mc;
   mc.mode = ExactMode::monte_carlo;

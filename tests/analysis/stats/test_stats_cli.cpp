@@ -55,8 +55,9 @@ TEST(StatsCli, RmAnovaJsonHasEveryFieldPerEffect) {
   const std::set<std::string> expected{"effect",     "df1",        "df2",        "ss",        "ss_error",
                                        "mse",        "F",          "p",          "log10_p",   "eta_p2",
                                        "eta_p2_ci90_low", "eta_p2_ci90_high", "eta_g2", "mauchly_W", "mauchly_p",
-                                       "gg_epsilon", "hf_epsilon", "df1_gg",     "df2_gg",    "p_gg",
-                                       "log10_p_gg", "df1_hf",     "df2_hf",     "p_hf",      "log10_p_hf", "apa"};
+                                       "gg_epsilon", "hf_epsilon", "df1_gg",     "df2_gg",    "mse_gg",
+                                       "p_gg",       "log10_p_gg", "df1_hf",     "df2_hf",    "mse_hf",
+                                       "p_hf",       "log10_p_hf", "apa"};
   ASSERT_EQ(j["effects"].size(), 3u);
   for (const auto& e : j["effects"]) {
     std::set<std::string> keys;
@@ -74,7 +75,13 @@ TEST(StatsCli, RmAnovaJsonHasEveryFieldPerEffect) {
   // Maxwell & Delaney: noise F(1, 9) = 33.77, MSE = 76140 / 9
   EXPECT_EQ(j["effects"][1]["apa"].get<std::string>().substr(0, 16), "F(1, 9) = 33.77,");
   EXPECT_NEAR(number(j["effects"][1]["mse"]), 76140.0 / 9.0, 1e-9);
+  // afex 1.2.1: anova(aov_car(rt ~ Error(id/(angle * noise)), md_12.1)) -> angle MSE 3702.022471910 beside den Df 17.31
+  EXPECT_NEAR(number(angle["mse_gg"]), 3702.022471910, 1e-8);
+  EXPECT_NE(j["eta_p2_ci90_method"].get<std::string>().find("MBESS"), std::string::npos);
   EXPECT_EQ(j["descriptives"].size(), 6u);
+  const CliRun text = dtlab("stats rm-anova --data " + data("md_12.1.csv") + " --dv rt --subject id --within angle,noise");
+  EXPECT_NE(text.out.find("MSE (GG)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("df, MSE and p uncorrected"), std::string::npos) << text.out;
 }
 
 TEST(StatsCli, FriedmanAndWilcoxonJsonFields) {
@@ -324,6 +331,62 @@ TEST(StatsCli, RmAnovaFollowUpsAndWilcoxonOfOneFactor) {
   // R: t.test(rowMeans(absent cells), rowMeans(present cells), paired = TRUE) -> mean difference -138
   EXPECT_NEAR(number(json::parse(w.out)["paired_t"]["mean_difference"]), -138, 1e-10);
   EXPECT_EQ(dtlab("stats wilcoxon --data " + data("md_12.1.csv") + " --dv rt --subject id --within noise,angle").rc, 2);
+}
+
+// Issue 23's statistics through the command line, each value against R
+// (tests/analysis/data/stats_r_followups.R; the library tests give the details).
+TEST(StatsCli, MixedFollowUpsAggregatedTiesAndExactNotes) {
+  // R: pairs(emmeans(aov_car(time ~ group + Error(id/task), d), ~ task), adjust = "holm"): search - locate p 0.1109
+  const CliRun m = dtlab("stats rm-anova --data " + data("mixed_posthoc.csv") +
+                         " --dv time --subject id --within task --between group --posthoc --simple-effects --json");
+  ASSERT_EQ(m.rc, 0) << m.err;
+  const json mj = json::parse(m.out);
+  const json& sl = mj["posthoc"]["task"][1];
+  EXPECT_EQ(sl["test"], "emmeans t");
+  EXPECT_EQ(number(sl["df"]), 10);
+  EXPECT_TRUE(test::printed(number(sl["p_holm"]), "0.1109"));
+  // R: joint_tests(fit, by = "group"): task at novice F(2, 10) = 16.623, p = 0.000661135971654593
+  bool found = false;
+  for (const auto& row : mj["simple_effects"])
+    if (row["factor"] == "task" && row["at"]["group"] == "novice") {
+      found = true;
+      EXPECT_EQ(row["test"], "emmeans F");
+      EXPECT_NEAR(number(row["joint_test"]["p"]), 0.000661135971654593, 1e-12);
+    }
+  EXPECT_TRUE(found) << m.out;
+  const CliRun mt = dtlab("stats rm-anova --data " + data("mixed_posthoc.csv") +
+                          " --dv time --subject id --within task --between group --simple-effects");
+  EXPECT_NE(mt.out.find("task at group=novice: F(2, 10) = 16.6228"), std::string::npos) << mt.out;
+  // A between factor's contrast has Cohen's d (SD pooled over the groups), labelled d, not d_z.
+  // R (stats_r_followups.R, section 3): diff(tapply(time, group, mean)) / pooled SD at task = count: 2.37416216015944
+  EXPECT_NE(mt.out.find("p_holm = 0.00922188, d = 2.37416\n"), std::string::npos) << mt.out;
+
+  // R: friedman.test on aggregate(time ~ participant + condition, aggregate_ties.csv, mean): 1.333333333333
+  const CliRun f = dtlab("stats friedman --data " + data("aggregate_ties.csv") +
+                         " --dv time --subject participant --within condition --aggregate mean --json");
+  ASSERT_EQ(f.rc, 0) << f.err;
+  EXPECT_NEAR(number(json::parse(f.out)["Q"]), 1.333333333333, 1e-11);
+  // R: wilcox.test(A, B, paired = TRUE) on the means: V = 0, p-value = 0.371093369523 (four zeros dropped)
+  const CliRun w = dtlab("stats wilcoxon --data " + data("aggregate_ties.csv") +
+                         " --dv time --subject participant --within condition --where condition!=C --aggregate mean --json");
+  ASSERT_EQ(w.rc, 0) << w.err;
+  EXPECT_NEAR(number(json::parse(w.out)["p"]), 0.371093369523, 1e-11);
+
+  // k = 8, n = 12: refused at once with the reason in exact_note (was empty after 25 s).
+  std::string csv = "id,cond,y\n";
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 8; ++j) csv += "s" + std::to_string(i) + ",c" + std::to_string(j) + "," + std::to_string((i * 5 + j * 3) % 8 + 10 * j) + "\n";
+  const CliRun k8 = dtlab("stats friedman --data " + write_temp("k8.csv", csv) + " --dv y --subject id --within cond --exact always --json");
+  ASSERT_EQ(k8.rc, 0) << k8.err;
+  const json kj = json::parse(k8.out);
+  EXPECT_TRUE(kj["p_exact"].is_null());
+  EXPECT_NE(kj["exact_note"].get<std::string>().find("state updates for n = 12, k = 8"), std::string::npos) << k8.out;
+
+  // Values near the smallest double: F as for the same data x 1e310 (R: 44.5708154506434), with a warning.
+  const CliRun tiny = dtlab("stats rm-anova --data " + data("tiny_values.csv") + " --dv y --subject id --within cond --json");
+  ASSERT_EQ(tiny.rc, 0) << tiny.err;
+  EXPECT_NEAR(number(json::parse(tiny.out)["effects"][0]["F"]), 44.5708154506434, 1e-10);
+  EXPECT_NE(tiny.err.find("below the smallest normal double"), std::string::npos) << tiny.err;
 }
 
 }  // namespace
