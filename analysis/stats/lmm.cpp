@@ -4,11 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include "analysis/stats/detail/glmm.h"
 #include "analysis/stats/detail/lmm_fit.h"
 #include "analysis/stats/detail/lmm_model.h"
 #include "analysis/stats/detail/satterthwaite.h"
+#include "analysis/stats/distributions.h"
 
 namespace dtlab::stats {
 namespace {
@@ -17,18 +20,21 @@ using detail::FormulaTerm;
 using detail::GaussianFit;
 using detail::PreparedModel;
 
-std::string describe(const GaussianFit& f) {
+// Why a fit was not kept: lme4's singular message or its warnings.
+template <class Fit>
+std::string describe(const Fit& f) {
   if (f.conv.singular) return "singular fit (lme4: " + f.conv.messages.front() + ")";
   std::string s;
-  for (const auto& w : f.opt.warnings) s += (s.empty() ? "" : "; ") + w;
-  for (const auto& w : f.conv.warnings) s += (s.empty() ? "" : "; ") + w;
+  for (const auto* list : {&f.opt.warnings, &f.conv.warnings, &f.warnings})
+    for (const auto& w : *list) s += (s.empty() ? "" : "; ") + w;
   return "did not converge (" + s + ")";
 }
 
 // The slope column (not an intercept) with the smallest variance among the || terms.
-bool drop_smallest_slope(const PreparedModel& m, GaussianFit& f, std::vector<FormulaTerm>& terms, std::string& what) {
+template <class Fit>
+bool drop_smallest_slope(const PreparedModel& m, const Fit& f, std::vector<FormulaTerm>& terms, std::string& what) {
   const auto variances = detail::column_variances(f);
-  const auto& lme4_terms = f.dev->terms();
+  const auto& lme4_terms = f.lme4_terms();
   double best = std::numeric_limits<double>::infinity();
   int best_group = -1, best_column = -1;
   for (size_t t = 0; t < lme4_terms.size(); ++t)
@@ -56,23 +62,39 @@ bool has_slopes(const std::vector<FormulaTerm>& terms) {
 
 // --random max: maximal, then without correlations, then dropping the
 // smallest slope variance, until a fit is regular (or only intercepts remain).
-GaussianFit fit_with_fallback(const PreparedModel& m, std::vector<FormulaTerm> terms, const LmmOptions& o,
-                              std::vector<std::string>& steps) {
-  GaussianFit f = detail::fit_gaussian(m, terms, o.reml);
+template <class Fit, class FitFn>
+Fit fit_with_fallback(const PreparedModel& m, std::vector<FormulaTerm> terms, FitFn fit, std::vector<std::string>& steps) {
+  Fit f = fit(terms);
   if (f.regular() || !has_slopes(terms)) return f;
   steps.push_back(detail::lme4_formula(m, terms) + ": " + describe(f) + "; refitted without correlations");
   for (auto& t : terms) t.correlated = false;
-  f = detail::fit_gaussian(m, terms, o.reml);
+  f = fit(terms);
   while (!f.regular() && has_slopes(terms)) {
     std::string dropped;
     const std::string formula = detail::lme4_formula(m, terms);
     if (!drop_smallest_slope(m, f, terms, dropped)) break;
     steps.push_back(formula + ": " + describe(f) + "; dropped " + dropped);
-    f = detail::fit_gaussian(m, terms, o.reml);
+    f = fit(terms);
   }
   steps.push_back(detail::lme4_formula(m, terms) + ": " +
                   (f.regular() ? std::string("kept") : "kept, " + describe(f) + ", with no slope left to drop"));
   return f;
+}
+
+// afex's method = "LRT" for an LMM: ML fits of the full model and of X without each term.
+void add_gaussian_lrt(LmmFit& fit, const PreparedModel& m, const std::vector<FormulaTerm>& terms) {
+  const double full = detail::fit_gaussian(m, m.design.X, terms, false).opt.fval;
+  for (const auto& term : m.design.terms) {
+    const GaussianFit reduced = detail::fit_gaussian(m, detail::drop_term(m.design, term), terms, false);
+    LmmLrtRow row{term.name, static_cast<double>(term.columns.size()), 0, 0, 0, full, reduced.opt.fval, {}};
+    row.chisq = std::max(0.0, reduced.opt.fval - full);
+    const Tail tail = chi_squared_upper(row.chisq, row.df);
+    row.p = tail.p;
+    row.log10_p = tail.log10_p;
+    row.warnings = reduced.conv.messages;
+    row.warnings.insert(row.warnings.end(), reduced.conv.warnings.begin(), reduced.conv.warnings.end());
+    fit.lrt.push_back(row);
+  }
 }
 
 }  // namespace
@@ -106,14 +128,20 @@ Result<LmmFit> fit_lmm(const LmmData& data, const LmmOptions& o) {
   auto prepared = detail::prepare_model(data, o);
   if (!prepared) return prepared.error();
   const PreparedModel& m = *prepared;
-  std::vector<std::string> notes;
-  std::vector<FormulaTerm> terms = detail::random_structure(m, o.random, notes);
-  if (o.family == Family::binomial)
-    return Error{data.data.source, 0, 0, "", "the binomial family is not available yet"};
-  std::vector<std::string> steps = notes;
-  GaussianFit f = o.random == RandomEffects::maximal ? fit_with_fallback(m, terms, o, steps)
-                                                      : detail::fit_gaussian(m, terms, o.reml);
-  LmmFit fit = detail::report_gaussian(m, f, o);
+  std::vector<std::string> steps;
+  const std::vector<FormulaTerm> terms = detail::random_structure(m, o.random, steps);
+  const bool max = o.random == RandomEffects::maximal;
+  LmmFit fit;
+  if (o.family == Family::binomial) {
+    auto one = [&](const std::vector<FormulaTerm>& t) { return detail::fit_binomial(m, m.design.X, t); };
+    detail::BinomialFit f = max ? fit_with_fallback<detail::BinomialFit>(m, terms, one, steps) : one(terms);
+    fit = detail::report_binomial(m, f, o);
+  } else {
+    auto one = [&](const std::vector<FormulaTerm>& t) { return detail::fit_gaussian(m, m.design.X, t, o.reml); };
+    GaussianFit f = max ? fit_with_fallback<GaussianFit>(m, terms, one, steps) : one(terms);
+    fit = detail::report_gaussian(m, f, o);
+    if (o.lrt) add_gaussian_lrt(fit, m, f.formula_terms);
+  }
   fit.dv_name = data.data.dv_name;
   fit.fallback = steps;
   if (m.missing > 0)

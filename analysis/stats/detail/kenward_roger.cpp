@@ -73,7 +73,7 @@ KrModel kenward_roger_model(LmmDeviance& dev, const std::vector<double>& theta, 
       const int level = dev.groupings()[static_cast<size_t>(dev.terms()[t].grouping)].index[static_cast<size_t>(r)];
       for (int a = 0; a < tm.k[t]; ++a) {
         idx.push_back(tm.offset[t] + level * tm.k[t] + a);
-        val.push_back(X(r, dev.terms()[t].columns[static_cast<size_t>(a)]));
+        val.push_back(dev.Zsrc()(r, dev.terms()[t].columns[static_cast<size_t>(a)]));
       }
     }
     for (size_t a = 0; a < idx.size(); ++a) {

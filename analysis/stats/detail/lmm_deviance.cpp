@@ -8,9 +8,9 @@
 
 namespace dtlab::stats::detail {
 
-LmmDeviance::LmmDeviance(Eigen::MatrixXd X, Eigen::VectorXd y, std::vector<Grouping> groupings,
+LmmDeviance::LmmDeviance(Eigen::MatrixXd X, Eigen::MatrixXd Zsrc, Eigen::VectorXd y, std::vector<Grouping> groupings,
                          std::vector<RandomTerm> terms, bool reml)
-    : X_(std::move(X)), y_(std::move(y)), groupings_(std::move(groupings)), terms_(std::move(terms)), reml_(reml) {
+    : X_(std::move(X)), Zsrc_(std::move(Zsrc)), groupings_(std::move(groupings)), terms_(std::move(terms)), reml_(reml) {
   for (const auto& t : terms_) {
     const int k = static_cast<int>(t.columns.size());
     k_.push_back(k);
@@ -21,34 +21,21 @@ LmmDeviance::LmmDeviance(Eigen::MatrixXd X, Eigen::VectorXd y, std::vector<Group
     for (int j = 0; j < k; ++j)  // column-major lower triangle: (j, j) first in each column
       for (int i = j; i < k; ++i) lower_.push_back(i == j ? 0.0 : -std::numeric_limits<double>::infinity());
   }
-  accumulate(y_);
+  find_pairs();
+  set_response(y);
   build_pattern();
 }
 
-// One pass over the rows: Z'Z in blocks, Z'X, Z'y, X'X, X'y, y'y.
-void LmmDeviance::accumulate(const Eigen::VectorXd& y) {
-  const Eigen::Index n = X_.rows(), p = X_.cols();
-  const size_t nt = terms_.size();
-  XtX_ = X_.transpose() * X_;
-  Xty_ = X_.transpose() * y;
-  yty_ = y.squaredNorm();
-  ZtX_ = Eigen::MatrixXd::Zero(q_, p);
-  Zty_ = Eigen::VectorXd::Zero(q_);
+// Which blocks of Z'Z are nonzero: one hashing pass, remembered per row.
+void LmmDeviance::find_pairs() {
+  const size_t nt = terms_.size(), n = static_cast<size_t>(X_.rows());
   std::unordered_map<std::uint64_t, size_t> where;
   std::uint64_t max_levels = 1;
   for (int l : nl_) max_levels = std::max<std::uint64_t>(max_levels, static_cast<std::uint64_t>(l));
-  std::vector<Eigen::VectorXd> z(nt);
+  row_pairs_.reserve(n * nt * (nt + 1) / 2);
   std::vector<int> level(nt);
-  for (Eigen::Index r = 0; r < n; ++r) {
-    for (size_t t = 0; t < nt; ++t) {
-      const auto& term = terms_[t];
-      z[t].resize(k_[t]);
-      for (int j = 0; j < k_[t]; ++j) z[t](j) = X_(r, term.columns[static_cast<size_t>(j)]);
-      level[t] = groupings_[static_cast<size_t>(term.grouping)].index[static_cast<size_t>(r)];
-      const int row0 = offset_[t] + level[t] * k_[t];
-      ZtX_.middleRows(row0, k_[t]).noalias() += z[t] * X_.row(r);
-      Zty_.segment(row0, k_[t]) += z[t] * y(r);
-    }
+  for (size_t r = 0; r < n; ++r) {
+    for (size_t t = 0; t < nt; ++t) level[t] = groupings_[static_cast<size_t>(terms_[t].grouping)].index[r];
     for (size_t t1 = 0; t1 < nt; ++t1)
       for (size_t t2 = 0; t2 <= t1; ++t2) {
         const std::uint64_t key =
@@ -60,7 +47,45 @@ void LmmDeviance::accumulate(const Eigen::VectorXd& y) {
           pairs_.push_back({static_cast<int>(t1), static_cast<int>(t2), level[t1], level[t2], zz_.size(), 0});
           zz_.resize(zz_.size() + static_cast<size_t>(k_[t1] * k_[t2]), 0.0);
         }
-        Eigen::Map<Eigen::MatrixXd> B(zz_.data() + pairs_[it->second].b, k_[t1], k_[t2]);
+        row_pairs_.push_back(static_cast<int>(it->second));
+      }
+  }
+}
+
+void LmmDeviance::set_response(const Eigen::VectorXd& y, const Eigen::VectorXd& sqrt_w) {
+  y_ = y;
+  sqrt_w_ = sqrt_w;
+  const bool weighted = sqrt_w.size() > 0;
+  const Eigen::Index n = X_.rows(), p = X_.cols();
+  const size_t nt = terms_.size();
+  if (weighted) {
+    const Eigen::MatrixXd Xw = sqrt_w.asDiagonal() * X_;
+    const Eigen::VectorXd yw = sqrt_w.cwiseProduct(y);
+    XtX_ = Xw.transpose() * Xw;
+    Xty_ = Xw.transpose() * yw;
+    yty_ = yw.squaredNorm();
+  } else {
+    XtX_ = X_.transpose() * X_;
+    Xty_ = X_.transpose() * y;
+    yty_ = y.squaredNorm();
+  }
+  ZtX_ = Eigen::MatrixXd::Zero(q_, p);
+  Zty_ = Eigen::VectorXd::Zero(q_);
+  std::fill(zz_.begin(), zz_.end(), 0.0);
+  std::vector<Eigen::VectorXd> z(nt);
+  for (size_t t = 0; t < nt; ++t) z[t].resize(k_[t]);
+  const int* pr = row_pairs_.data();
+  for (Eigen::Index r = 0; r < n; ++r) {
+    const double w = weighted ? sqrt_w(r) : 1.0;
+    for (size_t t = 0; t < nt; ++t) {
+      for (int j = 0; j < k_[t]; ++j) z[t](j) = w * Zsrc_(r, terms_[t].columns[static_cast<size_t>(j)]);
+      const int row0 = offset_[t] + groupings_[static_cast<size_t>(terms_[t].grouping)].index[static_cast<size_t>(r)] * k_[t];
+      ZtX_.middleRows(row0, k_[t]).noalias() += (w * z[t]) * X_.row(r);
+      Zty_.segment(row0, k_[t]) += z[t] * (w * y(r));
+    }
+    for (size_t t1 = 0; t1 < nt; ++t1)
+      for (size_t t2 = 0; t2 <= t1; ++t2) {
+        Eigen::Map<Eigen::MatrixXd> B(zz_.data() + pairs_[static_cast<size_t>(*pr++)].b, k_[t1], k_[t2]);
         B.noalias() += z[t1] * z[t2].transpose();
       }
   }
@@ -103,10 +128,14 @@ Eigen::MatrixXd LmmDeviance::term_factor(size_t t, const std::vector<double>& th
   return T;
 }
 
-bool LmmDeviance::update(const std::vector<double>& theta) {
+void LmmDeviance::set_theta(const std::vector<double>& theta) {
+  T_.resize(terms_.size());
+  for (size_t t = 0; t < terms_.size(); ++t) T_[t] = term_factor(t, theta);
+}
+
+bool LmmDeviance::update(const std::vector<double>& theta, bool fixed) {
   const size_t nt = terms_.size();
-  T_.resize(nt);
-  for (size_t t = 0; t < nt; ++t) T_[t] = term_factor(t, theta);
+  set_theta(theta);
   double* values = A_.valuePtr();
   std::fill(values, values + A_.nonZeros(), 0.0);
   for (const auto& pr : pairs_) {
@@ -134,10 +163,11 @@ bool LmmDeviance::update(const std::vector<double>& theta) {
       LZX.middleRows(r0, k_[t]).noalias() = T_[t].transpose() * ZtX_.middleRows(r0, k_[t]);
       LZy.segment(r0, k_[t]).noalias() = T_[t].transpose() * Zty_.segment(r0, k_[t]);
     }
-  RZX_ = llt_.permutationP() * LZX;
-  llt_.matrixL().solveInPlace(RZX_);
   cu_ = llt_.permutationP() * LZy;
   llt_.matrixL().solveInPlace(cu_);
+  if (!fixed) return true;
+  RZX_ = llt_.permutationP() * LZX;
+  llt_.matrixL().solveInPlace(RZX_);
   Eigen::MatrixXd down = XtX_;
   down.noalias() -= RZX_.transpose() * RZX_;
   rx_.compute(down);
@@ -151,6 +181,26 @@ bool LmmDeviance::update(const std::vector<double>& theta) {
   return true;
 }
 
+Eigen::VectorXd LmmDeviance::u_only() const {
+  Eigen::VectorXd v = cu_;
+  llt_.matrixU().solveInPlace(v);
+  return llt_.permutationPinv() * v;
+}
+
+Eigen::VectorXd LmmDeviance::random_part(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(X_.rows());
+  for (size_t t = 0; t < terms_.size(); ++t) {
+    const auto& g = groupings_[static_cast<size_t>(terms_[t].grouping)];
+    std::vector<Eigen::VectorXd> b(static_cast<size_t>(nl_[t]));
+    for (int l = 0; l < nl_[t]; ++l) b[static_cast<size_t>(l)] = T_[t] * u.segment(offset_[t] + l * k_[t], k_[t]);
+    for (Eigen::Index i = 0; i < X_.rows(); ++i) {
+      const Eigen::VectorXd& bl = b[static_cast<size_t>(g.index[static_cast<size_t>(i)])];
+      for (int j = 0; j < k_[t]; ++j) out(i) += Zsrc_(i, terms_[t].columns[static_cast<size_t>(j)]) * bl(j);
+    }
+  }
+  return out;
+}
+
 Eigen::VectorXd LmmDeviance::u() const {
   Eigen::VectorXd v = cu_ - RZX_ * beta_;
   llt_.matrixU().solveInPlace(v);
@@ -159,15 +209,8 @@ Eigen::VectorXd LmmDeviance::u() const {
 
 double LmmDeviance::residual_pwrss() const {
   const Eigen::VectorXd uu = u();
-  Eigen::VectorXd r = y_ - X_ * beta_;
-  for (size_t t = 0; t < terms_.size(); ++t) {
-    const auto& g = groupings_[static_cast<size_t>(terms_[t].grouping)];
-    for (Eigen::Index i = 0; i < X_.rows(); ++i) {
-      const int r0 = offset_[t] + g.index[static_cast<size_t>(i)] * k_[t];
-      const Eigen::VectorXd b = T_[t] * uu.segment(r0, k_[t]);
-      for (int j = 0; j < k_[t]; ++j) r(i) -= X_(i, terms_[t].columns[static_cast<size_t>(j)]) * b(j);
-    }
-  }
+  Eigen::VectorXd r = y_ - X_ * beta_ - random_part(uu);
+  if (sqrt_w_.size() > 0) r = r.cwiseProduct(sqrt_w_);
   return r.squaredNorm() + uu.squaredNorm();
 }
 

@@ -23,9 +23,23 @@ namespace dtlab::stats::detail {
 
 class LmmDeviance {
  public:
-  // X: rows x p; y: the response (centred by the caller); terms in lme4's order.
-  LmmDeviance(Eigen::MatrixXd X, Eigen::VectorXd y, std::vector<Grouping> groupings, std::vector<RandomTerm> terms,
-              bool reml);
+  // X: rows x p fixed effects; Zsrc: the columns the random terms name (the
+  // full fixed design, also when X lacks a term for a likelihood-ratio test);
+  // y: the response (centred by the caller); terms in lme4's order.
+  LmmDeviance(Eigen::MatrixXd X, Eigen::MatrixXd Zsrc, Eigen::VectorXd y, std::vector<Grouping> groupings,
+              std::vector<RandomTerm> terms, bool reml);
+
+  // Replaces the response and the row weights (sqrt_w: square roots, empty = all 1):
+  // the cross-products are formed again, in one pass over the rows (the GLMM's PIRLS).
+  void set_response(const Eigen::VectorXd& y, const Eigen::VectorXd& sqrt_w = Eigen::VectorXd());
+  // Sets Lambda_theta without factorising (for random_part()).
+  void set_theta(const std::vector<double>& theta);
+  // Factorises at theta; with fixed = false only L and cu (enough for u_only()).
+  bool update(const std::vector<double>& theta, bool fixed = true);
+  // The penalised least-squares u for the current response with beta = 0 (after update).
+  Eigen::VectorXd u_only() const;
+  // Z Lambda u for every row, at theta (as last updated).
+  Eigen::VectorXd random_part(const Eigen::VectorXd& u) const;
 
   size_t n_theta() const { return lower_.size(); }
   const std::vector<double>& lower() const { return lower_; }  // 0 on diagonals of T, -inf elsewhere
@@ -35,6 +49,7 @@ class LmmDeviance {
   const std::vector<RandomTerm>& terms() const { return terms_; }
   const std::vector<Grouping>& groupings() const { return groupings_; }
   const Eigen::MatrixXd& X() const { return X_; }
+  const Eigen::MatrixXd& Zsrc() const { return Zsrc_; }
 
   // lme4's devfun: REML criterion (or ML deviance) at theta; updates the state below.
   double operator()(const std::vector<double>& theta);
@@ -60,13 +75,12 @@ class LmmDeviance {
     size_t b;        // offset of the k1 x k2 block (column major) in zz_
     size_t idx;      // offset of the block's value indices in value_index_
   };
-  void accumulate(const Eigen::VectorXd& y);
+  void find_pairs();
   void build_pattern();
-  bool update(const std::vector<double>& theta);
   double residual_pwrss() const;
 
-  Eigen::MatrixXd X_;
-  Eigen::VectorXd y_;
+  Eigen::MatrixXd X_, Zsrc_;
+  Eigen::VectorXd y_, sqrt_w_;
   std::vector<Grouping> groupings_;
   std::vector<RandomTerm> terms_;
   bool reml_;
@@ -74,6 +88,7 @@ class LmmDeviance {
   std::vector<int> k_, nl_, offset_, theta_offset_;
   int q_ = 0;
   std::vector<Pair> pairs_;
+  std::vector<int> row_pairs_;      // per row, the pair of each (t1 >= t2), row-major
   std::vector<double> zz_;          // blocks of Z'Z
   std::vector<int> value_index_;    // per block entry: index into A's values, -1 above the diagonal
   std::vector<int> diagonal_index_; // index of A(i, i) in A's values

@@ -1,6 +1,7 @@
 // One lmer() fit and its report; see lmm_fit.h.
 #include "analysis/stats/detail/lmm_fit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -68,12 +69,13 @@ std::string random_name(const PreparedModel& m, int column, bool correlated) {
 
 }  // namespace
 
-GaussianFit fit_gaussian(const PreparedModel& m, const std::vector<FormulaTerm>& terms, bool reml) {
+GaussianFit fit_gaussian(const PreparedModel& m, const Eigen::MatrixXd& X, const std::vector<FormulaTerm>& terms,
+                         bool reml) {
   GaussianFit f;
   f.formula_terms = terms;
   f.center = m.y.mean();
   const Eigen::VectorXd y = m.y.array() - f.center;
-  f.dev = std::make_unique<LmmDeviance>(m.design.X, y, m.groupings, expand_terms(terms, m.groupings), reml);
+  f.dev = std::make_unique<LmmDeviance>(X, m.design.X, y, m.groupings, expand_terms(terms, m.groupings), reml);
   LmmDeviance& dev = *f.dev;
   const ScalarFunction criterion = [&dev](const std::vector<double>& theta) { return dev(theta); };
   f.opt = optimize_lmer(criterion, start_theta(dev, y), dev.lower());
@@ -93,19 +95,16 @@ std::vector<std::vector<double>> column_variances(const GaussianFit& f) {
   return out;
 }
 
-namespace {
-
-void add_variances(LmmFit& r, const PreparedModel& m, const GaussianFit& f) {
-  const LmmDeviance& dev = *f.dev;
-  const double s2 = dev.sigma() * dev.sigma();
-  for (size_t t = 0; t < dev.terms().size(); ++t) {
-    const RandomTerm& term = dev.terms()[t];
+void add_variances(LmmFit& r, const PreparedModel& m, const std::vector<FormulaTerm>& terms, const LmmDeviance& sys,
+                   const std::vector<double>& theta, double scale2) {
+  for (size_t t = 0; t < sys.terms().size(); ++t) {
+    const RandomTerm& term = sys.terms()[t];
     const std::string& group = m.groupings[static_cast<size_t>(term.grouping)].name;
     bool correlated = true;
-    for (const auto& ft : f.formula_terms)
+    for (const auto& ft : terms)
       if (ft.grouping == term.grouping) correlated = ft.correlated;
-    const Eigen::MatrixXd T = dev.term_factor(t, f.opt.par);
-    const Eigen::MatrixXd S = s2 * T * T.transpose();
+    const Eigen::MatrixXd T = sys.term_factor(t, theta);
+    const Eigen::MatrixXd S = scale2 * T * T.transpose();
     for (size_t j = 0; j < term.columns.size(); ++j) {
       const double v = S(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
       r.variances.push_back({group, random_name(m, term.columns[j], correlated), v, std::sqrt(v)});
@@ -118,6 +117,37 @@ void add_variances(LmmFit& r, const PreparedModel& m, const GaussianFit& f) {
       }
   }
 }
+
+void describe_model(LmmFit& r, const PreparedModel& m, const std::vector<FormulaTerm>& terms, const LmmOptions& o) {
+  r.family = o.family;
+  r.transform = o.transform;
+  r.reml = o.reml && o.family == Family::gaussian;
+  r.formula = lme4_formula(m, terms);
+  r.r_code = detail::r_code(m, terms, o);
+  r.n = static_cast<size_t>(m.y.size());
+  for (const auto& g : m.groupings) r.groups.emplace_back(g.name, g.levels.size());
+  for (const auto& t : terms) {
+    LmmRandomTerm rt{m.groupings[static_cast<size_t>(t.grouping)].name, {}, t.correlated || t.columns.size() == 1};
+    for (int c : t.columns) rt.columns.push_back(m.design.column_names[static_cast<size_t>(c)]);
+    r.random.push_back(rt);
+  }
+  for (const auto& fac : m.design.factors) {
+    r.factor_names.push_back(fac.name);
+    r.factor_levels.push_back(fac.levels);
+  }
+  r.column_names = m.design.column_names;
+}
+
+Eigen::MatrixXd drop_term(const FixedDesign& design, const FixedTerm& term) {
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index c = 0; c < design.X.cols(); ++c)
+    if (std::find(term.columns.begin(), term.columns.end(), static_cast<int>(c)) == term.columns.end()) keep.push_back(c);
+  Eigen::MatrixXd X(design.X.rows(), static_cast<Eigen::Index>(keep.size()));
+  for (size_t j = 0; j < keep.size(); ++j) X.col(static_cast<Eigen::Index>(j)) = design.X.col(keep[j]);
+  return X;
+}
+
+namespace {
 
 // lmerTest's summary(m, ddf = "Kenward-Roger") and anova(m, ddf = "Kenward-Roger").
 void add_kenward_roger(LmmFit& r, const PreparedModel& m, const VarparModel& vp, const KrModel& kr) {
@@ -147,18 +177,7 @@ LmmFit report_gaussian(const PreparedModel& m, GaussianFit& f, const LmmOptions&
   LmmFit r;
   LmmDeviance& dev = *f.dev;
   const std::vector<double>& theta = f.opt.par;
-  r.family = Family::gaussian;
-  r.transform = o.transform;
-  r.reml = o.reml;
-  r.formula = lme4_formula(m, f.formula_terms);
-  r.r_code = detail::r_code(m, f.formula_terms, o);
-  r.n = static_cast<size_t>(m.y.size());
-  for (const auto& g : m.groupings) r.groups.emplace_back(g.name, g.levels.size());
-  for (const auto& t : f.formula_terms) {
-    LmmRandomTerm rt{m.groupings[static_cast<size_t>(t.grouping)].name, {}, t.correlated || t.columns.size() == 1};
-    for (int c : t.columns) rt.columns.push_back(m.design.column_names[static_cast<size_t>(c)]);
-    r.random.push_back(rt);
-  }
+  describe_model(r, m, f.formula_terms, o);
   r.theta = theta;
   VarparModel vp = varpar_model(dev, theta);
   vp.beta(0) += f.center + m.y_offset;
@@ -175,13 +194,8 @@ LmmFit report_gaussian(const PreparedModel& m, GaussianFit& f, const LmmOptions&
   r.loglik = -crit / 2;
   r.aic = crit + 2.0 * r.df;
   r.bic = crit + std::log(static_cast<double>(r.n)) * r.df;
-  add_variances(r, m, f);
+  add_variances(r, m, f.formula_terms, dev, theta, r.sigma * r.sigma);
   r.variances.push_back({"Residual", "", r.sigma * r.sigma, r.sigma});
-  for (const auto& fac : m.design.factors) {
-    r.factor_names.push_back(fac.name);
-    r.factor_levels.push_back(fac.levels);
-  }
-  r.column_names = m.design.column_names;
   r.beta = vp.beta;
   r.vcov = vp.vcov;
   r.vcov_unadjusted = vp.vcov;

@@ -23,10 +23,25 @@ struct GaussianFit {
 
   // Not singular and without convergence warnings (what --random max keeps).
   bool regular() const { return !conv.singular && conv.warnings.empty() && opt.warnings.empty(); }
+  const std::vector<RandomTerm>& lme4_terms() const { return dev->terms(); }
+  std::vector<std::string> warnings;  // none beyond conv and opt (the GLMM fit has PIRLS failures)
 };
 
-// lmer(formula, REML = reml) for the given structure.
-GaussianFit fit_gaussian(const PreparedModel& m, const std::vector<FormulaTerm>& terms, bool reml);
+// lmer(formula, REML = reml) for the given structure; X: the fixed effects
+// (m.design.X, or without a term's columns for a likelihood-ratio test).
+GaussianFit fit_gaussian(const PreparedModel& m, const Eigen::MatrixXd& X, const std::vector<FormulaTerm>& terms,
+                         bool reml);
+
+// The parts of an LmmFit every family shares: formula, R code, rows, groups,
+// random terms, the fixed design's factors and columns.
+void describe_model(LmmFit& r, const PreparedModel& m, const std::vector<FormulaTerm>& terms, const LmmOptions& o);
+
+// VarCorr: each term's variances (scale2 T T') and correlations, in lme4's order.
+void add_variances(LmmFit& r, const PreparedModel& m, const std::vector<FormulaTerm>& terms, const LmmDeviance& sys,
+                   const std::vector<double>& theta, double scale2);
+
+// X without the columns of fixed term `term` (afex's reduced model for its LRT).
+Eigen::MatrixXd drop_term(const FixedDesign& design, const FixedTerm& term);
 
 // The variance of each random-effect column at the fit (sigma^2 (T T')_jj), per lme4 term.
 std::vector<std::vector<double>> column_variances(const GaussianFit& f);

@@ -47,6 +47,11 @@ std::string format_g(double v) {
 }  // namespace
 
 Optimum nloptwrap(const ScalarFunction& f, const std::vector<double>& start, const std::vector<double>& lower) {
+  return bobyqa(f, start, lower, BobyqaSettings{});
+}
+
+Optimum bobyqa(const ScalarFunction& f, const std::vector<double>& start, const std::vector<double>& lower,
+               const BobyqaSettings& settings) {
   const unsigned n = static_cast<unsigned>(start.size());
   Optimum o;
   o.par = start;
@@ -54,10 +59,12 @@ Optimum nloptwrap(const ScalarFunction& f, const std::vector<double>& start, con
   nlopt::opt opt(nlopt::LN_BOBYQA, n);
   opt.set_lower_bounds(lower);
   opt.set_upper_bounds(std::vector<double>(n, std::numeric_limits<double>::infinity()));
-  opt.set_xtol_abs(1e-8);
-  opt.set_ftol_abs(1e-8);
-  opt.set_xtol_rel(1e-4);
-  opt.set_maxeval(100000);
+  opt.set_xtol_abs(settings.xtol_abs);
+  opt.set_ftol_abs(settings.ftol_abs);
+  opt.set_xtol_rel(settings.xtol_rel);
+  if (settings.ftol_rel > 0) opt.set_ftol_rel(settings.ftol_rel);
+  opt.set_maxeval(settings.maxeval);
+  if (!settings.initial_step.empty()) opt.set_initial_step(settings.initial_step);
   opt.set_min_objective(objective, &counted);
   try {
     o.status = static_cast<int>(opt.optimize(o.par, o.fval));
@@ -101,7 +108,11 @@ Optimum optimize_lmer(const ScalarFunction& f, const std::vector<double>& start,
       o.warnings = earlier;
     }
   }
-  // check.boundary(boundary.tol = 1e-5)
+  check_boundary(f, lower, o);
+  return o;
+}
+
+void check_boundary(const ScalarFunction& f, const std::vector<double>& lower, Optimum& o) {
   bool edge = false;
   std::vector<double> pp = o.par;
   for (size_t i = 0; i < o.par.size(); ++i) {
@@ -117,7 +128,6 @@ Optimum optimize_lmer(const ScalarFunction& f, const std::vector<double>& start,
     o.par = pp;
     o.fval = f(o.par);
   }
-  return o;
 }
 
 ConvergenceCheck check_convergence(const Derivatives& derivs, const std::vector<double>& par,

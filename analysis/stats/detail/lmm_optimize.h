@@ -27,8 +27,23 @@ struct Optimum {
   std::vector<std::string> warnings;  // "convergence code N from nloptwrap: ..."
 };
 
+// NLopt BOBYQA settings; the defaults are nloptwrap's as lme4 passes them.
+struct BobyqaSettings {
+  double xtol_abs = 1e-8, ftol_abs = 1e-8, xtol_rel = 1e-4, ftol_rel = 0;
+  int maxeval = 100000;
+  std::vector<double> initial_step;  // empty: NLopt's default
+};
+
+// BOBYQA with `settings`, then deriv12 at the optimum (optwrap with calc.derivs = TRUE).
+Optimum bobyqa(const ScalarFunction& f, const std::vector<double>& start, const std::vector<double>& lower,
+               const BobyqaSettings& settings);
+
 // optwrap("nloptwrap", f, start, lower) with calc.derivs = TRUE.
 Optimum nloptwrap(const ScalarFunction& f, const std::vector<double>& start, const std::vector<double>& lower);
+
+// check.boundary(rho, opt, devfun, boundary.tol = 1e-5): parameters within 1e-5
+// above a finite lower bound are set onto it when that does not raise f.
+void check_boundary(const ScalarFunction& f, const std::vector<double>& lower, Optimum& o);
 
 // optimizeLmer(): nloptwrap, restart_edge, check.boundary(boundary.tol = 1e-5).
 Optimum optimize_lmer(const ScalarFunction& f, const std::vector<double>& start, const std::vector<double>& lower);

@@ -95,6 +95,7 @@ LmmFit fit_case(const json& c, DenominatorDf ddf = DenominatorDf::satterthwaite)
   opt.reml = o["reml"].get<bool>();
   opt.family = o["family"] == "binomial" ? Family::binomial : Family::gaussian;
   opt.ddf = ddf;
+  opt.lrt = c.contains("lrt");
   auto fit = fit_lmm(*data, opt);
   EXPECT_TRUE(fit.ok()) << (fit.ok() ? "" : fit.error().to_string());
   return fit.ok() ? *fit : LmmFit{};
@@ -183,6 +184,28 @@ void check_lmm(const json& c) {
   }
   const auto messages = strs(c["messages"]);
   EXPECT_EQ(f.messages, messages);
+  if (c.contains("lrt")) {  // afex::mixed(..., method = "LRT"): ML fits without each term's columns
+    SCOPED_TRACE(c["lrt"]["r_call"].get<std::string>());
+    const auto lterms = strs(c["lrt"]["terms"]);
+    const auto chisq = nums(c["lrt"]["chisq"]), ldf = nums(c["lrt"]["df"]), lp = nums(c["lrt"]["p"]);
+    ASSERT_EQ(f.lrt.size(), lterms.size());
+    for (size_t i = 0; i < lterms.size(); ++i) {
+      EXPECT_EQ(f.lrt[i].term, lterms[i]);
+      EXPECT_EQ(f.lrt[i].df, ldf[i]);
+      EXPECT_TRUE(close(f.lrt[i].chisq, chisq[i], 1e-6, lterms[i] + " Chisq"));
+      EXPECT_TRUE(close(f.lrt[i].p, lp[i], 1e-4, lterms[i] + " Pr(>Chisq)"));
+    }
+  }
+  if (c.contains("steps")) {  // --random max: the same formulas tried, for the same lme4 verdicts
+    ASSERT_EQ(f.fallback.size(), c["steps"].size());
+    for (size_t i = 0; i < f.fallback.size(); ++i) {
+      const json& step = c["steps"][i];
+      const std::string formula = step["formula"];
+      EXPECT_EQ(f.fallback[i].substr(0, formula.size() + 1), formula + ":");
+      const bool regular = !step["singular"].get<bool>() && step["warnings"].empty();
+      EXPECT_EQ(f.fallback[i].find(": kept") != std::string::npos, regular) << f.fallback[i];
+    }
+  }
 }
 
 // anova(m, ddf = "Kenward-Roger") and coef(summary(m, ddf = "Kenward-Roger")) (pbkrtest 0.5.2).
@@ -208,6 +231,120 @@ void check_kenward_roger(const json& c) {
   }
 }
 
+// A coefficient near 0 is fixed only to the optimiser's tolerance in absolute
+// terms: |difference| <= rel * max(|expected|, se).
+::testing::AssertionResult close_scaled(double actual, double expected, double se, double rel, const std::string& what) {
+  if (std::fabs(actual - expected) <= rel * std::max(std::fabs(expected), se)) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << what << ": " << actual << " vs R " << expected << " (difference "
+                                       << std::fabs(actual - expected) << ", SE " << se << ")";
+}
+
+// glmer at the Laplace optimum (the reference's "tight" fit), lme4's default
+// fit to its own tolerance, afex's LRT, emmeans on the logit scale.
+void check_glmm(const json& c) {
+  SCOPED_TRACE(c["name"].get<std::string>() + ": " + c["r_call"].get<std::string>());
+  const LmmFit f = fit_case(c);
+  EXPECT_EQ(f.formula, c["formula"].get<std::string>());
+  const json& t = c["tight"];
+  // se: numDeriv's Hessian; se_lme4: vcov(m), lme4's deriv12 Hessian (steps 1e-4), both at the optimum
+  const auto theta = nums(t["theta"]), est = nums(t["estimate"]), se = nums(t["se"]), se_deriv12 = nums(t["se_lme4"]);
+  ASSERT_EQ(f.theta.size(), theta.size());
+  for (size_t i = 0; i < theta.size(); ++i) {
+    if (theta[i] < 1e-4) EXPECT_LT(f.theta[i], 1e-4) << "theta " << i << " (singular in lme4)";
+    else EXPECT_TRUE(close(f.theta[i], theta[i], 1e-5, "theta"));
+  }
+  EXPECT_EQ(f.singular, c["singular"].get<bool>());
+  EXPECT_TRUE(close(f.loglik, t["loglik"], 1e-9, "logLik"));
+  EXPECT_TRUE(close(f.aic, t["aic"], 1e-9, "AIC"));
+  EXPECT_TRUE(close(f.bic, t["bic"], 1e-9, "BIC"));
+  const auto names = strs(c["coef_names"]);
+  ASSERT_EQ(f.coefficients.size(), names.size());
+  const json& d = c["default"];
+  const auto est_default = nums(d["estimate"]), se_lme4 = nums(d["se_lme4"]);
+  for (size_t i = 0; i < names.size(); ++i) {
+    EXPECT_EQ(f.coefficients[i].name, names[i]);
+    EXPECT_TRUE(close_scaled(f.coefficients[i].estimate, est[i], se[i], 1e-5, names[i] + " estimate"));
+    // at a singular fit deriv12's steps straddle theta = 0 from where each optimiser stopped (1e-8 apart)
+    const double se_tol = c["singular"].get<bool>() ? 5e-5 : 1e-5;
+    EXPECT_TRUE(close(f.coefficients[i].se, se_deriv12[i], se_tol, names[i] + " SE (deriv12)"));
+    EXPECT_TRUE(close(f.coefficients[i].se, se[i], 1e-4, names[i] + " SE (numDeriv)"));
+    EXPECT_TRUE(std::isinf(f.coefficients[i].df));
+    // lme4's default fit (d["r_call"]) stops within its own tolerance of the optimum
+    EXPECT_TRUE(close_scaled(f.coefficients[i].estimate, est_default[i], se[i], 1e-2, names[i] + " estimate vs glmer default"));
+    EXPECT_TRUE(close(f.coefficients[i].se, se_lme4[i], 5e-3, names[i] + " SE vs glmer default"));
+  }
+  EXPECT_EQ(f.messages, strs(c["messages"]));
+  if (c.contains("lrt")) {
+    SCOPED_TRACE(c["lrt"]["r_call"].get<std::string>());
+    const auto terms = strs(c["lrt"]["terms"]);
+    const auto chisq = nums(c["lrt"]["chisq"]), df = nums(c["lrt"]["df"]), p = nums(c["lrt"]["p"]);
+    ASSERT_EQ(f.lrt.size(), terms.size());
+    for (size_t i = 0; i < terms.size(); ++i) {
+      EXPECT_EQ(f.lrt[i].term, terms[i]);
+      EXPECT_EQ(f.lrt[i].df, df[i]);
+      EXPECT_NEAR(f.lrt[i].chisq, chisq[i], 1e-6 * std::max(1.0, chisq[i])) << terms[i] << " Chisq";
+      EXPECT_TRUE(close(f.lrt[i].p, p[i], 1e-4, terms[i] + " Pr(>Chisq)"));
+    }
+  }
+  for (const auto& e : c.value("emmeans", json::array())) {
+    auto table = marginal_means(f, strs(e["factors"]));
+    ASSERT_TRUE(table.ok());
+    EXPECT_EQ(table->scale, EmmScale::logit);
+    const auto m = nums(e["emmean"]), mse = nums(e["se"]);
+    ASSERT_EQ(table->means.size(), m.size());
+    for (size_t i = 0; i < m.size(); ++i) {
+      EXPECT_TRUE(close_scaled(table->means[i].estimate, m[i], mse[i], 1e-5, "emmean"));
+      EXPECT_TRUE(close(table->means[i].se, mse[i], 1e-4, "emmean SE"));
+      EXPECT_TRUE(std::isinf(table->means[i].df));
+    }
+    const auto labels = strs(e["contrast"]);
+    const auto ce = nums(e["c_estimate"]), cse = nums(e["c_se"]), cp = nums(e["c_p_holm"]);
+    ASSERT_EQ(table->contrasts.size(), labels.size());
+    for (size_t i = 0; i < labels.size(); ++i) {
+      EXPECT_EQ(table->contrasts[i].a + " - " + table->contrasts[i].b, labels[i]);
+      EXPECT_TRUE(close_scaled(table->contrasts[i].estimate, ce[i], cse[i], 1e-5, labels[i] + " estimate"));
+      EXPECT_TRUE(close(table->contrasts[i].se, cse[i], 1e-4, labels[i] + " SE"));
+      EXPECT_TRUE(close(table->contrasts[i].p_holm, cp[i], 1e-3, labels[i] + " p (holm)"));
+    }
+  }
+}
+
+// Complete separation: glmer's default fit warns (its tight fit stops with
+// "Downdated VtV is not positive definite"); dtlab must finish, reach at least
+// glmer's likelihood, and warn both as lme4 does and about the separation.
+TEST(LmmReference, BinomialSeparationWarnsAndDoesNotCrash) {
+  const json ref = reference();
+  for (const auto& c : ref["cases"]) {
+    if (c["name"] != "binomial_separated") continue;
+    SCOPED_TRACE(c["r_call"].get<std::string>());
+    EXPECT_FALSE(c["warnings"].empty());  // lme4 warns here
+    const LmmFit f = fit_case(c);
+    EXPECT_GE(f.loglik, c["loglik"].get<double>() - 1e-6);
+    EXPECT_TRUE(close(f.theta[0], c["theta"], 1e-3, "theta"));
+    bool separation = false, lme4_warning = false;
+    for (const auto& w : f.warnings) {
+      separation = separation || w.find("complete separation") != std::string::npos;
+      lme4_warning = lme4_warning || w.find("Model is nearly unidentifiable") != std::string::npos ||
+                     w.find("Model failed to converge") != std::string::npos;
+    }
+    EXPECT_TRUE(separation);
+    EXPECT_TRUE(lme4_warning);
+    return;
+  }
+  FAIL() << "no binomial_separated case";
+}
+
+TEST(LmmReference, BinomialCasesEqualGlmerAtTheOptimumAndAfexLrt) {
+  const json ref = reference();
+  int n = 0;
+  for (const auto& c : ref["cases"])
+    if (c["options"]["family"] == "binomial" && c.contains("tight")) {
+      check_glmm(c);
+      ++n;
+    }
+  EXPECT_GE(n, 3);
+}
+
 TEST(LmmReference, KenwardRogerEqualsPbkrtest) {
   const json ref = reference();
   int n = 0;
@@ -223,7 +360,7 @@ TEST(LmmReference, GaussianCasesEqualLme4LmerTestEmmeans) {
   const json ref = reference();
   int n = 0;
   for (const auto& c : ref["cases"])
-    if (c["options"]["family"] == "gaussian" && c["options"]["random"] != "max") {
+    if (c["options"]["family"] == "gaussian") {
       check_lmm(c);
       ++n;
     }

@@ -41,6 +41,9 @@ make_trials <- function(seed, ns, within, trials, sd_s = 0.3, sd_slope = 0.1, sd
 }
 
 d1 <- make_trials(101, 24, list(A = c("a1", "a2"), B = c("b1", "b2")), 8)
+set.seed(301)                                  # a 0/1 outcome beside the time
+u1 <- rnorm(24, 0, 0.6)
+d1$correct <- rbinom(nrow(d1), 1, plogis(1 + 0.5 * (d1$A == "a2") - 0.2 * (d1$B == "b2") + u1[as.integer(factor(d1$s))]))
 write_data(d1, "balanced_2x2.csv")
 
 d2 <- make_trials(102, 20, list(A = c("a1", "a2"), B = c("b1", "b2")), 10, items = 12)
@@ -68,9 +71,23 @@ write_data(d6, "singular.csv")
 d7 <- make_trials(107, 15, list(A = c("a1", "a2")), 6, sd_s = 0.08, sd_slope = 0, sd_e = 1)
 write_data(d7, "near_zero.csv")
 
-d8 <- d1
+d8 <- d1[, names(d1) != "correct"]
 d8$time <- fmt17(1e6 + d1$time)               # large offset: 1e6 added to every time
 write_data(d8, "offset_1e6.csv")
+
+make_binary <- function(seed, p_a1, p_a2, ns = 20, trials = 12, sd = 0.5) {
+  set.seed(seed)
+  d <- expand.grid(trial = seq_len(trials), A = c("a1", "a2"), s = sprintf("s%02d", seq_len(ns)),
+                   stringsAsFactors = FALSE)[, c("s", "A", "trial")]
+  u <- rnorm(ns, 0, sd)
+  d$y <- rbinom(nrow(d), 1, plogis(qlogis(ifelse(d$A == "a1", p_a1, p_a2)) + u[as.integer(factor(d$s))]))
+  d
+}
+write_data(make_binary(401, 0.02, 0.05), "binary_rare.csv")          # about 3% ones
+write_data(make_binary(402, 0.97, 0.995), "binary_near_perfect.csv") # about 99% ones
+sep <- make_binary(403, 0.7, 0.999)
+sep$y[sep$A == "a2"] <- 1                                             # every a2 trial correct: separation
+write_data(sep, "binary_separated.csv")
 
 # ---- fitting and recording --------------------------------------------------
 cases <- list()
@@ -107,7 +124,7 @@ emm_record <- function(m, spec) {
 
 record_lmm <- function(name, file, dv, subject, within, between = character(), item = "", random = "intercepts",
                        transform = "none", reml = TRUE, formula, re_columns = FALSE, emm = list(),
-                       kr = FALSE, note = "") {
+                       kr = FALSE, note = "", lrt = FALSE, steps = NULL) {
   factors <- c(within, between)
   groups <- c(subject, if (nchar(item)) item)
   d <- prepare(file, factors, groups, re_columns)
@@ -142,13 +159,19 @@ record_lmm <- function(name, file, dv, subject, within, between = character(), i
                    F = ak[["F value"]], num_df = ak$NumDF, den_df = ak$DenDF, p = ak[["Pr(>F)"]],
                    se = unname(ck[, "Std. Error"]), df = unname(ck[, "df"]), coef_p = unname(ck[, "Pr(>|t|)"]))
   }
+  if (lrt) {
+    a_lrt <- afex::mixed(as.formula(formula), data = d, method = "LRT", progress = FALSE)$anova_table
+    rec$lrt <- list(r_call = sprintf("afex::mixed(%s, data = d, method = \"LRT\")", formula),
+                    terms = rownames(a_lrt), chisq = a_lrt$Chisq, df = a_lrt[["Chi Df"]], p = a_lrt[["Pr(>Chisq)"]])
+  }
+  if (!is.null(steps)) rec$steps <- steps
   cat("\n=====", name, "\n", call, "\n")
   print(summary(m)); print(a)
   cases[[length(cases) + 1]] <<- rec
 }
 
 record_lmm("balanced_intercepts", "balanced_2x2.csv", "time", "s", c("A", "B"), transform = "log",
-           formula = "log(time) ~ A * B + (1 | s)", emm = list("A", "B", c("A", "B")), kr = TRUE)
+           formula = "log(time) ~ A * B + (1 | s)", emm = list("A", "B", c("A", "B")), kr = TRUE, lrt = TRUE)
 record_lmm("balanced_slopes", "balanced_2x2.csv", "time", "s", c("A", "B"), random = "slopes", transform = "log",
            formula = "log(time) ~ A * B + (1 + A + B | s)", emm = list("A", c("A", "B")),
            note = "path sensitive: 6 variance parameters; lme4's BOBYQA path moves with the last bit of the criterion")
@@ -172,6 +195,132 @@ record_lmm("near_zero", "near_zero.csv", "time", "s", "A", transform = "log",
            formula = "log(time) ~ A + (1 | s)", emm = list("A"))
 record_lmm("offset_1e6", "offset_1e6.csv", "time", "s", c("A", "B"),
            formula = "time ~ A * B + (1 | s)", emm = list("A"))
+
+# ---- binomial GLMMs ----------------------------------------------------------
+# lme4's defaults stop PIRLS at a relative change of 1e-7 (noise of ~1e-5 in the
+# criterion) and Nelder-Mead at FtolAbs = 1e-5, so its estimates sit within
+# ~1e-4 of the Laplace optimum. The reference is therefore the same model fitted
+# to the optimum (control "tight"); glmer's default fit is recorded beside it.
+tight <- glmerControl(tolPwrss = 1e-13, optimizer = "nloptwrap",
+                      optCtrl = list(xtol_abs = 1e-14, ftol_abs = 1e-15, xtol_rel = 1e-14, maxeval = 1e5))
+tight_text <- paste0("glmerControl(tolPwrss = 1e-13, optimizer = \"nloptwrap\", optCtrl = list(xtol_abs = 1e-14, ",
+                     "ftol_abs = 1e-15, xtol_rel = 1e-14, maxeval = 1e5))")
+
+glmm_summary <- function(m, devfun) {
+  par <- c(getME(m, "theta"), fixef(m))
+  nt <- length(getME(m, "theta"))
+  # SEs from numDeriv's Richardson Hessian of the Laplace criterion at the optimum:
+  # free of the finite-difference noise of deriv12 (vcov.merMod's default)
+  H <- numDeriv::hessian(devfun, par)
+  V <- 2 * solve(H)[-seq_len(nt), -seq_len(nt), drop = FALSE]
+  list(theta = unname(getME(m, "theta")), estimate = unname(fixef(m)), se = sqrt(diag(V)),
+       se_lme4 = unname(sqrt(diag(as.matrix(vcov(m))))), loglik = as.numeric(logLik(m)), aic = AIC(m), bic = BIC(m))
+}
+
+record_glmm <- function(name, file, dv, subject, within, formula, emm = list(), lrt = TRUE) {
+  d <- prepare(file, within, subject)
+  f <- as.formula(formula)
+  def <- quiet_fit(glmer(f, data = d, family = binomial))
+  tf <- quiet_fit(glmer(f, data = d, family = binomial, control = tight))
+  devfun <- glmer(f, data = d, family = binomial, control = tight, devFunOnly = TRUE)
+  rec <- list(name = name, data = file, note = "",
+    options = list(dv = dv, subject = subject, within = within, between = character(), item = "",
+                   random = "intercepts", transform = "none", reml = FALSE, family = "binomial"),
+    r_call = paste0("m <- lme4::glmer(", formula, ", data = d, family = binomial, control = ", tight_text,
+                    "); SE from numDeriv::hessian of its devFunOnly at the optimum"),
+    formula = formula, tight = glmm_summary(tf$m, devfun),
+    default = c(list(r_call = paste0("lme4::glmer(", formula, ", data = d, family = binomial)")),
+                glmm_summary(def$m, devfun)),
+    coef_names = names(fixef(tf$m)),
+    singular = isSingular(tf$m), messages = def$messages, warnings = def$warnings)
+  if (lrt) {
+    X <- model.matrix(tf$m)
+    asg <- attr(X, "assign")
+    labels <- attr(terms(tf$m), "term.labels")
+    rec$lrt <- list(r_call = paste0("afex::mixed(", formula, ", data = d, family = binomial, method = \"LRT\", ",
+                                    "control = ", tight_text, ")"),
+                    terms = labels, chisq = numeric(), df = numeric(), p = numeric())
+    a <- afex::mixed(f, data = d, family = binomial, method = "LRT", control = tight, progress = FALSE)$anova_table
+    rec$lrt$chisq <- a$Chisq
+    rec$lrt$df <- a[["Chi Df"]]
+    rec$lrt$p <- a[["Pr(>Chisq)"]]
+  }
+  if (length(emm)) {
+    rec$emmeans <- lapply(emm, function(spec) {
+      e <- emmeans(tf$m, as.formula(paste("~", paste(spec, collapse = "*"))))
+      s <- as.data.frame(summary(e))
+      p <- as.data.frame(summary(pairs(e, adjust = "holm"), infer = c(FALSE, TRUE)))
+      list(factors = spec, emmean = s$emmean, se = s$SE, contrast = as.character(p$contrast),
+           c_estimate = p$estimate, c_se = p$SE, c_z = p$z.ratio, c_p_holm = p$p.value)
+    })
+  }
+  cat("\n=====", name, "\n"); print(summary(tf$m))
+  cases[[length(cases) + 1]] <<- rec
+}
+
+record_glmm("binomial_basic", "balanced_2x2.csv", "correct", "s", c("A", "B"),
+            "correct ~ A * B + (1 | s)", emm = list("A", c("A", "B")))
+record_glmm("binomial_rare", "binary_rare.csv", "y", "s", "A", "y ~ A + (1 | s)", emm = list("A"))
+record_glmm("binomial_near_perfect", "binary_near_perfect.csv", "y", "s", "A", "y ~ A + (1 | s)", emm = list("A"))
+
+# Complete separation (every a2 trial correct): glmer's default fit warns and
+# returns arbitrary large estimates; fitted to the optimum it stops with
+# "Downdated VtV is not positive definite". Recorded: the default fit.
+d <- prepare("binary_separated.csv", "A", "s")
+sep_default <- quiet_fit(glmer(y ~ A + (1 | s), data = d, family = binomial))
+sep_tight <- tryCatch(glmer(y ~ A + (1 | s), data = d, family = binomial, control = tight),
+                      error = function(e) conditionMessage(e))
+cases[[length(cases) + 1]] <- list(name = "binomial_separated", data = "binary_separated.csv",
+  options = list(dv = "y", subject = "s", within = "A", between = character(), item = "", random = "intercepts",
+                 transform = "none", reml = FALSE, family = "binomial"),
+  r_call = "lme4::glmer(y ~ A + (1 | s), data = d, family = binomial)", formula = "y ~ A + (1 | s)",
+  theta = unname(getME(sep_default$m, "theta")), loglik = as.numeric(logLik(sep_default$m)),
+  estimate = unname(fixef(sep_default$m)), messages = sep_default$messages, warnings = sep_default$warnings,
+  tight_error = if (is.character(sep_tight)) sep_tight else "")
+cat("\n===== binomial_separated\n"); print(summary(sep_default$m)); print(sep_default$warnings); print(sep_tight)
+
+# ---- --random max: the parsimonious fallback, decided by lme4's own verdicts ----
+# The maximal model, then the || model with numeric contr.sum columns, then the
+# slope with the smallest variance dropped, until lme4 neither calls the fit
+# singular nor warns. Every step's formula and lme4's verdict is recorded.
+fallback <- function(file, dvexpr, factors, subject, item) {
+  d <- prepare(file, factors, c(subject, item), re_columns = TRUE)
+  X <- model.matrix(as.formula(paste("~", paste(factors, collapse = "*"))), d)
+  cols <- colnames(X)[-1]
+  recols <- paste0("re_", gsub("[^A-Za-z0-9]", "_", cols))
+  fixed <- paste(dvexpr, "~", paste(factors, collapse = " * "))
+  labels <- attr(terms(as.formula(fixed)), "term.labels")
+  max_re <- paste(c("1", labels), collapse = " + ")
+  formula <- paste0(fixed, " + (", max_re, " | ", subject, ") + (", max_re, " | ", item, ")")
+  steps <- list()
+  verdict <- function(f) {
+    r <- quiet_fit(lmer(as.formula(f), data = d, REML = TRUE))
+    list(fit = r, regular = !isSingular(r$m) && length(r$warnings) == 0)
+  }
+  v <- verdict(formula)
+  steps[[1]] <- list(formula = formula, singular = isSingular(v$fit$m), warnings = v$fit$warnings)
+  if (v$regular) return(list(formula = formula, steps = steps))
+  keep <- list(s = recols, i = recols)
+  zcp <- function() paste0(fixed, " + (", paste(c("1", keep$s), collapse = " + "), if (length(keep$s)) " || " else " | ",
+                           subject, ") + (", paste(c("1", keep$i), collapse = " + "), if (length(keep$i)) " || " else " | ",
+                           item, ")")
+  repeat {
+    formula <- zcp()
+    v <- verdict(formula)
+    steps[[length(steps) + 1]] <- list(formula = formula, singular = isSingular(v$fit$m), warnings = v$fit$warnings)
+    if (v$regular || (length(keep$s) + length(keep$i)) == 0) break
+    vc <- as.data.frame(VarCorr(v$fit$m))
+    vc <- vc[vc$var1 %in% recols & is.na(vc$var2), ]
+    k <- which.min(vc$vcov)
+    g <- if (startsWith(vc$grp[k], subject)) "s" else "i"
+    keep[[g]] <- setdiff(keep[[g]], vc$var1[k])
+  }
+  list(formula = formula, steps = steps)
+}
+fb <- fallback("unbalanced_items.csv", "log(time)", c("A", "B"), "s", "item")
+record_lmm("max_fallback", "unbalanced_items.csv", "time", "s", c("A", "B"), item = "item", random = "max",
+           transform = "log", formula = fb$formula, re_columns = TRUE, emm = list("A"), steps = fb$steps,
+           note = "path sensitive: the || model's several variance parameters")
 
 writeLines(toJSON(list(generated_by = "make_lmm_reference.R", r = R.version.string,
                        packages = sapply(c("lme4", "lmerTest", "pbkrtest", "emmeans", "afex", "nloptr"),
