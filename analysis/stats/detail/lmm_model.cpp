@@ -269,16 +269,25 @@ std::string r_code(const PreparedModel& m, const std::vector<FormulaTerm>& terms
   }
   const std::string formula = lme4_formula(m, terms);
   if (o.family == Family::binomial) {
-    s += "m <- glmer(" + formula + ", data = d, family = binomial)\n";
+    // glmer's defaults stop short of the Laplace optimum (PIRLS at 1e-7, Nelder-Mead at FtolAbs 1e-5)
+    const std::string tight =
+        "glmerControl(tolPwrss = 1e-13, optimizer = \"nloptwrap\", optCtrl = list(xtol_abs = 1e-14, "
+        "ftol_abs = 1e-15, xtol_rel = 1e-14, maxeval = 1e5))";
+    s += "ctl <- " + tight + "  # to the optimum, as dtlab\n";
+    s += "m <- glmer(" + formula + ", data = d, family = binomial, control = ctl)\n";
     s += "summary(m)\n";
-    s += "afex::mixed(" + formula + ", data = d, family = binomial, method = \"LRT\")  # LRT of each term\n";
-    s += "emmeans::emmeans(m, pairwise ~ FACTOR, adjust = \"holm\", type = \"response\")\n";
+    s += "afex::mixed(" + formula + ", data = d, family = binomial, method = \"LRT\", control = ctl)  # LRT of each term\n";
+    for (const auto& f : m.design.factors)
+      s += "emmeans::emmeans(m, pairwise ~ " + r_name(f.name) + ", adjust = \"holm\", type = \"response\")\n";
   } else {
     s += "m <- lmer(" + formula + ", data = d, REML = " + (o.reml ? "TRUE" : "FALSE") + ")\n";
     s += "summary(m)\n";
     s += o.ddf == DenominatorDf::kenward_roger ? "anova(m, ddf = \"Kenward-Roger\")\n" : "anova(m)\n";
-    s += "emmeans::emmeans(m, pairwise ~ FACTOR, adjust = \"holm\", lmer.df = \"satterthwaite\", lmerTest.limit = Inf";
-    s += o.transform == Transform::log ? ", type = \"response\")\n" : ")\n";
+    for (const auto& f : m.design.factors) {
+      s += "emmeans::emmeans(m, pairwise ~ " + r_name(f.name) +
+           ", adjust = \"holm\", lmer.df = \"satterthwaite\", lmerTest.limit = Inf";
+      s += o.transform == Transform::log ? ", type = \"response\")\n" : ")\n";
+    }
   }
   return s;
 }
