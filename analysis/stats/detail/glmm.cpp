@@ -50,7 +50,13 @@ double BinomialLaplace::pirls(const std::vector<double>& theta, bool with_beta, 
   Eigen::VectorXd beta = Eigen::VectorXd::Zero(X_.cols());
   Eigen::VectorXd eta = with_beta ? eta_start_ : offset;
   bool have_u = false;
-  double old = std::numeric_limits<double>::max(), pdev = old;
+  // stage 2 starts from the last mode (it converges to rounding level from anywhere)
+  if (!with_beta && static_cast<size_t>(u_.size()) == sys_.q()) {
+    u = u_;
+    eta = offset + sys_.random_part(u);
+    have_u = true;
+  }
+  double old = have_u ? penalised_deviance(eta, u) : std::numeric_limits<double>::max(), pdev = old;
   Eigen::VectorXd sqrt_w(n), z(n);
   auto weights = [&](const Eigen::VectorXd& e) {
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -65,7 +71,7 @@ double BinomialLaplace::pirls(const std::vector<double>& theta, bool with_beta, 
   int it_done = 0;
   for (int it = 0; it < kMaxIterations && !converged; ++it, ++it_done) {
     weights(eta);
-    sys_.set_response(z, sqrt_w);
+    sys_.set_response(z, sqrt_w, with_beta);
     if (!sys_.update(theta, with_beta)) {
       // X'WX has lost rank to rounding: weights near 0 where mu is clamped (separation).
       // Keep the last iterate as the mode; lme4 stops with "Downdated VtV is not positive definite".
@@ -130,7 +136,7 @@ double BinomialLaplace::pirls(const std::vector<double>& theta, bool with_beta, 
   }
   // log|L|^2 with the weights at the mode
   weights(eta);
-  sys_.set_response(z, sqrt_w);
+  sys_.set_response(z, sqrt_w, false);
   if (!sys_.update(theta, false)) return std::numeric_limits<double>::infinity();
   u_ = u;
   if (with_beta) beta_ = beta;

@@ -52,13 +52,14 @@ void LmmDeviance::find_pairs() {
   }
 }
 
-void LmmDeviance::set_response(const Eigen::VectorXd& y, const Eigen::VectorXd& sqrt_w) {
+void LmmDeviance::set_response(const Eigen::VectorXd& y, const Eigen::VectorXd& sqrt_w, bool fixed) {
   y_ = y;
   sqrt_w_ = sqrt_w;
   const bool weighted = sqrt_w.size() > 0;
   const Eigen::Index n = X_.rows(), p = X_.cols();
   const size_t nt = terms_.size();
-  if (weighted) {
+  if (!fixed) {
+  } else if (weighted) {
     const Eigen::MatrixXd Xw = sqrt_w.asDiagonal() * X_;
     const Eigen::VectorXd yw = sqrt_w.cwiseProduct(y);
     XtX_ = Xw.transpose() * Xw;
@@ -80,7 +81,7 @@ void LmmDeviance::set_response(const Eigen::VectorXd& y, const Eigen::VectorXd& 
     for (size_t t = 0; t < nt; ++t) {
       for (int j = 0; j < k_[t]; ++j) z[t](j) = w * Zsrc_(r, terms_[t].columns[static_cast<size_t>(j)]);
       const int row0 = offset_[t] + groupings_[static_cast<size_t>(terms_[t].grouping)].index[static_cast<size_t>(r)] * k_[t];
-      ZtX_.middleRows(row0, k_[t]).noalias() += (w * z[t]) * X_.row(r);
+      if (fixed) ZtX_.middleRows(row0, k_[t]).noalias() += (w * z[t]) * X_.row(r);
       Zty_.segment(row0, k_[t]) += z[t] * (w * y(r));
     }
     for (size_t t1 = 0; t1 < nt; ++t1)

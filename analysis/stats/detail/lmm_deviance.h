@@ -30,8 +30,9 @@ class LmmDeviance {
               std::vector<RandomTerm> terms, bool reml);
 
   // Replaces the response and the row weights (sqrt_w: square roots, empty = all 1):
-  // the cross-products are formed again, in one pass over the rows (the GLMM's PIRLS).
-  void set_response(const Eigen::VectorXd& y, const Eigen::VectorXd& sqrt_w = Eigen::VectorXd());
+  // the cross-products are formed again, in one pass over the rows (the GLMM's PIRLS);
+  // with fixed = false only Z'Z and Z'y (enough for update(theta, false)).
+  void set_response(const Eigen::VectorXd& y, const Eigen::VectorXd& sqrt_w = Eigen::VectorXd(), bool fixed = true);
   // Sets Lambda_theta without factorising (for random_part()).
   void set_theta(const std::vector<double>& theta);
   // Factorises at theta; with fixed = false only L and cu (enough for u_only()).
@@ -42,6 +43,7 @@ class LmmDeviance {
   Eigen::VectorXd random_part(const Eigen::VectorXd& u) const;
 
   size_t n_theta() const { return lower_.size(); }
+  size_t q() const { return static_cast<size_t>(q_); }  // number of random effects
   const std::vector<double>& lower() const { return lower_; }  // 0 on diagonals of T, -inf elsewhere
   size_t rows() const { return static_cast<size_t>(X_.rows()); }
   size_t p() const { return static_cast<size_t>(X_.cols()); }
