@@ -128,6 +128,19 @@ Result<EmmTable> marginal_means(const LmmFit& fit, const std::vector<std::string
   return t;
 }
 
+EmmContrast reversed(const EmmContrast& c) {
+  EmmContrast r = c;
+  std::swap(r.a, r.b);
+  r.estimate = -c.estimate;
+  r.statistic = -c.statistic;
+  r.ci_low = -c.ci_high;
+  r.ci_high = -c.ci_low;
+  r.ratio = 1 / c.ratio;
+  r.ratio_ci_low = 1 / c.ratio_ci_high;
+  r.ratio_ci_high = 1 / c.ratio_ci_low;
+  return r;
+}
+
 std::string apa_contrast_sentence(const EmmTable& table, const EmmContrast& c, bool time_measure,
                                   const std::string& measure) {
   const bool z = std::isinf(c.df);

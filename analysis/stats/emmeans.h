@@ -50,6 +50,10 @@ struct EmmTable {
 // The means and contrasts over `factors` (fixed factors of the fit).
 Result<EmmTable> marginal_means(const LmmFit& fit, const std::vector<std::string>& factors);
 
+// The same contrast the other way round (b - a): estimate, statistic and CI
+// negated, ratios inverted; p, df and SE unchanged.
+EmmContrast reversed(const EmmContrast& c);
+
 // A copy-ready sentence for one contrast, e.g. "xray trials took 0.58 times
 // as long as standard trials, 95% CI [0.52, 0.65], t(23.41) = -9.12, p <
 // .001 (Holm)." for a log model of a time; `measure` names the dv for the

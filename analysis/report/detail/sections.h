@@ -2,8 +2,8 @@
 // the Context, runs its tests and adds to the Context: document sections,
 // report.json entries, plots and CSV files. The order in report.cpp is the
 // order of a paper's results: data and method, completion time, accuracy,
-// speed-accuracy, questionnaire, position effects, frame-time audit, then planning
-// the next study.
+// mixed models of the trials, speed-accuracy, questionnaire, position effects,
+// frame-time audit, then planning the next study.
 // Sections never write files and never touch the database.
 #pragma once
 #include <nlohmann/json.hpp>
@@ -61,6 +61,7 @@ struct Context {
 void section_overview(Context& ctx);        // title, data summary, warnings, methods
 void section_time(Context& ctx);            // completion time: Table III layout, full ANOVAs, Fig. 9, participants
 void section_errors(Context& ctx);          // accuracy: relative error, correctness, distance
+void section_mixed_models(Context& ctx);    // mixed models of the trials beside the ANOVAs (section_mixed.cpp)
 void section_speed_accuracy(Context& ctx);  // time vs error per condition and participant
 void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test
 void section_position(Context& ctx);        // position in the session, order rows of the counterbalancing
