@@ -3,6 +3,7 @@
 // Numbers are exact doubles (NaN null, infinities "Infinity"/"-Infinity",
 // json.h's json_number); names follow R's output (lme4 summary, lmerTest
 // anova, VarCorr, emmeans). No rounding here.
+// Example: std::cout << lmm_fit_json(*fit).dump(2);  emm_table_json(*marginal_means(*fit, {"A"}))
 #pragma once
 #include <nlohmann/json.hpp>
 
