@@ -54,10 +54,11 @@ Result<EmmTable> marginal_means(const LmmFit& fit, const std::vector<std::string
 // negated, ratios inverted; p, df and SE unchanged.
 EmmContrast reversed(const EmmContrast& c);
 
-// A copy-ready sentence for one contrast, e.g. "xray trials took 0.58 times
-// as long as standard trials, 95% CI [0.52, 0.65], t(23.41) = -9.12, p <
-// .001 (Holm)." for a log model of a time; `measure` names the dv for the
-// other scales ("the odds of a correct answer", "the difference in time").
+// A copy-ready sentence for one contrast: for a log model of a time "a1
+// trials took 0.74 times as long as a2 trials, 95% CI [0.70, 0.79], t(741.00)
+// = -10.08, p < .001." (Holm's p, marked when the family has several
+// contrasts); `measure` names the dv on the other scales ("the odds of a
+// correct answer" for odds ratios, "relative error" for differences).
 std::string apa_contrast_sentence(const EmmTable& table, const EmmContrast& c, bool time_measure,
                                   const std::string& measure);
 
