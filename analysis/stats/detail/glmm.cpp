@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "analysis/stats/detail/lmm_fit.h"
 #include "analysis/stats/distributions.h"
@@ -39,109 +40,95 @@ double BinomialLaplace::penalised_deviance(const Eigen::VectorXd& eta, const Eig
   return aic(eta.unaryExpr([](double e) { return linkinv(e); })) + u.squaredNorm();
 }
 
+void BinomialLaplace::set_working(const Eigen::VectorXd& eta, const Eigen::VectorXd& offset, bool fixed) {
+  const Eigen::Index n = y_.size();
+  Eigen::VectorXd sqrt_w(n), z(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double mu = linkinv(eta(i)), me = mu_eta(eta(i));
+    sqrt_w(i) = me / std::sqrt(mu * (1 - mu));
+    z(i) = eta(i) - offset(i) + (y_(i) - mu) / me;
+  }
+  sys_.set_response(z, sqrt_w, fixed);
+}
+
+// One Gauss-Newton step from `it` (the weights at it.eta already set), halved while the
+// penalised deviance rises beyond its rounding noise (a rise of a few ulps near the mode
+// must not freeze u short of it). False with failure_ set when it cannot be taken.
+bool BinomialLaplace::step(bool with_beta, const Eigen::VectorXd& offset, const Iterate* from, Iterate& to) {
+  to.u = with_beta ? sys_.u() : sys_.u_only();
+  to.beta = with_beta ? sys_.beta() : (from ? from->beta : Eigen::VectorXd::Zero(X_.cols()));
+  auto finish = [&] {
+    to.eta = offset + sys_.random_part(to.u);
+    if (with_beta) to.eta += X_ * to.beta;
+    to.pdev = penalised_deviance(to.eta, to.u);
+  };
+  finish();
+  for (int k = 0; k < kMaxHalvings && from && (std::isnan(to.pdev) || to.pdev > from->pdev + 1e-11 * std::fabs(from->pdev)); ++k) {
+    to.u = (from->u + to.u) / 2;
+    if (with_beta) to.beta = (from->beta + to.beta) / 2;
+    finish();
+  }
+  if (std::isnan(to.pdev)) failure_ = "PIRLS loop resulted in NaN value";
+  else if (from && to.pdev - from->pdev > 1e-7)
+    failure_ = "(maxstephalfit) PIRLS step-halvings failed to reduce deviance in pwrssUpdate";
+  else return true;
+  return false;
+}
+
 // lme4's pwrssUpdate: Gauss-Newton steps for u (and beta) with step halving,
 // run until the step is at rounding level (lme4 stops at a relative change of
 // the penalised deviance of tolPwrss = 1e-7, which leaves u off the mode by
 // ~1e-3 and noise of about 1e-5 in its criterion).
 double BinomialLaplace::pirls(const std::vector<double>& theta, bool with_beta, const Eigen::VectorXd& offset) {
-  const Eigen::Index n = y_.size();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   sys_.set_theta(theta);
-  Eigen::VectorXd u;  // the previous iterate (none before the first step)
-  Eigen::VectorXd beta = Eigen::VectorXd::Zero(X_.cols());
-  Eigen::VectorXd eta = with_beta ? eta_start_ : offset;
-  bool have_u = false;
+  std::optional<Iterate> it;  // the current iterate (none before the first step)
+  Eigen::VectorXd eta0 = with_beta ? eta_start_ : offset;
   // stage 2 starts from the last mode (it converges to rounding level from anywhere)
   if (!with_beta && static_cast<size_t>(u_.size()) == sys_.q()) {
-    u = u_;
-    eta = offset + sys_.random_part(u);
-    have_u = true;
+    it = Iterate{u_, Eigen::VectorXd::Zero(X_.cols()), offset + sys_.random_part(u_), 0};
+    it->pdev = penalised_deviance(it->eta, it->u);
   }
-  double old = have_u ? penalised_deviance(eta, u) : std::numeric_limits<double>::max(), pdev = old;
-  Eigen::VectorXd sqrt_w(n), z(n);
-  auto weights = [&](const Eigen::VectorXd& e) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double mu = linkinv(e(i)), me = mu_eta(e(i));
-      sqrt_w(i) = me / std::sqrt(mu * (1 - mu));
-      z(i) = e(i) - offset(i) + (y_(i) - mu) / me;
-    }
-  };
   bool converged = false;
-  int flat = 0;
-  double last_change = std::numeric_limits<double>::infinity();
-  int it_done = 0;
-  for (int it = 0; it < kMaxIterations && !converged; ++it, ++it_done) {
-    weights(eta);
-    sys_.set_response(z, sqrt_w, with_beta);
+  int flat = 0, done = 0;
+  double change = kInf;
+  for (; done < kMaxIterations && !converged; ++done) {
+    set_working(it ? it->eta : eta0, offset, with_beta);
     if (!sys_.update(theta, with_beta)) {
-      // X'WX has lost rank to rounding: weights near 0 where mu is clamped (separation).
-      // Keep the last iterate as the mode; lme4 stops with "Downdated VtV is not positive definite".
-      if (!have_u) {
-        failure_ = "PIRLS: the penalised weighted least-squares system is not positive definite";
-        return std::numeric_limits<double>::infinity();
-      }
-      converged = true;
-      break;
+      // X'WX has lost rank to rounding: weights near 0 where mu is clamped (separation). Keep
+      // the last iterate as the mode; lme4 stops with "Downdated VtV is not positive definite".
+      if (it) break;
+      failure_ = "PIRLS: the penalised weighted least-squares system is not positive definite";
+      return kInf;
     }
-    Eigen::VectorXd u_new = with_beta ? sys_.u() : sys_.u_only();
-    Eigen::VectorXd beta_new = with_beta ? sys_.beta() : beta;
-    auto eta_of = [&](const Eigen::VectorXd& uu, const Eigen::VectorXd& bb) {
-      Eigen::VectorXd e = offset + sys_.random_part(uu);
-      if (with_beta) e += X_ * bb;
-      return e;
-    };
-    Eigen::VectorXd eta_new = eta_of(u_new, beta_new);
-    pdev = penalised_deviance(eta_new, u_new);
-    // step halving when the deviance rises beyond its rounding noise (a rise of a
-    // few ulps near the mode must not freeze u short of it)
-    const double noise = 1e-11 * std::fabs(old);
-    for (int k = 0; k < kMaxHalvings && have_u && (std::isnan(pdev) || pdev > old + noise); ++k) {
-      u_new = (u + u_new) / 2;
-      if (with_beta) beta_new = (beta + beta_new) / 2;
-      eta_new = eta_of(u_new, beta_new);
-      pdev = penalised_deviance(eta_new, u_new);
-    }
-    if (std::isnan(pdev)) {
-      failure_ = "PIRLS loop resulted in NaN value";
-      return std::numeric_limits<double>::infinity();
-    }
-    if (have_u && pdev - old > 1e-7) {
-      failure_ = "(maxstephalfit) PIRLS step-halvings failed to reduce deviance in pwrssUpdate";
-      return std::numeric_limits<double>::infinity();
-    }
-    last_change = std::fabs((old - pdev) / pdev);
-    // converged when the step itself is at rounding level
-    double step = 0, size = 1;
-    if (have_u) {
-      step = (u_new - u).cwiseAbs().maxCoeff();
-      size += u.cwiseAbs().maxCoeff();
+    Iterate next;
+    if (!step(with_beta, offset, it ? &*it : nullptr, next)) return kInf;
+    double size = 1, moved = 0;
+    if (it) {
+      change = std::fabs((it->pdev - next.pdev) / next.pdev);
+      moved = (next.u - it->u).cwiseAbs().maxCoeff();
+      size += it->u.cwiseAbs().maxCoeff();
       if (with_beta) {
-        step = std::max(step, (beta_new - beta).cwiseAbs().maxCoeff());
-        size += beta.cwiseAbs().maxCoeff();
+        moved = std::max(moved, (next.beta - it->beta).cwiseAbs().maxCoeff());
+        size += it->beta.cwiseAbs().maxCoeff();
       }
+      // a large step that lowers nothing: the criterion is flat along it (mu clamped at 0 or 1,
+      // separation); keep the previous iterate, as glm.fit stops once the deviance stops changing
+      if (next.pdev >= it->pdev && moved > 1e-4 * size) break;
+      flat = change < 1e-15 ? flat + 1 : 0;
+      converged = moved <= 1e-12 * size || flat >= 3;
     }
-    // a large step that lowers nothing: the criterion is flat along it (mu clamped at 0 or 1, separation);
-    // keep the previous iterate, as glm.fit stops once the deviance no longer changes
-    if (have_u && pdev >= old && step > 1e-4 * size) break;
-    flat = last_change < 1e-15 ? flat + 1 : 0;
-    converged = have_u && (step <= 1e-12 * size || flat >= 3);
-    u = u_new;
-    beta = beta_new;
-    eta = eta_new;
-    old = pdev;
-    have_u = true;
+    it = std::move(next);
   }
-  if (!converged && it_done >= kMaxIterations && !(last_change < 1e-7)) {  // lme4's tolPwrss
+  if (!converged && done >= kMaxIterations && !(change < 1e-7)) {  // lme4's tolPwrss
     failure_ = "pwrssUpdate did not converge in (maxit) iterations";
-    return std::numeric_limits<double>::infinity();
+    return kInf;
   }
-  // log|L|^2 with the weights at the mode
-  weights(eta);
-  sys_.set_response(z, sqrt_w, false);
-  if (!sys_.update(theta, false)) return std::numeric_limits<double>::infinity();
-  u_ = u;
-  if (with_beta) beta_ = beta;
-  const Eigen::VectorXd mu = eta.unaryExpr([](double e) { return linkinv(e); });
-  return sys_.ldL2() + u.squaredNorm() + aic(mu);
+  set_working(it->eta, offset, false);  // log|L|^2 with the weights at the mode
+  if (!sys_.update(theta, false)) return kInf;
+  u_ = it->u;
+  if (with_beta) beta_ = it->beta;
+  return sys_.ldL2() + it->u.squaredNorm() + aic(it->eta.unaryExpr([](double e) { return linkinv(e); }));
 }
 
 double BinomialLaplace::stage1(const std::vector<double>& theta) {

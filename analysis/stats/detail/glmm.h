@@ -43,7 +43,13 @@ class BinomialLaplace {
   const std::string& failure() const { return failure_; }
 
  private:
+  struct Iterate {
+    Eigen::VectorXd u, beta, eta;
+    double pdev = 0;
+  };
   double pirls(const std::vector<double>& theta, bool with_beta, const Eigen::VectorXd& offset);
+  void set_working(const Eigen::VectorXd& eta, const Eigen::VectorXd& offset, bool fixed);
+  bool step(bool with_beta, const Eigen::VectorXd& offset, const Iterate* from, Iterate& to);
   double penalised_deviance(const Eigen::VectorXd& eta, const Eigen::VectorXd& u) const;
   double aic(const Eigen::VectorXd& mu) const;
 

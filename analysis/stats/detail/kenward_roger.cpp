@@ -37,17 +37,17 @@ double trace_product(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {  // t
 
 }  // namespace
 
-KrModel kenward_roger_model(LmmDeviance& dev, const std::vector<double>& theta, const VarparModel& vp) {
-  KrModel kr;
-  if (!dev.reml()) {
-    kr.error = "Kenward-Roger's method is only available for REML model fits";
-    return kr;
-  }
-  const Eigen::MatrixXd& X = dev.X();
-  const Eigen::Index n = X.rows(), p = X.cols();
-  Terms tm;
-  std::vector<Param> params;
-  int q = 0;
+namespace {
+
+// The products with W = Sigma^-1 = (I - Z C Z') / sigma^2 that vcovAdj needs, in the q space.
+struct WProducts {
+  Eigen::MatrixXd M, N, M2, K, XW2X, XW3X;  // Z'WZ, Z'WX, Z'W^2Z, Z'W^2X, X'W^2X, X'W^3X
+  double trW2 = 0;                          // tr(W^2)
+};
+
+// The terms' layout in u and the variance parameters (each element of each term's covariance).
+void layout(const LmmDeviance& dev, Terms& tm, std::vector<Param>& params, int& q) {
+  q = 0;
   for (size_t t = 0; t < dev.terms().size(); ++t) {
     const int k = static_cast<int>(dev.terms()[t].columns.size());
     tm.k.push_back(k);
@@ -57,16 +57,16 @@ KrModel kenward_roger_model(LmmDeviance& dev, const std::vector<double>& theta, 
     for (int j = 0; j < k; ++j)
       for (int i = j; i < k; ++i) params.push_back({static_cast<int>(t), i, j});
   }
-  if (q > kMaxQ) {
-    kr.error = "Kenward-Roger is formed with dense q x q matrices here; this model has q = " + std::to_string(q) +
-               " random effects (at most " + std::to_string(kMaxQ) + ")";
-    return kr;
-  }
-  // Z'Z, Z'X, the relative factor Lambda, C = Lambda (Lambda'Z'Z Lambda + I)^-1 Lambda'
-  Eigen::MatrixXd ZtZ = Eigen::MatrixXd::Zero(q, q), ZtX = Eigen::MatrixXd::Zero(q, p), Lambda = Eigen::MatrixXd::Zero(q, q);
+}
+
+// Z'Z and Z'X in one pass over the rows (dense: q <= kMaxQ).
+void cross_products(const LmmDeviance& dev, const Terms& tm, int q, Eigen::MatrixXd& ZtZ, Eigen::MatrixXd& ZtX) {
+  const Eigen::MatrixXd& X = dev.X();
+  ZtZ = Eigen::MatrixXd::Zero(q, q);
+  ZtX = Eigen::MatrixXd::Zero(q, X.cols());
   std::vector<int> idx;
   std::vector<double> val;
-  for (Eigen::Index r = 0; r < n; ++r) {
+  for (Eigen::Index r = 0; r < X.rows(); ++r) {
     idx.clear();
     val.clear();
     for (size_t t = 0; t < dev.terms().size(); ++t) {
@@ -81,51 +81,95 @@ KrModel kenward_roger_model(LmmDeviance& dev, const std::vector<double>& theta, 
       for (size_t b = 0; b < idx.size(); ++b) ZtZ(idx[a], idx[b]) += val[a] * val[b];
     }
   }
+}
+
+// C = Lambda (Lambda'Z'Z Lambda + I)^-1 Lambda', then the W-products; false when A is not PD.
+bool w_products(const LmmDeviance& dev, const std::vector<double>& theta, const Terms& tm, int q, double sigma,
+                WProducts& w) {
+  Eigen::MatrixXd ZtZ, ZtX, Lambda = Eigen::MatrixXd::Zero(q, q);
+  cross_products(dev, tm, q, ZtZ, ZtX);
   for (size_t t = 0; t < dev.terms().size(); ++t) {
     const Eigen::MatrixXd T = dev.term_factor(t, theta);
     for (int l = 0; l < tm.nl[t]; ++l) Lambda.block(tm.offset[t] + l * tm.k[t], tm.offset[t] + l * tm.k[t], tm.k[t], tm.k[t]) = T;
   }
-  const Eigen::MatrixXd A = Lambda.transpose() * ZtZ * Lambda + Eigen::MatrixXd::Identity(q, q);
-  Eigen::LLT<Eigen::MatrixXd> llt(A);
-  if (llt.info() != Eigen::Success) {
+  Eigen::LLT<Eigen::MatrixXd> llt(Lambda.transpose() * ZtZ * Lambda + Eigen::MatrixXd::Identity(q, q));
+  if (llt.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd C = Lambda * llt.solve(Lambda.transpose());
+  const Eigen::MatrixXd XtX = dev.X().transpose() * dev.X();
+  const double s2 = sigma * sigma;
+  const Eigen::MatrixXd CH = C * ZtZ, CX = C * ZtX;  // C Z'Z, C Z'X
+  w.M = (ZtZ - ZtZ * CH) / s2;
+  w.N = (ZtX - ZtZ * CX) / s2;
+  w.M2 = (ZtZ - 2 * ZtZ * CH + ZtZ * CH * CH) / (s2 * s2);
+  w.K = (ZtX - 2 * ZtZ * CX + ZtZ * CH * CX) / (s2 * s2);
+  w.XW2X = (XtX - 2 * ZtX.transpose() * CX + CX.transpose() * ZtZ * CX) / (s2 * s2);
+  w.XW3X = (XtX - 3 * ZtX.transpose() * CX + 3 * CX.transpose() * ZtZ * CX - CX.transpose() * ZtZ * CH * CX) /
+           (s2 * s2 * s2);
+  w.trW2 = (static_cast<double>(dev.X().rows()) - 2 * CH.trace() + trace_product(CH, CH)) / (s2 * s2);
+  return true;
+}
+
+// 2 IE2^-1 (MASS::ginv where IE2 is nearly singular), made symmetric.
+Eigen::MatrixXd twice_inverse(const Eigen::MatrixXd& IE2) {
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(IE2);
+  Eigen::MatrixXd W;
+  if (eig.eigenvalues().cwiseAbs().minCoeff() > 1e-10) {
+    W = 2 * IE2.inverse();
+  } else {  // MASS::ginv: singular values above sqrt(eps) times the largest
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(IE2, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const double tol = std::sqrt(std::numeric_limits<double>::epsilon()) * svd.singularValues()(0);
+    Eigen::VectorXd inv = svd.singularValues();
+    for (Eigen::Index i = 0; i < inv.size(); ++i) inv(i) = inv(i) > tol ? 1 / inv(i) : 0;
+    W = 2 * svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose();
+  }
+  return (W + W.transpose()) / 2;  // forceSymmetric
+}
+
+}  // namespace
+
+KrModel kenward_roger_model(LmmDeviance& dev, const std::vector<double>& theta, const VarparModel& vp) {
+  KrModel kr;
+  if (!dev.reml()) {
+    kr.error = "Kenward-Roger's method is only available for REML model fits";
+    return kr;
+  }
+  Terms tm;
+  std::vector<Param> params;
+  int q = 0;
+  layout(dev, tm, params, q);
+  if (q > kMaxQ) {
+    kr.error = "Kenward-Roger is formed with dense q x q matrices here; this model has q = " + std::to_string(q) +
+               " random effects (at most " + std::to_string(kMaxQ) + ")";
+    return kr;
+  }
+  WProducts w;
+  if (!w_products(dev, theta, tm, q, vp.sigma, w)) {
     kr.error = "Lambda'Z'Z Lambda + I is not positive definite";
     return kr;
   }
-  const Eigen::MatrixXd C = Lambda * llt.solve(Lambda.transpose());
-  const Eigen::MatrixXd XtX = X.transpose() * X;
-  const double s2 = vp.sigma * vp.sigma;
-  // W-products: W = (I - Z C Z') / sigma^2
-  const Eigen::MatrixXd CH = C * ZtZ, CX = C * ZtX;  // C Z'Z, C Z'X
-  const Eigen::MatrixXd M = (ZtZ - ZtZ * CH) / s2;                                 // Z'WZ
-  const Eigen::MatrixXd N = (ZtX - ZtZ * CX) / s2;                                 // Z'WX
-  const Eigen::MatrixXd M2 = (ZtZ - 2 * ZtZ * CH + ZtZ * CH * CH) / (s2 * s2);     // Z'W^2 Z
-  const Eigen::MatrixXd K = (ZtX - 2 * ZtZ * CX + ZtZ * CH * CX) / (s2 * s2);      // Z'W^2 X
-  const Eigen::MatrixXd XW2X = (XtX - 2 * ZtX.transpose() * CX + CX.transpose() * ZtZ * CX) / (s2 * s2);
-  const Eigen::MatrixXd XW3X =
-      (XtX - 3 * ZtX.transpose() * CX + 3 * CX.transpose() * ZtZ * CX - CX.transpose() * ZtZ * CH * CX) / (s2 * s2 * s2);
-  const double trW2 = (static_cast<double>(n) - 2 * CH.trace() + trace_product(CH, CH)) / (s2 * s2);
   const Eigen::MatrixXd& Phi = vp.vcov;
+  const Eigen::Index p = Phi.rows();
   const size_t m = params.size() + 1;  // the residual last
   std::vector<Eigen::MatrixXd> EN, EM;  // E_r N, E_r M
   for (const auto& r : params) {
-    EN.push_back(tm.apply(r, N));
-    EM.push_back(tm.apply(r, M));
+    EN.push_back(tm.apply(r, w.N));
+    EM.push_back(tm.apply(r, w.M));
   }
   kr.P.resize(m);
-  for (size_t r = 0; r < params.size(); ++r) kr.P[r] = -N.transpose() * EN[r];
-  kr.P[m - 1] = -XW2X;
+  for (size_t r = 0; r < params.size(); ++r) kr.P[r] = -w.N.transpose() * EN[r];
+  kr.P[m - 1] = -w.XW2X;
   auto Q = [&](size_t r, size_t s) -> Eigen::MatrixXd {
     const bool rr = r + 1 == m, ss = s + 1 == m;
-    if (!rr && !ss) return EN[r].transpose() * M * EN[s];
-    if (!rr && ss) return EN[r].transpose() * K;
-    if (rr && !ss) return K.transpose() * EN[s];
-    return XW3X;
+    if (!rr && !ss) return EN[r].transpose() * w.M * EN[s];
+    if (!rr && ss) return EN[r].transpose() * w.K;
+    if (rr && !ss) return w.K.transpose() * EN[s];
+    return w.XW3X;
   };
   auto Ktrace = [&](size_t r, size_t s) -> double {
     const bool rr = r + 1 == m, ss = s + 1 == m;
     if (!rr && !ss) return trace_product(EM[r], EM[s]);
-    if (rr && ss) return trW2;
-    return trace_product(tm.apply(params[rr ? s : r], M2), Eigen::MatrixXd::Identity(q, q));
+    if (rr && ss) return w.trW2;
+    return tm.apply(params[rr ? s : r], w.M2).trace();
   };
   Eigen::MatrixXd IE2(m, m);
   std::vector<std::vector<Eigen::MatrixXd>> QQ(m, std::vector<Eigen::MatrixXd>(m));
@@ -135,18 +179,7 @@ KrModel kenward_roger_model(LmmDeviance& dev, const std::vector<double>& theta, 
       IE2(r, s) = IE2(s, r) = Ktrace(r, s) - 2 * (Phi.array() * QQ[r][s].array()).sum() +
                               ((Phi * kr.P[r]).array() * (kr.P[s] * Phi).array()).sum();
     }
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(IE2);
-  const double condi = eig.eigenvalues().cwiseAbs().minCoeff();
-  if (condi > 1e-10) {
-    kr.W = 2 * IE2.inverse();
-  } else {  // MASS::ginv: singular values above sqrt(eps) times the largest
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(IE2, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    const double tol = std::sqrt(std::numeric_limits<double>::epsilon()) * svd.singularValues()(0);
-    Eigen::VectorXd inv = svd.singularValues();
-    for (Eigen::Index i = 0; i < inv.size(); ++i) inv(i) = inv(i) > tol ? 1 / inv(i) : 0;
-    kr.W = 2 * svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose();
-  }
-  kr.W = (kr.W + kr.W.transpose()) / 2;  // forceSymmetric
+  kr.W = twice_inverse(IE2);
   Eigen::MatrixXd UU = Eigen::MatrixXd::Zero(p, p);
   for (size_t i = 0; i + 1 < m; ++i)
     for (size_t j = i + 1; j < m; ++j) UU += kr.W(i, j) * (QQ[i][j] - kr.P[i] * Phi * kr.P[j]);
