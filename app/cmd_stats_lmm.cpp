@@ -21,6 +21,7 @@
 #include "analysis/stats/emmeans.h"
 #include "analysis/stats/lmm.h"
 #include "analysis/stats/lmm_json.h"
+#include "analysis/stats/lmm_power.h"
 #include "app/commands.h"
 #include "app/stats_input.h"
 
@@ -34,7 +35,27 @@ struct LmmCliOptions : StatsInput {
   std::string item, random = "intercepts", transform = "none", family = "gaussian", ddf = "satterthwaite";
   std::vector<std::string> emmeans;
   bool ml = false, reml = false, lrt = false, json = false;
+  std::vector<std::size_t> power_subjects;  // --power-subjects: simulated power at these sizes
+  std::string power_term;
+  std::size_t replications = 200;
+  std::uint64_t seed = 1;
+  double alpha = 0.05;
 };
+
+// --power-subjects: simr-style simulated power of one term (lmm_power.h), progress on stderr.
+std::vector<st::LmmPowerRow> simulated_power(const LmmCliOptions& o, const st::LmmData& data,
+                                             const st::LmmOptions& options, const st::LmmFit& fit,
+                                             std::string& term) {
+  if (o.power_subjects.empty()) return {};
+  term = o.power_term.empty() ? (fit.anova.empty() ? (fit.lrt.empty() ? "" : fit.lrt.front().term) : fit.anova.front().term)
+                              : o.power_term;
+  st::LmmOptions sim = options;
+  if (sim.family == st::Family::binomial) sim.lrt = true;
+  std::cerr << "dtlab stats: simulating " << o.replications << " studies per size for the power of " << term << "\n";
+  auto rows = st::lmm_power(data, sim, fit, {o.power_subjects, o.replications, o.alpha, o.seed, term});
+  if (!rows) stats_fail(kExitUsage, "--power-subjects: " + rows.error().to_string());
+  return *rows;
+}
 
 std::string fmt(double v, const char* f = "%.6g") {
   if (std::isnan(v)) return "NA";
@@ -204,6 +225,8 @@ void run_lmm(const LmmCliOptions& o) {
     if (!t) stats_fail(kExitUsage, "--emmeans: " + t.error().to_string());
     emms.push_back(*t);
   }
+  std::string power_term;
+  const auto power = simulated_power(o, *data, options, *fit, power_term);
   for (const auto& m : fit->messages) std::cerr << "dtlab stats: " << m << "\n";
   for (const auto& w : fit->warnings) std::cerr << "dtlab stats: warning: " << w << "\n";
   const bool time = o.transform == "log";
@@ -221,6 +244,14 @@ void run_lmm(const LmmCliOptions& o) {
       e.push_back(tj);
     }
     j["emmeans"] = e;
+    if (!power.empty()) {
+      json pj = json::array();
+      for (const auto& r : power)
+        pj.push_back({{"n", r.n}, {"power", st::json_number(r.power.power)}, {"ci_low", st::json_number(r.power.ci_low)},
+                      {"ci_high", st::json_number(r.power.ci_high)}, {"replications", r.power.replications},
+                      {"rejections", r.power.rejections}, {"failed", r.power.undefined}});
+      j["power"] = {{"term", power_term}, {"alpha", o.alpha}, {"seed", o.seed}, {"sizes", pj}};
+    }
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -238,6 +269,14 @@ void run_lmm(const LmmCliOptions& o) {
       any = true;
       std::cout << "  " << st::apa_contrast_sentence(t, c, time, o.dv) << "\n";
     }
+  if (!power.empty()) {
+    std::cout << "\nSimulated power of " << power_term << " at alpha " << fmt(o.alpha) << " (" << o.replications
+              << " studies per size simulated from the fit, as simr; seed " << o.seed << ")\n";
+    for (const auto& r : power)
+      std::cout << "  n = " << r.n << ": " << fmt(r.power.power, "%.3f") << " [" << fmt(r.power.ci_low, "%.3f") << ", "
+                << fmt(r.power.ci_high, "%.3f") << "]" << (r.power.undefined ? ", " + std::to_string(r.power.undefined) + " fits failed" : "")
+                << "\n";
+  }
   std::cout << "\nThe same model in R:\n" << fit->r_code;
 }
 
@@ -269,6 +308,13 @@ void add_stats_lmm_command(CLI::App& stats) {
                   "Marginal means to print: factors joined by ':' for a table of cells, comma between tables, "
                   "'none' for none (default: each factor)")
       ->delimiter(',');
+  cmd->add_option("--power-subjects", o->power_subjects,
+                  "Simulated power (as simr) of --power-term at these numbers of subjects, e.g. 8,16,24")
+      ->delimiter(',');
+  cmd->add_option("--power-term", o->power_term, "The fixed term whose power is simulated (default: the first)");
+  cmd->add_option("--replications", o->replications, "Simulated studies per size")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the simulation")->capture_default_str();
+  cmd->add_option("--alpha", o->alpha, "Significance level of the simulated tests")->capture_default_str();
   cmd->add_option("--where", o->where, "Keep rows where COL=VALUE (or COL!=VALUE); repeatable, all must hold");
   cmd->add_flag("--exclude-practice", o->exclude_practice,
                 "Leave out rows whose practice column is 1/true/yes (the default for a dtlab export)");

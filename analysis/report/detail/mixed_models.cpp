@@ -74,10 +74,10 @@ MixedModelResult fit_one(const Context& ctx, const ModelSpec& spec) {
   m.column = spec.column;
   m.subset = spec.task_factor ? "" : "task == \"" + spec.scope + "\"";
   m.beside = spec.beside;
-  stats::LmmOptions o;
-  o.family = spec.family;
-  o.transform = spec.transform;
-  auto fit = stats::fit_lmm(trial_data(ctx, spec), o);
+  m.options.family = spec.family;
+  m.options.transform = spec.transform;
+  m.data = trial_data(ctx, spec);
+  auto fit = stats::fit_lmm(m.data, m.options);
   if (!fit) {
     m.not_fitted = fit.error().message;
     return m;

@@ -39,6 +39,8 @@ struct MixedModelResult {
   std::string column;      // the trials.csv column of the dv
   std::string subset;      // the R condition selecting its trials: task == "T1"
   const TestReport* beside = nullptr;  // the ANOVA (or Friedman) of the same scope, if any
+  stats::LmmData data;     // the trials the model was fitted to
+  stats::LmmOptions options;
   std::optional<stats::LmmFit> fit;
   std::string not_fitted;  // why, when fit is empty
   std::optional<stats::EmmTable> primary;  // marginal means and contrasts of the primary factor

@@ -10,6 +10,9 @@
 #include <cmath>
 #include <string>
 
+#include "analysis/report/planning.h"
+#include "study/protocol/protocol.h"
+#include "study/store/read.h"
 #include "tests/analysis/report/studies.h"
 #include "tests/analysis/stats/test_util.h"
 
@@ -99,6 +102,41 @@ TEST_F(ReportMixed, SectionIsInTheReportWithPasteableCalls) {
   // every model is compared with the report's test by decision at .05
   for (const auto& m : (*report)["mixed_models"])
     if (m.contains("fit")) EXPECT_FALSE(m["decisions"].empty()) << m["scope"];
+}
+
+// dtlab power --mixed: every fitted mixed model's primary factor planned by simulation
+// (stats::lmm_power, checked against the paired t's power in test_lmm_power.cpp),
+// one row per size, the same numbers for the same seed.
+TEST_F(ReportMixed, PowerPlansTheMixedModelsBySimulation) {
+  auto plan_with = [&](std::uint64_t seed) {
+    store::ReadOptions ro;
+    ro.design_hash_of = &protocol::design_sha256_of_text;
+    auto reader = store::StudyReader::open(dir->file("s.sqlite"), ro);
+    EXPECT_TRUE(reader.ok());
+    PlanningOptions o;
+    o.sizes = {4, 12};
+    o.replications = 0;
+    o.mixed = true;
+    o.mixed_replications = 40;
+    o.seed = seed;
+    auto plan = plan_power(*reader, o);
+    EXPECT_TRUE(plan.ok()) << (plan.ok() ? "" : plan.error().to_string());
+    return *plan;
+  };
+  const PowerPlan a = plan_with(5), b = plan_with(5);
+  ASSERT_EQ(a.mixed.size(), (*report)["mixed_models"].size());
+  for (size_t i = 0; i < a.mixed.size(); ++i) {
+    const auto& m = a.mixed[i];
+    SCOPED_TRACE(m.section + " " + m.scope);
+    EXPECT_EQ(m.term, "transparency");
+    ASSERT_EQ(m.at.size(), 2u) << m.not_planned;
+    for (size_t k = 0; k < 2; ++k) {
+      EXPECT_EQ(m.at[k].power.replications, 40u);
+      EXPECT_EQ(m.at[k].power.rejections, b.mixed[i].at[k].power.rejections);
+      EXPECT_GE(m.at[k].power.power, 0.0);
+      EXPECT_LE(m.at[k].power.power, 1.0);
+    }
+  }
 }
 
 }  // namespace
