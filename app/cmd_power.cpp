@@ -1,5 +1,6 @@
 // `dtlab power DB [--participants 8,12,16,24,32] [--replications R] [--alpha A]
-// [--seed S] [--jobs J] [--revision latest|N] [--with-excluded] [--json]`:
+// [--seed S] [--jobs J] [--revision latest|N] [--with-excluded] [--mixed
+// [--mixed-replications R]] [--json]`:
 // how many participants the next study needs, from a pilot database (real or
 // simulated; analysis/report/planning.h, docs/stats.md "Power"). For every
 // effect of the report's completion-time and accuracy ANOVAs: power at each
@@ -7,6 +8,8 @@
 // analytic power of the observed effect, and the smallest n for 80% and 90%
 // with the next n that keeps the counterbalancing's order rows balanced. The
 // pilot's F is printed with the df of its p (Greenhouse-Geisser where corrected).
+// With --mixed also the primary factor of each of the report's mixed models,
+// by simulating studies from the fitted model (as simr).
 // Progress on stderr. Never modifies the database. Exit 1: not a study
 // database or nothing to plan; 2: bad command line; 3: I/O or database failure.
 #include <CLI/CLI.hpp>
@@ -136,6 +139,18 @@ void run_power(PowerArgs& a) {
               << ", so some orders would be used more often than others\n";
   }
   for (const auto& e : plan->effects) print_effect(e, *plan, resampled);
+  for (const auto& m : plan->mixed) {
+    std::cout << "\nMixed model, " << m.section << " " << m.scope << " (" << m.measure << "): " << m.term;
+    if (m.at.empty()) {
+      std::cout << ": not planned (" << m.not_planned << ")\n";
+      continue;
+    }
+    std::cout << ", pilot p = " << m.pilot_p << "; " << m.formula << "\n";
+    for (const auto& r : m.at)
+      std::cout << "  n = " << r.n << ": simulated power " << r.power.power << " [" << r.power.ci_low << ", "
+                << r.power.ci_high << "]" << (r.power.undefined ? " (" + std::to_string(r.power.undefined) + " fits failed)" : "")
+                << "\n";
+  }
   for (const auto& why : plan->not_planned) std::cout << "\nnot planned: " << why << "\n";
 }
 
@@ -170,6 +185,12 @@ void add_power_command(CLI::App& root) {
       ->check(CLI::Range(1, 256));
   cmd->add_option("--revision", a->options.revision,
                   "Design revision to plan from when the protocol's design was changed mid-study: latest or N")
+      ->capture_default_str();
+  cmd->add_flag("--mixed", a->options.mixed,
+                "Also plan the primary factor of each of the report's mixed models by simulating studies from the "
+                "fitted model (as R's simr): slower, see --mixed-replications");
+  cmd->add_option("--mixed-replications", a->options.mixed_replications,
+                  "Simulated studies per size for each mixed model")
       ->capture_default_str();
   cmd->add_flag("--with-excluded", a->options.with_excluded,
                 "Keep excluded participants and trials (dtlab exclude); by default they are left out");

@@ -520,7 +520,7 @@ void add_exact(CLI::App* cmd, StatsOptions& o) {
 }  // namespace
 
 void add_stats_command(CLI::App& root) {
-  auto* stats = root.add_subcommand("stats", "Statistics on a CSV: ANOVA, repeated-measures ANOVA, Friedman, Wilcoxon");
+  auto* stats = root.add_subcommand("stats", "Statistics on a CSV: ANOVA, repeated-measures ANOVA, Friedman, Wilcoxon, mixed models");
   stats->require_subcommand(1);
   auto o = std::make_shared<StatsOptions>();
 
@@ -557,6 +557,8 @@ void add_stats_command(CLI::App& root) {
   wx->add_option("--alternative", o->alternative, "two-sided|less|greater (for first level - second level)")
       ->capture_default_str();
   wx->callback([o] { run_wilcoxon(*o); });
+
+  add_stats_lmm_command(*stats);  // mixed models: app/cmd_stats_lmm.cpp
 }
 
 }  // namespace dtlab::app

@@ -46,7 +46,8 @@ void add_render_command(CLI::App& root);   // `dtlab render ... --method M --out
 void add_bench_command(CLI::App& root);    // `dtlab bench`: frame-time ratios and image error per method, --json
 void add_icons_command(CLI::App& root);    // `dtlab icons --out DIR`: "find this" icons of the WALKTHROUGH kinds + contact sheet, --json
 void add_scene_command(CLI::App& root);  // `dtlab scene --scene K --task T --seed S`: one generated scene, --json, --obj
-void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman|wilcoxon`: statistics on a CSV, --json
+void add_stats_command(CLI::App& root);  // `dtlab stats anova|rm-anova|friedman|wilcoxon|lmm`: statistics on a CSV, --json
+void add_stats_lmm_command(CLI::App& stats);  // `dtlab stats lmm` (cmd_stats_lmm.cpp), added by add_stats_command
 void add_validate_command(CLI::App& root);  // `dtlab validate PROTOCOL`: every error with file:line:field, --json
 void add_plan_command(CLI::App& root);  // `dtlab plan PROTOCOL --index K`: one participant's trials, --json
 void add_export_command(CLI::App& root);  // `dtlab export DB --csv FILE`: one tidy CSV row per recorded trial, --json

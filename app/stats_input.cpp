@@ -43,9 +43,8 @@ void stats_fail(int code, const std::string& message) {
   throw CLI::RuntimeError(code);
 }
 
-Loaded load_stats_input(const StatsInput& o, bool groups_design) {
+SelectedTable load_selected_table(const StatsInput& o) {
   const st::RowSelection selection = parse_selection(o);
-  const st::Aggregate aggregate = parse_aggregate(o.aggregate);
   auto table = st::read_csv_file(o.data);
   if (!table)
     stats_fail(table.error().line == 0 && table.error().message.rfind("cannot open", 0) == 0 ? kExitFailure
@@ -53,6 +52,13 @@ Loaded load_stats_input(const StatsInput& o, bool groups_design) {
                table.error().to_string());
   auto report = st::select_rows(*table, selection);
   if (!report) stats_fail(kExitInvalid, report.error().to_string());
+  return {std::move(table).value(), *report};
+}
+
+Loaded load_stats_input(const StatsInput& o, bool groups_design) {
+  const st::Aggregate aggregate = parse_aggregate(o.aggregate);
+  const SelectedTable selected = load_selected_table(o);
+  const st::CsvTable& table = selected.table;
   Result<st::LongData> data = Error{};
   if (o.wide) {
     st::WideRoles w;
@@ -66,16 +72,16 @@ Loaded load_stats_input(const StatsInput& o, bool groups_design) {
       if (o.within.size() > 1) stats_fail(kExitUsage, "--wide takes one within factor name (its columns are the conditions)");
       w.factor = o.within.empty() ? "condition" : o.within.front();
     }
-    data = st::long_data_from_wide_csv(*table, w);
+    data = st::long_data_from_wide_csv(table, w);
   } else {
     if (o.dv.empty()) stats_fail(kExitUsage, "--dv COL is required (or --wide)");
     st::ColumnRoles roles{o.dv, groups_design ? std::string() : o.subject,
                           groups_design ? std::vector<std::string>{} : o.within, o.between};
-    data = st::long_data_from_csv(*table, roles);
+    data = st::long_data_from_csv(table, roles);
   }
   if (!data) stats_fail(kExitInvalid, data.error().to_string());
   data->aggregate = aggregate;
-  return {std::move(data).value(), *report};
+  return {std::move(data).value(), selected.selection};
 }
 
 }  // namespace dtlab::app

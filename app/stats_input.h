@@ -30,6 +30,16 @@ struct Loaded {
 // Prints "dtlab stats: MESSAGE" on stderr and ends the command with `code`.
 [[noreturn]] void stats_fail(int code, const std::string& message);
 
+// The CSV after the row selection (for tests that read more columns than LongData holds).
+struct SelectedTable {
+  stats::CsvTable table;
+  stats::SelectionReport selection;
+};
+
+// Reads the CSV and selects rows (--where, practice, excluded); on failure
+// prints file:line:column and ends the command.
+SelectedTable load_selected_table(const StatsInput& in);
+
 // Reads the CSV, selects rows and assigns the roles (groups_design: one-way
 // ANOVA, no subjects); on failure prints file:line:column and ends the command.
 Loaded load_stats_input(const StatsInput& in, bool groups_design);

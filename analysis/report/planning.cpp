@@ -8,12 +8,43 @@
 #include <cmath>
 
 #include "analysis/report/detail/design.h"
+#include "analysis/report/detail/format.h"
+#include "analysis/report/detail/mixed_models.h"
 #include "analysis/report/detail/planning.h"
 #include "analysis/report/detail/sections.h"
 #include "analysis/report/detail/study_data.h"
 #include "study/protocol/protocol.h"
 
 namespace dtlab::report {
+
+namespace {
+
+// The primary factor of each of the report's mixed models, planned by simulation.
+std::vector<PlannedMixedModel> plan_mixed_models(const detail::Context& ctx, const PlanningOptions& options) {
+  const std::string primary = ctx.design.factor(ctx.design.primary).name;
+  std::vector<std::size_t> sizes;
+  for (int n : options.sizes) sizes.push_back(static_cast<std::size_t>(n));
+  std::vector<PlannedMixedModel> out;
+  const auto models = detail::compute_mixed_models(ctx);
+  for (const auto& m : models) {
+    PlannedMixedModel p{m.section, m.measure, m.scope, m.fit ? m.fit->formula : "", primary, NAN, {}, m.not_fitted};
+    if (m.fit) {
+      for (const auto& a : m.fit->anova)
+        if (a.term == primary) p.pilot_p = a.p;
+      for (const auto& l : m.fit->lrt)
+        if (l.term == primary) p.pilot_p = l.p;
+      stats::LmmOptions o = m.options;
+      o.lrt = m.fit->family == stats::Family::binomial;
+      auto rows = stats::lmm_power(m.data, o, *m.fit, {sizes, options.mixed_replications, options.alpha, options.seed, primary});
+      if (rows) p.at = *rows;
+      else p.not_planned = rows.error().message;
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+}  // namespace
 
 Result<PowerPlan> plan_power(store::StudyReader& reader, const PlanningOptions& options) {
   using namespace detail;
@@ -54,12 +85,24 @@ Result<PowerPlan> plan_power(store::StudyReader& reader, const PlanningOptions& 
   plan.options = options;
   plan.options.progress = nullptr;
   plan.effects = plan_effects(ctx, options, plan.not_planned);
+  if (options.mixed) plan.mixed = plan_mixed_models(ctx, options);
   return plan;
 }
 
 nlohmann::json to_json(const PowerPlan& plan) {
   nlohmann::json effects = nlohmann::json::array();
   for (const auto& e : plan.effects) effects.push_back(detail::to_json(e));
+  nlohmann::json mixed = nlohmann::json::array();
+  for (const auto& m : plan.mixed) {
+    nlohmann::json at = nlohmann::json::array();
+    for (const auto& r : m.at)
+      at.push_back({{"n", r.n}, {"power", detail::num(r.power.power)}, {"ci_low", detail::num(r.power.ci_low)},
+                    {"ci_high", detail::num(r.power.ci_high)}, {"replications", r.power.replications},
+                    {"failed", r.power.undefined}});
+    mixed.push_back({{"section", m.section}, {"measure", m.measure}, {"scope", m.scope}, {"formula", m.formula},
+                     {"term", m.term}, {"pilot_p", detail::num(m.pilot_p)}, {"power", at},
+                     {"not_planned", m.not_planned}, {"replications", plan.options.mixed_replications}});
+  }
   return {{"database", plan.database},
           {"design_revision", plan.design_revision},
           {"participants", plan.participants},
@@ -70,6 +113,7 @@ nlohmann::json to_json(const PowerPlan& plan) {
           {"alpha", plan.options.alpha},
           {"seed", plan.options.seed},
           {"effects", effects},
+          {"mixed", mixed},
           {"not_planned", plan.not_planned}};
 }
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/stats/lmm_power.h"
 #include "analysis/stats/power.h"
 #include "study/common/error.h"
 #include "study/store/read.h"
@@ -29,6 +30,8 @@ struct PlanningOptions {
   unsigned threads = 0;                          // 0 = one per processor
   std::string revision = "latest";               // design revision: "latest" or "N"
   bool with_excluded = false;                    // keep excluded participants and trials
+  bool mixed = false;                            // also the report's mixed models, by simulation (as simr)
+  std::size_t mixed_replications = 200;          // simulated studies per size for each mixed model
   // Called after each (effect test, size) is resampled: done and total of those steps.
   std::function<void(std::size_t done, std::size_t total)> progress;
 };
@@ -56,6 +59,15 @@ struct PlannedEffect {
   int resampled_n80 = 0, resampled_n90 = 0;  // smallest planned size whose resampled power reaches it; 0: none
 };
 
+// --mixed: the primary factor's test in one of the report's mixed models, its power by
+// simulating studies from the fitted model (stats::lmm_power).
+struct PlannedMixedModel {
+  std::string section, measure, scope, formula, term;
+  double pilot_p = 0;                      // the pilot's test of the term
+  std::vector<stats::LmmPowerRow> at;      // one per planned size
+  std::string not_planned;                 // why not, when `at` is empty
+};
+
 struct PowerPlan {
   std::string database;
   int design_revision = 1;
@@ -65,6 +77,7 @@ struct PowerPlan {
   std::size_t participants = 0;  // participants with analysed trials
   PlanningOptions options;       // as used (progress dropped)
   std::vector<PlannedEffect> effects;
+  std::vector<PlannedMixedModel> mixed;  // with options.mixed
   std::vector<std::string> not_planned;  // tests that could not be planned, with the reason
 };
 

@@ -140,6 +140,8 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   section_time(ctx);
   say("accuracy");
   section_errors(ctx);
+  say("mixed models");
+  section_mixed_models(ctx);
   say("speed and accuracy");
   section_speed_accuracy(ctx);
   say("questionnaire");

@@ -155,6 +155,8 @@ std::vector<ResampledPower> power_by_resampling(std::size_t participants, std::s
   return out;
 }
 
+void share_with_wilson_interval(ResampledPower& r) { wilson(r); }
+
 ResampledPower power_by_resampling(const std::vector<std::vector<double>>& rows, std::size_t n,
                                    const std::function<double(const std::vector<std::vector<double>>&)>& test,
                                    std::size_t replications, std::uint64_t seed, double alpha) {

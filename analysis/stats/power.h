@@ -64,6 +64,10 @@ struct ResampledPower {
   std::size_t replications = 0, rejections = 0, undefined = 0;  // undefined: replications whose p was NaN (not counted)
 };
 
+// Fills r.power, r.ci_low, r.ci_high from r.rejections, r.replications and r.undefined
+// (the share of rejections among the defined replications, 95% Wilson interval).
+void share_with_wilson_interval(ResampledPower& r);
+
 // Power of `test` (participant rows -> p) at n participants drawn with replacement from `rows`.
 ResampledPower power_by_resampling(const std::vector<std::vector<double>>& rows, std::size_t n,
                                    const std::function<double(const std::vector<std::vector<double>>&)>& test,

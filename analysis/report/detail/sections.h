@@ -2,8 +2,8 @@
 // the Context, runs its tests and adds to the Context: document sections,
 // report.json entries, plots and CSV files. The order in report.cpp is the
 // order of a paper's results: data and method, completion time, accuracy,
-// speed-accuracy, questionnaire, instruments, position effects, frame-time audit, then planning
-// the next study.
+// mixed models of the trials, speed-accuracy, questionnaire, instruments, position effects,
+// frame-time audit, then planning the next study.
 // Sections never write files and never touch the database.
 #pragma once
 #include <nlohmann/json.hpp>
@@ -62,6 +62,7 @@ void section_overview(Context& ctx);        // title, data summary, warnings, me
 void section_participants(Context& ctx);    // demographics, pauses and notes per participant
 void section_time(Context& ctx);            // completion time: Table III layout, full ANOVAs, Fig. 9, participants
 void section_errors(Context& ctx);          // accuracy: relative error, correctness, distance
+void section_mixed_models(Context& ctx);    // mixed models of the trials beside the ANOVAs (section_mixed.cpp)
 void section_speed_accuracy(Context& ctx);  // time vs error per condition and participant
 void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test (asked at the end)
 void section_instruments(Context& ctx);     // instruments' scores and items asked per condition; free text

@@ -1,0 +1,207 @@
+// "Mixed models on trial-level data": lays out compute_mixed_models()'s
+// results beside the ANOVAs of the completion-time and accuracy sections:
+// per measure a table (the primary factor's test, its ratio or difference
+// with a 95% CI, the ANOVA's p beside and whether both decide alike at
+// alpha = .05), one APA sentence per model, the lme4 call of each model a
+// reader can paste into R, and a note listing every effect on which the two
+// analyses disagree. report.json gets every fit in full (lmm_json.h).
+#include <cmath>
+
+#include "analysis/report/detail/format.h"
+#include "analysis/report/detail/mixed_models.h"
+#include "analysis/report/detail/sections.h"
+#include "analysis/stats/apa.h"
+#include "analysis/stats/lmm_json.h"
+
+namespace dtlab::report::detail {
+namespace {
+
+const char* kAlphaText = "α = .05";
+
+std::string model_name(const stats::LmmFit& f) {
+  if (f.family == stats::Family::binomial) return "GLMM (logit)";
+  return f.transform == stats::Transform::log ? "LMM (log)" : "LMM";
+}
+
+// The primary factor's second level against its first (levels[1] vs levels[0], as the ANOVA's Δ).
+std::optional<stats::EmmContrast> primary_contrast(const MixedModelResult& m) {
+  if (!m.primary || m.primary->contrasts.size() != 1) return std::nullopt;
+  return stats::reversed(m.primary->contrasts.front());
+}
+
+std::string test_text(const MixedModelResult& m, const std::string& primary, double* p) {
+  *p = NAN;
+  if (!m.fit) return kDash;
+  if (m.fit->family == stats::Family::binomial) {
+    for (const auto& l : m.fit->lrt)
+      if (l.term == primary) {
+        *p = l.p;
+        return "χ²(" + df_text(l.df) + ") = " + fixed(l.chisq, 2);
+      }
+    return kDash;
+  }
+  for (const auto& a : m.fit->anova)
+    if (a.term == primary) {
+      *p = a.p;
+      return "F(" + df_text(a.num_df) + ", " + df_text(a.den_df) + ") = " + f_text(a.F);
+    }
+  return kDash;
+}
+
+std::string contrast_cell(const MixedModelResult& m, int decimals) {
+  const auto c = primary_contrast(m);
+  if (!c) return kDash;
+  if (m.primary->scale == stats::EmmScale::identity)
+    return fixed(c->estimate, decimals) + " [" + fixed(c->ci_low, decimals) + ", " + fixed(c->ci_high, decimals) + "]";
+  return fixed(c->ratio, 2) + " [" + fixed(c->ratio_ci_low, 2) + ", " + fixed(c->ratio_ci_high, 2) + "]";
+}
+
+double beside_p(const MixedModelResult& m, const std::string& primary) {
+  if (!m.beside) return NAN;
+  if (const stats::Effect* e = m.beside->effect(primary)) return reported_p(*e);
+  if (m.beside->friedman) return m.beside->friedman->p;
+  return NAN;
+}
+
+// "T1: on trials took 0.58 times as long as off trials, 95% CI [...], t(...) = ..., p < .001."
+std::string sentence(const MixedModelResult& m, const std::string& primary) {
+  if (!m.fit) return m.label + ": no mixed model (" + m.not_fitted + ").";
+  if (const auto c = primary_contrast(m)) {
+    const bool time = m.section == "time";
+    std::string s = stats::apa_contrast_sentence(*m.primary, *c, time,
+                                                 m.fit->family == stats::Family::binomial ? "the odds of a correct answer"
+                                                                                          : m.measure);
+    return m.label + ": " + s;
+  }
+  double p = NAN;
+  const std::string t = test_text(m, primary, &p);
+  return m.label + ": " + primary + " " + t + ", " + stats::apa_p(p) + ".";
+}
+
+// The lme4 call of one model, on the data frame `d` of the report's trials.csv.
+std::string r_call(const MixedModelResult& m) {
+  const std::string data = m.subset.empty() ? "d" : "subset(d, " + m.subset + ")";
+  if (m.fit->family == stats::Family::binomial)
+    return "glmer(" + m.fit->formula + ", data = " + data + ", family = binomial, control = ctl)";
+  return "lmer(" + m.fit->formula + ", data = " + data + ")";
+}
+
+nlohmann::json result_json(const MixedModelResult& m) {
+  nlohmann::json j{{"section", m.section}, {"scope", m.scope}, {"label", m.label}, {"measure", m.measure},
+                   {"column", m.column}, {"subset", m.subset}, {"trials", m.trials}};
+  if (!m.fit) {
+    j["not_fitted"] = m.not_fitted;
+    return j;
+  }
+  j["r_call"] = r_call(m);
+  j["fit"] = stats::lmm_fit_json<nlohmann::json>(*m.fit);
+  if (m.primary) j["primary"] = stats::emm_table_json<nlohmann::json>(*m.primary);
+  nlohmann::json dec = nlohmann::json::array();
+  for (const auto& x : m.decisions)
+    dec.push_back({{"effect", x.effect}, {"p_anova", num(x.p_anova)}, {"p_model", num(x.p_model)},
+                   {"disagree", x.disagree}});
+  j["decisions"] = dec;
+  return j;
+}
+
+void lay_out_group(Context& ctx, Section& s, const std::vector<MixedModelResult>& models, const std::string& section,
+                   const std::string& title) {
+  const Design& d = ctx.design;
+  const auto& primary = d.factor(d.primary);
+  std::vector<const MixedModelResult*> group;
+  for (const auto& m : models)
+    if (m.section == section) group.push_back(&m);
+  if (group.empty()) return;
+  const bool two = primary.levels.size() == 2;
+  Table t;
+  t.id = "table-lmm-" + section;
+  t.caption = title + ": mixed models on the trials, the test of " + primary.name + ", and the report's test beside.";
+  t.header = {"Task", "Measure", "Model", "Trials", "Test of " + primary.name, "p"};
+  if (two) t.header.push_back(primary.levels[1] + " vs " + primary.levels[0] + " [95% CI]");
+  t.header.insert(t.header.end(), {"Report's test p", "Same decision (" + std::string(kAlphaText) + ")"});
+  t.text_columns = 3;
+  t.last_is_text = true;
+  for (const auto* m : group) {
+    double p = NAN;
+    std::vector<std::string> row{m->label, m->measure, m->fit ? model_name(*m->fit) : kDash,
+                                 m->fit ? integer(m->trials) : kDash, test_text(*m, primary.name, &p), p_text(p)};
+    if (two) row.push_back(contrast_cell(*m, 3));
+    row.push_back(p_text(beside_p(*m, primary.name)));
+    bool differ = false;
+    for (const auto& x : m->decisions) differ = differ || x.disagree;
+    row.push_back(!m->fit || m->decisions.empty() ? kDash : differ ? "no (see below)" : "yes");
+    t.rows.push_back(std::move(row));
+  }
+  t.notes.push_back("Trials: analysed trials with a value (practice trials and excluded data left out). Fixed "
+                    "effects: the full factorial of the factors of the report's test, in sum-to-zero coding; random "
+                    "intercepts per participant. LMM: t and F tests with Satterthwaite's df (lmerTest); LMM (log): "
+                    "of the logarithm of the time, so its contrast is a ratio of geometric means. GLMM: binomial, "
+                    "Laplace approximation (lme4's glmer), likelihood-ratio χ² test of each term.");
+  if (two)
+    t.notes.push_back(primary.levels[1] + " vs " + primary.levels[0] + ": the ratio (log model), odds ratio (GLMM) "
+                      "or difference (LMM) of the estimated marginal means, with its 95% CI (emmeans).");
+  t.notes.push_back("Report's test p: the repeated-measures ANOVA (Greenhouse-Geisser corrected where ε < 1) or "
+                    "Friedman test of the same scope, on participant x condition means" +
+                    std::string(section == "time" ? " of the times in seconds" : "") + ".");
+  s.add(t);
+  for (const auto* m : group) s.text(sentence(*m, primary.name));
+  std::vector<std::string> differences, problems;
+  for (const auto* m : group) {
+    for (const auto& x : m->decisions)
+      if (x.disagree)
+        differences.push_back(m->label + ", " + m->measure + ", " + x.effect + ": report's test " +
+                              stats::apa_p(x.p_anova) + ", mixed model " + stats::apa_p(x.p_model) + ".");
+    if (m->fit)
+      for (const auto& w : m->fit->messages) problems.push_back(m->label + ", " + m->measure + ": " + w);
+    if (m->fit)
+      for (const auto& w : m->fit->warnings) problems.push_back(m->label + ", " + m->measure + ": " + w);
+  }
+  if (!differences.empty())
+    s.add(Callout{"note", "Where the ANOVA and the mixed model disagree at " + std::string(kAlphaText), differences});
+  else
+    s.text("For every effect both test, the report's test and the mixed model reach the same decision at " +
+           std::string(kAlphaText) + ".");
+  if (!problems.empty()) s.add(Callout{"warning", "Mixed-model messages (lme4's wording)", problems});
+}
+
+}  // namespace
+
+void section_mixed_models(Context& ctx) {
+  const std::vector<MixedModelResult> models = compute_mixed_models(ctx);
+  Section s{"mixed-models", "Mixed models on trial-level data", 2, {}};
+  s.text("The ANOVAs above average each participant's trials per condition first. A mixed model uses the trials "
+         "themselves: participants enter as random effects, so an unbalanced participant, a missing or excluded "
+         "trial weighs as much as it should. Completion time is modelled on the log scale (times are "
+         "right-skewed; effects become ratios), correctness of letter tasks as a binomial outcome instead of "
+         "proportions.");
+  lay_out_group(ctx, s, models, "time", "Completion time");
+  lay_out_group(ctx, s, models, "accuracy", "Accuracy");
+  bool binomial = false;
+  std::string calls;
+  for (const auto& m : models)
+    if (m.fit) {
+      binomial = binomial || m.fit->family == stats::Family::binomial;
+      calls += (calls.empty() ? "" : "; ") + std::string("`") + r_call(m) + "`";
+    }
+  if (!calls.empty()) {
+    std::string setup = "`library(lmerTest); options(contrasts = c(\"contr.sum\", \"contr.poly\")); d <- "
+                        "subset(read.csv(\"trials.csv\"), practice == 0" +
+                        std::string(ctx.data.with_excluded ? "" : " & is.na(excluded)") + ")`";
+    if (binomial)
+      setup += " and `ctl <- glmerControl(tolPwrss = 1e-13, optimizer = \"nloptwrap\", optCtrl = list(xtol_abs = "
+               "1e-14, ftol_abs = 1e-15, xtol_rel = 1e-14))` (glmer's defaults stop short of the optimum)";
+    s.text("The same models in R (lme4 1.1, lmerTest 3.1; `trials.csv` is beside this report): " + setup +
+           ", then " + calls + "; `summary()`, `anova()` and `emmeans::emmeans()` print what the tables show. "
+           "report.json holds every fit in full, with the R code naming each factor's levels.");
+  }
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto& m : models) {
+    all.push_back(result_json(m));
+    if (m.fit) ctx.tests += static_cast<int>(m.fit->family == stats::Family::binomial ? m.fit->lrt.size()
+                                                                                       : m.fit->anova.size());
+  }
+  ctx.json["mixed_models"] = all;
+  ctx.doc.sections.push_back(std::move(s));
+}
+
+}  // namespace dtlab::report::detail
