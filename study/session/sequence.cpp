@@ -116,7 +116,7 @@ std::optional<PageSpec> trial_break(const protocol::Protocol& p, const design::P
   const design::PlannedTrial* first = first_of_block(plan, last.block);
   const int done = last.position - (first ? first->position : last.position) + 1;
   if (done % every != 0) return std::nullopt;
-  const std::string what = next.task == last.task ? block_levels_text(p, next) : next.task + ", " + block_levels_text(p, next);
+  const std::string what = block_levels_text(p, next);  // task ids are the protocol's, not the participant's words
   PageSpec b = page(p, PageSpec::Kind::pause, "break", text(p, "break.title"),
                     text(p, "break.inside_block") + "\n\n" + text(p, "break.next", {{"next", what}}),
                     "after trial " + std::to_string(last.position));
