@@ -33,6 +33,22 @@ Console::Console(Ui& ui, store::Store& store, std::string participant, std::stri
 void Console::set_session(const store::Session& session, int planned) {
   session_ = session;
   planned_ = planned;
+  progress_stale_ = true;
+}
+
+void Console::set_trial(const session::TrialSpec* trial) {
+  trial_ = trial;
+  progress_stale_ = true;
+}
+
+void Console::read_progress() {
+  progress_stale_ = false;
+  recorded_.reset();
+  positions_.clear();
+  if (session_)
+    if (auto now = store_.session(participant_)) recorded_ = now->recorded;
+  if (auto rows = store_.read().trials(participant_))
+    for (const auto& r : *rows) positions_.push_back(r.planned.position);
 }
 
 double Console::take_paused_s() {
@@ -65,21 +81,27 @@ void Console::pause(bool on) {
 }
 
 void Console::draw() {
+  const bool own_window = ui_.drawing_console_window();
   ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.04f), ImGuiCond_Appearing,
-                          ImVec2(0.5f, 0.0f));
-  ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x * 0.7f, io.DisplaySize.y * 0.8f), ImGuiCond_Appearing);
-  ImGui::SetNextWindowBgAlpha(0.96f);
-  ImGui::Begin("Experimenter console (Ctrl+Shift+E hides it)", nullptr, ImGuiWindowFlags_NoCollapse);
-  // Above every participant panel, also one that appears later (the pause message does, and
-  // ImGui puts an appearing window in front): the experimenter's clicks must reach the console.
-  ImGui::BringWindowToDisplayFront(ImGui::GetCurrentWindow());
+  if (own_window) {  // the whole of its own window
+    ImGui::SetNextWindowPos(ImVec2(0, 0));
+    ImGui::SetNextWindowSize(io.DisplaySize);
+    ImGui::Begin("Experimenter console", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
+  } else {
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.04f), ImGuiCond_Appearing,
+                            ImVec2(0.5f, 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x * 0.7f, io.DisplaySize.y * 0.8f), ImGuiCond_Appearing);
+    ImGui::SetNextWindowBgAlpha(0.96f);
+    ImGui::Begin("Experimenter console (Ctrl+Shift+E hides it)", nullptr, ImGuiWindowFlags_NoCollapse);
+    // Above every participant panel, also one that appears later (the pause message does, and
+    // ImGui puts an appearing window in front): the experimenter's clicks must reach the console.
+    ImGui::BringWindowToDisplayFront(ImGui::GetCurrentWindow());
+  }
+  if (progress_stale_) read_progress();
   ImGui::PushFont(ui_.small_font());
   ImGui::Text("Participant %s", participant_.c_str());
-  if (session_) {
-    auto now = store_.session(participant_);
-    if (now) ImGui::Text("Session %lld: %d of %d trials recorded", static_cast<long long>(now->id), now->recorded, planned_);
-  }
+  if (session_ && recorded_)
+    ImGui::Text("Session %lld: %d of %d trials recorded", static_cast<long long>(session_->id), *recorded_, planned_);
   ImGui::Text("Screen: %s", screen_.c_str());
   if (trial_) {
     const auto& t = trial_->planned;
@@ -89,7 +111,22 @@ void Console::draw() {
     ImGui::Text("Trial %d (block %d): task %s, repetition %d%s", t.position, t.block, t.task.c_str(), t.trial,
                 t.practice ? ", practice" : "");
     ImGui::Text("Condition: %s; method %s", levels.c_str(), t.method.c_str());
-    ImGui::Text("Answer key: %s", answer_text(trial_->scene->answer).c_str());
+    // The trial's truth: in the console's own window always; over the participant's screen only
+    // while the experimenter holds the chord (the participant may be looking).
+    if (own_window || ui_.answer_key_held()) {
+      ImGui::Text("Answer key: %s", answer_text(trial_->scene->answer).c_str());
+      ui_.name_item("Answer key");
+    } else {
+      ImGui::TextDisabled("Answer key hidden: hold Ctrl+Shift+K to show the answer key");
+      ui_.name_item("Answer key hidden");
+    }
+  }
+  if (aborted_) {  // nothing is left to act on (the end screen is up)
+    ImGui::Separator();
+    ImGui::TextWrapped("%s", status_.c_str());
+    ImGui::PopFont();
+    ImGui::End();
+    return;
   }
   ImGui::Separator();
   if (ui_.button(paused_ ? "Resume" : "Pause")) pause(!paused_);
@@ -99,9 +136,7 @@ void Console::draw() {
   // Invalid trials: the current one and every recorded one.
   ImGui::Separator();
   ImGui::TextUnformatted("Mark a trial invalid (it is kept, and left out of the analysis):");
-  std::vector<int> positions;
-  if (auto rows = store_.read().trials(participant_))
-    for (const auto& r : *rows) positions.push_back(r.planned.position);
+  std::vector<int> positions = positions_;
   if (trial_ && (positions.empty() || positions.back() != trial_->planned.position))
     positions.push_back(trial_->planned.position);
   for (int p : positions) {
@@ -146,6 +181,8 @@ void Console::draw() {
         store_.add_note(participant_, trial_ ? std::optional<int>(trial_->planned.position) : std::nullopt,
                         experimenter_, "session aborted from the console");
         aborted_ = true;
+        trial_ = nullptr;  // the trial ends with the session (its spec with it): the end screen has none
+        ui_.show_console(false);  // the overlay closes: nothing is left to act on, the end screen's button is
         status_ = "Session abandoned.";
       } else {
         status_ = st.error().to_string();
