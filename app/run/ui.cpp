@@ -198,15 +198,17 @@ void Ui::console_frame(Clock::time_point frame_start, std::chrono::duration<doub
   if (!console_window_->due(now, min_frame - (now - frame_start))) return;
   console_items_next_.clear();
   naming_ = &console_items_next_;
-  // The gallery's picture of the console window: its first frame after one that showed an answer key.
-  const bool shoot = !options_.screenshots.empty() && !shot_.count("console-window") && console_items_.count("Answer key");
+  // The gallery's picture of the console window: its first frame that shows an answer key (presented,
+  // since the frame before showed none; the console's window has a fixed layout from its first frame).
+  const bool shoot = !options_.screenshots.empty() && !shot_.count("console-window");
   console_window_->frame(
       [&] {
         if (console_) console_();
         else console_idle(*this);
       },
       [&] {
-        if (shoot) screenshot("console-window", console_window_->width(), console_window_->height());
+        if (shoot && console_items_next_.count("Answer key"))
+          screenshot("console-window", console_window_->width(), console_window_->height());
       });
   naming_ = &items_next_;
   console_items_ = std::move(console_items_next_);
@@ -231,6 +233,7 @@ void Ui::write_items() const {
     return {};
   });
 }
+
 void Ui::screenshot(const std::string& name, int w, int h) {
   if (!shot_.insert(name).second) return;
   render::Image img;
