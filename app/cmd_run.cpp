@@ -53,6 +53,32 @@ std::string experimenter_name(const std::string& given) {
   return "experimenter";
 }
 
+// --console-monitor, checked before anything is opened: a wrong monitor is a command-line mistake.
+void check_console_monitor(const RunArgs& a) {
+  if (a.console_monitor < 0) return;
+  const auto monitors = platform::monitors();
+  if (monitors.empty()) fail(kExitFailure, "--console-monitor: no monitor found (a participant session needs a display)");
+  if (a.console_monitor >= static_cast<int>(monitors.size()))
+    fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) + ": there is no such monitor; the "
+                         "monitors are " + platform::describe(monitors) + " (dtlab run --list-monitors)");
+  if (a.console_monitor == a.monitor)
+    fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) +
+                         ": the participant's window is on that monitor (--monitor " + std::to_string(a.monitor) +
+                         "); the console goes on another one, or leave the option out for the overlay");
+}
+
+// --list-monitors: the monitors with the numbers --monitor and --console-monitor take.
+void list_monitors() {
+  const auto monitors = platform::monitors();
+  if (monitors.empty()) std::cout << "no monitor (is there a display?)\n";
+  for (std::size_t i = 0; i < monitors.size(); ++i) {
+    const auto& m = monitors[i];
+    std::cout << i << "  " << m.name << "  " << m.width << "x" << m.height << " at " << m.x << "," << m.y;
+    if (m.refresh_hz > 0) std::cout << "  " << m.refresh_hz << " Hz";
+    std::cout << (i == 0 ? "  (primary)" : "") << "\n";
+  }
+}
+
 void run_person(const RunArgs& a) {
   auto p = protocol::load_protocol(a.protocol);
   if (!p) fail(kExitInvalid, p.error().to_string() + "\n(run `dtlab validate " + a.protocol + "` for every problem)");
@@ -73,18 +99,7 @@ void run_person(const RunArgs& a) {
     fail(kExitUsage, "--size " + a.size + ": expected 320x240 up to " + std::to_string(session::kMaxViewportSide) + "x" +
                          std::to_string(session::kMaxViewportSide));
 
-  if (a.console_monitor >= 0) {
-    // Checked before anything is opened: a wrong monitor is a command-line mistake.
-    const auto monitors = platform::monitors();
-    if (monitors.empty()) fail(kExitFailure, "--console-monitor: no monitor found (a participant session needs a display)");
-    if (a.console_monitor >= static_cast<int>(monitors.size()))
-      fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) + ": there is no such monitor; the "
-                           "monitors are " + platform::describe(monitors) + " (dtlab run --list-monitors)");
-    if (a.console_monitor == a.monitor)
-      fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) +
-                           ": the participant's window is on that monitor (--monitor " + std::to_string(a.monitor) +
-                           "); the console goes on another one, or leave the option out for the overlay");
-  }
+  check_console_monitor(a);
 
   auto store = store::Store::open(a.db, session::study_info(p.value()), session::open_options(a.allow_protocol_change));
   if (!store) fail(exit_code(store.error()), store.error().to_string());
@@ -186,14 +201,7 @@ void add_run_command(CLI::App& root) {
   cmd->add_flag_callback(
          "--list-monitors",
          [] {
-           const auto monitors = platform::monitors();
-           if (monitors.empty()) std::cout << "no monitor (is there a display?)\n";
-           for (std::size_t i = 0; i < monitors.size(); ++i) {
-             const auto& m = monitors[i];
-             std::cout << i << "  " << m.name << "  " << m.width << "x" << m.height << " at " << m.x << "," << m.y;
-             if (m.refresh_hz > 0) std::cout << "  " << m.refresh_hz << " Hz";
-             std::cout << (i == 0 ? "  (primary)" : "") << "\n";
-           }
+           list_monitors();
            throw CLI::Success();
          },
          "Print the connected monitors with the numbers --monitor and --console-monitor take, and exit")

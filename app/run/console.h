@@ -38,6 +38,11 @@ class Console {
 
  private:
   void pause(bool on);
+  void begin_window(bool own_window);   // ImGui::Begin of the console, in its own window or as the overlay
+  void draw_progress(bool own_window);  // who, where, the trial and its answer key (or that it is hidden)
+  void draw_invalid();                  // "Trial N invalid..." and the reason field
+  void draw_note();
+  void draw_abort();                    // with its confirmation
   void read_progress();  // the recorded trials, from the store (when the session or its trial changed)
 
   Ui& ui_;
