@@ -4,7 +4,8 @@
 // and shows it only while the chord is held; the chord's K never reaches a
 // participant screen (on the T2 answer screen K is an answer); the pause, the
 // note and the abort made in the overlay are stored as with the console's
-// own window.
+// own window. Also: a --font that is not a whole font is refused with exit 1
+// naming it (Dear ImGui would abort on it), before any screen is shown.
 #include <gtest/gtest.h>
 
 #include "study/store/read.h"
@@ -175,6 +176,33 @@ TEST_F(ConsoleOverlay, ThePauseTheNoteAndTheAbortAreStored) {
   EXPECT_EQ((*notes)[0].text, "seen in the overlay");
   EXPECT_EQ((*notes)[1].text, "session aborted from the console");
   EXPECT_FALSE((*notes)[1].position.has_value()) << "aborted between trials";
+}
+
+// Regression: `--font /etc/passwd` aborted the program in ImGui's atlas build (an assertion in
+// Debian's libimgui); a truncated font would read past its end. Each is now an error naming the file.
+TEST(RunFont, AFileThatIsNotAWholeFontIsRefusedNamingIt) {
+  const fs::path d = test::fresh_dir("font");
+  const std::string pilot = std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml";
+  { std::ofstream(d / "notes.ttf") << "these are notes, not a font\n"; }
+  std::vector<std::pair<std::string, std::string>> cases{{"notes.ttf", "no font signature"}};
+  const fs::path dejavu = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  if (fs::exists(dejavu)) {
+    const std::string whole = test::read_text(dejavu);
+    ASSERT_GT(whole.size(), 4000u);
+    { std::ofstream(d / "head.ttf", std::ios::binary) << whole.substr(0, 100); }   // its directory: 12 + 16 x 20 bytes
+    { std::ofstream(d / "part.ttf", std::ios::binary) << whole.substr(0, 4000); }  // directory whole, tables not
+    cases.emplace_back("head.ttf", "its table directory is cut off");
+    cases.emplace_back("part.ttf", "a table lies past the end of the file");
+  }
+  for (const auto& [file, why] : cases) {
+    SCOPED_TRACE(file);
+    const auto r = test::run_dtlab("run '" + pilot + "' --db '" + (d / "f.sqlite").string() + "' --size 640x480 --font '" +
+                                   (d / file).string() + "'");
+    EXPECT_EQ(r.rc, 1) << r.err;
+    EXPECT_NE(r.err.find((d / file).string() + ": font: not a TrueType or OpenType font (" + why), std::string::npos)
+        << r.err;
+  }
+  fs::remove_all(d);
 }
 
 }  // namespace

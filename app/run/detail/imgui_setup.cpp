@@ -2,11 +2,15 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <stb/stb_truetype.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <vector>
 
 #include "app/run/detail/imgui_setup.h"
 #include "study/common/text.h"
@@ -40,6 +44,35 @@ void map_keys(ImGuiIO& io) {
   io.KeyMap[ImGuiKey_Z] = GLFW_KEY_Z;
 }
 
+// ImGui asserts (aborts the program) when a font file is not one: read it first as ImGui's
+// stb_truetype will (Debian's libstb), with the table directory inside the file.
+Status check_font_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::vector<unsigned char> data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  auto bad = [&](const std::string& why) {
+    return Error{file, 0, 0, "font", "not a TrueType or OpenType font (" + why + "); give a .ttf or .otf file, e.g. " +
+                                         std::string(kDefaultFont), ErrorKind::invalid_input};
+  };
+  if (!in.eof() && in.fail()) return bad("it could not be read");
+  if (data.size() < 12) return bad("shorter than a font's header");
+  const int offset = stbtt_GetFontOffsetForIndex(data.data(), 0);
+  if (offset < 0 || static_cast<std::size_t>(offset) + 12 > data.size()) return bad("no font signature");
+  const std::size_t tables = (std::size_t{data[offset + 4]} << 8) | data[offset + 5];
+  if (static_cast<std::size_t>(offset) + 12 + 16 * tables > data.size()) return bad("its table directory is cut off");
+  auto u32 = [&](std::size_t at) {
+    return (std::size_t{data[at]} << 24) | (std::size_t{data[at + 1]} << 16) | (std::size_t{data[at + 2]} << 8) |
+           data[at + 3];
+  };
+  for (std::size_t t = 0; t < tables; ++t) {  // stb_truetype reads the tables unchecked
+    const std::size_t entry = static_cast<std::size_t>(offset) + 12 + 16 * t;
+    if (u32(entry + 8) > data.size() || u32(entry + 12) > data.size() - u32(entry + 8))
+      return bad("a table lies past the end of the file: is it cut off?");
+  }
+  stbtt_fontinfo info;
+  if (!stbtt_InitFont(&info, data.data(), offset)) return bad("its glyph tables are missing");
+  return {};
+}
+
 // The three sizes from `file`, with the scripts participants are written in: Latin (with
 // Extended-A and -B: Polish, Czech, Turkish, ...), Greek, Cyrillic, typographic punctuation, and
 // every character of the wording (so a script outside these ranges still shows where the font has
@@ -48,6 +81,7 @@ Status add_font_file(ImGuiSetup& s, float text_px, const std::string& file, cons
                      ImVector<ImWchar>& glyph_ranges) {
   static const ImWchar kScripts[] = {0x0020, 0x024F, 0x0370, 0x03FF, 0x0400, 0x052F, 0x1E00, 0x1EFF,
                                      0x2000, 0x206F, 0x20A0, 0x20BF, 0x2100, 0x214F, 0};
+  if (Status st = check_font_file(file); !st) return st;
   ImGuiIO& io = ImGui::GetIO();
   ImFontConfig cfg;
   cfg.OversampleH = 2;
