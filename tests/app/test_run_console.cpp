@@ -2,8 +2,8 @@
 // through the real app on an X server with two monitors (two_monitors.sh:
 // Xorg's dummy driver). A scripted session of one trial: the participant's
 // window never shows the answer key or any of the console's items (not even
-// on Ctrl+Shift+E), the console's window shows the key; a pause, a note and
-// the abort made in the console's window are stored. Also: --list-monitors
+// on Ctrl+Shift+E), the console's window shows the key; a pause, an invalid
+// trial, a note and the abort made in the console's window are stored. Also: --list-monitors
 // lists both monitors, and a console monitor that does not exist or is the
 // participant's is refused with exit 2, naming the monitors.
 #include <gtest/gtest.h>
@@ -20,8 +20,9 @@ namespace fs = std::filesystem;
 using test::Shown;
 
 // The participant enrols, opens trial 1 and presses Ctrl+Shift+E in their own window (the chord
-// that would open the overlay on one monitor); the experimenter pauses, resumes and saves a note in
-// the console's window; the participant answers; on the next screen the experimenter aborts.
+// that would open the overlay on one monitor); the experimenter pauses, resumes, saves a note and
+// marks the trial invalid in the console's window; the participant answers; on the next screen the
+// experimenter aborts.
 constexpr const char* kScript = R"(
 [start]
 wait 0.3
@@ -53,6 +54,10 @@ click_item "Resume"
 click_item "Note"
 type "seen in the console window"
 click_item "Save note"
+click_item "Trial 1 invalid..."
+click_item "Reason"
+type "looked away"
+click_item "Record as invalid"
 window participant
 key Enter
 
@@ -136,7 +141,7 @@ TEST_F(ConsoleWindow, TheConsolesWindowShowsTheAnswerKeyDuringTheTrial) {
   EXPECT_GT(h, 480);
 }
 
-TEST_F(ConsoleWindow, ThePauseTheNoteAndTheAbortMadeThereAreStored) {
+TEST_F(ConsoleWindow, ThePauseTheInvalidTrialTheNoteAndTheAbortMadeThereAreStored) {
   ASSERT_EQ(rc, 0) << log();
   auto r = store::StudyReader::open((*dir / "c.sqlite").string());
   ASSERT_TRUE(r) << r.error().to_string();
@@ -155,6 +160,13 @@ TEST_F(ConsoleWindow, ThePauseTheNoteAndTheAbortMadeThereAreStored) {
   EXPECT_EQ((*notes)[0].text, "seen in the console window");
   EXPECT_EQ((*notes)[0].position, 1);
   EXPECT_EQ((*notes)[1].text, "session aborted from the console");
+  const auto exclusions = r->exclusions();
+  ASSERT_TRUE(exclusions);
+  ASSERT_EQ(exclusions->size(), 1u);
+  EXPECT_EQ((*exclusions)[0].participant, "con-01");
+  EXPECT_EQ((*exclusions)[0].position, 1) << "the trial running when it was marked";
+  EXPECT_TRUE((*exclusions)[0].exclude);
+  EXPECT_EQ((*exclusions)[0].reason, "looked away");
   // The paused time is not completion time: the trial's wall-clock span less its completion time is
   // the pause (to the millisecond the wall-clock stamps keep).
   const auto trials = r->trials("con-01");

@@ -2,10 +2,11 @@
 // --console-monitor; this program runs under xvfb-run): the overlay over the
 // participant's screen hides the answer key, saying to hold Ctrl+Shift+K,
 // and shows it only while the chord is held; the chord's K never reaches a
-// participant screen (on the T2 answer screen K is an answer); the pause, the
-// note and the abort made in the overlay are stored as with the console's
-// own window. Also: a --font that is not a whole font is refused with exit 1
-// naming it (Dear ImGui would abort on it), before any screen is shown.
+// participant screen (on the T2 answer screen K is an answer); the pause,
+// the invalid trial, the note and the abort made in the overlay are stored
+// as with the console's own window. Also: a --font that is not a whole font
+// is refused with exit 1 naming it (Dear ImGui would abort on it), before
+// any screen is shown.
 #include <gtest/gtest.h>
 
 #include "study/store/read.h"
@@ -19,8 +20,9 @@ namespace fs = std::filesystem;
 using test::Shown;
 
 // Trial 1: the experimenter opens the console, waits, holds Ctrl+Shift+K for a moment, lets go,
-// pauses, resumes, saves a note and closes it. On the T2 answer screen they press Ctrl+Shift+K
-// (which must not answer "K"), then the participant answers C. At the break they abort.
+// pauses, resumes, saves a note, marks the trial invalid and closes it. On the T2 answer screen
+// they press Ctrl+Shift+K (which must not answer "K"), then the participant answers C. At the
+// break they abort.
 constexpr const char* kScript = R"(
 [start]
 wait 0.3
@@ -60,6 +62,10 @@ click_item "Resume"
 click_item "Note"
 type "seen in the overlay"
 click_item "Save note"
+click_item "Trial 1 invalid..."
+click_item "Reason"
+type "looked away"
+click_item "Record as invalid"
 key_down LeftControl
 key_down LeftShift
 key E
@@ -160,7 +166,7 @@ TEST_F(ConsoleOverlay, TheChordsKIsNoAnswer) {
   EXPECT_EQ(std::get<store::Letter>(*(*trials)[1].answer).letter, "C") << "Ctrl+Shift+K answered K";
 }
 
-TEST_F(ConsoleOverlay, ThePauseTheNoteAndTheAbortAreStored) {
+TEST_F(ConsoleOverlay, ThePauseTheInvalidTrialTheNoteAndTheAbortAreStored) {
   ASSERT_EQ(rc, 0) << log();
   auto r = store::StudyReader::open((*dir / "o.sqlite").string());
   ASSERT_TRUE(r) << r.error().to_string();
@@ -176,6 +182,13 @@ TEST_F(ConsoleOverlay, ThePauseTheNoteAndTheAbortAreStored) {
   EXPECT_EQ((*notes)[0].text, "seen in the overlay");
   EXPECT_EQ((*notes)[1].text, "session aborted from the console");
   EXPECT_FALSE((*notes)[1].position.has_value()) << "aborted between trials";
+  const auto exclusions = r->exclusions();
+  ASSERT_TRUE(exclusions);
+  ASSERT_EQ(exclusions->size(), 1u);
+  EXPECT_EQ((*exclusions)[0].participant, "ovl-01");
+  EXPECT_EQ((*exclusions)[0].position, 1) << "the trial running when it was marked";
+  EXPECT_TRUE((*exclusions)[0].exclude);
+  EXPECT_EQ((*exclusions)[0].reason, "looked away");
 }
 
 // Regression: `--font /etc/passwd` aborted the program in ImGui's atlas build (an assertion in
