@@ -1,6 +1,7 @@
 // `dtlab run PROTOCOL --db DB [--participant ID] [--fullscreen] [--monitor N]
-// [--size WxH] [--script FILE] [--screenshots DIR] [--experimenter NAME]`: a
-// person's session in a GLFW window with Dear ImGui (app/run; docs/run.md).
+// [--console-monitor N] [--size WxH] [--script FILE] [--screenshots DIR]
+// [--experimenter NAME]`, `dtlab run --list-monitors`: a person's session in
+// a GLFW window with Dear ImGui (app/run; docs/run.md).
 // The experimenter's start screen enrolls (or resumes) a participant, the
 // session runner (study/session) drives the participant's screens, the end
 // screen thanks them. Every finished trial is committed before the next
@@ -37,6 +38,7 @@ struct RunArgs {
   std::string protocol, db, participant, size = "1280x800", script, screenshots, experimenter, font;
   bool fullscreen = false, allow_protocol_change = false;
   int monitor = 0;
+  int console_monitor = -1;  // -1: the console is an overlay on the participant's window
 };
 
 [[noreturn]] void fail(int code, const std::string& message) {
@@ -49,6 +51,32 @@ std::string experimenter_name(const std::string& given) {
   for (const char* var : {"DTLAB_EXPERIMENTER", "USER", "LOGNAME"})
     if (const char* v = std::getenv(var); v && *v) return v;
   return "experimenter";
+}
+
+// --console-monitor, checked before anything is opened: a wrong monitor is a command-line mistake.
+void check_console_monitor(const RunArgs& a) {
+  if (a.console_monitor < 0) return;
+  const auto monitors = platform::monitors();
+  if (monitors.empty()) fail(kExitFailure, "--console-monitor: no monitor found (a participant session needs a display)");
+  if (a.console_monitor >= static_cast<int>(monitors.size()))
+    fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) + ": there is no such monitor; the "
+                         "monitors are " + platform::describe(monitors) + " (dtlab run --list-monitors)");
+  if (a.console_monitor == a.monitor)
+    fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) +
+                         ": the participant's window is on that monitor (--monitor " + std::to_string(a.monitor) +
+                         "); the console goes on another one, or leave the option out for the overlay");
+}
+
+// --list-monitors: the monitors with the numbers --monitor and --console-monitor take.
+void list_monitors() {
+  const auto monitors = platform::monitors();
+  if (monitors.empty()) std::cout << "no monitor (is there a display?)\n";
+  for (std::size_t i = 0; i < monitors.size(); ++i) {
+    const auto& m = monitors[i];
+    std::cout << i << "  " << m.name << "  " << m.width << "x" << m.height << " at " << m.x << "," << m.y;
+    if (m.refresh_hz > 0) std::cout << "  " << m.refresh_hz << " Hz";
+    std::cout << (i == 0 ? "  (primary)" : "") << "\n";
+  }
 }
 
 void run_person(const RunArgs& a) {
@@ -71,6 +99,8 @@ void run_person(const RunArgs& a) {
     fail(kExitUsage, "--size " + a.size + ": expected 320x240 up to " + std::to_string(session::kMaxViewportSide) + "x" +
                          std::to_string(session::kMaxViewportSide));
 
+  check_console_monitor(a);
+
   auto store = store::Store::open(a.db, session::study_info(p.value()), session::open_options(a.allow_protocol_change));
   if (!store) fail(exit_code(store.error()), store.error().to_string());
 
@@ -89,6 +119,7 @@ void run_person(const RunArgs& a) {
   uo.font = !a.font.empty() ? a.font : std::getenv("DTLAB_FONT") ? std::getenv("DTLAB_FONT") : "";
   uo.glyph_text = protocol::participant_text(p.value());
   uo.script = script ? &*script : nullptr;
+  uo.console_monitor = a.console_monitor;
   auto ui = run::Ui::create(**window, uo);
   if (!ui) fail(exit_code(ui.error()), ui.error().to_string());
   if (!(*ui)->missing_glyphs().empty()) {
@@ -157,20 +188,35 @@ void add_run_command(CLI::App& root) {
       "run",
       "Run a person through a protocol in a window: the experimenter's start screen (enroll with demographics, "
       "resume, release), then instructions, training, the trials, breaks between blocks, the post-test "
-      "questionnaire with the depth test, and an end screen. The experimenter console (Ctrl+Shift+E) pauses, marks "
-      "trials invalid, takes notes and aborts, all stored. Every finished trial is saved at once; run the same "
+      "questionnaire with the depth test, and an end screen. The experimenter console (its own window with "
+      "--console-monitor N, else Ctrl+Shift+E over the participant's screen, answer key on Ctrl+Shift+K held) pauses, "
+      "marks trials invalid, takes notes and aborts, all stored. Every finished trial is saved at once; run the same "
       "command again to resume an interrupted session");
   cmd->footer(
       "Keys: Enter answers a trial; in WALKTHROUGH the arrow keys move and turn, the mouse turns; in ABSTRACT "
       "left-drag turns the scene. docs/run.md describes every screen, the console, scripts and replay.\n"
       "Exit status: 0 finished (or quit, or aborted from the console), 1 invalid protocol, database or script, 2 bad "
       "command line, 3 no display, GL or database failure, 130 window closed mid-session (rerun to resume).");
+  // Before the required arguments are checked: --list-monitors alone is a whole command.
+  cmd->add_flag_callback(
+         "--list-monitors",
+         [] {
+           list_monitors();
+           throw CLI::Success();
+         },
+         "Print the connected monitors with the numbers --monitor and --console-monitor take, and exit")
+      ->trigger_on_parse();
   cmd->add_option("protocol", a->protocol, "Protocol file (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--db", a->db, std::string(kDatabaseHelp) + "; a file is created if missing")->required();
   cmd->add_option("--participant", a->participant, "Participant ID to fill in on the start screen")
       ->check(participant_id());
   cmd->add_flag("--fullscreen", a->fullscreen, "Full screen on the monitor (at its current resolution)");
   cmd->add_option("--monitor", a->monitor, "Monitor to use, 0-based (0 = primary)")->check(CLI::Range(0, 16));
+  cmd->add_option("--console-monitor", a->console_monitor,
+                  "Open the experimenter console as its own window on this monitor (0-based, as --list-monitors "
+                  "numbers them; not the participant's); without it the console is an overlay (Ctrl+Shift+E) that "
+                  "hides the answer key unless Ctrl+Shift+K is held")
+      ->check(CLI::Range(0, 16));
   cmd->add_option("--size", a->size, "Window size WIDTHxHEIGHT in pixels (windowed)")->capture_default_str();
   cmd->add_option("--script", a->script,
                   "Scripted input: a text file of timed events per screen (docs/run.md, \"Scripts\"), fed in where "

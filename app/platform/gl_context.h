@@ -49,12 +49,22 @@ struct WindowOptions {
   bool vsync = true;
   bool resizable = true;
   bool fullscreen = false;  // full screen on `monitor`, at that monitor's current video mode (width/height ignored)
-  int monitor = 0;          // 0-based index into the connected monitors (0 = the primary one)
+  int monitor = 0;          // 0-based index into monitors() (0 = the primary one)
+  bool focused = true;      // false: opens without taking the keyboard focus from the window that has it
 };
 
-// The connected monitors' names, primary first (needs GLFW: call after a window exists, or it
-// initialises GLFW for the call); empty when there is no display.
-std::vector<std::string> monitor_names();
+// A connected monitor: GLFW's name, its place on the desktop and its current video mode.
+struct Monitor {
+  std::string name;
+  int x = 0, y = 0, width = 0, height = 0;  // desktop coordinates (screen points)
+  int refresh_hz = 0;                       // 0: the monitor does not say
+};
+
+// The connected monitors, primary first, in the order --monitor N numbers them (initialises GLFW
+// for the call when no window is open); empty when there is no display.
+std::vector<Monitor> monitors();
+// One line per monitor for messages and --list-monitors: "0: DUMMY0, 1280x1024 at 0,0, 60 Hz".
+std::string describe(const std::vector<Monitor>& monitors);
 
 // A GLFW window with a GL 3.3 core context (forward compatible, so macOS works).
 class Window final : public GlContext {

@@ -82,25 +82,31 @@ Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
   glfwWindowHint(GLFW_ALPHA_BITS, 8);
   glfwWindowHint(GLFW_DEPTH_BITS, 24);
   glfwWindowHint(GLFW_STENCIL_BITS, 8);
+  glfwWindowHint(GLFW_FOCUSED, options.focused ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_FOCUS_ON_SHOW, options.focused ? GLFW_TRUE : GLFW_FALSE);
+  // A full-screen participant window stays up when the keyboard goes elsewhere (the experimenter
+  // console's window on another monitor); GLFW's default would iconify it.
+  glfwWindowHint(GLFW_AUTO_ICONIFY, GLFW_FALSE);
   GLFWmonitor* monitor = nullptr;
   int width = options.width, height = options.height;
   int place_x = -1, place_y = -1;  // a windowed window on another monitor: its top-left corner
   if (options.fullscreen || options.monitor != 0) {
     int count = 0;
-    GLFWmonitor** monitors = glfwGetMonitors(&count);
+    GLFWmonitor** connected = glfwGetMonitors(&count);
     if (options.monitor < 0 || options.monitor >= count) {
+      Error e = window_error("monitor " + std::to_string(options.monitor) + " does not exist (" +
+                             std::to_string(count) + " connected, numbered from 0: " + describe(monitors()) + ")");
       if (--g_windows == 0) glfwTerminate();
-      return window_error("monitor " + std::to_string(options.monitor) + " does not exist (" + std::to_string(count) +
-                          " connected, numbered from 0)");
+      return e;
     }
     if (options.fullscreen) {
-      monitor = monitors[options.monitor];
+      monitor = connected[options.monitor];
       const GLFWvidmode* mode = glfwGetVideoMode(monitor);
       width = mode->width;
       height = mode->height;
       glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
     } else {
-      glfwGetMonitorPos(monitors[options.monitor], &place_x, &place_y);
+      glfwGetMonitorPos(connected[options.monitor], &place_x, &place_y);
     }
   }
   GLFWwindow* w = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
@@ -119,18 +125,39 @@ Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
   return window;
 }
 
-std::vector<std::string> monitor_names() {
-  std::vector<std::string> out;
+std::vector<Monitor> monitors() {
+  std::vector<Monitor> out;
   const bool init = g_windows == 0;
   if (init && glfwInit() == GLFW_FALSE) return out;
   int count = 0;
-  GLFWmonitor** monitors = glfwGetMonitors(&count);
+  GLFWmonitor** list = glfwGetMonitors(&count);
   for (int i = 0; i < count; ++i) {
-    const char* name = glfwGetMonitorName(monitors[i]);
-    out.push_back(name ? name : "monitor " + std::to_string(i));
+    Monitor m;
+    const char* name = glfwGetMonitorName(list[i]);
+    m.name = name ? name : "monitor " + std::to_string(i);
+    glfwGetMonitorPos(list[i], &m.x, &m.y);
+    if (const GLFWvidmode* mode = glfwGetVideoMode(list[i])) {
+      m.width = mode->width;
+      m.height = mode->height;
+      m.refresh_hz = mode->refreshRate;
+    }
+    out.push_back(std::move(m));
   }
   if (init) glfwTerminate();
   return out;
+}
+
+std::string describe(const std::vector<Monitor>& monitors) {
+  if (monitors.empty()) return "no monitor";
+  std::string s;
+  for (std::size_t i = 0; i < monitors.size(); ++i) {
+    const Monitor& m = monitors[i];
+    if (i) s += "; ";
+    s += std::to_string(i) + ": " + m.name + ", " + std::to_string(m.width) + "x" + std::to_string(m.height) + " at " +
+         std::to_string(m.x) + "," + std::to_string(m.y);
+    if (m.refresh_hz > 0) s += ", " + std::to_string(m.refresh_hz) + " Hz";
+  }
+  return s;
 }
 
 }  // namespace dtlab::platform

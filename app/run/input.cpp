@@ -20,6 +20,8 @@ void char_cb(GLFWwindow* w, unsigned c) { of(w)->on_char(c); }
 void button_cb(GLFWwindow* w, int button, int action, int mods) { of(w)->on_mouse_button(button, action, mods); }
 void cursor_cb(GLFWwindow* w, double x, double y) { of(w)->on_cursor(x, y); }
 void scroll_cb(GLFWwindow* w, double dx, double dy) { of(w)->on_scroll(dx, dy); }
+void focus_cb(GLFWwindow* w, int focused) { of(w)->on_focus(focused != 0); }
+void enter_cb(GLFWwindow* w, int entered) { of(w)->on_enter(entered != 0); }
 
 struct KeyName {
   int key;
@@ -46,6 +48,10 @@ Input::Input(GLFWwindow* window) : window_(window) {
   glfwSetMouseButtonCallback(window, button_cb);
   glfwSetCursorPosCallback(window, cursor_cb);
   glfwSetScrollCallback(window, scroll_cb);
+  glfwSetWindowFocusCallback(window, focus_cb);
+  glfwSetCursorEnterCallback(window, enter_cb);
+  focused_ = glfwGetWindowAttrib(window, GLFW_FOCUSED) != 0;
+  hovered_ = glfwGetWindowAttrib(window, GLFW_HOVERED) != 0;
 }
 
 Input::~Input() {
@@ -55,6 +61,8 @@ Input::~Input() {
   glfwSetMouseButtonCallback(window_, nullptr);
   glfwSetCursorPosCallback(window_, nullptr);
   glfwSetScrollCallback(window_, nullptr);
+  glfwSetWindowFocusCallback(window_, nullptr);
+  glfwSetCursorEnterCallback(window_, nullptr);
   glfwSetWindowUserPointer(window_, nullptr);
 }
 
@@ -115,9 +123,12 @@ void Input::on_key(int key, int action, int) {
 }
 
 void Input::on_char(unsigned codepoint) { chars_.push_back(codepoint); }
+void Input::on_focus(bool focused) { focused_ = focused; }
+void Input::on_enter(bool inside) { hovered_ = inside; }
 
 void Input::on_mouse_button(int button, int action, int) {
   if (button < 0 || button >= static_cast<int>(buttons_.size())) return;
+  if (lent_ && action == GLFW_PRESS) lend_pointer(false);  // a click here takes the pointer back
   const auto b = static_cast<std::size_t>(button);
   static const char* names[] = {"left", "right", "middle", "4", "5", "6", "7", "8"};
   if (action == GLFW_PRESS) {
@@ -132,7 +143,8 @@ void Input::on_mouse_button(int button, int action, int) {
 }
 
 void Input::on_cursor(double x, double y) {
-  if (have_cursor_) delta_ += glm::dvec2(x, y) - cursor_;
+  if (have_cursor_ && !lent_ && !rebase_) delta_ += glm::dvec2(x, y) - cursor_;
+  rebase_ = false;
   cursor_ = {x, y};
   have_cursor_ = true;
   log_.add(store::InputEvent::Kind::cursor, "", x, y);
@@ -185,15 +197,30 @@ bool Input::button_pressed(int b) const {
 bool Input::button_released(int b) const {
   return b >= 0 && b < static_cast<int>(button_released_.size()) && button_released_[static_cast<std::size_t>(b)];
 }
+void Input::swallow_press(int key) {
+  if (key >= 0 && key < static_cast<int>(pressed_.size())) pressed_[static_cast<std::size_t>(key)] = false;
+}
+
 bool Input::ctrl() const { return key_down(GLFW_KEY_LEFT_CONTROL) || key_down(GLFW_KEY_RIGHT_CONTROL); }
 bool Input::shift() const { return key_down(GLFW_KEY_LEFT_SHIFT) || key_down(GLFW_KEY_RIGHT_SHIFT); }
 
 void Input::capture_cursor(bool on) {
   if (on == captured_) return;
   captured_ = on;
-  if (!window_) return;
+  if (!window_ || lent_) return;  // a lent pointer is captured when it comes back
   glfwSetInputMode(window_, GLFW_CURSOR, on ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
   if (on && glfwRawMouseMotionSupported()) glfwSetInputMode(window_, GLFW_RAW_MOUSE_MOTION, GLFW_TRUE);
+}
+
+void Input::lend_pointer(bool on) {
+  if (on == lent_) return;
+  lent_ = on;
+  // Captured and free cursors count from different origins: the next position starts the motion
+  // afresh (no jump when the pointer comes back). The position itself stays valid: the click that
+  // takes the pointer back is a click where it is.
+  rebase_ = true;
+  if (!window_ || !captured_) return;
+  glfwSetInputMode(window_, GLFW_CURSOR, on ? GLFW_CURSOR_NORMAL : GLFW_CURSOR_DISABLED);
 }
 
 void Input::start_log(Clock::time_point origin) { log_.start(origin); }

@@ -52,6 +52,8 @@ class Input {
   void on_mouse_button(int button, int action, int mods);
   void on_cursor(double x, double y);          // window coordinates (screen points), origin top-left
   void on_scroll(double dx, double dy);
+  void on_focus(bool focused);                 // the window got or lost the keyboard
+  void on_enter(bool inside);                  // the pointer entered or left the window
 
   // --- per frame ---------------------------------------------------------------------------
   void new_frame();                            // before the frame's events arrive
@@ -68,10 +70,20 @@ class Input {
   glm::dvec2 scroll() const { return scroll_; }       // during this frame
   bool ctrl() const;
   bool shift() const;
+  bool focused() const { return focused_; }    // the window has the keyboard (as its events said)
+  bool hovered() const { return hovered_; }    // the pointer is over the window (as its events said)
+  // This frame's press of `key` is not one for the screens: key_pressed() is false and ImGui sees no
+  // new press (the experimenter's chords; the key still reads as down while held).
+  void swallow_press(int key);
 
   // Cursor capture (WALKTHROUGH turning): hidden and unbounded while captured.
   void capture_cursor(bool on);
   bool cursor_captured() const { return captured_; }
+  // The pointer lent to another window (the console's, Ctrl+Shift+E with --console-monitor): free
+  // even while captured, and its motion turns nothing here, until lend_pointer(false) or a button
+  // pressed in this window takes it back.
+  void lend_pointer(bool on);
+  bool pointer_lent() const { return lent_; }
 
   // --- the event log ------------------------------------------------------------------------
   // Starts a new log at `origin` (a trial's start); events from then on are kept with t_s
@@ -94,6 +106,9 @@ class Input {
   glm::dvec2 cursor_{0.0}, delta_{0.0}, scroll_{0.0};
   bool have_cursor_ = false;
   bool captured_ = false;
+  bool lent_ = false;
+  bool focused_ = false, hovered_ = false;
+  bool rebase_ = false;  // the next cursor position adds no motion (the pointer came back)
   EventLog log_;
 };
 

@@ -81,6 +81,7 @@ constexpr OpSpec kOps[] = {
     {"turn", ScriptStep::Op::turn, 2, 2, "turn DX SECONDS"},
     {"scroll", ScriptStep::Op::scroll, 2, 2, "scroll DX DY"},
     {"click_item", ScriptStep::Op::click_item, 1, 3, "click_item \"NAME\" [FX FY]"},
+    {"window", ScriptStep::Op::window, 1, 1, "window console|participant"},
 };
 
 Error at(const std::string& file, int line, std::string field, std::string message) {
@@ -158,6 +159,11 @@ Result<ScriptStep> parse_step(const std::vector<std::string>& w, const std::stri
         st = at(file, line, w[0], std::string("give both fractions or none; expected: ") + spec->usage);
       }
       break;
+    case ScriptStep::Op::window:
+      s.text = w[1];
+      if (s.text != "console" && s.text != "participant")
+        st = at(file, line, w[0], "\"" + s.text + "\": expected console or participant");
+      break;
   }
   if (!st) return st.error();
   if (s.seconds < 0 || s.seconds > 3600) return at(file, line, w[0], "seconds must be within 0..3600");
@@ -224,23 +230,31 @@ Result<Script> parse_script(const std::string& path) {
   return parse_script_text(text.str(), path);
 }
 
-ScriptPlayer::ScriptPlayer(const Script& script, Input& input) : script_(script), input_(input) {}
+ScriptPlayer::ScriptPlayer(const Script& script, Input& input, Input* console)
+    : script_(script), participant_(input), console_(console), input_(&input) {}
 
 void ScriptPlayer::key(int k, bool down) {
-  input_.on_key(k, down ? GLFW_PRESS : GLFW_RELEASE, 0);
-  std::erase(held_keys_, k);
-  if (down) held_keys_.push_back(k);
+  input_->on_key(k, down ? GLFW_PRESS : GLFW_RELEASE, 0);
+  std::erase(held_keys_, std::pair(input_, k));
+  if (down) held_keys_.emplace_back(input_, k);
 }
 
 void ScriptPlayer::button(int b, bool down) {
-  input_.on_mouse_button(b, down ? GLFW_PRESS : GLFW_RELEASE, 0);
-  std::erase(held_buttons_, b);
-  if (down) held_buttons_.push_back(b);
+  input_->on_mouse_button(b, down ? GLFW_PRESS : GLFW_RELEASE, 0);
+  std::erase(held_buttons_, std::pair(input_, b));
+  if (down) held_buttons_.emplace_back(input_, b);
 }
 
 void ScriptPlayer::leave() {
-  for (int k : std::vector<int>(held_keys_)) key(k, false);
-  for (int b : std::vector<int>(held_buttons_)) button(b, false);
+  for (const auto& [in, k] : std::vector(held_keys_)) {
+    input_ = in;
+    key(k, false);
+  }
+  for (const auto& [in, b] : std::vector(held_buttons_)) {
+    input_ = in;
+    button(b, false);
+  }
+  input_ = &participant_;
   section_ = nullptr;
   instance_ = ~0ULL;
 }
@@ -253,9 +267,10 @@ void ScriptPlayer::begin_step(Clock::time_point now) {
 }
 
 Status ScriptPlayer::tick(const std::string& screen, std::uint64_t instance, const ItemBoxes& items,
-                          Clock::time_point now) {
+                          const ItemBoxes& console_items, Clock::time_point now) {
   if (instance != instance_) {
     instance_ = instance;
+    input_ = &participant_;  // every section starts in the participant's window
     section_ = script_.for_screen(screen);
     next_ = 0;
     begin_step(now);
@@ -263,7 +278,11 @@ Status ScriptPlayer::tick(const std::string& screen, std::uint64_t instance, con
   }
   Status error;
   while (section_ && next_ < section_->steps.size()) {
-    if (!step(section_->steps[next_], items, now, error)) return error;  // waiting (or failed)
+    const bool in_console = console_ && input_ == console_;
+    if (in_console && !console_fresh_) return {};  // the console window has not seen the last phase yet
+    const bool done = step(section_->steps[next_], in_console ? console_items : items, now, error);
+    if (in_console) console_fresh_ = false;
+    if (!done) return error;  // waiting (or failed)
     ++next_;
     begin_step(now);
     idle_since_ = now;
@@ -287,7 +306,7 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
   const double elapsed = std::chrono::duration<double>(now - step_start_).count();
   auto press_release = [&](int button, double x, double y) {
     if (phase_ == 0) {
-      input_.on_cursor(x, y);
+      input_->on_cursor(x, y);
       this->button(button, true);
       phase_ = 1;
       return false;
@@ -301,6 +320,7 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
   };
   switch (s.op) {
     case Op::wait: return elapsed >= s.seconds;
+    case Op::window: input_ = s.text == "console" && console_ ? console_ : &participant_; return true;
     case Op::key:
       if (phase_ == 0) {
         key(s.key, true);
@@ -326,21 +346,21 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
       phase_ = 2;
       return false;
     case Op::type:  // code points, as a keyboard's text input delivers them (UTF-8 decoded)
-      for (const char32_t c : utf8_codepoints(s.text)) input_.on_char(static_cast<unsigned>(c));
+      for (const char32_t c : utf8_codepoints(s.text)) input_->on_char(static_cast<unsigned>(c));
       return true;
-    case Op::move: input_.on_cursor(s.x0, s.y0); return true;
+    case Op::move: input_->on_cursor(s.x0, s.y0); return true;
     case Op::click: return press_release(s.button, s.x0, s.y0);
-    case Op::scroll: input_.on_scroll(s.x0, s.y0); return true;
+    case Op::scroll: input_->on_scroll(s.x0, s.y0); return true;
     case Op::drag: {
       if (phase_ == 0) {
-        input_.on_cursor(s.x0, s.y0);
+        input_->on_cursor(s.x0, s.y0);
         this->button(0, true);
         phase_ = 1;
         return false;
       }
       if (phase_ == 2) return true;
       const double f = s.seconds > 0 ? std::min(1.0, elapsed / s.seconds) : 1.0;
-      input_.on_cursor(s.x0 + (s.x1 - s.x0) * f, s.y0 + (s.y1 - s.y0) * f);
+      input_->on_cursor(s.x0 + (s.x1 - s.x0) * f, s.y0 + (s.y1 - s.y0) * f);
       if (f < 1.0) return false;
       this->button(0, false);
       phase_ = 2;
@@ -348,8 +368,8 @@ bool ScriptPlayer::step(const ScriptStep& s, const ItemBoxes& items, Clock::time
     }
     case Op::turn: {
       const double f = s.seconds > 0 ? std::min(1.0, elapsed / s.seconds) : 1.0;
-      const glm::dvec2 c = input_.cursor();
-      input_.on_cursor(c.x + s.x0 * (f - moved_), c.y);
+      const glm::dvec2 c = input_->cursor();
+      input_->on_cursor(c.x + s.x0 * (f - moved_), c.y);
       moved_ = f;
       return f >= 1.0;
     }

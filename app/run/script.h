@@ -38,6 +38,7 @@ struct ScriptStep {
     turn,        // turn DX SECONDS: relative cursor motion (a captured cursor turns the view)
     scroll,      // scroll DX DY
     click_item,  // click_item "NAME" [FX FY]: the UI item named NAME (at fractions of its box; default centre)
+    window,      // window console|participant: the window the section's next steps act in
   };
   Op op = Op::wait;
   int line = 0;
@@ -73,11 +74,19 @@ using ItemBoxes = std::map<std::string, ItemBox>;
 
 class ScriptPlayer {
  public:
-  ScriptPlayer(const Script& script, Input& input);
+  // `input` is the participant window's; `console` the console's own window's (nullptr on one
+  // monitor, where `window console` steps act in the participant's window, which has the console).
+  ScriptPlayer(const Script& script, Input& input, Input* console = nullptr);
 
   // Once per frame, after the frame's real events arrived: a new screen instance restarts its
-  // section; the steps that are due are fed to the input. `items` are the boxes drawn last frame.
-  Status tick(const std::string& screen, std::uint64_t instance, const ItemBoxes& items, Clock::time_point now);
+  // section (in the participant's window); the steps that are due are fed to the input of the
+  // window they act in. `items` and `console_items` are the boxes each window drew last.
+  Status tick(const std::string& screen, std::uint64_t instance, const ItemBoxes& items,
+              const ItemBoxes& console_items, Clock::time_point now);
+  // The console's own window drew a frame. Its frames are fewer than the participant's (it draws in
+  // their spare time), so steps acting in it wait for one after each of their phases: a click's press
+  // and release, or two clicks, must not fall into one console frame.
+  void console_drew() { console_fresh_ = true; }
   // The screen is being left: the playing section stops, and every key and button it holds down
   // is released (a release lost with its screen would leave the key down on the next one).
   void leave();
@@ -94,7 +103,10 @@ class ScriptPlayer {
   void button(int button, bool down);
 
   const Script& script_;
-  Input& input_;
+  Input& participant_;
+  Input* console_;
+  Input* input_ = nullptr;  // the window the steps act in now
+  bool console_fresh_ = true;  // the console window drew a frame since a step last acted there
   const ScriptSection* section_ = nullptr;
   std::uint64_t instance_ = ~0ULL;
   std::size_t next_ = 0;
@@ -103,7 +115,7 @@ class ScriptPlayer {
   Clock::time_point idle_since_{};  // since the screen's last step ended (or the screen appeared)
   double moved_ = 0;  // turn/drag: the share of the motion already fed
   std::optional<ItemBox> seen_;  // click_item: its item's box last frame (clicked once it holds still)
-  std::vector<int> held_keys_, held_buttons_;
+  std::vector<std::pair<Input*, int>> held_keys_, held_buttons_;  // with the window they are held in
 };
 
 // How long click_item waits for its item (on screen, holding still) before it fails.

@@ -10,45 +10,20 @@
 #include <cstdlib>
 #include <set>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
+#include "app/run/console_window.h"
+#include "app/run/detail/imgui_setup.h"
 #include "app/run/ui.h"
 #include "study/common/file.h"
-#include "study/common/text.h"
 #include "study/render/image.h"
 
 namespace dtlab::run {
 
 namespace {
-
-constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-
-void map_keys(ImGuiIO& io) {
-  io.KeyMap[ImGuiKey_Tab] = GLFW_KEY_TAB;
-  io.KeyMap[ImGuiKey_LeftArrow] = GLFW_KEY_LEFT;
-  io.KeyMap[ImGuiKey_RightArrow] = GLFW_KEY_RIGHT;
-  io.KeyMap[ImGuiKey_UpArrow] = GLFW_KEY_UP;
-  io.KeyMap[ImGuiKey_DownArrow] = GLFW_KEY_DOWN;
-  io.KeyMap[ImGuiKey_PageUp] = GLFW_KEY_PAGE_UP;
-  io.KeyMap[ImGuiKey_PageDown] = GLFW_KEY_PAGE_DOWN;
-  io.KeyMap[ImGuiKey_Home] = GLFW_KEY_HOME;
-  io.KeyMap[ImGuiKey_End] = GLFW_KEY_END;
-  io.KeyMap[ImGuiKey_Insert] = GLFW_KEY_INSERT;
-  io.KeyMap[ImGuiKey_Delete] = GLFW_KEY_DELETE;
-  io.KeyMap[ImGuiKey_Backspace] = GLFW_KEY_BACKSPACE;
-  io.KeyMap[ImGuiKey_Space] = GLFW_KEY_SPACE;
-  io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
-  io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
-  io.KeyMap[ImGuiKey_KeyPadEnter] = GLFW_KEY_KP_ENTER;
-  io.KeyMap[ImGuiKey_A] = GLFW_KEY_A;
-  io.KeyMap[ImGuiKey_C] = GLFW_KEY_C;
-  io.KeyMap[ImGuiKey_V] = GLFW_KEY_V;
-  io.KeyMap[ImGuiKey_X] = GLFW_KEY_X;
-  io.KeyMap[ImGuiKey_Y] = GLFW_KEY_Y;
-  io.KeyMap[ImGuiKey_Z] = GLFW_KEY_Z;
-}
 
 std::string file_stem(const std::string& screen) {
   std::string s;
@@ -56,91 +31,64 @@ std::string file_stem(const std::string& screen) {
   return s;
 }
 
+// What the console's own window shows while no session runs (start and end screens).
+void console_idle(Ui& ui) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(io.DisplaySize);
+  ImGui::Begin("Experimenter console", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
+  ImGui::PushFont(ui.small_font());
+  ImGui::TextWrapped("Experimenter console. It shows the session from its first screen on; until then the "
+                     "start screen is in the participant's window.");
+  ImGui::PopFont();
+  ImGui::End();
+}
+
 }  // namespace
 
 Ui::Ui(platform::Window& window, const UiOptions& options) : window_(window), options_(options) {
   if (const char* path = std::getenv("DTLAB_RUN_ITEMS")) items_path_ = path;
+  if (const char* path = std::getenv("DTLAB_RUN_ITEMS_LOG")) items_log_path_ = path;
 }
 
 Result<std::unique_ptr<Ui>> Ui::create(platform::Window& window, const UiOptions& options) {
   std::unique_ptr<Ui> ui(new Ui(window, options));
   window.make_current();
   ui->input_ = std::make_unique<Input>(window.glfw());
-  if (options.script) ui->player_ = std::make_unique<ScriptPlayer>(*options.script, *ui->input_);
   GLFWmonitor* monitor = glfwGetWindowMonitor(window.glfw());
   if (!monitor) monitor = glfwGetPrimaryMonitor();
   if (const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr; mode && mode->refreshRate > 0)
     ui->refresh_hz_ = mode->refreshRate;
-
-  IMGUI_CHECKVERSION();
-  ui->imgui_ = ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;  // no imgui.ini beside the study
-  io.LogFilename = nullptr;
-  // No keyboard navigation: it would highlight (pre-select) the first button of every page; every
-  // screen has its own keys (digits for ratings, letters for T2, Enter, Escape, Space).
-  io.ConfigFlags &= ~ImGuiConfigFlags_NavEnableKeyboard;
-  io.BackendPlatformName = "dtlab-run";
-  map_keys(io);
   // Text large enough to read at arm's length: a 28th of the window's height, 20..48 px.
   ui->text_px_ = std::clamp(static_cast<float>(window.height()) / 28.0f, 20.0f, 48.0f);
-  ImFontConfig cfg;
-  cfg.OversampleH = 2;
-  const std::string font_file = options.font.empty() ? kFontFile : options.font;
-  if (!options.font.empty() && !std::filesystem::is_regular_file(options.font))
-    return Error{options.font, 0, 0, "font", "no such font file (a TrueType or OpenType file, e.g. " +
-                                                 std::string(kFontFile) + ")", ErrorKind::not_found};
-  if (std::filesystem::exists(font_file)) {
-    // The scripts participants are written in: Latin (with Extended-A and -B: Polish, Czech,
-    // Turkish, ...), Greek, Cyrillic, typographic punctuation, and every character the protocol's
-    // wording uses (so a script outside these ranges still shows where the font has it).
-    static const ImWchar kScripts[] = {0x0020, 0x024F, 0x0370, 0x03FF, 0x0400, 0x052F, 0x1E00, 0x1EFF,
-                                       0x2000, 0x206F, 0x20A0, 0x20BF, 0x2100, 0x214F, 0};
-    ImFontGlyphRangesBuilder builder;
-    builder.AddRanges(kScripts);
-    builder.AddText(options.glyph_text.c_str());
-    builder.BuildRanges(&ui->glyph_ranges_);
-    const ImWchar* ranges = ui->glyph_ranges_.Data;
-    ImFont* text = io.Fonts->AddFontFromFileTTF(font_file.c_str(), ui->text_px_, &cfg, ranges);
-    ui->heading_ = io.Fonts->AddFontFromFileTTF(font_file.c_str(), ui->text_px_ * 1.5f, &cfg, ranges);
-    ui->small_ = io.Fonts->AddFontFromFileTTF(font_file.c_str(), std::max(14.0f, ui->text_px_ * 0.7f), &cfg, ranges);
-    if (!text || !ui->heading_ || !ui->small_)
-      return Error{font_file, 0, 0, "font", "the font could not be loaded (not a TrueType or OpenType file?)",
-                   ErrorKind::invalid_input};
-    io.Fonts->Build();
-    // What the font lacks would read as '?': say so before a participant sees it.
-    std::set<char32_t> reported;
-    for (const char32_t c : utf8_codepoints(options.glyph_text)) {
-      if (c < 0x20 || reported.count(c)) continue;
-      if (c <= 0xFFFF && text->FindGlyphNoFallback(static_cast<ImWchar>(c))) continue;  // ImWchar: 16 bits here
-      reported.insert(c);
-      char entry[32];
-      std::snprintf(entry, sizeof entry, "U+%04X", static_cast<unsigned>(c));
-      ui->missing_glyphs_.push_back(entry);
-    }
-  } else {  // ImGui's own font, scaled (pixel-like but legible)
-    cfg.SizePixels = ui->text_px_;
-    io.Fonts->AddFontDefault(&cfg);
-    cfg.SizePixels = ui->text_px_ * 1.5f;
-    ui->heading_ = io.Fonts->AddFontDefault(&cfg);
-    cfg.SizePixels = std::max(14.0f, ui->text_px_ * 0.7f);
-    ui->small_ = io.Fonts->AddFontDefault(&cfg);
+  auto imgui = detail::create_imgui(ui->text_px_, detail::FontSpec{options.font, options.glyph_text}, ui->glyph_ranges_);
+  if (!imgui) return imgui.error();
+  ui->imgui_ = imgui->context;
+  ui->heading_ = imgui->heading;
+  ui->small_ = imgui->small;
+  ui->missing_glyphs_ = std::move(imgui->missing_glyphs);
+  if (options.console_monitor >= 0) {
+    auto console = ConsoleWindow::open(options.console_monitor, window, ui->imgui_,
+                                       detail::FontSpec{options.font, options.glyph_text});
+    if (!console) return console.error();
+    ui->console_window_ = std::move(console.value());
   }
-  ImGui::StyleColorsLight();
-  ImGuiStyle& style = ImGui::GetStyle();
-  style.ScaleAllSizes(ui->text_px_ / 16.0f);
-  style.FrameRounding = 4;
-  style.WindowRounding = 6;
-  if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
-    return Error{"", 0, 0, "window", "Dear ImGui's OpenGL 3 backend did not start", ErrorKind::environment};
+  if (options.script)
+    ui->player_ = std::make_unique<ScriptPlayer>(*options.script, *ui->input_,
+                                                 ui->console_window_ ? &ui->console_window_->input() : nullptr);
   return ui;
 }
 
 Ui::~Ui() {
+  player_.reset();
+  console_window_.reset();
   if (!imgui_) return;
   window_.make_current();
-  ImGui_ImplOpenGL3_Shutdown();
-  ImGui::DestroyContext(imgui_);
+  detail::destroy_imgui(imgui_);
+}
+
+ImFont* Ui::small_font() const {
+  return drawing_console_window() ? console_window_->small_font() : small_;
 }
 
 void Ui::name_item(const std::string& name) {
@@ -148,7 +96,7 @@ void Ui::name_item(const std::string& name) {
   // An item whose centre lies off the window cannot be clicked: a script must not find it either.
   const ImVec2 c((a.x + b.x) * 0.5f, (a.y + b.y) * 0.5f), display = ImGui::GetIO().DisplaySize;
   if (c.x < 0 || c.y < 0 || c.x >= display.x || c.y >= display.y) return;
-  items_next_[name] = ItemBox{a.x, a.y, b.x - a.x, b.y - a.y};
+  (*naming_)[name] = ItemBox{a.x, a.y, b.x - a.x, b.y - a.y};
 }
 
 bool Ui::button(const std::string& label, ImVec2 size) {
@@ -156,6 +104,21 @@ bool Ui::button(const std::string& label, ImVec2 size) {
   const auto hash = label.find("##");
   name_item(hash == std::string::npos ? label : label.substr(0, hash));
   return pressed;
+}
+
+bool Ui::answer_key_held() const {
+  return input_->ctrl() && input_->shift() && input_->key_down(GLFW_KEY_K);
+}
+
+void Ui::console_chords() {
+  if (!input_->ctrl() || !input_->shift()) return;
+  if (input_->key_pressed(GLFW_KEY_E)) {
+    if (console_window_) console_window_->take_keyboard_and_pointer(*input_);  // never an overlay then
+    else console_shown_ = !console_shown_;
+  }
+  // A chord's letter is the experimenter's: no screen may read it as an answer (K is a T2 letter).
+  input_->swallow_press(GLFW_KEY_E);
+  input_->swallow_press(GLFW_KEY_K);
 }
 
 Status Ui::frame(const std::string& screen, const std::function<void()>& draw3d, const std::function<void()>& widgets) {
@@ -181,8 +144,8 @@ Status Ui::frame(const std::string& screen, const std::function<void()>& draw3d,
   // A screen's script section starts once the screen has been presented twice: its layout has
   // settled and its focus requests have taken effect, as when a person starts to act on it.
   if (player_ && frames_in_screen_ >= 2)
-    if (Status s = player_->tick(screen_, instance_, items_, start); !s) return s;
-  if (input_->ctrl() && input_->shift() && input_->key_pressed(GLFW_KEY_E)) console_shown_ = !console_shown_;
+    if (Status s = player_->tick(screen_, instance_, items_, console_items_, start); !s) return s;
+  console_chords();
 
   ImGuiIO& io = ImGui::GetIO();
   int ww = 0, wh = 0;
@@ -202,16 +165,18 @@ Status Ui::frame(const std::string& screen, const std::function<void()>& draw3d,
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   if (draw3d) draw3d();
   if (widgets) widgets();
-  const bool console_now = console_shown_ && console_;
-  if (console_now) console_();
+  // Over the participant's screen only without a console window: there, never.
+  const bool overlay = !console_window_ && console_shown_ && console_;
+  if (overlay) console_();
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   items_ = std::move(items_next_);
+  if (!items_log_path_.empty()) log_items("participant", items_, logged_);
 
   // The third frame of a screen has settled its layout (ImGui sizes windows on their first frames).
-  if (++frames_in_screen_ == 3 && !options_.screenshots.empty()) screenshot(screen_);
+  if (++frames_in_screen_ == 3 && !options_.screenshots.empty()) screenshot(screen_, fw, fh);
   if (frames_in_screen_ == 3 && !items_path_.empty()) write_items();
-  if (console_now && !options_.screenshots.empty() && !shot_.count("console")) screenshot("console");
+  if (overlay && !options_.screenshots.empty() && !shot_.count("console")) screenshot("console", fw, fh);
 
   window_.swap_buffers();
   const Clock::time_point swapped = Clock::now();
@@ -220,9 +185,44 @@ Status Ui::frame(const std::string& screen, const std::function<void()>& draw3d,
   // A cap at the display's rate: where vsync does not hold (a virtual display) frames would spin.
   const double cap = options_.frame_limit_hz > 0 ? options_.frame_limit_hz : refresh_hz_.value_or(60.0);
   const auto min_frame = std::chrono::duration<double>(1.0 / cap);
+  if (console_window_) console_frame(start, min_frame);
   const auto spent = Clock::now() - start;
   if (spent < min_frame) std::this_thread::sleep_for(min_frame - spent);
   return {};
+}
+
+// The console's own window, after the participant's swap: in the time left before the participant's
+// next frame, so the participant's frames keep their pace (ConsoleWindow::due).
+void Ui::console_frame(Clock::time_point frame_start, std::chrono::duration<double> min_frame) {
+  const Clock::time_point now = Clock::now();
+  if (!console_window_->due(now, min_frame - (now - frame_start))) return;
+  console_items_next_.clear();
+  naming_ = &console_items_next_;
+  // The gallery's picture of the console window: its first frame that shows an answer key (presented,
+  // since the frame before showed none; the console's window has a fixed layout from its first frame).
+  const bool shoot = !options_.screenshots.empty() && !shot_.count("console-window");
+  console_window_->frame(
+      [&] {
+        if (console_) console_();
+        else console_idle(*this);
+      },
+      [&] {
+        if (shoot && console_items_next_.count("Answer key"))
+          screenshot("console-window", console_window_->width(), console_window_->height());
+      });
+  naming_ = &items_next_;
+  console_items_ = std::move(console_items_next_);
+  if (player_) player_->console_drew();
+  if (!items_log_path_.empty()) log_items("console", console_items_, console_logged_);
+}
+
+void Ui::log_items(const char* window, const ItemBoxes& items, std::set<std::string>& last) {
+  std::set<std::string> names;
+  for (const auto& [name, box] : items) names.insert(name);
+  if (names == last) return;
+  last = names;
+  std::ofstream out(items_log_path_, std::ios::app);
+  out << nlohmann::json{{"window", window}, {"screen", screen_}, {"items", names}}.dump() << "\n";
 }
 
 void Ui::write_items() const {
@@ -234,9 +234,8 @@ void Ui::write_items() const {
   });
 }
 
-void Ui::screenshot(const std::string& name) {
+void Ui::screenshot(const std::string& name, int w, int h) {
   if (!shot_.insert(name).second) return;
-  const int w = window_.width(), h = window_.height();
   render::Image img;
   img.width = w;
   img.height = h;

@@ -147,7 +147,7 @@ struct Played {
   Status run(const std::string& screen, const ItemBoxes& items, double seconds, double from = 0) {
     for (double t = from; t <= seconds; t += 0.1) {
       const auto now = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
-      if (Status st = player->tick(screen, 1, items, now); !st) return st;
+      if (Status st = player->tick(screen, 1, items, {}, now); !st) return st;
     }
     return {};
   }
@@ -169,7 +169,7 @@ TEST(ScriptPlayer, ClickItemWhoseBoxNeverHoldsStillFailsAfterItsTimeout) {
   Status st;
   for (double t = 0; t <= kItemTimeoutS + 2 && st; t += 0.1) {
     const auto now = p.t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
-    st = p.player->tick("s", 1, {{"A", ItemBox{static_cast<float>(t * 10), 0, 20, 20}}}, now);
+    st = p.player->tick("s", 1, {{"A", ItemBox{static_cast<float>(t * 10), 0, 20, 20}}}, {}, now);
   }
   ASSERT_FALSE(st);
   EXPECT_EQ(st.error().line, 2);
@@ -183,7 +183,7 @@ TEST(ScriptPlayer, ClickItemPressesAndReleasesAtTheBoxCentre) {
   for (double t = 0; t < 1.0; t += 0.1) {
     p.input.new_frame();
     const auto now = p.t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
-    ASSERT_TRUE(p.player->tick("s", 1, items, now));
+    ASSERT_TRUE(p.player->tick("s", 1, items, {}, now));
     if (p.input.button_pressed(0)) {
       pressed = true;
       EXPECT_EQ(p.input.cursor(), glm::dvec2(120, 60));
@@ -208,6 +208,126 @@ TEST(ScriptPlayer, AScreenWithoutASectionFailsAfterTheTimeout) {
   const Status st = p.run("break", {}, kIdleTimeoutS + 2, kIdleTimeoutS - 1);
   ASSERT_FALSE(st);
   EXPECT_NE(st.error().message.find("no section for the screen \"break\""), std::string::npos) << st.error().message;
+}
+
+// `window console` sends a section's next steps to the console's own window: its click_item finds the
+// console window's items (not the participant's), its keys reach the console's input only, a key
+// it holds is released there when the screen goes, and the next screen's section starts in the
+// participant's window again.
+TEST(ScriptPlayer, WindowConsoleStepsActInTheConsolesWindowOnly) {
+  Played p("[trial]\nwindow console\nkey_down LeftShift\nclick_item \"Pause\"\nwindow participant\nkey Enter\n"
+           "[answer]\nkey 5\n");
+  Input console{nullptr};
+  p.player = std::make_unique<ScriptPlayer>(p.script, p.input, &console);
+  const ItemBoxes participant_items{{"Answer", ItemBox{0, 0, 10, 10}}};
+  const ItemBoxes console_items{{"Pause", ItemBox{200, 100, 40, 20}}};
+  bool console_clicked = false, participant_enter = false;
+  for (double t = 0; t < 1.0; t += 0.05) {
+    p.input.new_frame();
+    console.new_frame();
+    const auto now = p.t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
+    ASSERT_TRUE(p.player->tick("trial T1", 1, participant_items, console_items, now));
+    p.player->console_drew();  // here the console window draws a frame at every participant frame
+    EXPECT_FALSE(p.input.button_pressed(0)) << "no click in the participant's window";
+    if (console.button_pressed(0)) {
+      console_clicked = true;
+      EXPECT_EQ(console.cursor(), glm::dvec2(220, 110));
+    }
+    participant_enter = participant_enter || p.input.key_pressed(Input::key_code("Enter"));
+    EXPECT_FALSE(console.key_pressed(Input::key_code("Enter")));
+  }
+  EXPECT_TRUE(console_clicked);
+  EXPECT_TRUE(participant_enter);
+  EXPECT_TRUE(console.shift()) << "held in the console's window";
+  EXPECT_FALSE(p.input.shift());
+  p.player->leave();
+  EXPECT_FALSE(console.shift()) << "released where it was held when the screen went";
+  p.input.new_frame();
+  ASSERT_TRUE(p.player->tick("answer T1", 2, {}, console_items, p.t0 + std::chrono::seconds(2)));
+  ASSERT_TRUE(p.player->tick("answer T1", 2, {}, console_items, p.t0 + std::chrono::seconds(2)));
+  EXPECT_TRUE(p.input.key_down(Input::key_code("5")) || p.input.key_pressed(Input::key_code("5")))
+      << "a new section starts in the participant's window";
+}
+
+// The console window draws in the participant's spare time, so fewer frames: a step acting there waits
+// for one console frame after each of its phases. Regression: a click's release and the next click's
+// press fell into one console frame, ImGui saw the button held while the cursor jumped, and "Resume"
+// was never clicked (the session stayed paused).
+TEST(ScriptPlayer, ConsoleStepsWaitForAConsoleFrameAfterEachPhase) {
+  Played p("[trial]\nwindow console\nclick_item \"Resume\"\nclick_item \"Save note\"\n");
+  Input console{nullptr};
+  p.player = std::make_unique<ScriptPlayer>(p.script, p.input, &console);
+  const ItemBoxes console_items{{"Resume", ItemBox{0, 0, 40, 20}}, {"Save note", ItemBox{0, 100, 40, 20}}};
+  // Console frames at every third participant frame; what each console frame sees of the mouse.
+  std::vector<std::pair<bool, glm::dvec2>> seen;  // (button down or pressed since the last console frame, cursor)
+  for (int frame = 0; frame < 60; ++frame) {
+    p.input.new_frame();
+    const auto now = p.t0 + std::chrono::milliseconds(16 * frame);
+    ASSERT_TRUE(p.player->tick("trial T1", 1, {}, console_items, now));
+    if (frame % 3 == 2) {
+      seen.emplace_back(console.button_down(0) || console.button_pressed(0), console.cursor());
+      console.new_frame();
+      p.player->console_drew();
+    }
+  }
+  // Each click is down in one console frame and up in the next, at its own item.
+  std::vector<glm::dvec2> clicks;
+  for (std::size_t i = 0; i + 1 < seen.size(); ++i)
+    if (seen[i].first && !seen[i + 1].first) clicks.push_back(seen[i].second);
+  ASSERT_EQ(clicks.size(), 2u);
+  EXPECT_EQ(clicks[0], glm::dvec2(20, 10));
+  EXPECT_EQ(clicks[1], glm::dvec2(20, 110));
+  EXPECT_TRUE(p.player->played_out());
+}
+
+// On one monitor there is no console window: `window console` steps act in the participant's window,
+// where the console is drawn.
+TEST(ScriptPlayer, WindowConsoleWithoutAConsoleWindowActsInTheParticipantsWindow) {
+  Played p("[trial]\nwindow console\nclick_item \"Pause\"\n");
+  const ItemBoxes items{{"Pause", ItemBox{200, 100, 40, 20}}};
+  bool clicked = false;
+  for (double t = 0; t < 0.5; t += 0.05) {
+    p.input.new_frame();
+    const auto now = p.t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
+    ASSERT_TRUE(p.player->tick("trial T1", 1, items, {}, now));
+    clicked = clicked || p.input.button_pressed(0);
+  }
+  EXPECT_TRUE(clicked);
+}
+
+// Ctrl+Shift+E with the console in its own window lends the participant's pointer to it: free of a
+// WALKTHROUGH capture, its motion turns nothing (no delta), until it is given back or a click in the
+// participant's window takes it back; coming back does not make the view jump.
+TEST(InputLendPointer, ALentPointerTurnsNothingAndAClickTakesItBack) {
+  Input in{nullptr};
+  in.capture_cursor(true);
+  in.on_cursor(100, 100);
+  in.new_frame();
+  in.on_cursor(110, 100);
+  EXPECT_EQ(in.cursor_delta(), glm::dvec2(10, 0));
+  in.lend_pointer(true);
+  in.new_frame();
+  in.on_cursor(900, 400);
+  in.on_cursor(950, 420);
+  EXPECT_EQ(in.cursor_delta(), glm::dvec2(0, 0)) << "the experimenter's mouse travel turns nothing";
+  EXPECT_TRUE(in.cursor_captured()) << "the capture resumes when the pointer comes back";
+  in.on_mouse_button(0, 1 /* GLFW_PRESS */, 0);
+  EXPECT_FALSE(in.pointer_lent());
+  EXPECT_TRUE(in.button_pressed(0)) << "the click that takes it back is a click";
+  EXPECT_EQ(in.cursor(), glm::dvec2(950, 420)) << "where the pointer is";
+  in.new_frame();
+  in.on_cursor(-3000, 7000);  // the captured cursor's own origin
+  EXPECT_EQ(in.cursor_delta(), glm::dvec2(0, 0)) << "no jump on the first position after the return";
+  in.on_cursor(-2995, 7000);
+  EXPECT_EQ(in.cursor_delta(), glm::dvec2(5, 0));
+}
+
+TEST(ScriptParse, WindowTakesConsoleOrParticipant) {
+  EXPECT_TRUE(parse_script_text("[trial]\nwindow console\nwindow participant\n", "w.script"));
+  const auto bad = parse_script_text("[trial]\nwindow experimenter\n", "w.script");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().line, 2);
+  EXPECT_NE(bad.error().message.find("expected console or participant"), std::string::npos) << bad.error().message;
 }
 
 }  // namespace
