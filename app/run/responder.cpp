@@ -150,9 +150,18 @@ Status WindowResponder::show_instructions(const session::TaskSetSpec& set) {
       (set.time_limit_s > 0 ? "\n\n" + protocol::text(protocol_, "instructions.practise_first") : std::string());
   const std::string title = protocol::text(protocol_, set.resumed ? "instructions.welcome_back" : "instructions.next_task");
   const std::string go_on = protocol::text(protocol_, "button.continue");
-  return loop("instructions " + set.task, {}, [&] {
+  const auto shown_at = std::chrono::system_clock::now();
+  Status st = loop("instructions " + set.task, {}, [&] {
     return message_panel(ui_, title, text, go_on) || ui_.input().key_pressed(GLFW_KEY_ENTER);
   });
+  if (!st || !set.log_screen) return st;
+  session::PageSpec page;
+  page.protocol = &protocol_;
+  page.screen = "instructions " + set.task;
+  page.title = title;
+  page.text = text;
+  page.shown = set.task;
+  return set.log_screen(page, session::PageOutcome{"continue", shown_at, std::chrono::system_clock::now()});
 }
 
 Status WindowResponder::show_training(const session::TaskSetSpec& set) {
@@ -200,7 +209,14 @@ Status WindowResponder::show_training(const session::TaskSetSpec& set) {
 
 Status WindowResponder::train(const session::TaskSetSpec& set) {
   if (Status st = show_instructions(set); !st) return st;
-  return show_training(set);
+  const auto shown_at = std::chrono::system_clock::now();
+  Status st = show_training(set);
+  if (!st || !set.log_screen || set.time_limit_s <= 0) return st;
+  session::PageSpec page;
+  page.protocol = &protocol_;
+  page.screen = "training " + set.task;
+  page.shown = set.task;
+  return set.log_screen(page, session::PageOutcome{"continue", shown_at, std::chrono::system_clock::now()});
 }
 
 }  // namespace dtlab::run

@@ -137,6 +137,10 @@ Status run_one_trial(Run& r, const design::PlannedTrial& planned, std::optional<
     // A set is resumed when a trial of it is already in the file.
     for (const RecordedTrial& t : r.history)
       if (t.planned.block == planned.block && t.planned.task == planned.task) set.resumed = true;
+    set.log_screen = [&r](const PageSpec& page, const PageOutcome& shown) {
+      return r.store.record_screen(r.session, store::ScreenRecord{page.screen, page.shown, shown.shown_at,
+                                                                  shown.ended_at, shown.answer});
+    };
     if (r.hooks.on_task_set_start) r.hooks.on_task_set_start(set);
     if (Status st = r.responder.train(set); !st) return st;
     task_set = std::make_pair(planned.block, planned.task);

@@ -66,6 +66,9 @@ struct TrialOutcome {
 };
 
 // A task set: the consecutive trials of one task in one block; training precedes it.
+struct PageSpec;
+struct PageOutcome;
+
 struct TaskSetSpec {
   const protocol::Protocol* protocol = nullptr;
   std::string participant_id;
@@ -75,6 +78,9 @@ struct TaskSetSpec {
   const TrialSetup* setup = nullptr;
   double time_limit_s = 0;        // training.time_limit_s
   bool resumed = false;           // the set was begun before an interruption (its first trial is recorded)
+  // Appends a page the responder showed for the set (its instructions, its training) to the
+  // session's screen log; set by the runner. A responder that shows nothing does not call it.
+  std::function<Status(const PageSpec&, const PageOutcome&)> log_screen;
 };
 
 // One question of a questionnaire, expanded from a protocol item (study/questionnaire).

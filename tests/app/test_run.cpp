@@ -410,6 +410,8 @@ TEST(RunGerman, TheShippedGermanStudyRunsToTheEndInGerman) {
   for (const char* level : {"level technique=standard", "level technique=xray", "level technique=lens"})
     EXPECT_EQ(std::count(names.begin(), names.end(), level), 1) << level;
   EXPECT_EQ(std::count(names.begin(), names.end(), "break"), 2);
+  for (const char* task : {"instructions T1", "training T1", "instructions T2", "training T2"})
+    EXPECT_EQ(std::count(names.begin(), names.end(), task), 3) << task;  // once per technique's block
   for (const auto& s : *screens) {
     if (s.screen == "break") EXPECT_GE(s.duration_s, 5.0);  // min_s = 5, not skippable
   }
