@@ -29,15 +29,6 @@ const std::vector<ItemScreenMaker>& makers() {
 
 }  // namespace
 
-std::string level_text(const protocol::Protocol& p, const std::string& factor, const std::string& level) {
-  for (const protocol::Factor& f : p.factors) {
-    if (f.name != factor) continue;
-    for (std::size_t i = 0; i < f.levels.size(); ++i)
-      if (f.levels[i] == level) return protocol::level_label(f, static_cast<int>(i));
-  }
-  return level;
-}
-
 std::string number_text(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
@@ -64,7 +55,7 @@ void begin_item_panel(const ItemPage& page, const char* id) {
   ImGui::TextUnformatted(q.item->prompt.c_str());
   ImGui::PopFont();
   std::string scope;  // what the question is about, as participants read the levels: "Abstract scenes, X-ray view"
-  for (const auto& [factor, level] : q.levels) scope += (scope.empty() ? "" : ", ") + level_text(*page.spec->protocol, factor, level);
+  for (const auto& [factor, level] : q.levels) scope += (scope.empty() ? "" : ", ") + protocol::level_text(*page.spec->protocol, factor, level);
   if (!scope.empty()) ImGui::TextUnformatted(scope.c_str());
   ImGui::PopTextWrapPos();
   ImGui::Spacing();

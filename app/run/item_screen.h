@@ -61,8 +61,6 @@ void begin_item_panel(const ItemPage& page, const char* id);
 // The Next button (the protocol's `question.next`, "Next" in English), greyed out and inert unless `enabled`; true when clicked, or on
 // Enter (Ctrl+Enter when a text box has the keyboard) while enabled.
 bool next_button(Ui& ui, const protocol::Protocol& p, bool enabled, bool text_box = false);
-// A factor level as participants read it: its label, else its name ("X-ray view" for "on").
-std::string level_text(const protocol::Protocol& p, const std::string& factor, const std::string& level);
 // A number as a prompt shows it: "%g" (2, 0.5, 1e+06).
 std::string number_text(double v);
 // Whether a text field has the keyboard (digit and letter keys are then typing, not choosing).

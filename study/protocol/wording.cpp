@@ -159,6 +159,13 @@ std::string text(const Protocol& p, std::string_view key,
   return out;
 }
 
+std::string level_text(const Protocol& p, std::string_view factor, std::string_view level) {
+  if (const Factor* f = find_factor(p, factor))
+    for (std::size_t i = 0; i < f->levels.size(); ++i)
+      if (f->levels[i] == level) return level_label(*f, static_cast<int>(i));
+  return std::string(level);
+}
+
 std::string participant_text(const Protocol& p) {
   std::string all = p.title + "\n";
   const auto add = [&](std::string_view t) { all.append(t); all += "\n"; };

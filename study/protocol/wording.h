@@ -33,6 +33,10 @@ const TextKey* find_text_key(std::string_view key);
 std::string text(const Protocol& p, std::string_view key,
                  std::initializer_list<std::pair<std::string_view, std::string>> values = {});
 
+// What participants read for level `level` of the factor named `factor`: its label (level_label),
+// or the level itself when the protocol has no such factor or level.
+std::string level_text(const Protocol& p, std::string_view factor, std::string_view level);
+
 // Every text of the protocol a participant or the experimenter may read in a session, joined:
 // the wording table's values (the protocol's and the defaults), the title, level labels and
 // instructions, consent and page texts, task instructions, questionnaire prompts and options,

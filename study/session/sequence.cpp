@@ -25,15 +25,6 @@ PageSpec page(const protocol::Protocol& p, PageSpec::Kind kind, std::string scre
   return s;
 }
 
-// The label of `level` of the factor named `factor`; the level itself if the protocol has no such factor.
-std::string label_of(const protocol::Protocol& p, const std::string& factor, const std::string& level) {
-  const protocol::Factor* f = protocol::find_factor(p, factor);
-  if (!f) return level;
-  for (std::size_t i = 0; i < f->levels.size(); ++i)
-    if (f->levels[i] == level) return protocol::level_label(*f, static_cast<int>(i));
-  return level;
-}
-
 const design::PlannedTrial* first_of_block(const design::Plan& plan, int block) {
   for (const design::PlannedTrial& t : plan.trials)
     if (t.block == block) return &t;
@@ -50,7 +41,7 @@ std::string answer_text(const store::Answer& a) {
 
 std::string block_levels_text(const protocol::Protocol& p, const design::PlannedTrial& t) {
   std::string s;
-  for (const auto& [factor, level] : t.levels) s += (s.empty() ? "" : ", ") + label_of(p, factor, level);
+  for (const auto& [factor, level] : t.levels) s += (s.empty() ? "" : ", ") + protocol::level_text(p, factor, level);
   return s;
 }
 

@@ -90,8 +90,13 @@ TEST(SimulatedAnswers, EveryTypeAnswersWhatItStores) {
   };
   for (const char* name : {"nasa-tlx", "sus", "ssq"})
     for (Item& i : instrument(name, std::string(name) == "nasa-tlx" ? Keys{{"weights", true}} : Keys{})) items.push_back(i);
+  std::size_t questions = 0;
+  for (const Item& i : items) questions += expand(i, kDesign).size();
+  ASSERT_EQ(questions, 7u + 6 + 15 + 10 + 16);  // the plain items, then the TLX with weights, SUS, SSQ
+  // answers() holds each answer to the item type's own check (encode); every question gets one.
   for (std::uint64_t p = 0; p < 40; ++p)
-    for (const char* level : {"standard", "lens"}) answers(items, after(level), p, history("lens", 1.5));
+    for (const char* level : {"standard", "lens"})
+      EXPECT_EQ(answers(items, after(level), p, history("lens", 1.5)).size(), questions) << "participant " << p;
 }
 
 double mean_tlx(std::uint64_t p, const std::string& level, const std::vector<PastTrial>& h) {

@@ -20,7 +20,7 @@ class ChoiceScreen final : public ItemScreen {
     for (std::size_t i = 0; i < options.size(); ++i)
       shown_.push_back(i < labels.size()              ? labels[i]
                        : !factor || factor->empty() ? options[i]
-                                                     : level_text(protocol(), *factor, options[i]));
+                                                     : protocol::level_text(protocol(), *factor, options[i]));
   }
   bool frame() override {
     begin_item_panel(page_, "##choice");
