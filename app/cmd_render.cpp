@@ -63,7 +63,7 @@ struct RenderOptions {
   std::optional<float> gradient_px;
   int mask_res = 128, layer_limit = 0;
   std::string shape = "outline", searchlight, graphviz;
-  bool r1_guard = false;
+  bool r1_guard = true;  // as a session renders (protocol r1_guard); --no-r1-guard: the article as printed
   bool profile = false;
   bool occlusion_culling = false;
   // Lens parameters (render.h LensSettings); sizes in world units, unset: from the scene.
@@ -461,9 +461,10 @@ void add_render_command(CLI::App& root) {
   auto* layer_limit_opt = cmd->add_option("--layer-limit", o->layer_limit, "At most this many transparent surfaces in front of a target "
                                                    "(0 = no limit)")
       ->check(CLI::Range(0, 100));
-  auto* guard_opt = cmd->add_flag("--r1-guard", o->r1_guard,
-                                  "R1 guard on (docs/render.md): targets never blended below aT, sort errors repaired; "
-                                  "off: the article's algorithm as printed");
+  auto* guard_opt = cmd->add_flag("--r1-guard,!--no-r1-guard", o->r1_guard,
+                                  "R1 guard (docs/render.md), on by default as in a session (protocol r1_guard): targets "
+                                  "never blended below aT, sort errors repaired; --no-r1-guard: the article's algorithm "
+                                  "as printed");
   auto* lens_shape_opt = cmd->add_option("--lens-shape", o->lens_shape, "Lens volume: sphere | box | cylinder | cone")
                             ->check(CLI::IsMember({"sphere", "box", "cylinder", "cone"}));
   auto* lens_style_opt = cmd->add_option("--lens-style", o->lens_style, "What the lens does inside: eraser (distractors vanish) | wireframe | tint")

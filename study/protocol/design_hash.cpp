@@ -182,6 +182,7 @@ std::string design_sha256(const Protocol& p) {
     // searchlight was 120 pixels, the default's size at the article's 800 x 600).
     if (r.searchlight_radius != Rendering{}.searchlight_radius) c.num("rendering.searchlight_radius", r.searchlight_radius);
     if (r.occlusion_culling) c.str("rendering.occlusion_culling", "true");  // unset: the hash stays as it was
+    if (!r.r1_guard) c.str("rendering.r1_guard", "false");  // on (the default): the hash stays as it was
     if (r.method == "lens") {  // only then: the design hash of every other protocol stays as it was
       c.str("rendering.shape", r.shape);
       c.str("rendering.style", r.style);

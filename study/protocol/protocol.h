@@ -143,6 +143,10 @@ struct Rendering {
   double opaque_alpha = 0.5;
   double background_alpha = 0.5;
   bool occlusion_culling = false;   // Poon's occlusion culling in WALKTHROUGH scenes (the picture is unchanged)
+  // Dynamic transparency (dt-seed, dt-fast, reference, screen-door): the R1 guard (docs/render.md,
+  // "R1 guard"): a target never blended below aT, a sort error that hides a target repaired. false:
+  // the article's algorithm as printed. Part of the design hash only when false.
+  bool r1_guard = true;
   // method = "screen-door" (docs/render.md, "screen-door"): Poon's (2000) sub-pixel screen door.
   int screen_door_mask = 8;                        // mask side in sub-pixels: 8, 16 or 32
   std::string screen_door_generation = "tabular";  // "tabular" | "pixel-tree" | "white-noise"

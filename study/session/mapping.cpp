@@ -235,10 +235,9 @@ Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const 
     return bad(p, field + ".mode", "unknown mode '" + r.mode + "' (passive, active)");
   }
   dt.layer_limit = r.layer_limit;
-  // The renderer's default is the article's algorithm as printed (R1 guard off), under which a
-  // target in a farther target's gradient fades to a0 and a sort error hides a target; sessions
-  // keep the guard on, as before that default changed, until the protocol has a key for it.
-  dt.r1_guard = true;
+  // The protocol's r1_guard (on unless it says false); the renderer's own default is the article's
+  // algorithm as printed, under which a target in a farther target's gradient fades to a0.
+  dt.r1_guard = r.r1_guard;
   // The renderer's checks (ranges), each named by the protocol key the author wrote.
   if (const auto problem = render::check(dt, width, height)) {
     const char* key = "";

@@ -106,6 +106,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Edit{"per", "per = [\"scenario\", \"transparency\"]", "per = [\"scenario\"]"},
                       Edit{"id", "id = \"pilot\"", "id = \"pilot2\""},
                       Edit{"occlusion_culling", "method = \"dt-seed\"", "method = \"dt-seed\"\nocclusion_culling = true"},
+                      Edit{"r1_guard", "method = \"dt-seed\"", "method = \"dt-seed\"\nr1_guard = false"},
                       // The session's sequence around the trials.
                       Edit{"consent", "[training]", "[consent]\ntext = \"I agree.\"\n\n[training]"},
                       Edit{"page", "[training]", "[pages.debrief]\nwhen = \"end\"\ntext = \"Thanks.\"\n\n[training]"},
@@ -123,6 +124,15 @@ TEST(DesignHash, OcclusionCullingOffIsTheDefault) {
   std::string off = text;
   off.replace(off.find("method = \"dt-seed\""), 18, "method = \"dt-seed\"\nocclusion_culling = false");
   EXPECT_EQ(hash_of(off, "off"), hash_of(text, "pilot"));
+}
+
+// The R1 guard is on unless a protocol says false (issue 26): writing the default keeps the hash of
+// every protocol written before the key, which sessions rendered with the guard on.
+TEST(DesignHash, R1GuardOnIsTheDefault) {
+  const std::string text = pilot_text();
+  std::string on = text;
+  on.replace(on.find("method = \"dt-seed\""), 18, "method = \"dt-seed\"\nr1_guard = true");
+  EXPECT_EQ(hash_of(on, "on"), hash_of(text, "pilot"));
 }
 
 // Regression (issue 24): the item-type seam must not change the design hash of a protocol with the

@@ -38,6 +38,11 @@ fs::path png_path(const std::string& tag) {
   return fs::temp_directory_path() / ("dtlab_render_cli_" + std::to_string(getpid()) + "_" + tag + ".png");
 }
 
+std::string read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 nlohmann::json plan_of(int index) {
   const CliOutcome r = run_dtlab("plan " + kReference + " --index " + std::to_string(index) + " --json");
   EXPECT_EQ(r.rc, 0) << r.err;
@@ -131,6 +136,38 @@ std::pair<long, nlohmann::json> visible(const std::string& method, const fs::pat
   return {n, j["passes"]};
 }
 
+// `dtlab render` draws what a session draws (issue 26): the R1 guard is on unless --no-r1-guard asks
+// for the article's algorithm as printed. ABSTRACT T1 seed 31 at 800 x 600 has a target that is
+// wholly visible under standard and that the algorithm as printed hides completely (it stands in a
+// farther target's gradient); with the guard, as in a session, it stays visible.
+TEST(RenderCli, DefaultsDrawWhatASessionDrawsAndNoR1GuardTheArticleAsPrinted) {
+  const auto targets = [](const std::string& args, const fs::path& out) {
+    const CliOutcome r = run_dtlab("render --scene abstract --task T1 --seed 31 " + args + " --out '" + out.string() +
+                                   "' --json");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return nlohmann::json::parse(r.out)["targets"];
+  };
+  const fs::path standard_png = png_path("r1-standard"), session_png = png_path("r1-default"),
+                 guard_png = png_path("r1-guard"), printed_png = png_path("r1-printed");
+  const auto standard = targets("--method standard", standard_png);
+  const auto session = targets("--method dt-seed", session_png);
+  const auto guard = targets("--method dt-seed --r1-guard", guard_png);
+  const auto printed = targets("--method dt-seed --no-r1-guard", printed_png);
+  ASSERT_EQ(standard.size(), session.size());
+  ASSERT_EQ(standard.size(), printed.size());
+  EXPECT_EQ(read_bytes(session_png), read_bytes(guard_png)) << "the default is the guard on";
+  int hidden_as_printed = 0;
+  for (std::size_t i = 0; i < standard.size(); ++i) {
+    const long full = standard[i]["silhouette_pixels"].get<long>();
+    if (full == 0 || standard[i]["visible_pixels"].get<long>() != full) continue;
+    SCOPED_TRACE("target " + std::to_string(i) + ", wholly visible under standard (" + std::to_string(full) + " pixels)");
+    EXPECT_GT(session[i]["visible_pixels"].get<long>(), 0);
+    if (printed[i]["visible_pixels"].get<long>() == 0) ++hidden_as_printed;
+  }
+  EXPECT_GE(hidden_as_printed, 1) << "the article as printed hides a wholly visible target in this scene";
+  for (const fs::path& f : {standard_png, session_png, guard_png, printed_png}) fs::remove(f);
+}
+
 // The lens method (docs/render.md, "lens"): its passes in the paper's order, and an eraser cone
 // through the ABSTRACT cube uncovers targets standard leaves hidden.
 TEST(RenderCli, LensRendersItsPassesAndUncoversTargets) {
@@ -202,11 +239,7 @@ TEST(RenderCli, OcclusionCullingReportsAndKeepsThePicture) {
   const CliOutcome b = run_dtlab(scene + "--json --out '" + off.string() + "'");
   ASSERT_EQ(b.rc, 0) << b.err;
   EXPECT_FALSE(nlohmann::json::parse(b.out).contains("culling"));
-  auto bytes = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
-  EXPECT_EQ(bytes(on), bytes(off));
+  EXPECT_EQ(read_bytes(on), read_bytes(off));
   fs::remove(on);
   fs::remove(off);
 }

@@ -115,13 +115,24 @@ TEST(Mapping, ReferenceRenderings) {
     EXPECT_EQ(f->dt.shape, render::MaskShape::outline) << c.name;
     EXPECT_EQ(f->dt.mode, render::DtMode::passive) << c.name;
     EXPECT_EQ(f->dt.layer_limit, 0) << c.name;
-    EXPECT_TRUE(f->dt.r1_guard) << c.name << ": sessions keep the R1 guard on (the renderer's default is off)";
+    EXPECT_TRUE(f->dt.r1_guard) << c.name << ": the protocol's r1_guard is on unless it says false";
     // n = 8 mask pixels of a 128-pixel mask over 800 x 600, as the renderer converts it.
     EXPECT_FLOAT_EQ(f->dt.gradient_px, render::gradient_px_from_mask_pixels(8.0f, 128, 800, 600)) << c.name;
     auto small = frame_settings(p, *it, 160, 120);
     ASSERT_TRUE(small.ok());
     EXPECT_FLOAT_EQ(small->dt.gradient_px, render::gradient_px_from_mask_pixels(8.0f, 128, 160, 120));
     EXPECT_LT(small->dt.gradient_px, f->dt.gradient_px) << "the gradient scales with the viewport";
+  }
+}
+
+// r1_guard = false reaches the renderer: the article's algorithm as printed, for the dt methods.
+TEST(Mapping, R1GuardOffIsTheArticleAsPrinted) {
+  protocol::Protocol p = reference();
+  for (protocol::Rendering& r : p.renderings) r.r1_guard = false;
+  for (const protocol::Rendering& r : p.renderings) {
+    auto f = frame_settings(p, r, 800, 600);
+    ASSERT_TRUE(f.ok()) << f.error().to_string();
+    EXPECT_FALSE(f->dt.r1_guard) << r.name;
   }
 }
 

@@ -308,10 +308,11 @@ void parse_renderings(TableReader& root, ParseState& s) {
                      [](const Scenario& sc) { return sc.scene.kind == ScenarioKind::walkthrough; }))
       s.d.warning(rr.pos("occlusion_culling"), rr.field("occlusion_culling"),
                   "has no effect without a walkthrough scenario (occlusion culling needs a floor plan)");
+    if (auto v = rr.boolean("r1_guard", false)) r.r1_guard = *v;
     parse_screen_door_keys(rr, r, s);
     rr.finish();
     if (r.method == "standard" || r.method == "lens" || r.method == "vdt") {
-      for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit"})
+      for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit", "r1_guard"})
         if (rr.has(key))
           s.d.warning(rr.pos(key), rr.field(key),
                       "has no effect with method = \"" + r.method + "\" (no dynamic transparency)");
