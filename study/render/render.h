@@ -17,8 +17,12 @@
 //              targets and impenetrable surfaces opaque; image-space depth peeling of two layers).
 // Guarantees: the GL state of the caller is restored after every call that
 // draws; an effect the frame does not call for (transparency off, no target
-// in view, no target occluded) runs no pass. Never: creates a GL context,
-// reads files, or includes GL headers in this public header.
+// in view) runs no pass; with no target occluded the picture is standard's:
+// dt-seed and dt-fast decide on the GPU, and run no effect pass when the
+// previous frame needed none (standard-first plan), else draw the effect and
+// then standard's frame again (effect-first plan, docs/render.md). Never:
+// creates a GL context, reads files, or includes GL headers in this public
+// header.
 #pragma once
 #include <cstdint>
 #include <memory>

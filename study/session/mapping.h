@@ -3,10 +3,12 @@
 // render::FrameSettings of a [rendering.*] table, the answer key in the
 // store's terms, the StudyInfo a database is opened with. docs/session.md,
 // "From protocol to stages", lists every field and where it arrives.
-// Guarantees: pure functions; a value a stage cannot take (an unknown model
-// family, a method name the renderer does not know, a subset of primitives the
-// generator cannot place) is an Error naming the protocol field, never a
-// silent default. Never: touches GL, SQLite or files.
+// Guarantees: pure functions but ledger_plan, which reads the enrollment
+// ledger through the StudyReader it is given; a value a stage cannot take (an
+// unknown model family, a method name the renderer does not know, a subset of
+// primitives the generator cannot place) is an Error naming the protocol
+// field, never a silent default. Never: touches GL or files, or opens a
+// database.
 #pragma once
 #include <string>
 

@@ -1,6 +1,6 @@
 // The mask atlas's shelf packing (study/render/detail/mask_atlas.h), without GL: every tile
-// is its target's covered texels padded by n' + 1, inside its page and inside the page's used
-// box (the part dt-fast's distance passes draw), and no two tiles of a page overlap.
+// is its target's covered texels padded by n' + 1, inside its page, and no two tiles of a page
+// overlap.
 #include <gtest/gtest.h>
 
 #include <algorithm>
