@@ -18,15 +18,6 @@ namespace dtlab::app {
 
 namespace {
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab bench: error: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 struct RouteRow {
   std::uint64_t seed = 0;
@@ -43,10 +34,10 @@ struct RouteRow {
 
 RouteRow run_route(const CullingBenchOptions& o, std::uint64_t seed, const std::string& method) {
   auto generated = scene::generate(scene::Kind::walkthrough, scene::Task::T3, seed);
-  if (!generated) fail(kExitInvalid, generated.error().to_string());
+  if (!generated) fail("bench", kExitInvalid, generated.error().to_string());
   const scene::Scene& sc = generated.value();
   auto made = render::Renderer::create(sc);
-  if (!made) fail(kExitFailure, made.error().to_string());
+  if (!made) fail("bench", kExitFailure, made.error().to_string());
   render::Renderer& r = *made.value();
   render::FrameSettings f;
   f.method = *render::parse_method(method);
@@ -112,11 +103,17 @@ RouteRow run_route(const CullingBenchOptions& o, std::uint64_t seed, const std::
 
 }  // namespace
 
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
 void bench_culling(const CullingBenchOptions& o) {
   for (const auto& m : o.methods)
-    if (!render::parse_method(m)) fail(kExitUsage, "--culling-methods: unknown method '" + m + "'");
+    if (!render::parse_method(m)) fail("bench", kExitUsage, "--culling-methods: unknown method '" + m + "'");
   auto ctx = platform::create_headless(o.width, o.height);
-  if (!ctx) fail(kExitFailure, ctx.error().to_string());
+  if (!ctx) fail("bench", kExitFailure, ctx.error().to_string());
   std::vector<RouteRow> rows;
   for (auto seed : o.seeds)
     for (const auto& m : o.methods) {

@@ -19,6 +19,9 @@ struct CullingBenchOptions {
   int width = 800, height = 600;
 };
 
+// The median of `v` (0 when empty); the bench's summary of timed frames.
+double median(std::vector<double> v);
+
 // Runs the routes and prints the table (or JSON) on stdout, progress on stderr. Throws
 // CLI::RuntimeError with the exit code on failure (no GL context: 3).
 void bench_culling(const CullingBenchOptions& o);

@@ -54,21 +54,10 @@ struct BenchOptions {
   std::vector<std::string> culling_methods{"standard", "dt-fast"};
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab bench: error: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
-
 double cpu_ms() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 // Error columns: against reference over the frame and the effect region; dt-fast against dt-seed
@@ -272,7 +261,7 @@ void bench_case(const BenchOptions& o, const std::string& kind_name, int w, int 
   const auto kind = *scene::parse_kind(kind_name);
   const auto task = kind == scene::Kind::abstract ? scene::Task::T1 : scene::Task::T3;
   auto generated = scene::generate(kind, task, o.seed);
-  if (!generated) fail(kExitInvalid, generated.error().to_string());
+  if (!generated) fail("bench", kExitInvalid, generated.error().to_string());
   const scene::Scene& sc = generated.value();
   // Standard alone in a fresh process three times: before, halfway through and after the
   // interleaved frames (the median of the three), so that a change in the machine's load during
@@ -292,9 +281,9 @@ void bench_case(const BenchOptions& o, const std::string& kind_name, int w, int 
   };
   time_alone();
   auto ctx = platform::create_headless(w, h);
-  if (!ctx) fail(kExitFailure, ctx.error().to_string());
+  if (!ctx) fail("bench", kExitFailure, ctx.error().to_string());
   auto made = render::Renderer::create(sc);
-  if (!made) fail(kExitFailure, made.error().to_string());
+  if (!made) fail("bench", kExitFailure, made.error().to_string());
   render::Renderer& main = *made.value();
   const render::Camera cam = render::camera_from_start(sc.camera, static_cast<float>(w) / static_cast<float>(h));
 
@@ -307,7 +296,7 @@ void bench_case(const BenchOptions& o, const std::string& kind_name, int w, int 
     kept += keep[i];
   }
   auto made_quiet = render::Renderer::create(quiet);
-  if (!made_quiet) fail(kExitFailure, made_quiet.error().to_string());
+  if (!made_quiet) fail("bench", kExitFailure, made_quiet.error().to_string());
   const std::string quiet_label = kept > 0 ? " nothing occluded (" + std::to_string(kept) + " targets)" : " no targets";
   std::vector<Config> configs = configurations(o, main, *made_quiet.value(), quiet_label, w, h);
 
@@ -409,7 +398,7 @@ void run(const BenchOptions& o) {
     char x = 0;
     std::stringstream ss(o.sizes.front());
     if (!(ss >> c.width >> x >> c.height) || x != 'x' || c.width <= 0 || c.height <= 0 || c.width > 8192 || c.height > 8192)
-      fail(kExitUsage, "--sizes: '" + o.sizes.front() + "' is not WxH");
+      fail("bench", kExitUsage, "--sizes: '" + o.sizes.front() + "' is not WxH");
     bench_culling(c);
     return;
   }
@@ -420,7 +409,7 @@ void run(const BenchOptions& o) {
       char x = 0;
       std::stringstream ss(size);
       if (!(ss >> w >> x >> h) || x != 'x' || w <= 0 || h <= 0 || w > 8192 || h > 8192)
-        fail(kExitUsage, "--sizes: '" + size + "' is not WxH");
+        fail("bench", kExitUsage, "--sizes: '" + size + "' is not WxH");
       bench_case(o, kind, w, h, rows);
     }
   }

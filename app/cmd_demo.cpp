@@ -47,11 +47,6 @@ struct DemoArgs {
   SimulationRun run;
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab demo: error: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
-
 // Writes `text` to `path` unless the file already holds exactly it; refuses to replace other content.
 void write_protocol(const std::filesystem::path& path, std::string_view text) {
   std::error_code ec;
@@ -60,26 +55,26 @@ void write_protocol(const std::filesystem::path& path, std::string_view text) {
     std::stringstream have;
     have << in.rdbuf();
     if (have.str() == text) return;
-    fail(kExitInvalid, path.string() + " exists and is not the reference protocol of this build; use another --out");
+    fail("demo", kExitInvalid, path.string() + " exists and is not the reference protocol of this build; use another --out");
   }
   Status st = write_file_atomically(path.string(), [&](std::ostream& out) -> Status {
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     return {};
   });
-  if (!st) fail(exit_code(st.error()), st.error().to_string());
+  if (!st) fail("demo", exit_code(st.error()), st.error().to_string());
 }
 
 void run_demo(DemoArgs a) {
   namespace fs = std::filesystem;
   const std::string_view text = embedded::protocols(kProtocolFile);
-  if (text.empty()) fail(kExitFailure, std::string("this build has no embedded ") + kProtocolFile);
+  if (text.empty()) fail("demo", kExitFailure, std::string("this build has no embedded ") + kProtocolFile);
   const fs::path dir(a.out);
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) fail(kExitFailure, dir.string() + ": cannot create the directory: " + ec.message());
+  if (ec) fail("demo", kExitFailure, dir.string() + ": cannot create the directory: " + ec.message());
   const fs::path protocol_path = dir / kProtocolFile;
   auto p = protocol::load_protocol_text(text, protocol_path.string());
-  if (!p) fail(kExitInvalid, p.error().to_string());
+  if (!p) fail("demo", kExitInvalid, p.error().to_string());
   write_protocol(protocol_path, text);
 
   a.run.db = a.db.empty() ? (dir / "elmqvist2008.sqlite").string() : a.db;
@@ -94,20 +89,20 @@ void run_demo(DemoArgs a) {
 
   // One snapshot of the database serves the table, the report and the summary.
   auto reader = store::StudyReader::open(a.run.db, session::read_options());
-  if (!reader) fail(exit_code(reader.error()), reader.error().to_string());
+  if (!reader) fail("demo", exit_code(reader.error()), reader.error().to_string());
   const fs::path csv = dir / "elmqvist2008.csv";
   Status exported = write_file_atomically(csv.string(), [&](std::ostream& out) -> Status {
     auto sum = store::export_trials_csv(*reader, out);
     return sum ? Status{} : Status{sum.error()};
   });
-  if (!exported) fail(exit_code(exported.error()), exported.error().to_string());
+  if (!exported) fail("demo", exit_code(exported.error()), exported.error().to_string());
   const fs::path report_dir = dir / "report";
   report::ReportOptions options;
   options.path_figure = replay_path_figures();
   auto rep = report::write_report(
       *reader, report_dir.string(), [](const std::string& step) { std::cerr << "dtlab demo: report: " << step << "\n"; },
       options);
-  if (!rep) fail(exit_code(rep.error()), rep.error().to_string());
+  if (!rep) fail("demo", exit_code(rep.error()), rep.error().to_string());
   for (const auto& w : rep->warnings) std::cerr << "dtlab demo: report: warning: " << w << "\n";
   const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
   auto summary = sim::summarize(*reader, rendering ? rendering->name : "");

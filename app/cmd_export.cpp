@@ -35,11 +35,6 @@ struct ExportArgs {
   bool json = false;
 };
 
-[[noreturn]] void fail(const Error& e) {
-  std::cerr << "dtlab export: " << e.to_string() << "\n";
-  throw CLI::RuntimeError(exit_code(e));
-}
-
 nlohmann::json export_questionnaires(store::StudyReader& reader, const ExportArgs& a) {
   session::QuestionnaireExportSummary sum;
   Status st = write_file_atomically(a.questionnaires, [&](std::ostream& out) -> Status {
@@ -48,7 +43,7 @@ nlohmann::json export_questionnaires(store::StudyReader& reader, const ExportArg
     sum = std::move(s.value());
     return {};
   });
-  if (!st) fail(st.error());
+  if (!st) fail("export", st.error());
   if (!a.json)
     std::cerr << "dtlab export: wrote " << count(sum.answers, "questionnaire answer") << " and "
               << count(sum.scores, "instrument score") << " (" << count(static_cast<long long>(sum.columns.size()), "column")
@@ -63,7 +58,7 @@ void run_export(const ExportArgs& a) {
     throw CLI::RuntimeError(2);
   }
   auto reader = store::StudyReader::open(a.db, session::read_options());
-  if (!reader) fail(reader.error());
+  if (!reader) fail("export", reader.error());
   nlohmann::json j{{"database", store::display_name(a.db)}};
   if (!a.questionnaires.empty()) j["questionnaires"] = export_questionnaires(reader.value(), a);
   if (a.csv.empty()) {
@@ -77,7 +72,7 @@ void run_export(const ExportArgs& a) {
     sum = std::move(s.value());
     return {};
   });
-  if (!st) fail(st.error());
+  if (!st) fail("export", st.error());
   if (a.json) {
     j.update({{"csv", a.csv}, {"rows", sum.rows}, {"excluded_rows", sum.excluded},
               {"withdrawn_participants", sum.withdrawn}, {"withdrawn_rows_left_out", sum.withdrawn_rows},

@@ -28,39 +28,34 @@ struct IconsOptions {
   bool json = false;
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab icons: error: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
-
 void run(const IconsOptions& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.out);
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
-    fail(kExitFailure, o.out + ": cannot create the output directory (" +
+    fail("icons", kExitFailure, o.out + ": cannot create the output directory (" +
                            (ec ? ec.message() : std::string("a file of that name exists")) + ")");
   const std::string sheet_path = o.sheet.empty() ? (dir / "contact_sheet.png").string() : o.sheet;
 
   auto ctx = platform::create_headless(16, 16);
-  if (!ctx) fail(kExitFailure, "no headless GL context: " + ctx.error().to_string());
+  if (!ctx) fail("icons", kExitFailure, "no headless GL context: " + ctx.error().to_string());
   icons::IconOptions options;
   options.size = o.size;
   auto all = icons::render_all(options);
-  if (!all) fail(kExitFailure, all.error().to_string());
+  if (!all) fail("icons", kExitFailure, all.error().to_string());
 
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const icons::Icon& ic : all.value()) {
     const std::string file = (dir / (std::string(ic.model->kind) + ".png")).string();
-    if (Status st = icons::save_png(ic.image, file); !st) fail(kExitFailure, st.error().to_string());
+    if (Status st = icons::save_png(ic.image, file); !st) fail("icons", kExitFailure, st.error().to_string());
     list.push_back({{"kind", ic.model->kind},
                     {"family", ic.model->family},
                     {"file", file},
                     {"coverage", icons::coverage(ic.image)}});
   }
   const render::Image sheet = icons::contact_sheet(all.value());
-  if (Status st = icons::save_png(sheet, sheet_path); !st) fail(kExitFailure, st.error().to_string());
+  if (Status st = icons::save_png(sheet, sheet_path); !st) fail("icons", kExitFailure, st.error().to_string());
 
   if (o.json) {
     const nlohmann::ordered_json j{{"icons", list}, {"sheet", sheet_path}};

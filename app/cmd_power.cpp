@@ -37,7 +37,7 @@ struct PowerArgs {
   bool json = false, quiet = false;
 };
 
-std::string fmt(double v, int decimals = 3) {
+std::string num_text(double v, int decimals = 3) {
   if (!std::isfinite(v)) return "-";
   char b[64];
   std::snprintf(b, sizeof b, "%.*f", decimals, v);
@@ -55,7 +55,7 @@ std::string p_text(double p) {
 std::string n_text(double n) { return std::isfinite(n) ? std::to_string(static_cast<long long>(n)) : "more than 10^7"; }
 
 // A df as APA writes it: an integer, or two decimals when corrected.
-std::string df_text(double df) { return fmt(df, df == std::floor(df) ? 0 : 2); }
+std::string df_text(double df) { return num_text(df, df == std::floor(df) ? 0 : 2); }
 
 // "13 (analytic; 16 keeps the 4 order rows of the latin-square balanced)" when n is not a multiple of them.
 std::string n_with_balance(double n, double balanced, const report::PowerPlan& plan) {
@@ -71,18 +71,18 @@ void print_effect(const report::PlannedEffect& e, const report::PowerPlan& plan,
   const bool corrected = e.p_df1 != e.df1;
   std::cout << "\n" << (e.scope == "overall" ? std::string("all tasks") : e.scope) << ", " << e.measure << ": "
             << e.effect << "\n  pilot: N = " << e.pilot_n << ", F(" << df_text(e.p_df1) << ", " << df_text(e.p_df2)
-            << ") = " << fmt(e.F, 2) << ", p = " << p_text(e.p) << (corrected ? " (Greenhouse-Geisser)" : "")
-            << ", eta_p2 = " << fmt(e.eta_p2);
-  if (e.df1 == 1) std::cout << ", d_z = " << fmt(e.dz);
-  else std::cout << ", GG epsilon = " << fmt(e.epsilon);
+            << ") = " << num_text(e.F, 2) << ", p = " << p_text(e.p) << (corrected ? " (Greenhouse-Geisser)" : "")
+            << ", eta_p2 = " << num_text(e.eta_p2);
+  if (e.df1 == 1) std::cout << ", d_z = " << num_text(e.dz);
+  else std::cout << ", GG epsilon = " << num_text(e.epsilon);
   std::cout << "\n      n   " << (resampled ? "resampled [95% CI]        " : "") << "analytic\n";
   for (const auto& a : e.at) {
     char b[160];
     if (resampled)
-      std::snprintf(b, sizeof b, "  %5d   %5s [%5s, %5s]     %8s\n", a.n, fmt(a.resampled.power).c_str(),
-                    fmt(a.resampled.ci_low).c_str(), fmt(a.resampled.ci_high).c_str(), fmt(a.analytic).c_str());
+      std::snprintf(b, sizeof b, "  %5d   %5s [%5s, %5s]     %8s\n", a.n, num_text(a.resampled.power).c_str(),
+                    num_text(a.resampled.ci_low).c_str(), num_text(a.resampled.ci_high).c_str(), num_text(a.analytic).c_str());
     else
-      std::snprintf(b, sizeof b, "  %5d   %8s\n", a.n, fmt(a.analytic).c_str());
+      std::snprintf(b, sizeof b, "  %5d   %8s\n", a.n, num_text(a.analytic).c_str());
     std::cout << b;
   }
   const auto tried = [](int n) { return n ? std::to_string(n) : std::string("none of the sizes tried"); };

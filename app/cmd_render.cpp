@@ -74,11 +74,6 @@ struct RenderOptions {
   render::VdtSettings vdt;  // vdt parameters (render.h VdtSettings)
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab render: error: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
-
 // "yaw=30,pitch=-10,distance=150,x=1,y=2,z=3,fov=60" (degrees) over the scene's start camera.
 // Each key at most once; every value a finite number in the range where the view shows the
 // scene: yaw -360..360, pitch -90..90, fov 1..170 degrees; distance (orbit cameras) between the
@@ -91,12 +86,12 @@ scene::CameraStart apply_camera(scene::CameraStart c, const std::string& spec, c
     const std::size_t comma = spec.find(',', begin);
     const std::string item = spec.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
     begin = comma == std::string::npos ? spec.size() + 1 : comma + 1;
-    if (item.empty()) fail(kExitUsage, "--camera: empty item in '" + spec + "' (a doubled or trailing comma?)");
+    if (item.empty()) fail("render", kExitUsage, "--camera: empty item in '" + spec + "' (a doubled or trailing comma?)");
     const auto eq = item.find('=');
-    if (eq == std::string::npos) fail(kExitUsage, "--camera: '" + item + "' is not key=value");
+    if (eq == std::string::npos) fail("render", kExitUsage, "--camera: '" + item + "' is not key=value");
     const std::string key = item.substr(0, eq);
     if (std::find(seen.begin(), seen.end(), key) != seen.end())
-      fail(kExitUsage, "--camera: '" + key + "' given twice");
+      fail("render", kExitUsage, "--camera: '" + key + "' given twice");
     seen.push_back(key);
     float v = 0.0f;
     try {
@@ -104,13 +99,13 @@ scene::CameraStart apply_camera(scene::CameraStart c, const std::string& spec, c
       v = std::stof(item.substr(eq + 1), &used);
       if (used != item.size() - eq - 1 || !std::isfinite(v)) throw std::invalid_argument(key);
     } catch (const std::exception&) {
-      fail(kExitUsage, "--camera: value of '" + key + "' is not a finite number");
+      fail("render", kExitUsage, "--camera: value of '" + key + "' is not a finite number");
     }
     auto in_range = [&](float lo, float hi, const std::string& unit) {
       if (!(v >= lo && v <= hi)) {
         std::ostringstream m;
         m << "--camera: " << key << " must be " << lo << ".." << hi << unit << ", got " << v;
-        fail(kExitUsage, m.str());
+        fail("render", kExitUsage, m.str());
       }
     };
     const float rad = v * 3.14159265358979f / 180.0f;
@@ -126,7 +121,7 @@ scene::CameraStart apply_camera(scene::CameraStart c, const std::string& spec, c
       c.fov_y = rad;
     } else if (key == "distance" || key == "x" || key == "y" || key == "z") {
       if (orbit != (key == "distance"))
-        fail(kExitUsage, "--camera: '" + key + "' applies to " + (orbit ? "walk cameras (WALKTHROUGH)" : "orbit cameras (ABSTRACT)") +
+        fail("render", kExitUsage, "--camera: '" + key + "' applies to " + (orbit ? "walk cameras (WALKTHROUGH)" : "orbit cameras (ABSTRACT)") +
                              "; this scene's camera " + (orbit ? "orbits: use yaw, pitch, fov, distance" :
                                                                   "walks: use yaw, pitch, fov, x, y, z"));
       if (key == "distance") {
@@ -139,7 +134,7 @@ scene::CameraStart apply_camera(scene::CameraStart c, const std::string& spec, c
         c.position[axis] = v;
       }
     } else {
-      fail(kExitUsage, "--camera: unknown key '" + key + "' (yaw, pitch, fov, " +
+      fail("render", kExitUsage, "--camera: unknown key '" + key + "' (yaw, pitch, fov, " +
                            (orbit ? "distance" : "x, y, z") + ")");
     }
   }
@@ -162,7 +157,7 @@ render::DtSettings dt_settings(const RenderOptions& o) {
     std::stringstream ss(o.searchlight);
     if (!(ss >> x >> c1 >> y >> c2 >> r) || c1 != ',' || c2 != ',' || !(ss >> std::ws).eof() || !(r >= 0.0f) ||
         !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(r))
-      fail(kExitUsage, "--searchlight: expected X,Y,R in pixels (origin top-left, R >= 0), got '" + o.searchlight + "'");
+      fail("render", kExitUsage, "--searchlight: expected X,Y,R in pixels (origin top-left, R >= 0), got '" + o.searchlight + "'");
     dt.mode = render::DtMode::active;
     dt.searchlight_center = {x, y};
     dt.searchlight_radius = r;
@@ -182,7 +177,7 @@ render::DtSettings dt_settings(const RenderOptions& o) {
     if (problem->field == render::DtField::gradient && !o.gradient_px)
       message += " (--gradient is in mask pixels: " + std::to_string(o.gradient) + " of a " + std::to_string(o.mask_res) +
                  " mask over " + std::to_string(o.width) + " x " + std::to_string(o.height) + ")";
-    fail(kExitUsage, std::string(option) + ": " + message);
+    fail("render", kExitUsage, std::string(option) + ": " + message);
   }
   return dt;
 }
@@ -197,13 +192,13 @@ render::LensSettings lens_settings(const RenderOptions& o, const scene::Scene& s
     char comma = 0;
     std::stringstream ss(o.lens_at);
     if (!(ss >> x >> comma >> y) || comma != ',' || !(ss >> std::ws).eof() || !std::isfinite(x) || !std::isfinite(y))
-      fail(kExitUsage, "--lens-at: expected X,Y in pixels (origin top-left), got '" + o.lens_at + "'");
+      fail("render", kExitUsage, "--lens-at: expected X,Y in pixels (origin top-left), got '" + o.lens_at + "'");
     l.center = {x, y};
   }
   l.distance = o.lens_distance.value_or(l.distance);
   l.radius = o.lens_radius.value_or(l.radius);
   l.length = o.lens_length.value_or(2.0f * l.radius);
-  if (const auto problem = render::check(l)) fail(kExitUsage, "--lens-" + *problem);
+  if (const auto problem = render::check(l)) fail("render", kExitUsage, "--lens-" + *problem);
   return l;
 }
 
@@ -242,7 +237,7 @@ Job protocol_job(const RenderOptions& o) {
   }
   const int n = *o.trial;  // 1-based, as `dtlab plan` numbers positions
   if (n < 1 || static_cast<std::size_t>(n) > plan.trials.size())
-    fail(kExitUsage, "--trial " + std::to_string(n) + ": participant " + std::to_string(index) + "'s plan has " +
+    fail("render", kExitUsage, "--trial " + std::to_string(n) + ": participant " + std::to_string(index) + "'s plan has " +
                          std::to_string(plan.trials.size()) + " trials, positions 1.." +
                          std::to_string(plan.trials.size()) + " (as `dtlab plan` numbers them)");
   const design::PlannedTrial& t = plan.trials[static_cast<std::size_t>(n - 1)];
@@ -279,7 +274,7 @@ Job scene_job(const RenderOptions& o) {
   const auto kind = *scene::parse_kind(o.kind);
   const auto task = *scene::parse_task(o.task);
   auto generated = scene::generate(kind, task, o.seed);
-  if (!generated) fail(kExitInvalid, generated.error().to_string());
+  if (!generated) fail("render", kExitInvalid, generated.error().to_string());
   Job job;
   job.scene = std::move(generated.value());
   job.settings.method = *render::parse_method(o.method);
@@ -301,15 +296,15 @@ void run(const RenderOptions& o) {
   settings.timed = true;
   settings.profile_passes = o.profile;
   settings.occlusion_culling = settings.occlusion_culling || o.occlusion_culling;
-  if (o.occlusion_culling && !sc.plan) fail(kExitUsage, "--occlusion-culling applies to walkthrough scenes only");
+  if (o.occlusion_culling && !sc.plan) fail("render", kExitUsage, "--occlusion-culling applies to walkthrough scenes only");
   const scene::CameraStart start = apply_camera(sc.camera, o.camera, sc);
   const render::Camera camera =
       render::camera_from_start(start, static_cast<float>(o.width) / static_cast<float>(o.height));
 
   auto ctx = platform::create_headless(o.width, o.height);
-  if (!ctx) fail(kExitFailure, ctx.error().to_string());
+  if (!ctx) fail("render", kExitFailure, ctx.error().to_string());
   auto renderer = render::Renderer::create(sc);
-  if (!renderer) fail(kExitFailure, renderer.error().to_string());
+  if (!renderer) fail("render", kExitFailure, renderer.error().to_string());
   render::Renderer& r = *renderer.value();
 
   std::vector<double> times, cpu_times;
@@ -347,11 +342,11 @@ void run(const RenderOptions& o) {
   };
   const double median = median_of(times), cpu_median = median_of(cpu_times);
   const render::Image image = r.read_color();
-  if (Status st = render::write_png(image, o.out); !st) fail(kExitFailure, st.error().to_string());
+  if (Status st = render::write_png(image, o.out); !st) fail("render", kExitFailure, st.error().to_string());
   if (!o.graphviz.empty()) {
     std::ofstream dot(o.graphviz);
     dot << r.last_graphviz();
-    if (!dot) fail(kExitFailure, o.graphviz + ": cannot write the Graphviz file");
+    if (!dot) fail("render", kExitFailure, o.graphviz + ": cannot write the Graphviz file");
   }
   const std::vector<std::string> passes = report.passes_run();
   if (!o.json) {
@@ -546,25 +541,25 @@ void add_render_command(CLI::App& root) {
       if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options) + given(sd_options) +
                                   given(vdt_options);
           !bad.empty())
-        fail(kExitUsage, "--protocol renders a planned trial: its scene, seed, method and mask parameters come from "
+        fail("render", kExitUsage, "--protocol renders a planned trial: its scene, seed, method and mask parameters come from "
                          "the protocol; drop " + bad);
       if ((index_opt->count() > 0) == (db_opt->count() > 0 || participant_opt->count() > 0) ||
           (db_opt->count() > 0) != (participant_opt->count() > 0))
-        fail(kExitUsage, "--protocol needs either --index K or --db FILE --participant ID");
-      if (trial_opt->count() == 0) fail(kExitUsage, "--protocol needs --trial N (1-based position in the plan)");
+        fail("render", kExitUsage, "--protocol needs either --index K or --db FILE --participant ID");
+      if (trial_opt->count() == 0) fail("render", kExitUsage, "--protocol needs --trial N (1-based position in the plan)");
     } else {
       if (const std::string bad = given(protocol_form); !bad.empty())
-        fail(kExitUsage, bad + " belong(s) to the protocol form: give --protocol P too");
+        fail("render", kExitUsage, bad + " belong(s) to the protocol form: give --protocol P too");
       for (const CLI::Option* opt : scene_form)
         if (opt->count() == 0)
-          fail(kExitUsage, "give --scene KIND --task T --seed S --method M, or --protocol P --index K --trial N "
+          fail("render", kExitUsage, "give --scene KIND --task T --seed S --method M, or --protocol P --index K --trial N "
                            "(missing " + opt->get_name() + ")");
       if (const std::string bad = given(lens_options); !bad.empty() && o->method != "lens")
-        fail(kExitUsage, bad + " apply to --method lens only");
+        fail("render", kExitUsage, bad + " apply to --method lens only");
       if (const std::string bad = given(sd_options); !bad.empty() && o->method != "screen-door")
-        fail(kExitUsage, bad + " apply to --method screen-door only");
+        fail("render", kExitUsage, bad + " apply to --method screen-door only");
       if (const std::string bad = given(vdt_options); !bad.empty() && o->method != "vdt")
-        fail(kExitUsage, bad + " apply to --method vdt only");
+        fail("render", kExitUsage, bad + " apply to --method vdt only");
     }
     run(*o);
   });

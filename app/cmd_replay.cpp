@@ -33,30 +33,25 @@ struct ReplayArgs {
   bool json = false;
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab replay: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
-
 void run_replay(const ReplayArgs& a) {
   auto reader = store::StudyReader::open(a.db, session::read_options());
-  if (!reader) fail(exit_code(reader.error()), reader.error().to_string());
+  if (!reader) fail("replay", exit_code(reader.error()), reader.error().to_string());
   auto trial = replay::load_trial(*reader, a.participant, a.trial);
-  if (!trial) fail(exit_code(trial.error()), trial.error().to_string());
+  if (!trial) fail("replay", exit_code(trial.error()), trial.error().to_string());
   int width = trial->display ? trial->display->width : 800, height = trial->display ? trial->display->height : 600;
   if (!a.size.empty()) {
     std::smatch m;
     if (!std::regex_match(a.size, m, std::regex("([0-9]{2,5})x([0-9]{2,5})")))
-      fail(kExitUsage, "--size " + a.size + ": expected WIDTHxHEIGHT, e.g. 800x600");
+      fail("replay", kExitUsage, "--size " + a.size + ": expected WIDTHxHEIGHT, e.g. 800x600");
     width = std::stoi(m[1]);
     height = std::stoi(m[2]);
-    if (width < 16 || height < 16 || width > 8192 || height > 8192) fail(kExitUsage, "--size: 16x16 up to 8192x8192");
+    if (width < 16 || height < 16 || width > 8192 || height > 8192) fail("replay", kExitUsage, "--size: 16x16 up to 8192x8192");
   }
   std::error_code ec;
   std::filesystem::create_directories(a.out, ec);
-  if (ec) fail(kExitFailure, a.out + ": cannot create the directory: " + ec.message());
+  if (ec) fail("replay", kExitFailure, a.out + ": cannot create the directory: " + ec.message());
   auto ctx = platform::create_headless(width, height);
-  if (!ctx) fail(kExitFailure, ctx.error().to_string());
+  if (!ctx) fail("replay", kExitFailure, ctx.error().to_string());
   std::vector<std::string> files;
   Status st = replay::render_frames(*trial, width, height, a.every, [&](int frame, int, const render::Image& img) {
     char name[32];
@@ -64,7 +59,7 @@ void run_replay(const ReplayArgs& a) {
     files.push_back(name);
     return render::write_png(img, (std::filesystem::path(a.out) / name).string());
   });
-  if (!st) fail(exit_code(st.error()), st.error().to_string());
+  if (!st) fail("replay", exit_code(st.error()), st.error().to_string());
   const scene::Scene& s = trial->scene;
   if (s.plan) {
     const replay::WalkedPath path = replay::walked_path(
@@ -75,7 +70,7 @@ void run_replay(const ReplayArgs& a) {
       o << svg;
       return Status{};
     });
-    if (!w) fail(exit_code(w.error()), w.error().to_string());
+    if (!w) fail("replay", exit_code(w.error()), w.error().to_string());
     files.push_back("path.svg");
   }
   if (a.json) {

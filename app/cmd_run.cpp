@@ -41,11 +41,6 @@ struct RunArgs {
   int console_monitor = -1;  // -1: the console is an overlay on the participant's window
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  std::cerr << "dtlab run: " << message << "\n";
-  throw CLI::RuntimeError(code);
-}
-
 std::string experimenter_name(const std::string& given) {
   if (!given.empty()) return given;
   for (const char* var : {"DTLAB_EXPERIMENTER", "USER", "LOGNAME"})
@@ -57,12 +52,12 @@ std::string experimenter_name(const std::string& given) {
 void check_console_monitor(const RunArgs& a) {
   if (a.console_monitor < 0) return;
   const auto monitors = platform::monitors();
-  if (monitors.empty()) fail(kExitFailure, "--console-monitor: no monitor found (a participant session needs a display)");
+  if (monitors.empty()) fail("run", kExitFailure, "--console-monitor: no monitor found (a participant session needs a display)");
   if (a.console_monitor >= static_cast<int>(monitors.size()))
-    fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) + ": there is no such monitor; the "
+    fail("run", kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) + ": there is no such monitor; the "
                          "monitors are " + platform::describe(monitors) + " (dtlab run --list-monitors)");
   if (a.console_monitor == a.monitor)
-    fail(kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) +
+    fail("run", kExitUsage, "--console-monitor " + std::to_string(a.console_monitor) +
                          ": the participant's window is on that monitor (--monitor " + std::to_string(a.monitor) +
                          "); the console goes on another one, or leave the option out for the overlay");
 }
@@ -81,28 +76,28 @@ void list_monitors() {
 
 void run_person(const RunArgs& a) {
   auto p = protocol::load_protocol(a.protocol);
-  if (!p) fail(kExitInvalid, p.error().to_string() + "\n(run `dtlab validate " + a.protocol + "` for every problem)");
+  if (!p) fail("run", kExitInvalid, p.error().to_string() + "\n(run `dtlab validate " + a.protocol + "` for every problem)");
   std::optional<run::Script> script;
   if (!a.script.empty()) {
     auto s = run::parse_script(a.script);
-    if (!s) fail(exit_code(s.error()), s.error().to_string());
+    if (!s) fail("run", exit_code(s.error()), s.error().to_string());
     script = std::move(s.value());
   }
   int width = 0, height = 0;
   std::smatch m;
   if (!std::regex_match(a.size, m, std::regex("([0-9]{2,5})x([0-9]{2,5})")))
-    fail(kExitUsage, "--size " + a.size + ": expected WIDTHxHEIGHT, e.g. 1280x800");
+    fail("run", kExitUsage, "--size " + a.size + ": expected WIDTHxHEIGHT, e.g. 1280x800");
   width = std::stoi(m[1]);
   height = std::stoi(m[2]);
   // Up to the largest view `dtlab validate` checks a protocol at (session::kMaxViewportSide).
   if (width < 320 || height < 240 || width > session::kMaxViewportSide || height > session::kMaxViewportSide)
-    fail(kExitUsage, "--size " + a.size + ": expected 320x240 up to " + std::to_string(session::kMaxViewportSide) + "x" +
+    fail("run", kExitUsage, "--size " + a.size + ": expected 320x240 up to " + std::to_string(session::kMaxViewportSide) + "x" +
                          std::to_string(session::kMaxViewportSide));
 
   check_console_monitor(a);
 
   auto store = store::Store::open(a.db, session::study_info(p.value()), session::open_options(a.allow_protocol_change));
-  if (!store) fail(exit_code(store.error()), store.error().to_string());
+  if (!store) fail("run", exit_code(store.error()), store.error().to_string());
 
   platform::WindowOptions wo;
   wo.title = "dtlab - " + p->title;
@@ -112,7 +107,7 @@ void run_person(const RunArgs& a) {
   wo.monitor = a.monitor;
   wo.resizable = false;  // the trial views keep one size for the whole session
   auto window = platform::create_window(wo);
-  if (!window) fail(kExitFailure, window.error().to_string() + " (a participant session needs a display; for headless "
+  if (!window) fail("run", kExitFailure, window.error().to_string() + " (a participant session needs a display; for headless "
                                                               "runs use dtlab simulate)");
   run::UiOptions uo;
   uo.screenshots = a.screenshots;
@@ -121,7 +116,7 @@ void run_person(const RunArgs& a) {
   uo.script = script ? &*script : nullptr;
   uo.console_monitor = a.console_monitor;
   auto ui = run::Ui::create(**window, uo);
-  if (!ui) fail(exit_code(ui.error()), ui.error().to_string());
+  if (!ui) fail("run", exit_code(ui.error()), ui.error().to_string());
   if (!(*ui)->missing_glyphs().empty()) {
     std::string list;
     for (const std::string& g : (*ui)->missing_glyphs()) list += (list.empty() ? "" : " ") + g;
@@ -131,7 +126,7 @@ void run_person(const RunArgs& a) {
   }
 
   auto chosen = run::start_screen(**ui, *store, p.value(), a.participant);
-  if (!chosen) fail(chosen.error().kind == ErrorKind::conflict ? kExitInterrupted : exit_code(chosen.error()),
+  if (!chosen) fail("run", chosen.error().kind == ErrorKind::conflict ? kExitInterrupted : exit_code(chosen.error()),
                     chosen.error().to_string());
   if (!chosen->has_value()) {
     std::cerr << "dtlab run: quit from the start screen; nothing was run\n";
@@ -156,17 +151,17 @@ void run_person(const RunArgs& a) {
       return;
     }
     if (result.error().field == "window")
-      fail(kExitInterrupted, result.error().to_string() + "; run the same command again to resume " + participant);
+      fail("run", kExitInterrupted, result.error().to_string() + "; run the same command again to resume " + participant);
     if (result.error().kind == ErrorKind::busy && result.error().field == store::kClaimField)
-      fail(kExitFailure, result.error().to_string());
-    fail(exit_code(result.error()), result.error().to_string());
+      fail("run", kExitFailure, result.error().to_string());
+    fail("run", exit_code(result.error()), result.error().to_string());
   }
   if (result->declined) {
     Status st = run::end_screen(**ui, "end", protocol::text(p.value(), "consent.title"),
                                 protocol::text(p.value(), "consent.declined"), protocol::text(p.value(), "end.close"));
     std::cerr << "dtlab run: " << participant << " declined consent; only the refusal is stored in "
               << store::display_name(a.db) << "\n";
-    if (!st && st.error().field != "window") fail(exit_code(st.error()), st.error().to_string());
+    if (!st && st.error().field != "window") fail("run", exit_code(st.error()), st.error().to_string());
     return;
   }
   if (result->already_finished)
@@ -177,7 +172,7 @@ void run_person(const RunArgs& a) {
                               protocol::text(p.value(), "end.close"));
   std::cerr << "dtlab run: " << participant << "'s session is finished: " << result->trials_recorded
             << " trials recorded in " << store::display_name(a.db) << "\n";
-  if (!st && st.error().field != "window") fail(exit_code(st.error()), st.error().to_string());
+  if (!st && st.error().field != "window") fail("run", exit_code(st.error()), st.error().to_string());
 }
 
 }  // namespace

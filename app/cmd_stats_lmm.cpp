@@ -57,7 +57,7 @@ std::vector<st::LmmPowerRow> simulated_power(const LmmCliOptions& o, const st::L
   return *rows;
 }
 
-std::string fmt(double v, const char* f = "%.6g") {
+std::string lmm_fmt(double v, const char* f = "%.6g") {
   if (std::isnan(v)) return "NA";
   if (std::isinf(v)) return v > 0 ? "Inf" : "-Inf";
   char b[64];
@@ -65,7 +65,7 @@ std::string fmt(double v, const char* f = "%.6g") {
   return b;
 }
 
-std::string fmt_p(double p, double log10_p) {
+std::string lmm_fmt_p(double p, double log10_p) {
   if (std::isnan(p)) return "NA";
   if (p < 1e-300 && std::isfinite(log10_p)) {
     const double e = std::floor(log10_p);
@@ -73,7 +73,7 @@ std::string fmt_p(double p, double log10_p) {
     std::snprintf(b, sizeof b, "%.3ge%.0f", std::pow(10.0, log10_p - e), e);
     return b;
   }
-  return fmt(p, "%.4g");
+  return lmm_fmt(p, "%.4g");
 }
 
 st::LmmOptions parse_options(const LmmCliOptions& o) {
@@ -131,28 +131,28 @@ void print_fit(const st::LmmFit& f) {
               << (f.kenward_roger ? "Kenward-Roger's" : "Satterthwaite's") << " method [lmerModLmerTest]\n";
   std::cout << "Formula: " << f.formula << "\n";
   for (const auto& s : f.fallback) std::cout << "  random-effects structure: " << s << "\n";
-  if (f.reml && !glmm) std::cout << "\nREML criterion at convergence: " << fmt(f.reml_criterion, "%.4f") << "\n";
+  if (f.reml && !glmm) std::cout << "\nREML criterion at convergence: " << lmm_fmt(f.reml_criterion, "%.4f") << "\n";
   std::cout << "\n     AIC      BIC   logLik deviance\n"
-            << fmt(f.aic, "%8.4f") << " " << fmt(f.bic, "%8.4f") << " " << fmt(f.loglik, "%8.4f") << " "
-            << fmt(-2 * f.loglik, "%8.4f") << "  (df = " << f.df << ")\n";
+            << lmm_fmt(f.aic, "%8.4f") << " " << lmm_fmt(f.bic, "%8.4f") << " " << lmm_fmt(f.loglik, "%8.4f") << " "
+            << lmm_fmt(-2 * f.loglik, "%8.4f") << "  (df = " << f.df << ")\n";
   std::cout << "\nRandom effects:\n Groups       Name                  Variance     Std.Dev.\n";
   for (const auto& v : f.variances) {
     char b[256];
-    std::snprintf(b, sizeof b, " %-12s %-20s %12s %12s\n", v.group.c_str(), v.name.c_str(), fmt(v.variance).c_str(),
-                  fmt(v.sd).c_str());
+    std::snprintf(b, sizeof b, " %-12s %-20s %12s %12s\n", v.group.c_str(), v.name.c_str(), lmm_fmt(v.variance).c_str(),
+                  lmm_fmt(v.sd).c_str());
     std::cout << b;
   }
   for (const auto& c : f.correlations)
-    std::cout << " correlation (" << c.group << ") " << c.a << ", " << c.b << ": " << fmt(c.r, "%.3f") << "\n";
+    std::cout << " correlation (" << c.group << ") " << c.a << ", " << c.b << ": " << lmm_fmt(c.r, "%.3f") << "\n";
   std::cout << "Number of obs: " << f.n;
   for (const auto& [g, n] : f.groups) std::cout << ", groups: " << g << ", " << n;
   std::cout << "\n\nFixed effects:\n                       Estimate   Std. Error" << (glmm ? "" : "         df")
             << (glmm ? "    z value" : "    t value") << (glmm ? "   Pr(>|z|)\n" : "   Pr(>|t|)\n");
   for (const auto& c : f.coefficients) {
     char b[256];
-    std::snprintf(b, sizeof b, "%-20s %12s %12s %10s %10s %10s\n", c.name.c_str(), fmt(c.estimate).c_str(),
-                  fmt(c.se).c_str(), glmm ? "" : fmt(c.df, "%.2f").c_str(), fmt(c.statistic, "%.3f").c_str(),
-                  fmt_p(c.p, c.log10_p).c_str());
+    std::snprintf(b, sizeof b, "%-20s %12s %12s %10s %10s %10s\n", c.name.c_str(), lmm_fmt(c.estimate).c_str(),
+                  lmm_fmt(c.se).c_str(), glmm ? "" : lmm_fmt(c.df, "%.2f").c_str(), lmm_fmt(c.statistic, "%.3f").c_str(),
+                  lmm_fmt_p(c.p, c.log10_p).c_str());
     std::cout << b;
   }
   if (!f.anova.empty()) {
@@ -160,9 +160,9 @@ void print_fit(const st::LmmFit& f) {
               << " method\n                       Sum Sq      Mean Sq NumDF      DenDF    F value     Pr(>F)\n";
     for (const auto& a : f.anova) {
       char b[256];
-      std::snprintf(b, sizeof b, "%-16s %12s %12s %5s %10s %10s %10s\n", a.term.c_str(), fmt(a.sum_sq).c_str(),
-                    fmt(a.mean_sq).c_str(), fmt(a.num_df, "%.0f").c_str(), fmt(a.den_df, "%.3f").c_str(),
-                    fmt(a.F, "%.4f").c_str(), fmt_p(a.p, a.log10_p).c_str());
+      std::snprintf(b, sizeof b, "%-16s %12s %12s %5s %10s %10s %10s\n", a.term.c_str(), lmm_fmt(a.sum_sq).c_str(),
+                    lmm_fmt(a.mean_sq).c_str(), lmm_fmt(a.num_df, "%.0f").c_str(), lmm_fmt(a.den_df, "%.3f").c_str(),
+                    lmm_fmt(a.F, "%.4f").c_str(), lmm_fmt_p(a.p, a.log10_p).c_str());
       std::cout << b;
     }
   }
@@ -171,8 +171,8 @@ void print_fit(const st::LmmFit& f) {
                  "term                 Df        Chisq   Pr(>Chisq)\n";
     for (const auto& l : f.lrt) {
       char b[256];
-      std::snprintf(b, sizeof b, "%-16s %6s %12s %12s\n", l.term.c_str(), fmt(l.df, "%.0f").c_str(),
-                    fmt(l.chisq, "%.4f").c_str(), fmt_p(l.p, l.log10_p).c_str());
+      std::snprintf(b, sizeof b, "%-16s %6s %12s %12s\n", l.term.c_str(), lmm_fmt(l.df, "%.0f").c_str(),
+                    lmm_fmt(l.chisq, "%.4f").c_str(), lmm_fmt_p(l.p, l.log10_p).c_str());
       std::cout << b;
     }
   }
@@ -191,10 +191,10 @@ void print_emm(const st::EmmTable& t) {
     std::string cell;
     for (const auto& l : m.levels) cell += (cell.empty() ? "" : " ") + l;
     char b[512];
-    std::snprintf(b, sizeof b, "  %-24s %10s %10s %9s   [%s, %s]", cell.c_str(), fmt(m.estimate).c_str(),
-                  fmt(m.se).c_str(), fmt(m.df, "%.2f").c_str(), fmt(m.ci_low).c_str(), fmt(m.ci_high).c_str());
+    std::snprintf(b, sizeof b, "  %-24s %10s %10s %9s   [%s, %s]", cell.c_str(), lmm_fmt(m.estimate).c_str(),
+                  lmm_fmt(m.se).c_str(), lmm_fmt(m.df, "%.2f").c_str(), lmm_fmt(m.ci_low).c_str(), lmm_fmt(m.ci_high).c_str());
     std::cout << b;
-    if (back) std::cout << "   " << fmt(m.response) << " [" << fmt(m.response_ci_low) << ", " << fmt(m.response_ci_high) << "]";
+    if (back) std::cout << "   " << lmm_fmt(m.response) << " [" << lmm_fmt(m.response_ci_low) << ", " << lmm_fmt(m.response_ci_high) << "]";
     std::cout << "\n";
   }
   if (t.contrasts.empty()) return;
@@ -202,10 +202,10 @@ void print_emm(const st::EmmTable& t) {
             << (t.scale == st::EmmScale::log ? ": ratio = exp(estimate)" : t.scale == st::EmmScale::logit ? ": odds ratio = exp(estimate)" : "")
             << "\n";
   for (const auto& c : t.contrasts) {
-    std::cout << "  " << c.a << " - " << c.b << ": estimate " << fmt(c.estimate) << ", SE " << fmt(c.se) << ", df "
-              << fmt(c.df, "%.2f") << ", " << (std::isinf(c.df) ? "z" : "t") << " " << fmt(c.statistic, "%.3f") << ", p "
-              << fmt_p(c.p, c.log10_p) << ", p_holm " << fmt(c.p_holm, "%.4g");
-    if (back) std::cout << ", ratio " << fmt(c.ratio) << " [" << fmt(c.ratio_ci_low) << ", " << fmt(c.ratio_ci_high) << "]";
+    std::cout << "  " << c.a << " - " << c.b << ": estimate " << lmm_fmt(c.estimate) << ", SE " << lmm_fmt(c.se) << ", df "
+              << lmm_fmt(c.df, "%.2f") << ", " << (std::isinf(c.df) ? "z" : "t") << " " << lmm_fmt(c.statistic, "%.3f") << ", p "
+              << lmm_fmt_p(c.p, c.log10_p) << ", p_holm " << lmm_fmt(c.p_holm, "%.4g");
+    if (back) std::cout << ", ratio " << lmm_fmt(c.ratio) << " [" << lmm_fmt(c.ratio_ci_low) << ", " << lmm_fmt(c.ratio_ci_high) << "]";
     std::cout << "\n";
   }
 }
@@ -270,11 +270,11 @@ void run_lmm(const LmmCliOptions& o) {
       std::cout << "  " << st::apa_contrast_sentence(t, c, time, o.dv) << "\n";
     }
   if (!power.empty()) {
-    std::cout << "\nSimulated power of " << power_term << " at alpha " << fmt(o.alpha) << " (" << o.replications
+    std::cout << "\nSimulated power of " << power_term << " at alpha " << lmm_fmt(o.alpha) << " (" << o.replications
               << " studies per size simulated from the fit, as simr; seed " << o.seed << ")\n";
     for (const auto& r : power)
-      std::cout << "  n = " << r.n << ": " << fmt(r.power.power, "%.3f") << " [" << fmt(r.power.ci_low, "%.3f") << ", "
-                << fmt(r.power.ci_high, "%.3f") << "]" << (r.power.undefined ? ", " + std::to_string(r.power.undefined) + " fits failed" : "")
+      std::cout << "  n = " << r.n << ": " << lmm_fmt(r.power.power, "%.3f") << " [" << lmm_fmt(r.power.ci_low, "%.3f") << ", "
+                << lmm_fmt(r.power.ci_high, "%.3f") << "]" << (r.power.undefined ? ", " + std::to_string(r.power.undefined) + " fits failed" : "")
                 << "\n";
   }
   std::cout << "\nThe same model in R:\n" << fit->r_code;

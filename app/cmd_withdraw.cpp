@@ -28,21 +28,16 @@ struct WithdrawArgs {
   bool json = false;
 };
 
-[[noreturn]] void fail(const Error& e) {
-  std::cerr << "dtlab withdraw: " << e.to_string() << "\n";
-  throw CLI::RuntimeError(exit_code(e));
-}
-
 void run_withdraw(const WithdrawArgs& a) {
   auto store = store::Store::open_existing(a.db, session::open_options());
-  if (!store) fail(store.error());
+  if (!store) fail("withdraw", store.error());
   const std::string by = a.by.empty() ? default_experimenter() : a.by;
   auto before = store->lookup(a.participant);  // unknown: withdraw() says so
   const bool already = before && before->withdrawn;
-  if (Status st = store->withdraw(a.participant, a.reason, by); !st) fail(st.error());
+  if (Status st = store->withdraw(a.participant, a.reason, by); !st) fail("withdraw", st.error());
   // What is stored now: the first withdrawal stays, so a second call reports the first.
   auto withdrawals = store->read().withdrawals();
-  if (!withdrawals) fail(withdrawals.error());
+  if (!withdrawals) fail("withdraw", withdrawals.error());
   store::WithdrawalRecord w;
   for (const auto& x : *withdrawals)
     if (x.participant == a.participant) w = x;

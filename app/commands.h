@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "study/common/error.h"
@@ -40,6 +41,12 @@ inline int exit_code(const Error& e) {
   }
   return kExitFailure;
 }
+
+// How a subcommand's callback fails: "dtlab COMMAND: error: MESSAGE" on stderr, then
+// CLI::RuntimeError(code), which main() turns into the exit status.
+[[noreturn]] void fail(std::string_view command, int code, const std::string& message);
+// The same for an Error: "dtlab COMMAND: " and its text, with the exit code of its kind.
+[[noreturn]] void fail(std::string_view command, const Error& e);
 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
 void add_render_command(CLI::App& root);   // `dtlab render ... --method M --out FILE.png`: one frame headless, --json

@@ -14,6 +14,20 @@
 #include "study/common/text.h"
 #include "study/common/version.h"
 
+namespace dtlab::app {
+
+void fail(std::string_view command, int code, const std::string& message) {
+  std::cerr << "dtlab " << command << ": error: " << message << "\n";
+  throw CLI::RuntimeError(code);
+}
+
+void fail(std::string_view command, const Error& e) {
+  std::cerr << "dtlab " << command << ": " << e.to_string() << "\n";
+  throw CLI::RuntimeError(exit_code(e));
+}
+
+}  // namespace dtlab::app
+
 namespace {
 
 // `dtlab analyse`: CLI11 would only say that a subcommand is required. Names the word and the

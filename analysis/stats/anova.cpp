@@ -8,14 +8,13 @@
 #include <stdexcept>
 
 #include "analysis/stats/csv.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
 #include "analysis/stats/effect_size.h"
 
 namespace dtlab::stats {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Mean of x: exact when all values are equal, else sum / n with a second-pass correction.
 double careful_mean(const std::vector<double>& x) {

@@ -7,13 +7,13 @@
 #include <map>
 
 #include "analysis/stats/detail/design.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
 
 namespace dtlab::stats {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
 // c[0] + c[1] x + c[2] x^2 + ...

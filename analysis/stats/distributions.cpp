@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/policy.h"
 
 namespace dtlab::stats {
@@ -23,8 +24,6 @@ using ChiSquared = bm::chi_squared_distribution<double, Policy>;
 using Normal = bm::normal_distribution<double, Policy>;
 using StudentsT = bm::students_t_distribution<double, Policy>;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kLn10 = 2.302585092994045684;
 // Below this Boost's result is replaced by exp(analytic log): subnormal
 // doubles carry too few bits, and the true value may lie below them.

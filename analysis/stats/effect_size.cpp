@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/policy.h"
 
 namespace dtlab::stats {
@@ -19,7 +20,6 @@ namespace {
 namespace bm = boost::math;
 using detail::Policy;  // errors become NaN/inf values, never exceptions
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kLargeLambda = 1e8;
 
 double cdf_at(double f, double df1, double df2, double lambda) {

@@ -7,13 +7,12 @@
 
 #include "analysis/stats/apa.h"
 #include "analysis/stats/detail/lmm_design.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/distributions.h"
 #include "analysis/stats/posthoc.h"
 
 namespace dtlab::stats {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The fixed design's coding without rows: the X row of any cell (detail/lmm_design.h).
 detail::FixedDesign coding(const LmmFit& fit) {

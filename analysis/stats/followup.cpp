@@ -9,14 +9,13 @@
 
 #include "analysis/stats/detail/design.h"
 #include "analysis/stats/detail/multivariate.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
 #include "analysis/stats/rm_anova.h"
 
 namespace dtlab::stats {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double mean(const std::vector<double>& x) {
   detail::Sum s;

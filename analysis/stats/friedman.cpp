@@ -7,17 +7,17 @@
 
 #include "analysis/stats/detail/design.h"
 #include "analysis/stats/detail/friedman_exact.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/ranks.h"
 #include "analysis/stats/distributions.h"
 
 namespace dtlab::stats {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // State updates of the exact DP (friedman_exact_work, an upper bound): 3e8
 // take at most about a second of CPU on the development machine (k = 6,
 // n = 9: 0.5 s), 3e9 about seven (k = 6, n = 14: 5.1 s; k = 4, n = 160: 7.2 s).
-constexpr double kExactBudget = 3e8;   // --exact auto
+constexpr double kFriedmanBudget = 3e8;   // --exact auto
 constexpr double kAlwaysBudget = 3e9;  // --exact always
 
 void set_undefined(FriedmanResult& r) {
@@ -45,7 +45,7 @@ void permutation_p(FriedmanResult& r, const std::vector<std::vector<int>>& doubl
     case ExactMode::always: {
       const bool always = exact.mode == ExactMode::always;
       std::string why;
-      if (auto p = detail::friedman_exact_tail(doubled, s_obs, always ? kAlwaysBudget : kExactBudget, &why)) {
+      if (auto p = detail::friedman_exact_tail(doubled, s_obs, always ? kAlwaysBudget : kFriedmanBudget, &why)) {
         r.p_exact = *p;
         r.exact_method = "exact";
       } else {

@@ -12,6 +12,7 @@
 
 #include "analysis/stats/detail/design.h"
 #include "analysis/stats/detail/friedman_exact.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/ranks.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
@@ -19,10 +20,8 @@
 namespace dtlab::stats {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kLn10 = 2.302585092994045684;
-constexpr double kExactBudget = 2e8;  // ranks x sums in the signed-rank DP
+constexpr double kSignedRankBudget = 2e8;  // ranks x sums in the signed-rank DP
 
 std::vector<double> differences(const std::vector<double>& x, const std::vector<double>& y) {
   if (x.size() != y.size()) throw std::invalid_argument("paired test: x and y differ in length");
@@ -172,7 +171,7 @@ WilcoxonResult wilcoxon_signed_rank(const std::vector<double>& x, const std::vec
       r.exact_method = "monte-carlo";
     } else {
       double up = 0, lo = 0;
-      const double budget = o.exact.mode == ExactMode::always ? 50 * kExactBudget : kExactBudget;
+      const double budget = o.exact.mode == ExactMode::always ? 50 * kSignedRankBudget : kSignedRankBudget;
       if (signed_rank_exact(w, v2, budget, up, lo)) {
         r.p_exact = pick(o.alternative, above_mean, up, lo);
         r.exact_method = "exact";

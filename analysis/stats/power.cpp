@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "analysis/stats/detail/friedman_exact.h"  // SplitMixStream
+#include "analysis/stats/detail/numbers.h"
 
 #include "analysis/stats/detail/policy.h"
 
@@ -22,7 +23,6 @@ namespace {
 
 namespace bm = boost::math;
 using detail::Policy;  // errors become NaN/inf values, never exceptions
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The share of rejections among the defined replications and its 95% Wilson interval.
 void wilson(ResampledPower& r) {

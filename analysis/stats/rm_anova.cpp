@@ -16,6 +16,7 @@
 #include "analysis/stats/detail/dd.h"
 #include "analysis/stats/detail/design.h"
 #include "analysis/stats/detail/linalg.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
 #include "analysis/stats/effect_size.h"
@@ -26,8 +27,6 @@ namespace {
 using detail::CellDesign;
 using detail::DD;
 using detail::Matrix;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Subsets of {0..n-1}: the empty set, then by size, each size in lexicographic order (R's term order).
 std::vector<std::vector<size_t>> terms(size_t n) {

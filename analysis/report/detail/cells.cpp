@@ -3,15 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 
+#include "analysis/report/detail/format.h"
+
 namespace dtlab::report::detail {
-namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-}  // namespace
 
 std::vector<size_t> CellMatrix::complete() const {
   std::vector<size_t> out;

@@ -8,11 +8,14 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <string>
 
 #include "study/common/text.h"  // dtlab::count: "1 trial", "3 trials"
 
 namespace dtlab::report::detail {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // "not computed" in a result
 
 inline constexpr const char* kDash = "—";  // undefined value in a table
 

@@ -14,7 +14,6 @@
 namespace dtlab::report::detail {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool planned_section(const std::string& section) { return section == "time" || section == "accuracy"; }
 

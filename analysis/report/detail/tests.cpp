@@ -14,7 +14,6 @@
 namespace dtlab::report::detail {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // What every test report holds: names, the participants kept, cell and marginal descriptives.
 // False, with not_tested set, when nothing can be tested.

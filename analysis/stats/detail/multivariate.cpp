@@ -8,13 +8,12 @@
 #include <limits>
 
 #include "analysis/stats/detail/linalg.h"
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/distributions.h"
 #include "analysis/stats/detail/sum.h"
 
 namespace dtlab::stats::detail {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Weight of the cell with level indices `lv` of the factors [first, first + lv.size()).
 double product_weight(const FactorWeights& w, size_t first, const std::vector<size_t>& lv) {

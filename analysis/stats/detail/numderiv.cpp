@@ -7,13 +7,13 @@
 namespace dtlab::stats::detail {
 namespace {
 
-constexpr double kEps = 1e-4;
+constexpr double kStepFloor = 1e-4;
 constexpr int kR = 4;  // Richardson steps (v = 2: each halves h)
 const double kZeroTol = std::sqrt(std::numeric_limits<double>::epsilon() / 7e-7);
 
 std::vector<double> initial_steps(const std::vector<double>& x, double d) {
   std::vector<double> h(x.size());
-  for (size_t i = 0; i < x.size(); ++i) h[i] = std::fabs(d * x[i]) + kEps * (std::fabs(x[i]) < kZeroTol ? 1.0 : 0.0);
+  for (size_t i = 0; i < x.size(); ++i) h[i] = std::fabs(d * x[i]) + kStepFloor * (std::fabs(x[i]) < kZeroTol ? 1.0 : 0.0);
   return h;
 }
 

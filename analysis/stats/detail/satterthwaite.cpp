@@ -5,13 +5,12 @@
 #include <cstdio>
 #include <limits>
 
+#include "analysis/stats/detail/numbers.h"
 #include "analysis/stats/detail/numderiv.h"
 #include "analysis/stats/distributions.h"
 
 namespace dtlab::stats::detail {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string eigen_list(const std::vector<double>& values) {
   std::string s;
