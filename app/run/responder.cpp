@@ -166,14 +166,13 @@ Status WindowResponder::show_instructions(const session::TaskSetSpec& set) {
 
 Status WindowResponder::show_training(const session::TaskSetSpec& set) {
   if (set.time_limit_s <= 0) return {};
-  // A practice scene of the set's task and condition, never one of the recorded trials:
-  // seed = mix64(participant_seed(M, k), kTrainingDomain + 64 * block + task index).
+  // A practice scene of the set's task and condition, never one of the recorded trials.
   int task_index = 0;
   for (std::size_t i = 0; i < set.setup->scenario->tasks.size(); ++i)
     if (set.setup->scenario->tasks[i].id == set.task) task_index = static_cast<int>(i);
-  const std::uint64_t seed = mix64(design::participant_seed(protocol_.master_seed, static_cast<std::uint64_t>(set.enrollment_index)),
-                                   kTrainingDomain + 64ULL * static_cast<std::uint64_t>(set.block) +
-                                       static_cast<std::uint64_t>(task_index));
+  const std::uint64_t seed =
+      design::training_seed(protocol_.master_seed, static_cast<std::uint64_t>(set.enrollment_index),
+                            static_cast<std::uint64_t>(set.block), static_cast<std::uint64_t>(task_index));
   auto sc = scene::generate(set.setup->kind, set.setup->scene_task, seed, set.setup->params);
   if (!sc) return sc.error();
   auto frame = session::frame_settings(protocol_, *set.setup->rendering, ui_.width(), ui_.height());

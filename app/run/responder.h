@@ -57,9 +57,6 @@ class WindowResponder final : public session::Responder {
   std::unique_ptr<Console> console_;
 };
 
-// Seed domain of practice scenes: mix64(participant_seed(M, k), kTrainingDomain + 64 * block + task index).
-inline constexpr std::uint64_t kTrainingDomain = 0x2000000000000000ULL + 0x747261696eULL;  // 2^61 + "train"
-
 // Default instructions of a task type (when the protocol's task gives none), in the protocol's wording.
 std::string default_instructions(const protocol::Protocol& p, protocol::TaskType type);
 

@@ -36,11 +36,6 @@ std::vector<questionnaire::Occasion> questionnaire_occasions(const protocol::Pro
   return questionnaire::occasions(p.questionnaire, points, factors);
 }
 
-std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, int item_position) {
-  return mix64(design::participant_seed(master_seed, static_cast<std::uint64_t>(enrollment_index)),
-               kDepthTestDomain + static_cast<std::uint64_t>(item_position));
-}
-
 Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol::QuestionnaireItem& item,
                                      int enrollment_index, const Viewport& vp, std::vector<Question>& questions) {
   const std::string field = "questionnaire." + item.id;
@@ -60,7 +55,8 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
   int item_position = 0;
   for (std::size_t i = 0; i < p.questionnaire.size(); ++i)
     if (&p.questionnaire[i] == &item) item_position = static_cast<int>(i);
-  const std::uint64_t seed = depth_test_seed(p.master_seed, enrollment_index, item_position);
+  const std::uint64_t seed = design::depth_test_seed(p.master_seed, static_cast<std::uint64_t>(enrollment_index),
+                                                     static_cast<std::uint64_t>(item_position));
   // The scene of the scenario's first task: its objects are what the participant saw all session.
   const protocol::Task& task = scenario->tasks.front();
   auto params = scene_params(p, *scenario, task);

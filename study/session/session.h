@@ -209,7 +209,7 @@ std::vector<Question> expand_questionnaire(const protocol::Protocol& p, const qu
 std::vector<questionnaire::Occasion> questionnaire_occasions(const protocol::Protocol& p, const design::Plan& plan);
 
 // The view and object pairs of depth-test `item` for participant `index`: a scene of the item's
-// scenario (seed depth_test_seed), a camera from the start cell facing the most objects, and
+// scenario (seed design::depth_test_seed, study/design/seeds.h), a camera from the start cell facing the most objects, and
 // item.pairs pairs of objects in view whose distances from the eye differ by 20% to 100%.
 // Fills questions' object ids; returns the view and, per pair, the id of the closer object.
 struct DepthTestKey {
@@ -224,11 +224,6 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
 // nullopt when the object is not in the scene or lies behind the eye. The window draws the pair's
 // A and B markers there.
 std::optional<glm::vec2> depth_test_marker(const DepthTestView& v, std::uint32_t object, const Viewport& vp);
-
-// Seed of depth-test item `item_position` (0-based in the questionnaire) of participant k:
-// mix64(participant_seed(M, k), kDepthTestDomain + item_position).
-std::uint64_t depth_test_seed(std::uint64_t master_seed, int enrollment_index, int item_position);
-inline constexpr std::uint64_t kDepthTestDomain = 0x4000000000000000ULL + 0x6465707468ULL;  // 2^62 + "depth"
 
 // The recorded trials of `participant_id`, read through the store, in position order.
 Result<std::vector<RecordedTrial>> recorded_trials(store::Store& store, const std::string& participant_id);

@@ -122,6 +122,18 @@ TEST(Seeds, FollowTheDocumentedHash) {
   for (const auto& t : plan.trials) EXPECT_EQ(t.seed, trial_seed(p.master_seed, 15, t.position));
 }
 
+// The practice scenes' and the depth test's seeds, moved into seeds.h from the window and the
+// session (issue 26): the same streams as before. Expected values computed outside dtlab with the
+// Python of FollowTheDocumentedHash:
+//   mix2(mix2(mix(20080401), 3), 2**61 + 0x747261696e + 64 * 2 + 1)   block 2, task index 1
+//   mix2(mix2(mix(20080401), 1), 2**62 + 0x6465707468 + 5)            questionnaire position 5
+TEST(Seeds, PracticeAndDepthTestSeedsFollowTheDocumentedHash) {
+  EXPECT_EQ(training_seed(20080401, 3, 2, 1), 17979032487613094384ULL);
+  EXPECT_EQ(depth_test_seed(20080401, 1, 5), 14838250802174397229ULL);
+  // No derivation reaches another's domain: a trial position is an int, the domains start at 2^61.
+  static_assert(kTrainingDomain > (1ULL << 61) && kDepthTestDomain > (1ULL << 62) && kOrderDomain > (1ULL << 63));
+}
+
 TEST(Seeds, AChangedMasterSeedChangesEveryTrialSeed) {
   const auto p = reference();
   auto q = p;
