@@ -11,6 +11,7 @@
 
 #include "app/platform/detail/loader.h"
 #include "app/platform/gl_context.h"
+#include "app/platform/thread_pinning.h"
 
 namespace dtlab::platform {
 
@@ -49,6 +50,12 @@ int load_gl_for(ContextKind kind) {
   g_loaded_kind = v != 0 ? std::optional<ContextKind>(kind) : std::nullopt;
   g_loaded_version = v == 0 ? 0 : GLAD_VERSION_MAJOR(v) * 10 + GLAD_VERSION_MINOR(v);
   return g_loaded_version;
+}
+
+int pin_gl_threads_of_current_context() {
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  glFinish();
+  return pin_software_gl_threads();
 }
 
 }  // namespace detail

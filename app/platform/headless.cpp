@@ -13,7 +13,6 @@
 #include "app/platform/detail/loader.h"
 #include "app/platform/gl_context.h"
 #include "app/platform/malloc_tuning.h"
-#include "app/platform/thread_pinning.h"
 
 namespace dtlab::platform {
 
@@ -74,7 +73,7 @@ Result<std::unique_ptr<GlContext>> create_headless(int width, int height, int ra
   if (version < 33)
     return gl_error("headless GL context offers version " + std::to_string(version / 10) + "." +
                     std::to_string(version % 10) + "; dtlab needs OpenGL 3.3 core");
-  pin_software_gl_threads();
+  detail::pin_gl_threads_of_current_context();
   return std::unique_ptr<GlContext>(std::move(context));
 }
 

@@ -11,7 +11,8 @@
 namespace dtlab::platform {
 
 // How many threads it pinned now (0 when it did nothing). create_headless() and create_window()
-// call it after making their context current (llvmpipe starts its threads with the context).
+// call it after making their context current and finishing one frame (llvmpipe starts its
+// threads with the context, and each names itself when it first runs).
 int pin_software_gl_threads();
 
 }  // namespace dtlab::platform

@@ -12,7 +12,6 @@
 #include "app/platform/detail/loader.h"
 #include "app/platform/gl_context.h"
 #include "app/platform/malloc_tuning.h"
-#include "app/platform/thread_pinning.h"
 
 namespace dtlab::platform {
 
@@ -121,7 +120,7 @@ Result<std::unique_ptr<Window>> create_window(const WindowOptions& options) {
   const int version = detail::load_gl_for(ContextKind::window);
   if (version < 33) return window_error("the window's GL context is older than 3.3 core");
   glfwSwapInterval(options.vsync ? 1 : 0);
-  pin_software_gl_threads();
+  detail::pin_gl_threads_of_current_context();
   return window;
 }
 

@@ -19,4 +19,11 @@ void switching_to(ContextKind kind);
 // A window is going away: forget that a window context is current.
 void window_released();
 
+// After a context is made current: one cleared, finished frame, then pin_software_gl_threads().
+// llvmpipe names each rasterizer thread ("llvmpipe-N") when the thread first runs, which on a
+// loaded machine can be milliseconds after the context exists (a pin then missed the unnamed
+// thread); a finished frame waits for every rasterizer thread, so all of them have named
+// themselves. Returns how many threads it pinned.
+int pin_gl_threads_of_current_context();
+
 }  // namespace dtlab::platform::detail
