@@ -18,7 +18,6 @@ namespace dtlab::app {
 
 namespace {
 
-
 struct RouteRow {
   std::uint64_t seed = 0;
   std::string method;

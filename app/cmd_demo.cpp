@@ -61,7 +61,7 @@ void write_protocol(const std::filesystem::path& path, std::string_view text) {
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     return {};
   });
-  if (!st) fail("demo", exit_code(st.error()), st.error().to_string());
+  if (!st) fail("demo", st.error());
 }
 
 void run_demo(DemoArgs a) {
@@ -89,20 +89,20 @@ void run_demo(DemoArgs a) {
 
   // One snapshot of the database serves the table, the report and the summary.
   auto reader = store::StudyReader::open(a.run.db, session::read_options());
-  if (!reader) fail("demo", exit_code(reader.error()), reader.error().to_string());
+  if (!reader) fail("demo", reader.error());
   const fs::path csv = dir / "elmqvist2008.csv";
   Status exported = write_file_atomically(csv.string(), [&](std::ostream& out) -> Status {
     auto sum = store::export_trials_csv(*reader, out);
     return sum ? Status{} : Status{sum.error()};
   });
-  if (!exported) fail("demo", exit_code(exported.error()), exported.error().to_string());
+  if (!exported) fail("demo", exported.error());
   const fs::path report_dir = dir / "report";
   report::ReportOptions options;
   options.path_figure = replay_path_figures();
   auto rep = report::write_report(
       *reader, report_dir.string(), [](const std::string& step) { std::cerr << "dtlab demo: report: " << step << "\n"; },
       options);
-  if (!rep) fail("demo", exit_code(rep.error()), rep.error().to_string());
+  if (!rep) fail("demo", rep.error());
   for (const auto& w : rep->warnings) std::cerr << "dtlab demo: report: warning: " << w << "\n";
   const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
   auto summary = sim::summarize(*reader, rendering ? rendering->name : "");

@@ -35,9 +35,9 @@ struct ReplayArgs {
 
 void run_replay(const ReplayArgs& a) {
   auto reader = store::StudyReader::open(a.db, session::read_options());
-  if (!reader) fail("replay", exit_code(reader.error()), reader.error().to_string());
+  if (!reader) fail("replay", reader.error());
   auto trial = replay::load_trial(*reader, a.participant, a.trial);
-  if (!trial) fail("replay", exit_code(trial.error()), trial.error().to_string());
+  if (!trial) fail("replay", trial.error());
   int width = trial->display ? trial->display->width : 800, height = trial->display ? trial->display->height : 600;
   if (!a.size.empty()) {
     std::smatch m;
@@ -59,7 +59,7 @@ void run_replay(const ReplayArgs& a) {
     files.push_back(name);
     return render::write_png(img, (std::filesystem::path(a.out) / name).string());
   });
-  if (!st) fail("replay", exit_code(st.error()), st.error().to_string());
+  if (!st) fail("replay", st.error());
   const scene::Scene& s = trial->scene;
   if (s.plan) {
     const replay::WalkedPath path = replay::walked_path(
@@ -70,7 +70,7 @@ void run_replay(const ReplayArgs& a) {
       o << svg;
       return Status{};
     });
-    if (!w) fail("replay", exit_code(w.error()), w.error().to_string());
+    if (!w) fail("replay", w.error());
     files.push_back("path.svg");
   }
   if (a.json) {

@@ -80,7 +80,7 @@ void run_person(const RunArgs& a) {
   std::optional<run::Script> script;
   if (!a.script.empty()) {
     auto s = run::parse_script(a.script);
-    if (!s) fail("run", exit_code(s.error()), s.error().to_string());
+    if (!s) fail("run", s.error());
     script = std::move(s.value());
   }
   int width = 0, height = 0;
@@ -97,7 +97,7 @@ void run_person(const RunArgs& a) {
   check_console_monitor(a);
 
   auto store = store::Store::open(a.db, session::study_info(p.value()), session::open_options(a.allow_protocol_change));
-  if (!store) fail("run", exit_code(store.error()), store.error().to_string());
+  if (!store) fail("run", store.error());
 
   platform::WindowOptions wo;
   wo.title = "dtlab - " + p->title;
@@ -116,7 +116,7 @@ void run_person(const RunArgs& a) {
   uo.script = script ? &*script : nullptr;
   uo.console_monitor = a.console_monitor;
   auto ui = run::Ui::create(**window, uo);
-  if (!ui) fail("run", exit_code(ui.error()), ui.error().to_string());
+  if (!ui) fail("run", ui.error());
   if (!(*ui)->missing_glyphs().empty()) {
     std::string list;
     for (const std::string& g : (*ui)->missing_glyphs()) list += (list.empty() ? "" : " ") + g;
@@ -154,14 +154,14 @@ void run_person(const RunArgs& a) {
       fail("run", kExitInterrupted, result.error().to_string() + "; run the same command again to resume " + participant);
     if (result.error().kind == ErrorKind::busy && result.error().field == store::kClaimField)
       fail("run", kExitFailure, result.error().to_string());
-    fail("run", exit_code(result.error()), result.error().to_string());
+    fail("run", result.error());
   }
   if (result->declined) {
     Status st = run::end_screen(**ui, "end", protocol::text(p.value(), "consent.title"),
                                 protocol::text(p.value(), "consent.declined"), protocol::text(p.value(), "end.close"));
     std::cerr << "dtlab run: " << participant << " declined consent; only the refusal is stored in "
               << store::display_name(a.db) << "\n";
-    if (!st && st.error().field != "window") fail("run", exit_code(st.error()), st.error().to_string());
+    if (!st && st.error().field != "window") fail("run", st.error());
     return;
   }
   if (result->already_finished)
@@ -172,7 +172,7 @@ void run_person(const RunArgs& a) {
                               protocol::text(p.value(), "end.close"));
   std::cerr << "dtlab run: " << participant << "'s session is finished: " << result->trials_recorded
             << " trials recorded in " << store::display_name(a.db) << "\n";
-  if (!st && st.error().field != "window") fail("run", exit_code(st.error()), st.error().to_string());
+  if (!st && st.error().field != "window") fail("run", st.error());
 }
 
 }  // namespace

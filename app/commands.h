@@ -45,7 +45,7 @@ inline int exit_code(const Error& e) {
 // How a subcommand's callback fails: "dtlab COMMAND: error: MESSAGE" on stderr, then
 // CLI::RuntimeError(code), which main() turns into the exit status.
 [[noreturn]] void fail(std::string_view command, int code, const std::string& message);
-// The same for an Error: "dtlab COMMAND: " and its text, with the exit code of its kind.
+// The same for an Error: its text (file:line: field: message), with the exit code of its kind.
 [[noreturn]] void fail(std::string_view command, const Error& e);
 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json

@@ -22,7 +22,7 @@ void fail(std::string_view command, int code, const std::string& message) {
 }
 
 void fail(std::string_view command, const Error& e) {
-  std::cerr << "dtlab " << command << ": " << e.to_string() << "\n";
+  std::cerr << "dtlab " << command << ": error: " << e.to_string() << "\n";
   throw CLI::RuntimeError(exit_code(e));
 }
 
