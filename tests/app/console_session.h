@@ -4,20 +4,17 @@
 // $DTLAB_RUN_ITEMS_LOG (which UI items each window showed, in order).
 // Never: reads the answer key (the scripts answer blind, as a person does).
 #pragma once
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "tests/common/run_cli.h"
 
 namespace dtlab::test {
 
@@ -34,30 +31,10 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
 // `seconds` (it is killed then).
 inline int run_pilot(const std::filesystem::path& db, const std::filesystem::path& log,
                      const std::filesystem::path& items_log, const std::vector<std::string>& extra, double seconds) {
-  std::vector<std::string> args{DTLAB_BINARY, "run", std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml",
-                                "--db", db.string(), "--size", "640x480"};
+  std::vector<std::string> args{"run", std::string(DTLAB_SOURCE_DIR) + "/protocols/pilot.toml", "--db", db.string(),
+                                "--size", "640x480"};
   args.insert(args.end(), extra.begin(), extra.end());
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::setenv("DTLAB_RUN_ITEMS_LOG", items_log.c_str(), 1);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(DTLAB_BINARY, argv.data());
-    ::_exit(127);
-  }
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  int status = 0;
-  while (std::chrono::steady_clock::now() < until) {
-    if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  ::kill(pid, SIGKILL);
-  ::waitpid(pid, &status, 0);
-  return -1;
+  return run_dtlab_for(args, log, seconds, {{"DTLAB_RUN_ITEMS_LOG", items_log.string()}});
 }
 
 // One line of $DTLAB_RUN_ITEMS_LOG: the names of the UI items a window showed from one frame on.

@@ -5,15 +5,11 @@
 // item after each level, by a point's number and by its label; a multiple
 // choice, a typed number, a choice with its neutral option, free text with
 // Greek letters) and the stored answers are exactly what the script chose.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <map>
-#include <thread>
 
 #include "study/store/read.h"
 #include "tests/common/run_cli.h"
@@ -27,28 +23,9 @@ const std::string kData = std::string(DTLAB_SOURCE_DIR) + "/tests/app/data/";
 
 // `dtlab run` of the screens study and its script; the exit code, or -1 after `seconds` (killed).
 int run_screens(const fs::path& db, const fs::path& log, double seconds) {
-  std::vector<std::string> args{DTLAB_BINARY, "run", kData + "questionnaire-screens.toml", "--db", db.string(), "--size",
-                                "640x480", "--script", kData + "questionnaire-screens.script"};
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(DTLAB_BINARY, argv.data());
-    ::_exit(127);
-  }
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  int status = 0;
-  while (std::chrono::steady_clock::now() < until) {
-    if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  ::kill(pid, SIGKILL);
-  ::waitpid(pid, &status, 0);
-  return -1;
+  return test::run_dtlab_for({"run", kData + "questionnaire-screens.toml", "--db", db.string(), "--size", "640x480",
+                              "--script", kData + "questionnaire-screens.script"},
+                             log, seconds);
 }
 
 TEST(RunQuestionnaire, EveryItemScreenTakesTheScriptsAnswer) {

@@ -4,17 +4,24 @@
 // Guarantees: rc is the exit status, or 128 + signal if the process was
 // killed (a crash never reads as success); capture files are unique per
 // process and call (ctest runs tests in parallel) and are removed afterwards.
-// Never: passes arguments through anything but /bin/sh (quote paths yourself).
+// Never: passes arguments through anything but /bin/sh (quote paths yourself),
+// except run_dtlab_for, which execs the binary with its arguments as given.
 #pragma once
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
+#include <utility>
+#include <vector>
 
 namespace dtlab::test {
 
@@ -45,6 +52,36 @@ inline CliOutcome run_dtlab(const std::string& args) {
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+// Runs DTLAB_BINARY with `args` (argv[1...]), `env` set, stdout and stderr appended to `log`; its
+// exit code (128 + signal when killed), or -1 when it ran past `seconds` (it is killed then, so a
+// hang fails the test instead of stalling the suite).
+inline int run_dtlab_for(const std::vector<std::string>& args, const std::filesystem::path& log, double seconds,
+                         const std::vector<std::pair<std::string, std::string>>& env = {}) {
+  std::vector<std::string> argv_text{DTLAB_BINARY};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    for (const auto& [k, v] : env) ::setenv(k.c_str(), v.c_str(), 1);
+    std::vector<char*> argv;
+    for (auto& a : argv_text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(DTLAB_BINARY, argv.data());
+    ::_exit(127);
+  }
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < until) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  return -1;
 }
 
 }  // namespace dtlab::test
