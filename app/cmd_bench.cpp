@@ -48,7 +48,7 @@ struct BenchOptions {
   std::vector<std::string> scenes{"abstract", "walkthrough"};
   bool sweep = true;
   bool alone = true;      // time standard again in a fresh process
-  bool screen_door = true;  // the screen-door rows (seconds a frame)
+  bool slow = true;  // the rows of slow methods (technique::Technique::bench_slow: seconds a frame)
   double budget_s = 4.0;  // per configuration: stop repeating a slow one after this much time
   bool culling = false;   // instead: occlusion culling along walkthrough routes (bench_culling.h)
   std::vector<std::string> culling_methods{"standard", "dt-fast"};
@@ -105,69 +105,70 @@ std::vector<bool> unoccluded_targets(render::Renderer& r, const render::Camera& 
   return out;
 }
 
-// The configurations of one scene and size: every method at the protocol's defaults, the R1
-// guard on, nothing occluded, and (with the sweep) mask resolution and gradient width.
+// The configurations of one scene and size, from the technique registry: every method at the
+// protocol's defaults and its own rows (technique::Technique::bench_rows: the R1 guard, lens
+// shapes, screen-door mask sides); for the methods with target masks, nothing occluded and (with
+// the sweep) mask resolution and gradient width.
 std::vector<Config> configurations(const BenchOptions& o, render::Renderer& main, render::Renderer& quiet,
                                    const std::string& quiet_label, int w, int h) {
   render::DtSettings base;  // the protocol's defaults: aT 0.3, a0 0.1, n = 8 pixels of a 128 mask
   base.gradient_px = render::gradient_px_from_mask_pixels(8.0f, 128, w, h);
   std::vector<Config> configs;
-  auto add = [&](std::string label, render::Method m, render::DtSettings dt, render::Renderer* r) {
+  auto add = [&](std::string label, const technique::MethodSettings& m, render::Renderer* r, bool slow) {
     Config c;
     c.label = std::move(label);
-    c.settings.method = m;
-    c.settings.dt = dt;
+    static_cast<technique::MethodSettings&>(c.settings) = m;
     c.settings.timed = true;
     c.renderer = r;
+    if (slow) c.min_frames = 1;  // seconds a frame: one timed frame may exhaust the budget
+    // A lens sized to the scene at the view's centre (as `dtlab render --method lens` sizes it).
+    if (technique::of(m.method).reads(technique::Group::lens)) {
+      render::LensSettings l = render::scene_lens(main.scene(), w, h);
+      l.shape = m.lens.shape;
+      l.style = m.lens.style;
+      c.settings.lens = l;
+    }
     configs.push_back(std::move(c));
   };
-  add("standard", render::Method::standard, base, &main);
-  add("dt-seed", render::Method::dt_seed, base, &main);
-  add("dt-fast", render::Method::dt_fast, base, &main);
-  render::DtSettings guard = base;
-  guard.r1_guard = true;
-  add("dt-seed R1 guard", render::Method::dt_seed, guard, &main);
-  add("dt-fast R1 guard", render::Method::dt_fast, guard, &main);
-  add("dt-seed" + quiet_label, render::Method::dt_seed, base, &quiet);
-  add("dt-fast" + quiet_label, render::Method::dt_fast, base, &quiet);
-  // The lens (render::scene_lens: at the view's centre); the paper's claim: the cost does not
-  // depend on the lens's shape (two scene passes more than standard whatever the shape).
-  for (auto [shape, style] : {std::pair{render::LensShape::sphere, render::LensStyle::eraser},
-                              std::pair{render::LensShape::box, render::LensStyle::wireframe},
-                              std::pair{render::LensShape::cone, render::LensStyle::tint}}) {
-    add("lens " + std::string(render::to_string(shape)) + " " + std::string(render::to_string(style)),
-        render::Method::lens, base, &main);
-    render::LensSettings& l = configs.back().settings.lens;
-    l = render::scene_lens(main.scene(), w, h);
-    l.shape = shape;
-    l.style = style;
+  for (const technique::Technique* t : technique::all()) {
+    if (t->bench_slow && !o.slow) continue;
+    technique::MethodSettings m;
+    m.method = t->id;
+    m.dt = base;
+    if (t->bench_default) add(std::string(t->name), m, &main, t->bench_slow);
+    if (t->bench_rows != nullptr)
+      for (const technique::BenchRow& row : t->bench_rows(m)) add(row.label, row.settings, &main, t->bench_slow);
   }
-  // Screen-door (Poon 2000) at each mask side: dt-seed's picture by sub-pixel masks, so its error
-  // columns are against `reference` as for the dt rows (the accuracy-versus-time table).
-  for (int side : {8, 16, 32}) {
-    if (!o.screen_door) break;
-    add("screen-door " + std::to_string(side) + "x" + std::to_string(side), render::Method::screen_door, base, &main);
-    configs.back().settings.screen_door.mask_side = side;
-    configs.back().min_frames = 1;  // seconds a frame: one timed frame may exhaust the budget
+  const auto swept = [](const technique::Technique& t) { return t.target_masks && t.bench_default; };
+  for (const technique::Technique* t : technique::all()) {
+    if (!swept(*t)) continue;
+    technique::MethodSettings m;
+    m.method = t->id;
+    m.dt = base;
+    add(std::string(t->name) + quiet_label, m, &quiet, false);
   }
-  // vdt (Diepstraten et al. 2002) with its defaults: its cost is two depth-only passes of the
-  // transparent objects, the opaque ones twice, and the per-vertex alpha on the CPU.
-  add("vdt", render::Method::vdt, base, &main);
   if (!o.sweep) return configs;
   for (int res : {64, 256, 0}) {
-    render::DtSettings dt = base;
-    dt.mask_resolution = res;
-    const std::string r = res == 0 ? "full" : std::to_string(res);
-    add("dt-seed R=" + r, render::Method::dt_seed, dt, &main);
-    add("dt-fast R=" + r, render::Method::dt_fast, dt, &main);
+    for (const technique::Technique* t : technique::all()) {
+      if (!swept(*t)) continue;
+      technique::MethodSettings m;
+      m.method = t->id;
+      m.dt = base;
+      m.dt.mask_resolution = res;
+      add(std::string(t->name) + " R=" + (res == 0 ? "full" : std::to_string(res)), m, &main, false);
+    }
   }
   for (float f : {0.5f, 2.0f}) {
-    render::DtSettings dt = base;
-    dt.gradient_px = base.gradient_px * f;
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "n=%.0fpx", static_cast<double>(dt.gradient_px));
-    add(std::string("dt-seed ") + buf, render::Method::dt_seed, dt, &main);
-    add(std::string("dt-fast ") + buf, render::Method::dt_fast, dt, &main);
+    for (const technique::Technique* t : technique::all()) {
+      if (!swept(*t)) continue;
+      technique::MethodSettings m;
+      m.method = t->id;
+      m.dt = base;
+      m.dt.gradient_px = base.gradient_px * f;
+      char buf[32];
+      std::snprintf(buf, sizeof buf, " n=%.0fpx", static_cast<double>(m.dt.gradient_px));
+      add(std::string(t->name) + buf, m, &main, false);
+    }
   }
   return configs;
 }
@@ -187,8 +188,10 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
     c.passes = static_cast<int>(rep.passes_run().size());
     if (!rep.gl_errors.empty()) c.note = "GL error: " + rep.gl_errors.front();
     c.image = c.renderer->read_color();
-    if (c.renderer != &main || c.settings.method == render::Method::lens || c.settings.method == render::Method::vdt)
-      continue;  // lens and vdt draw another picture: `reference` is no yardstick for them
+    // Only dynamic transparency's picture (and standard's, the baseline) has `reference` for a
+    // yardstick; the lens and vdt draw another picture.
+    const technique::Technique& method = technique::of(c.settings.method);
+    if (c.renderer != &main || !(method.target_masks || method.id == technique::Method::standard)) continue;
     const std::pair<float, bool> key{s.dt.gradient_px, s.dt.r1_guard};
     if (!refs.count(key)) {
       s.method = render::Method::reference;
@@ -200,9 +203,9 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
     c.error.frame = true;
     c.error.whole = render::compare(c.image, refs[key]);
     c.error.effect = render::compare_in(c.image, refs[key], region);
-    if (c.settings.method != render::Method::dt_fast) continue;
+    if (!method.approximates) continue;  // a faster version of another method: compared with it
     for (const Config& seed : configs) {
-      if (seed.renderer != c.renderer || seed.settings.method != render::Method::dt_seed ||
+      if (seed.renderer != c.renderer || seed.settings.method != *method.approximates ||
           !same_mask(seed.settings.dt, c.settings.dt) || seed.image.rgba.empty())
         continue;
       c.error.vs_seed = true;
@@ -434,10 +437,17 @@ void add_bench_command(CLI::App& root) {
   cmd->add_flag("--culling", o->culling,
                 "Instead: occlusion culling along walkthrough routes (seeds --seed, +1, +2; the first --sizes; "
                 "at most 5 frames per view)");
+  std::vector<std::string> cullable;  // methods culling can help (not the slow ones)
+  for (const technique::Technique* t : technique::all())
+    if (t->cullable && !t->bench_slow) cullable.emplace_back(t->name);
   cmd->add_option("--culling-methods", o->culling_methods, "Methods of the --culling routes")
       ->delimiter(',')
-      ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens"}));
-  cmd->add_flag("!--no-screen-door", o->screen_door, "Skip the screen-door rows (seconds a frame each on llvmpipe)");
+      ->check(CLI::IsMember(cullable));
+  std::string slow;
+  for (const technique::Technique* t : technique::all())
+    if (t->bench_slow) slow += (slow.empty() ? "" : ", ") + std::string(t->name);
+  cmd->add_flag("!--no-slow,!--no-screen-door", o->slow,
+                "Skip the rows of the slow methods (" + slow + ": seconds a frame each on llvmpipe)");
   cmd->add_option("--budget", o->budget_s, "Seconds per configuration after which a slow one stops repeating (>= 3 frames)");
   cmd->footer(
       "frame ms: wall time of a frame from graph build to glFinish, median over frames; cpu ms: process CPU\n"

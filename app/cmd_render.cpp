@@ -29,6 +29,7 @@
 
 #include "app/commands.h"
 #include "app/database_arg.h"
+#include "app/technique_options.h"
 #include "app/platform/gl_context.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
@@ -69,9 +70,8 @@ struct RenderOptions {
   // Lens parameters (render.h LensSettings); sizes in world units, unset: from the scene.
   std::string lens_shape = "sphere", lens_style = "eraser", lens_at;
   std::optional<float> lens_radius, lens_distance, lens_length;
-  int sd_mask = 8;  // screen-door: mask side
-  std::string sd_masks = "tabular";
-  render::VdtSettings vdt;  // vdt parameters (render.h VdtSettings)
+  // Every other method's options, from the technique registry (technique_options.h).
+  TechniqueOptions technique;
 };
 
 // "yaw=30,pitch=-10,distance=150,x=1,y=2,z=3,fov=60" (degrees) over the scene's start camera.
@@ -277,11 +277,11 @@ Job scene_job(const RenderOptions& o) {
   if (!generated) fail("render", kExitInvalid, generated.error().to_string());
   Job job;
   job.scene = std::move(generated.value());
-  job.settings.method = *render::parse_method(o.method);
+  const technique::Technique& method = *technique::find(o.method);
+  job.settings.method = method.id;
   job.settings.dt = dt_settings(o);
-  if (job.settings.method == render::Method::lens) job.settings.lens = lens_settings(o, job.scene);
-  job.settings.screen_door = {o.sd_mask, *render::parse_screen_door_masks(o.sd_masks)};
-  job.settings.vdt = o.vdt;
+  if (method.reads(technique::Group::lens)) job.settings.lens = lens_settings(o, job.scene);
+  o.technique.apply(method, o.width, o.height, job.settings);
   job.method = o.method;
   job.kind = o.kind;
   job.task = o.task;
@@ -420,8 +420,10 @@ void add_render_command(CLI::App& root) {
   auto* task_opt = cmd->add_option("--task", o->task, "Task: T1, T2 (abstract), T3, T4 (walkthrough)")
                        ->check(CLI::IsMember({"T1", "T2", "T3", "T4"}));
   auto* seed_opt = cmd->add_option("--seed", o->seed, "Trial seed (unsigned 64-bit)")->check(unsigned_integer());
-  auto* method_opt = cmd->add_option("--method", o->method, "standard | dt-seed | dt-fast | reference | lens | screen-door | vdt")
-                         ->check(CLI::IsMember({"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door", "vdt"}));
+  std::vector<std::string> methods;
+  for (const technique::Technique* t : technique::all()) methods.emplace_back(t->name);
+  auto* method_opt = cmd->add_option("--method", o->method, "Rendering method: " + technique::names(" | "))
+                         ->check(CLI::IsMember(methods));
   auto* protocol_opt = cmd->add_option("--protocol", o->protocol,
                                        "Protocol file: render a planned trial (with --index K or --db/--participant, "
                                        "and --trial N)");
@@ -470,22 +472,10 @@ void add_render_command(CLI::App& root) {
   auto* lens_length_opt =
       cmd->add_option("--lens-length", o->lens_length, "Box, cylinder, cone: extent along the ray, world units");
   auto* lens_at_opt = cmd->add_option("--lens-at", o->lens_at, "Lens centre pixel X,Y (origin top-left; default the view's centre)");
-  const std::vector<CLI::Option*> vdt_options{
-      cmd->add_option("--vdt-falloff", o->vdt.falloff, "vdt: k of alpha = 1 - (d_min / d_max)^k, 0..1 (default 0.5)")
-          ->check(CLI::Range(0.0, 1.0)),
-      cmd->add_option("--vdt-opaque-alpha", o->vdt.opaque_alpha,
-                      "vdt: weight of an opaque object seen through a transparent one, 0..1 (default 0.5)")
-          ->check(CLI::Range(0.0, 1.0)),
-      cmd->add_option("--vdt-background-alpha", o->vdt.background_alpha,
-                      "vdt: weight of the background seen through a transparent object, 0..1 (default 0.5)")
-          ->check(CLI::Range(0.0, 1.0))};
   cmd->add_flag("--occlusion-culling", o->occlusion_culling,
                 "Walkthrough: skip objects hidden behind the walls (Poon's occlusion culling; the picture is "
                 "unchanged, only the cost)");
-  auto* sd_mask_opt = cmd->add_option("--screen-door-mask", o->sd_mask, "screen-door: mask side s (s x s sub-pixels): 8 | 16 | 32")
-                         ->check(CLI::IsMember({8, 16, 32}));
-  auto* sd_masks_opt = cmd->add_option("--screen-door-masks", o->sd_masks, "screen-door: mask generation: tabular | pixel-tree | white-noise")
-                          ->check(CLI::IsMember({"tabular", "pixel-tree", "white-noise"}));
+  o->technique.add_to(*cmd);
   cmd->add_option("--graphviz", o->graphviz, "Write the last frame's frame graph (dot) to FILE");
   cmd->add_flag("--profile", o->profile, "glFinish after every pass; print each pass's median CPU time (all threads) over the frames that ran it, and the scene-mesh draw calls and triangles it submitted");
   cmd->add_flag("--json", o->json,
@@ -527,9 +517,8 @@ void add_render_command(CLI::App& root) {
                                              guard_opt};
   const std::vector<CLI::Option*> lens_options{lens_shape_opt,  lens_style_opt, lens_radius_opt,
                                                lens_distance_opt, lens_length_opt, lens_at_opt};
-  const std::vector<CLI::Option*> sd_options{sd_mask_opt, sd_masks_opt};
   const std::vector<CLI::Option*> protocol_form{protocol_opt, index_opt, db_opt, participant_opt, trial_opt};
-  cmd->callback([o, scene_form, dt_options, lens_options, sd_options, vdt_options, protocol_form, protocol_opt, index_opt,
+  cmd->callback([o, scene_form, dt_options, lens_options, protocol_form, protocol_opt, index_opt,
                  db_opt, participant_opt, trial_opt] {
     const auto given = [](const std::vector<CLI::Option*>& opts) {
       std::string names;
@@ -538,8 +527,7 @@ void add_render_command(CLI::App& root) {
       return names;
     };
     if (protocol_opt->count() > 0) {
-      if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options) + given(sd_options) +
-                                  given(vdt_options);
+      if (const std::string bad = given(scene_form) + given(dt_options) + given(lens_options) + o->technique.given();
           !bad.empty())
         fail("render", kExitUsage, "--protocol renders a planned trial: its scene, seed, method and mask parameters come from "
                          "the protocol; drop " + bad);
@@ -556,10 +544,8 @@ void add_render_command(CLI::App& root) {
                            "(missing " + opt->get_name() + ")");
       if (const std::string bad = given(lens_options); !bad.empty() && o->method != "lens")
         fail("render", kExitUsage, bad + " apply to --method lens only");
-      if (const std::string bad = given(sd_options); !bad.empty() && o->method != "screen-door")
-        fail("render", kExitUsage, bad + " apply to --method screen-door only");
-      if (const std::string bad = given(vdt_options); !bad.empty() && o->method != "vdt")
-        fail("render", kExitUsage, bad + " apply to --method vdt only");
+      if (const std::string bad = o->technique.misplaced(*technique::find(o->method)); !bad.empty())
+        fail("render", kExitUsage, bad);
     }
     run(*o);
   });

@@ -62,8 +62,7 @@ render::Camera SceneView::camera(int width, int height) const {
 void SceneView::draw(int width, int height, glm::vec2 cursor) {
   render::FrameSettings s = frame_;
   const glm::vec2 pointer = walking() ? glm::vec2(width / 2.0f, height / 2.0f) : cursor;
-  if (s.dt.mode == render::DtMode::active) s.dt.searchlight_center = pointer;
-  if (s.method == render::Method::lens && s.lens.follows_cursor) s.lens.center = pointer;
+  technique::aim(s, pointer);
   renderer_->render(camera(width, height), s, render::ImportedTarget{0, width, height});
 }
 

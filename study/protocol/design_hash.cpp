@@ -45,6 +45,19 @@ class Canon {
   std::string text_;
 };
 
+// The registry's key groups write "rendering.<key>" lines through this.
+class RenderingHash final : public technique::HashSink {
+ public:
+  explicit RenderingHash(Canon& c) : c_(c) {}
+  void str(std::string_view name, std::string_view value) override { c_.str(key(name), std::string(value)); }
+  void num(std::string_view name, double value) override { c_.num(key(name), value); }
+  void integer(std::string_view name, std::int64_t value) override { c_.integer(key(name), value); }
+
+ private:
+  static std::string key(std::string_view name) { return "rendering." + std::string(name); }
+  Canon& c_;
+};
+
 void scene(Canon& c, const std::string& k, const SceneParams& s) {
   c.str(k + ".kind", std::string(to_string(s.kind)));
   c.integer(k + ".objects", s.objects);
@@ -171,34 +184,11 @@ std::string design_sha256(const Protocol& p) {
   for (const Rendering& r : p.renderings) {
     c.str("rendering", r.name);
     c.str("rendering.method", r.method);
-    c.num("rendering.a0", r.a0);
-    c.num("rendering.aT", r.aT);
-    c.integer("rendering.gradient_width", r.gradient_width);
-    c.integer("rendering.mask_resolution", r.mask_resolution);
-    c.str("rendering.mask_shape", r.mask_shape);
-    c.str("rendering.mode", r.mode);
-    c.integer("rendering.layer_limit", r.layer_limit);
-    // Only when not the default: every protocol written before the key keeps its hash (their
-    // searchlight was 120 pixels, the default's size at the article's 800 x 600).
-    if (r.searchlight_radius != Rendering{}.searchlight_radius) c.num("rendering.searchlight_radius", r.searchlight_radius);
-    if (r.occlusion_culling) c.str("rendering.occlusion_culling", "true");  // unset: the hash stays as it was
-    if (!r.r1_guard) c.str("rendering.r1_guard", "false");  // on (the default): the hash stays as it was
-    if (r.method == "lens") {  // only then: the design hash of every other protocol stays as it was
-      c.str("rendering.shape", r.shape);
-      c.str("rendering.style", r.style);
-      c.num("rendering.radius", r.radius);
-      c.num("rendering.distance", r.distance);
-      c.num("rendering.length", r.length);
-    }
-    if (r.method == "screen-door") {  // likewise
-      c.integer("rendering.screen_door_mask", r.screen_door_mask);
-      c.str("rendering.screen_door_generation", r.screen_door_generation);
-    }
-    if (r.method == "vdt") {  // likewise
-      c.num("rendering.falloff", r.falloff);
-      c.num("rendering.opaque_alpha", r.opaque_alpha);
-      c.num("rendering.background_alpha", r.background_alpha);
-    }
+    // Each key group writes its own part, in the registry's order (technique/settings.h).
+    RenderingHash sink(c);
+    const technique::Technique* method = technique::find(r.method);
+    if (method == nullptr) continue;  // a Rendering built by hand with an unknown method: only its name
+    for (const technique::KeyGroup* g : technique::key_groups()) g->hash(sink, *method, r.keys);
   }
   for (const QuestionnaireItem& q : p.questionnaire) questionnaire_item(c, q);
   for (const questionnaire::InstrumentUse& u : p.instruments) {

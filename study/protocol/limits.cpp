@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "study/questionnaire/instrument.h"
+#include "study/technique/technique.h"
 
 namespace dtlab::protocol::limits {
 
@@ -42,19 +43,6 @@ constexpr std::array kDocumented{
     numbers("scenarios", "cell_size", kCellSize),
     ints("scenarios", "count_range", kCountRange),
     ints("tasks", "trials", kTrials),
-    numbers("rendering", "a0", kAlpha),
-    numbers("rendering", "aT", kAlpha),
-    ints("rendering", "gradient_width", kGradientWidth),
-    ints("rendering", "mask_resolution", kMaskResolution),
-    ints("rendering", "layer_limit", kLayerLimit),
-    numbers("rendering", "searchlight_radius", kSearchlightRadius),
-    numbers("rendering", "radius", kLensSize),
-    numbers("rendering", "distance", kLensSize),
-    numbers("rendering", "length", kLensSize),
-    ints("rendering", "screen_door_mask", kScreenDoorMask),
-    numbers("rendering", "falloff", kVdtUnit),
-    numbers("rendering", "opaque_alpha", kVdtUnit),
-    numbers("rendering", "background_alpha", kVdtUnit),
     ints("demographics", "range", kDemographicRange),
     ints("demographics", "options", kDemographicOptions),
     ints("reference_results", "participants", kReferenceParticipants),
@@ -76,11 +64,24 @@ void add_questionnaire(std::vector<Documented>& out) {
     for (const q::KeySpec& k : i->keys) add(k);
 }
 
+// The rendering methods' ranged keys, as their key groups declare them, in the registry's order.
+void add_rendering(std::vector<Documented>& out) {
+  using Kind = technique::KeySpec::Kind;
+  for (const technique::KeyGroup* g : technique::key_groups())
+    for (const technique::KeySpec& k : g->keys)
+      if (k.kind == Kind::number || k.kind == Kind::integer) out.push_back({"rendering", k.name, k.min, k.max});
+}
+
 }  // namespace
 
 std::span<const Documented> documented() {
   static const std::vector<Documented> all = [] {
     std::vector<Documented> v(kDocumented.begin(), kDocumented.end());
+    // The rendering keys, as the registry's key groups declare them, after the tasks.
+    std::vector<Documented> r;
+    add_rendering(r);
+    v.insert(std::find_if(v.begin(), v.end(), [](const Documented& d) { return d.section == "demographics"; }),
+             r.begin(), r.end());
     // After the rendering keys, where docs/protocol.md's [questionnaire.*] section stands.
     auto at = std::find_if(v.begin(), v.end(), [](const Documented& d) { return d.section == "demographics"; });
     std::vector<Documented> q;

@@ -3,11 +3,12 @@
 // tests/protocol/test_ranges.cpp checks that docs/protocol.md states exactly
 // these ranges and that the ends of each one pass the whole validation.
 // The questionnaire's keys are declared by their item types (study/questionnaire).
+// The rendering methods' keys are declared by their key groups (study/technique).
 // Guarantees: field-level only (one key at a time); constraints between keys
 // (object radius against the cube, target ratio against objects, pairs
 // against objects) belong to the stages that impose them and are checked by
 // session::validate_runnable. Never: a range written anywhere else in code (the
-// questionnaire's keys: only in their item types' declarations).
+// questionnaire's and the rendering methods' keys: only in their declarations).
 #pragma once
 #include <cstdint>
 #include <limits>
@@ -56,16 +57,8 @@ inline constexpr Ints kCountRange{1, 250};
 inline constexpr Ints kLetters{1, 5};               // how many of C K R X Y
 inline constexpr Ints kObjectKinds{1, 8};           // entries of object_kinds
 inline constexpr Ints kTrials{1, 100};
-// [rendering.*]: a0 and aT stop short of 1 (the renderer refuses an opaque "transparent" surface,
-// and a value closer to 1 than 2^-25 becomes 1 in the renderer's single precision).
-inline constexpr Numbers kAlpha{0, 0.99};
-inline constexpr Ints kGradientWidth{0, 64};
-inline constexpr Ints kMaskResolution{16, 4096};
-inline constexpr Ints kLayerLimit{0, 60};
-inline constexpr Numbers kSearchlightRadius{0.01, 2};  // share of the view's height (2: the whole view)
-inline constexpr Numbers kLensSize{0.001, 100000};  // radius, distance, length (world units)
-inline constexpr Ints kScreenDoorMask{8, 32};       // screen_door_mask: 8, 16 or 32
-inline constexpr Numbers kVdtUnit{0, 1};            // falloff (k), opaque_alpha, background_alpha
+// [rendering.*]: each method's key group declares its keys' ranges (study/technique, KeySpec);
+// documented() lists them with these.
 // [questionnaire.*]: each item type declares its keys' ranges (study/questionnaire, KeySpec);
 // documented() lists them with these.
 // [demographics.*].

@@ -16,6 +16,7 @@
 #include "study/common/error.h"
 #include "study/questionnaire/instrument.h"
 #include "study/questionnaire/questionnaire.h"
+#include "study/technique/technique.h"
 
 namespace dtlab::protocol {
 
@@ -121,35 +122,11 @@ struct Scenario {
 
 struct Rendering {
   std::string name;                 // the level of the rendering factor it belongs to
-  std::string method = "standard";  // "standard" | "dt-seed" | "dt-fast" | "reference" | "lens" | "screen-door" | "vdt"
-  double a0 = 0.1;                  // alpha where the mask gradient starts (next to the target)
-  double aT = 0.3;                  // alpha of surfaces directly in front of a target
-  int gradient_width = 8;           // n: gradient width in mask pixels
-  int mask_resolution = 128;        // mask buffer is mask_resolution x mask_resolution
-  std::string mask_shape = "outline";  // "outline" | "circle" | "ellipse"
-  std::string mode = "passive";     // "passive" (whole view) | "active" (searchlight; a lens: follows the
-                                    // cursor) | "fixed" (a lens at the view's centre; the lens's default)
-  int layer_limit = 0;              // most surfaces made transparent in front of a target; 0 = no limit
-  double searchlight_radius = 0.2;  // mode = "active": the searchlight's radius as a share of the view's height
-                                    // (0.2 = 120 pixels at the article's 800 x 600)
-  // method = "lens" (docs/render.md, "lens"); sizes in world units (the scene's own scale).
-  std::string shape = "sphere";     // "sphere" | "box" | "cylinder" | "cone"
-  std::string style = "eraser";     // "eraser" | "wireframe" | "tint"
-  double radius = 0.0;              // required with lens
-  double distance = 0.0;            // eye to lens centre along the cursor's ray; required with lens
-  double length = 0.0;              // box, cylinder, cone: extent along the ray; 0 = 2 x radius
-  // method = "vdt" (docs/render.md, "vdt"): eq. (2)'s k and the fixed blend weights, each in [0, 1].
-  double falloff = 0.5;
-  double opaque_alpha = 0.5;
-  double background_alpha = 0.5;
-  bool occlusion_culling = false;   // Poon's occlusion culling in WALKTHROUGH scenes (the picture is unchanged)
-  // Dynamic transparency (dt-seed, dt-fast, reference, screen-door): the R1 guard (docs/render.md,
-  // "R1 guard"): a target never blended below aT, a sort error that hides a target repaired. false:
-  // the article's algorithm as printed. Part of the design hash only when false.
-  bool r1_guard = true;
-  // method = "screen-door" (docs/render.md, "screen-door"): Poon's (2000) sub-pixel screen door.
-  int screen_door_mask = 8;                        // mask side in sub-pixels: 8, 16 or 32
-  std::string screen_door_generation = "tabular";  // "tabular" | "pixel-tree" | "white-noise"
+  std::string method = "standard";  // a method of the technique registry (study/technique/technique.h)
+  // Every key group's keys (technique::Keys: dt, culling, guard, lens, screen_door, vdt, ...), read
+  // and range-checked by the group's own code; the method reads the groups it lists. A key written
+  // for a group the method does not read is a warning, and keeps its default here.
+  technique::Keys keys;
 };
 
 // --- session, training, questionnaire --------------------------------------------------

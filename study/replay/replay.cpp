@@ -146,8 +146,7 @@ Status render_frames(const RecordedTrial& trial, int width, int height, int ever
     render::FrameSettings s = frame.value();
     const glm::vec2 pointer =
         trial.scene.camera.mode == scene::CameraStart::Mode::walk ? glm::vec2(width / 2.0f, height / 2.0f) : cursor;
-    if (s.dt.mode == render::DtMode::active) s.dt.searchlight_center = pointer;
-    if (s.method == render::Method::lens && s.lens.follows_cursor) s.lens.center = pointer;
+    technique::aim(s, pointer);
     (*renderer)->render_offscreen(pose_camera(trial.scene, pose, width, height), s, width, height);
     if (Status st = out(written++, i, (*renderer)->read_color()); !st) return st;
   }

@@ -154,104 +154,18 @@ Result<scene::Params> scene_params(const protocol::Protocol& p, const protocol::
   return out;
 }
 
-namespace {
-// The lens of a [rendering.*] table with method = "lens": at the view's centre; in active mode a
-// responder moves it to the cursor (render.h LensSettings::center).
-Result<render::FrameSettings> lens_settings(const protocol::Protocol& p, const protocol::Rendering& r, int width,
-                                            int height, render::FrameSettings f) {
-  const std::string field = "rendering." + r.name;
-  render::LensSettings& l = f.lens;
-  const auto shape = render::parse_lens_shape(r.shape);
-  if (!shape) return bad(p, field + ".shape", "unknown lens shape '" + r.shape + "' (sphere, box, cylinder, cone)");
-  const auto style = render::parse_lens_style(r.style);
-  if (!style) return bad(p, field + ".style", "unknown lens style '" + r.style + "' (eraser, wireframe, tint)");
-  if (r.mode != "active" && r.mode != "fixed")
-    return bad(p, field + ".mode", "a lens is 'active' (follows the cursor) or 'fixed', not '" + r.mode + "'");
-  l.shape = *shape;
-  l.style = *style;
-  l.center = {0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height)};
-  l.follows_cursor = r.mode == "active";
-  l.radius = static_cast<float>(r.radius);
-  l.distance = static_cast<float>(r.distance);
-  l.length = static_cast<float>(r.length > 0.0 ? r.length : 2.0 * r.radius);
-  if (const auto problem = render::check(l)) {
-    const std::string member = problem->substr(0, problem->find(' '));
-    return bad(p, field + "." + member, *problem);
-  }
-  return f;
-}
-// The vdt weights of a [rendering.*] table with method = "vdt" (the protocol checked their ranges;
-// render::check says again which member is wrong, should a caller build a Rendering by hand).
-Result<render::FrameSettings> vdt_settings(const protocol::Protocol& p, const protocol::Rendering& r,
-                                           render::FrameSettings f) {
-  f.vdt.falloff = static_cast<float>(r.falloff);
-  f.vdt.opaque_alpha = static_cast<float>(r.opaque_alpha);
-  f.vdt.background_alpha = static_cast<float>(r.background_alpha);
-  if (const auto problem = render::check(f.vdt))
-    return bad(p, "rendering." + r.name + "." + problem->substr(0, problem->find(' ')), *problem);
-  return f;
-}
-}  // namespace
-
 Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const protocol::Rendering& r, int width,
                                              int height) {
   if (width < 1 || height < 1) throw std::invalid_argument("session::frame_settings: viewport must be at least 1x1");
   const std::string field = "rendering." + r.name;
+  const technique::Technique* method = technique::find(r.method);
+  if (method == nullptr)
+    return bad(p, field + ".method", "the renderer has no method '" + r.method + "' (" + technique::names() + ")");
   render::FrameSettings f;
-  const auto method = render::parse_method(r.method);
-  if (!method)
-    return bad(p, field + ".method", "the renderer has no method '" + r.method +
-                                         "' (standard, dt-seed, dt-fast, reference, lens, screen-door, vdt)");
-  f.method = *method;
-  f.occlusion_culling = r.occlusion_culling;
-  if (f.method == render::Method::lens) return lens_settings(p, r, width, height, f);
-  if (f.method == render::Method::vdt) return vdt_settings(p, r, f);
-  if (f.method == render::Method::screen_door) {  // then the dynamic-transparency keys below, as dt-seed
-    const auto masks = render::parse_screen_door_masks(r.screen_door_generation);
-    if (!masks)
-      return bad(p, field + ".screen_door_generation", "unknown mask generation '" + r.screen_door_generation +
-                                                          "' (tabular, pixel-tree, white-noise)");
-    f.screen_door = {r.screen_door_mask, *masks};
-    if (const auto problem = render::check(f.screen_door)) return bad(p, field + ".screen_door_mask", *problem);
-  }
-  const auto shape = render::parse_mask_shape(r.mask_shape);
-  if (!shape) return bad(p, field + ".mask_shape", "unknown mask shape '" + r.mask_shape + "' (outline, circle, ellipse)");
-  render::DtSettings& dt = f.dt;
-  dt.alpha_start = static_cast<float>(r.a0);
-  dt.alpha_target = static_cast<float>(r.aT);
-  // A mask finer than this view can show is the view's own resolution (0: one texel per pixel):
-  // the same picture, at less cost. The gradient keeps the width the protocol's mask gives it.
-  dt.mask_resolution = r.mask_resolution > render::max_mask_resolution(width, height) ? 0 : r.mask_resolution;
-  dt.gradient_px = render::gradient_px_from_mask_pixels(static_cast<float>(r.gradient_width), r.mask_resolution,
-                                                         width, height);
-  dt.shape = *shape;
-  if (r.mode == "passive") {
-    dt.mode = render::DtMode::passive;
-  } else if (r.mode == "active") {
-    dt.mode = render::DtMode::active;
-    dt.searchlight_center = {0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height)};
-    dt.searchlight_radius = static_cast<float>(r.searchlight_radius) * static_cast<float>(height);
-  } else {
-    return bad(p, field + ".mode", "unknown mode '" + r.mode + "' (passive, active)");
-  }
-  dt.layer_limit = r.layer_limit;
-  // The protocol's r1_guard (on unless it says false); the renderer's own default is the article's
-  // algorithm as printed, under which a target in a farther target's gradient fades to a0.
-  dt.r1_guard = r.r1_guard;
-  // The renderer's checks (ranges), each named by the protocol key the author wrote.
-  if (const auto problem = render::check(dt, width, height)) {
-    const char* key = "";
-    switch (problem->field) {
-      case render::DtField::alpha_target: key = "aT"; break;
-      case render::DtField::alpha_start: key = "a0"; break;
-      case render::DtField::gradient: key = "gradient_width"; break;
-      case render::DtField::mask_resolution: key = "mask_resolution"; break;
-      case render::DtField::layer_limit: key = "layer_limit"; break;
-      case render::DtField::searchlight: key = "searchlight_radius"; break;
-    }
-    return bad(p, field + "." + key,
-               problem->message + " (at a " + std::to_string(width) + "x" + std::to_string(height) + " viewport)");
-  }
+  f.occlusion_culling = r.keys.culling.occlusion_culling;
+  // Each key group the method reads sets its part (study/technique), and names the key it cannot take.
+  if (const auto problem = technique::frame_settings(*method, r.keys, width, height, f))
+    return bad(p, field + "." + problem->key, problem->message);
   return f;
 }
 

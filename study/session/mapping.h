@@ -4,7 +4,7 @@
 // store's terms, the StudyInfo a database is opened with. docs/session.md,
 // "From protocol to stages", lists every field and where it arrives.
 // Guarantees: pure functions but ledger_plan, which reads the enrollment
-// ledger through the StudyReader it is given; a value a stage cannot take (an
+// ledger through the StudyReader it is given (and never writes); a value a stage cannot take (an
 // unknown model family, a method name the renderer does not know, a subset of
 // primitives the generator cannot place) is an Error naming the protocol
 // field, never a silent default. Never: touches GL or files, or opens a
@@ -33,12 +33,10 @@ scene::Task scene_task(protocol::TaskType type);
 Result<scene::Params> scene_params(const protocol::Protocol& p, const protocol::Scenario& scenario,
                                    const protocol::Task& task);
 
-// Frame settings of a [rendering.*] table for a width x height viewport (both >= 1):
-// the protocol's gradient width (mask pixels) becomes output pixels. Active mode puts the
-// searchlight at the viewport centre (a responder may move it); so does a lens (method "lens"),
-// which follows the cursor in active mode (LensSettings::follows_cursor). Screen-door (method
-// "screen-door") takes the dynamic-transparency keys as dt-seed does, plus its mask side and generation. vdt's
-// keys become VdtSettings.
+// Frame settings of a [rendering.*] table for a width x height viewport (both >= 1): each key
+// group its method reads (technique::Technique::groups) converts its keys (study/technique: the
+// protocol's gradient width in mask pixels becomes output pixels, an active searchlight or lens
+// starts at the viewport centre, ...). Error naming the key the frame cannot take.
 Result<render::FrameSettings> frame_settings(const protocol::Protocol& p, const protocol::Rendering& rendering,
                                              int width, int height);
 

@@ -55,9 +55,6 @@ std::string sci(double v) {
   return buf;
 }
 
-// Methods whose frame dilates a mask per target (docs/render.md: dt-seed's mask passes).
-bool passes_per_target(const std::string& method) { return render::parse_method(method) == render::Method::dt_seed; }
-
 // A task a rendering meets: in a condition, or as the depth test's scene.
 struct Meeting {
   const protocol::Scenario* scenario;
@@ -67,14 +64,13 @@ struct Meeting {
 // The work of one frame of `r` on the task with the most targets it meets, against the bounds
 // of runnable.h (one error per key, naming that task).
 void check_work(const Protocol& p, const protocol::Rendering& r, const std::vector<Meeting>& meets, Report& report) {
-  if (!passes_per_target(r.method) || meets.empty()) return;
+  const technique::Technique* method = technique::find(r.method);
+  if (method == nullptr || method->mask_texels == nullptr || meets.empty()) return;
   const Meeting* worst = &meets.front();
   for (const Meeting& m : meets)
     if (max_targets(*m.task) > max_targets(*worst->task)) worst = &m;
   const long long targets = max_targets(*worst->task);
-  const long long n = r.gradient_width;
-  const double texels = static_cast<double>(targets) * static_cast<double>(n + 2) *
-                        static_cast<double>(r.mask_resolution) * static_cast<double>(r.mask_resolution);
+  const double texels = method->mask_texels(r.keys, targets);
   const std::string what = "method = \"" + r.method + "\" on task " + worst->task->id + " of scenario '" +
                            worst->scenario->name + "' (up to " + count(targets, "target") + ")";
   if (texels > static_cast<double>(kMaxMaskTexelsPerFrame))

@@ -188,7 +188,7 @@ View look(render::Renderer& renderer, const render::Camera& camera, const render
 }
 
 float aid_radius_px(const render::FrameSettings& settings, const render::Camera& camera, int height) {
-  if (settings.method == render::Method::lens) {
+  if (technique::of(settings.method).reads(technique::Group::lens)) {
     const render::LensSettings& l = settings.lens;
     if (!l.follows_cursor) return 0.0f;
     // The lens's radius at its distance, projected: tan(half angle) = radius / distance, and

@@ -146,6 +146,24 @@ TEST(DesignHash, TheQuestionnaireSeamKeepsTheHashesOfExistingStudies) {
   EXPECT_EQ(hash_of(ref.str(), "elmqvist2008"), "6997f652ac35e1f7e095f8423f6794617743baff6cc921e103769c456e612ee4");
 }
 
+// Regression (issue 26): moving every method's keys into the technique registry (key groups that
+// hash their own keys) must not change the design hash of any shipped protocol. The values were
+// recorded from the databases `dtlab simulate` of the build before the registry wrote
+// (study_designs.design_sha256), one protocol per method family.
+TEST(DesignHash, TheTechniqueRegistryKeepsTheHashesOfExistingStudies) {
+  const auto text = [](const char* name) {
+    std::ifstream in(std::string(DTLAB_SOURCE_DIR) + "/protocols/" + name + ".toml");
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  EXPECT_EQ(hash_of(text("lens-vs-dt"), "lens"), "1412478f1d8fb33d8ba96d110a05c553966f884c11e8f634cf03977589acfaad");
+  EXPECT_EQ(hash_of(text("screen-door-vs-dt"), "screen-door"),
+            "c498af129a03f1df5f3f3307a7c0b639fc58bb6284ff638618ee0cc801a80b14");
+  EXPECT_EQ(hash_of(text("vdt-vs-dt"), "vdt"), "569b55539d499864262ffca5b2a462b9be5fa7c6e11fa2e6d2d3c397f9544f88");
+  EXPECT_EQ(hash_of(text("technik-de"), "technik-de"), "88cf50bab8ba53e0035f41978cae0e18652880e99f78459ecd9599289580a806");
+}
+
 // Questionnaire items of the seam: what changes what is asked or stored changes the hash (`when`,
 // a type's keys, an instrument and its keys); what is only read (labels, anchors, units) does not.
 TEST(DesignHash, QuestionnaireStructureCountsItsWordingDoesNot) {

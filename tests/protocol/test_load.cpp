@@ -123,10 +123,10 @@ TEST(ReferenceProtocol, HasTheRenderingAndQuestionnaireOfStudyMd) {
   const Rendering& on = p.renderings[1];
   EXPECT_EQ(on.name, "on");
   EXPECT_EQ(on.method, "dt-seed");
-  EXPECT_EQ(on.mask_resolution, 128);
-  EXPECT_EQ(on.mask_shape, "outline");
-  EXPECT_EQ(on.mode, "passive");
-  EXPECT_LT(on.a0, on.aT);  // "a low start alpha a0 ... a higher threshold opacity aT" (V.4)
+  EXPECT_EQ(on.keys.dt.mask_resolution, 128);
+  EXPECT_EQ(on.keys.dt.mask_shape, "outline");
+  EXPECT_EQ(on.keys.dt.mode, "passive");
+  EXPECT_LT(on.keys.dt.a0, on.keys.dt.aT);  // "a low start alpha a0 ... a higher threshold opacity aT" (V.4)
   // Conditions pick the rendering of their transparency level and the scenario of their scenario level.
   for (const auto& c : p.conditions) {
     EXPECT_EQ(p.renderings[c.rendering].name, p.factors[0].levels[c.levels[0]]);
@@ -238,13 +238,13 @@ TEST(Defaults, AreTheDocumentedOnes) {
   // Without a scenario factor, the one scenario serves every condition.
   for (const auto& c : p.conditions) EXPECT_EQ(c.scenario, 0);
   const Rendering& on = p.renderings[1];
-  EXPECT_EQ(on.a0, 0.1);
-  EXPECT_EQ(on.aT, 0.3);
-  EXPECT_EQ(on.gradient_width, 8);
-  EXPECT_EQ(on.mask_resolution, 128);
-  EXPECT_EQ(on.mask_shape, "outline");
-  EXPECT_EQ(on.mode, "passive");
-  EXPECT_EQ(on.layer_limit, 0);
+  EXPECT_EQ(on.keys.dt.a0, 0.1);
+  EXPECT_EQ(on.keys.dt.aT, 0.3);
+  EXPECT_EQ(on.keys.dt.gradient_width, 8);
+  EXPECT_EQ(on.keys.dt.mask_resolution, 128);
+  EXPECT_EQ(on.keys.dt.mask_shape, "outline");
+  EXPECT_EQ(on.keys.dt.mode, "passive");
+  EXPECT_EQ(on.keys.dt.layer_limit, 0);
 }
 
 TEST(SchemeRows, FollowTheDocumentedFormulas) {

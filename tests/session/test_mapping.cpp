@@ -109,6 +109,13 @@ TEST(Mapping, ReferenceRenderings) {
     auto f = frame_settings(p, *it, 800, 600);
     ASSERT_TRUE(f.ok()) << f.error().to_string();
     EXPECT_EQ(f->method, c.method) << c.name;
+    if (c.method == render::Method::standard) {  // reads no dynamic transparency key: the renderer's defaults
+      const render::DtSettings none;
+      EXPECT_EQ(f->dt.gradient_px, none.gradient_px);
+      EXPECT_EQ(f->dt.r1_guard, none.r1_guard);
+      EXPECT_EQ(f->dt.mode, none.mode);
+      continue;
+    }
     EXPECT_FLOAT_EQ(f->dt.alpha_start, 0.1f) << c.name;
     EXPECT_FLOAT_EQ(f->dt.alpha_target, 0.3f) << c.name;
     EXPECT_EQ(f->dt.mask_resolution, 128) << c.name;
@@ -128,7 +135,7 @@ TEST(Mapping, ReferenceRenderings) {
 // r1_guard = false reaches the renderer: the article's algorithm as printed, for the dt methods.
 TEST(Mapping, R1GuardOffIsTheArticleAsPrinted) {
   protocol::Protocol p = reference();
-  for (protocol::Rendering& r : p.renderings) r.r1_guard = false;
+  for (protocol::Rendering& r : p.renderings) r.keys.guard.r1_guard = false;
   for (const protocol::Rendering& r : p.renderings) {
     auto f = frame_settings(p, r, 800, 600);
     ASSERT_TRUE(f.ok()) << f.error().to_string();
@@ -141,7 +148,7 @@ TEST(Mapping, R1GuardOffIsTheArticleAsPrinted) {
 TEST(Mapping, TheSearchlightScalesWithTheView) {
   protocol::Protocol p = reference();
   protocol::Rendering on = p.renderings[1];
-  on.mode = "active";
+  on.keys.dt.mode = "active";
   auto f = frame_settings(p, on, 800, 600);
   ASSERT_TRUE(f.ok()) << f.error().to_string();
   EXPECT_EQ(f->dt.mode, render::DtMode::active);
@@ -150,7 +157,7 @@ TEST(Mapping, TheSearchlightScalesWithTheView) {
   auto big = frame_settings(p, on, 1280, 1024);
   ASSERT_TRUE(big.ok());
   EXPECT_FLOAT_EQ(big->dt.searchlight_radius, 204.8f);
-  on.searchlight_radius = 0.5;
+  on.keys.dt.searchlight_radius = 0.5;
   EXPECT_FLOAT_EQ(frame_settings(p, on, 1280, 1024)->dt.searchlight_radius, 512.0f);
 }
 
@@ -161,14 +168,14 @@ TEST(Mapping, TheSearchlightScalesWithTheView) {
 TEST(Mapping, AMaskFinerThanTheViewIsTheViewsOwnResolution) {
   protocol::Protocol p = reference();
   protocol::Rendering r = p.renderings[1];
-  r.mask_resolution = 4096;
+  r.keys.dt.mask_resolution = 4096;
   auto fine = frame_settings(p, r, 800, 600);
   ASSERT_TRUE(fine.ok()) << fine.error().to_string();
   EXPECT_EQ(fine->dt.mask_resolution, 0);
   EXPECT_NEAR(fine->dt.gradient_px, 8.0f * std::sqrt(800.0f * 600.0f) / 4096.0f, 1e-3f);
-  r.mask_resolution = 800;  // the longer side: kept
+  r.keys.dt.mask_resolution = 800;  // the longer side: kept
   EXPECT_EQ(frame_settings(p, r, 800, 600)->dt.mask_resolution, 800);
-  r.mask_resolution = 128;  // finer than a 16 x 16 view, but always kept
+  r.keys.dt.mask_resolution = 128;  // finer than a 16 x 16 view, but always kept
   EXPECT_EQ(frame_settings(p, r, 16, 16)->dt.mask_resolution, 128);
 }
 
@@ -191,15 +198,15 @@ TEST(Mapping, LensRendering) {
   EXPECT_TRUE(f->lens.follows_cursor);
   EXPECT_EQ(f->lens.center, glm::vec2(400.0f, 300.0f));
   protocol::Rendering fixed = *r;
-  fixed.mode = "fixed";
-  fixed.length = 0.0;  // absent
-  fixed.shape = "box";
+  fixed.keys.dt.mode = "fixed";
+  fixed.keys.lens.length = 0.0;  // absent
+  fixed.keys.lens.shape = "box";
   f = frame_settings(p, fixed, 800, 600);
   ASSERT_TRUE(f.ok());
   EXPECT_FALSE(f->lens.follows_cursor);
   EXPECT_EQ(f->lens.shape, render::LensShape::box);
   EXPECT_FLOAT_EQ(f->lens.length, 40.0f);
-  fixed.style = "glass";
+  fixed.keys.lens.style = "glass";
   f = frame_settings(p, fixed, 800, 600);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.error().field, "rendering.lens.style");
@@ -214,16 +221,16 @@ TEST(Mapping, VdtRendering) {
   const protocol::Rendering* r = protocol::find_rendering(p, "vdt");
   ASSERT_NE(r, nullptr);
   protocol::Rendering edited = *r;
-  edited.falloff = 0.25;
-  edited.opaque_alpha = 0.75;
-  edited.background_alpha = 0.125;
+  edited.keys.vdt.falloff = 0.25;
+  edited.keys.vdt.opaque_alpha = 0.75;
+  edited.keys.vdt.background_alpha = 0.125;
   auto f = frame_settings(p, edited, 800, 600);
   ASSERT_TRUE(f.ok()) << f.error().to_string();
   EXPECT_EQ(f->method, render::Method::vdt);
   EXPECT_FLOAT_EQ(f->vdt.falloff, 0.25f);
   EXPECT_FLOAT_EQ(f->vdt.opaque_alpha, 0.75f);
   EXPECT_FLOAT_EQ(f->vdt.background_alpha, 0.125f);
-  edited.opaque_alpha = 2.0;
+  edited.keys.vdt.opaque_alpha = 2.0;
   f = frame_settings(p, edited, 800, 600);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.error().field, "rendering.vdt.opaque_alpha");
@@ -249,7 +256,7 @@ TEST(Mapping, OcclusionCullingKey) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
   const protocol::Rendering* r = protocol::find_rendering(*loaded, "lens");
   ASSERT_NE(r, nullptr);
-  EXPECT_TRUE(r->occlusion_culling);
+  EXPECT_TRUE(r->keys.culling.occlusion_culling);
   auto f = frame_settings(*loaded, *r, 800, 600);
   ASSERT_TRUE(f.ok());
   EXPECT_TRUE(f->occlusion_culling);
@@ -274,18 +281,18 @@ TEST(Mapping, ScreenDoorRendering) {
   // 8 mask pixels of a 128 mask at 800 x 600: 8 sqrt(800 x 600) / 128 = 43.30 output pixels.
   EXPECT_NEAR(f->dt.gradient_px, 43.30f, 0.01f);
   protocol::Rendering other = *r;
-  other.screen_door_mask = 32;
-  other.screen_door_generation = "pixel-tree";
+  other.keys.screen_door.screen_door_mask = 32;
+  other.keys.screen_door.screen_door_generation = "pixel-tree";
   f = frame_settings(p, other, 800, 600);
   ASSERT_TRUE(f.ok());
   EXPECT_EQ(f->screen_door.mask_side, 32);
   EXPECT_EQ(f->screen_door.masks, render::ScreenDoorMasks::pixel_tree);
-  other.screen_door_mask = 12;
+  other.keys.screen_door.screen_door_mask = 12;
   f = frame_settings(p, other, 800, 600);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.error().field, "rendering.screen-door.screen_door_mask");
-  other.screen_door_mask = 8;
-  other.screen_door_generation = "blue-noise";
+  other.keys.screen_door.screen_door_mask = 8;
+  other.keys.screen_door.screen_door_generation = "blue-noise";
   f = frame_settings(p, other, 800, 600);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.error().field, "rendering.screen-door.screen_door_generation");
@@ -313,14 +320,14 @@ TEST(Mapping, UnsupportedValuesNameTheField) {
       {"too many objects for the grid", [](protocol::Protocol& p) { p.scenarios[1].tasks[1].scene.objects = 400; }, "T4",
        "scenarios.walkthrough.tasks.T4.objects"},
       {"unknown method", [](protocol::Protocol& p) { p.renderings[1].method = "x-ray"; }, "", "rendering.on.method"},
-      {"unknown mask shape", [](protocol::Protocol& p) { p.renderings[1].mask_shape = "star"; }, "", "rendering.on.mask_shape"},
-      {"unknown mode", [](protocol::Protocol& p) { p.renderings[1].mode = "sometimes"; }, "", "rendering.on.mode"},
-      {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].aT = 1.5; }, "", "rendering.on.aT"},
+      {"unknown mask shape", [](protocol::Protocol& p) { p.renderings[1].keys.dt.mask_shape = "star"; }, "", "rendering.on.mask_shape"},
+      {"unknown mode", [](protocol::Protocol& p) { p.renderings[1].keys.dt.mode = "sometimes"; }, "", "rendering.on.mode"},
+      {"aT out of range", [](protocol::Protocol& p) { p.renderings[1].keys.dt.aT = 1.5; }, "", "rendering.on.aT"},
       // Regression: aT = 1 passed the reader (0..1) and failed mid-session naming DtSettings.alpha_target;
       // the article needs aT below 1 (Algorithm 3 finds the target by alpha != 1).
-      {"aT = 1", [](protocol::Protocol& p) { p.renderings[1].aT = 1.0; }, "", "rendering.on.aT"},
-      {"a0 = 1", [](protocol::Protocol& p) { p.renderings[1].a0 = 1.0; }, "", "rendering.on.a0"},
-      {"layer limit the renderer cannot count", [](protocol::Protocol& p) { p.renderings[1].layer_limit = 64; }, "",
+      {"aT = 1", [](protocol::Protocol& p) { p.renderings[1].keys.dt.aT = 1.0; }, "", "rendering.on.aT"},
+      {"a0 = 1", [](protocol::Protocol& p) { p.renderings[1].keys.dt.a0 = 1.0; }, "", "rendering.on.a0"},
+      {"layer limit the renderer cannot count", [](protocol::Protocol& p) { p.renderings[1].keys.dt.layer_limit = 64; }, "",
        "rendering.on.layer_limit"},
   };
   // Line of the first "key =" after the header of the field's scenario or rendering table in the

@@ -76,11 +76,22 @@ protocol::limits::Ints item_key(const char* type, const char* key) {
   return {0, 0};
 }
 
+// A rendering key's range as its key group declares it (study/technique).
+protocol::limits::Numbers rendering_key(const char* key) {
+  for (const technique::KeyGroup* g : technique::key_groups())
+    for (const technique::KeySpec& k : g->keys)
+      if (k.name == key) return {k.min, k.max};
+  ADD_FAILURE() << "no rendering key " << key;
+  return {0, 0};
+}
+
 // Each documented end, written into the reference; the constraints between keys that
 // docs/protocol.md names are met by the other edits of the case.
 std::vector<End> documented_ends() {
   using namespace protocol::limits;
   const Ints kScale = item_key("rating", "scale"), kPairs = item_key("depth-test", "pairs");
+  const Numbers kAlpha = rendering_key("a0"), kGradientWidth = rendering_key("gradient_width"),
+                kMaskResolution = rendering_key("mask_resolution"), kLayerLimit = rendering_key("layer_limit");
   const auto n = [](double v) { std::ostringstream s; s.precision(17); s << v; return s.str(); };
   const auto i = [](long long v) { return std::to_string(v); };
   return {

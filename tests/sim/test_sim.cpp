@@ -172,7 +172,7 @@ TEST_F(Sim, AnActiveSearchlightIsSweptOverEveryView) {
   for (int k = 0; k < 3; ++k) {
     auto standard = trial(k, "T1", 0), active = trial(k, "T1", 1);
     protocol::Rendering searchlight = *active->setup.rendering;
-    searchlight.mode = "active";
+    searchlight.keys.dt.mode = "active";
     active->spec.frame = session::frame_settings(*protocol_, searchlight, kW, kH).value();
     ASSERT_EQ(active->spec.frame.dt.searchlight_radius, 24.0f) << "0.2 x 120 rows";
     SimulatedParticipant agent(options());

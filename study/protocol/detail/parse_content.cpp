@@ -212,63 +212,56 @@ void parse_scenarios(TableReader& root, ParseState& s) {
 
 namespace {
 
-// The lens keys (method = "lens"): radius and distance required (world units: the scene's own
-// scale), mode active or fixed (default fixed); with another method they are warnings, and mode =
-// "fixed" is an error (a searchlight is passive or active).
-void parse_lens_keys(TableReader& rr, Rendering& r, ParseState& s) {
-  const bool lens = r.method == "lens";
-  if (auto v = rr.choice("shape", false, {"sphere", "box", "cylinder", "cone"})) r.shape = *v;
-  if (auto v = rr.choice("style", false, {"eraser", "wireframe", "tint"})) r.style = *v;
-  if (auto v = rr.number("radius", lens, limits::kLensSize)) r.radius = *v;
-  if (auto v = rr.number("distance", lens, limits::kLensSize)) r.distance = *v;
-  if (auto v = rr.number("length", false, limits::kLensSize)) r.length = *v;
-  if (lens) {
-    if (!rr.has("mode")) r.mode = "fixed";
-    else if (r.mode == "passive")
-      s.d.error(rr.pos("mode"), rr.field("mode"),
-                "a lens is \"active\" (follows the cursor) or \"fixed\" (at the view's centre), not \"passive\"");
-    return;
+// The registry's key groups read a [rendering.*] table through this: every diagnostic names the
+// file, line and field as the rest of the protocol's do.
+class RenderingKeys final : public technique::KeyReader {
+ public:
+  RenderingKeys(TableReader& rr, Diagnostics& d) : rr_(rr), d_(d) {}
+  std::optional<double> number(const technique::KeySpec& k, bool required) override {
+    return rr_.number(k.name, required, limits::Numbers{k.min, k.max});
   }
-  for (const char* key : {"shape", "style", "radius", "distance", "length"})
-    if (rr.has(key))
-      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"" + r.method + "\" (a lens key)");
-  if (r.mode == "fixed" && rr.has("mode"))
-    s.d.error(rr.pos("mode"), rr.field("mode"),
-              "\"fixed\" is a lens mode (method = \"lens\"); dynamic transparency is \"passive\" or \"active\"");
+  std::optional<std::int64_t> integer(const technique::KeySpec& k, bool required) override {
+    return rr_.integer(k.name, required,
+                       limits::Ints{static_cast<std::int64_t>(k.min), static_cast<std::int64_t>(k.max)});
+  }
+  std::optional<std::string> choice(const technique::KeySpec& k, bool required) override {
+    return rr_.choice_of(k.name, required, std::vector<std::string>(k.choices.begin(), k.choices.end()));
+  }
+  std::optional<bool> boolean(const technique::KeySpec& k) override { return rr_.boolean(k.name, false); }
+  bool has(std::string_view key) override { return rr_.has(key); }
+  void error(std::string_view key, std::string message) override {
+    d_.error(rr_.pos(key), rr_.field(key), std::move(message));
+  }
+  void warning(std::string_view key, std::string message) override {
+    d_.warning(rr_.pos(key), rr_.field(key), std::move(message));
+  }
+
+ private:
+  TableReader& rr_;
+  Diagnostics& d_;
+};
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> out;
+  for (const technique::Technique* t : technique::all()) out.emplace_back(t->name);
+  return out;
 }
 
-// The screen-door keys (method = "screen-door", docs/render.md): the mask side in sub-pixels (8, 16 or
-// 32; default 8) and how masks are made; with another method they are warnings. It draws
-// dt-seed's picture with exact target masks, so mask_resolution and layer_limit do not apply.
-void parse_screen_door_keys(TableReader& rr, Rendering& r, ParseState& s) {
-  if (auto v = rr.integer("screen_door_mask", false, limits::kScreenDoorMask)) {
-    if (*v == 8 || *v == 16 || *v == 32) r.screen_door_mask = static_cast<int>(*v);
-    else
-      s.d.error(rr.pos("screen_door_mask"), rr.field("screen_door_mask"),
-                "expected 8, 16 or 32 (the side of the mask in sub-pixels), got " + std::to_string(*v));
-  }
-  if (auto v = rr.choice("screen_door_generation", false, {"tabular", "pixel-tree", "white-noise"}))
-    r.screen_door_generation = *v;
-  const bool sd = r.method == "screen-door";
-  for (const char* key : {"screen_door_mask", "screen_door_generation"})
-    if (!sd && rr.has(key))
-      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"" + r.method + "\" (a screen-door key)");
-  for (const char* key : {"mask_resolution", "layer_limit"})
-    if (sd && rr.has(key))
-      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"screen-door\" (exact target masks, no layer limit)");
-}
-
-// The vdt keys (method = "vdt", docs/render.md "vdt"): the paper's falling-off term k and the
-// fixed weights of opaque objects and of the background, each optional in [0, 1]; with another
-// method they are warnings.
-void parse_vdt_keys(TableReader& rr, Rendering& r, ParseState& s) {
-  if (auto v = rr.number("falloff", false, limits::kVdtUnit)) r.falloff = *v;
-  if (auto v = rr.number("opaque_alpha", false, limits::kVdtUnit)) r.opaque_alpha = *v;
-  if (auto v = rr.number("background_alpha", false, limits::kVdtUnit)) r.background_alpha = *v;
-  if (r.method == "vdt") return;
-  for (const char* key : {"falloff", "opaque_alpha", "background_alpha"})
-    if (rr.has(key))
-      s.d.warning(rr.pos(key), rr.field(key), "has no effect with method = \"" + r.method + "\" (a vdt key)");
+// One [rendering.*] table: its method, then every key group of the registry in turn.
+Rendering parse_rendering(TableReader& rr, const std::string& name, ParseState& s) {
+  Rendering r;
+  r.name = name;
+  if (auto v = rr.choice_of("method", true, method_names())) r.method = *v;
+  const technique::Technique& method = *technique::find(r.method);
+  RenderingKeys keys(rr, s.d);
+  for (const technique::KeyGroup* g : technique::key_groups()) g->parse(keys, method, r.keys);
+  if (r.keys.culling.occlusion_culling && !s.p.scenarios.empty() &&
+      std::none_of(s.p.scenarios.begin(), s.p.scenarios.end(),
+                   [](const Scenario& sc) { return sc.scene.kind == ScenarioKind::walkthrough; }))
+    s.d.warning(rr.pos("occlusion_culling"), rr.field("occlusion_culling"),
+                "has no effect without a walkthrough scenario (occlusion culling needs a floor plan)");
+  rr.finish();
+  return r;
 }
 
 }  // namespace
@@ -288,48 +281,7 @@ void parse_renderings(TableReader& root, ParseState& s) {
       continue;
     }
     TableReader rr(*n->as_table(), path, s.d, pos_of(*k));
-    Rendering r;
-    r.name = name;
-    if (auto v = rr.choice("method", true, {"standard", "dt-seed", "dt-fast", "reference", "lens", "screen-door", "vdt"}))
-      r.method = *v;
-    if (auto v = rr.number("a0", false, limits::kAlpha)) r.a0 = *v;
-    if (auto v = rr.number("aT", false, limits::kAlpha)) r.aT = *v;
-    if (auto v = rr.integer("gradient_width", false, limits::kGradientWidth)) r.gradient_width = static_cast<int>(*v);
-    if (auto v = rr.integer("mask_resolution", false, limits::kMaskResolution)) r.mask_resolution = static_cast<int>(*v);
-    if (auto v = rr.choice("mask_shape", false, {"outline", "circle", "ellipse"})) r.mask_shape = *v;
-    if (auto v = rr.choice("mode", false, {"passive", "active", "fixed"})) r.mode = *v;
-    if (auto v = rr.integer("layer_limit", false, limits::kLayerLimit)) r.layer_limit = static_cast<int>(*v);
-    if (auto v = rr.number("searchlight_radius", false, limits::kSearchlightRadius)) r.searchlight_radius = *v;
-    parse_lens_keys(rr, r, s);
-    parse_vdt_keys(rr, r, s);
-    if (auto v = rr.boolean("occlusion_culling", false)) r.occlusion_culling = *v;
-    if (r.occlusion_culling && !p.scenarios.empty() &&
-        std::none_of(p.scenarios.begin(), p.scenarios.end(),
-                     [](const Scenario& sc) { return sc.scene.kind == ScenarioKind::walkthrough; }))
-      s.d.warning(rr.pos("occlusion_culling"), rr.field("occlusion_culling"),
-                  "has no effect without a walkthrough scenario (occlusion culling needs a floor plan)");
-    if (auto v = rr.boolean("r1_guard", false)) r.r1_guard = *v;
-    parse_screen_door_keys(rr, r, s);
-    rr.finish();
-    if (r.method == "standard" || r.method == "lens" || r.method == "vdt") {
-      for (const char* key : {"a0", "aT", "gradient_width", "mask_resolution", "mask_shape", "layer_limit", "r1_guard"})
-        if (rr.has(key))
-          s.d.warning(rr.pos(key), rr.field(key),
-                      "has no effect with method = \"" + r.method + "\" (no dynamic transparency)");
-      if (r.method != "lens" && rr.has("mode"))
-        s.d.warning(rr.pos("mode"), rr.field("mode"),
-                    "has no effect with method = \"" + r.method + "\" (" +
-                        (r.method == "standard" ? "no transparency" : "no searchlight") + ")");
-    } else if (r.a0 > r.aT) {
-      s.d.warning(rr.pos("a0"), rr.field("a0"),
-                  "a0 > aT: the gradient starts more opaque than the surfaces in front of the target "
-                  "(the reference design uses a low a0 and a higher aT)");
-    }
-    if (rr.has("searchlight_radius") &&
-        (r.mode != "active" || r.method == "standard" || r.method == "lens" || r.method == "vdt"))
-      s.d.warning(rr.pos("searchlight_radius"), rr.field("searchlight_radius"),
-                  "has no effect without a searchlight (dynamic transparency with mode = \"active\")");
-    p.renderings.push_back(std::move(r));
+    p.renderings.push_back(parse_rendering(rr, name, s));
   }
   if (names.empty()) {
     s.d.error(root.pos("rendering"), "rendering", "expected at least one rendering, e.g. [rendering.off]");

@@ -18,8 +18,11 @@
 #include "study/render/detail/scene_gpu.h"
 #include "study/render/detail/sort.h"
 
-namespace dtlab::render {
+namespace dtlab::technique {
 struct DtSettings;
+}
+namespace dtlab::render {
+using technique::DtSettings;
 }
 
 namespace dtlab::render::detail {

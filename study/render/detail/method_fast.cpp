@@ -35,6 +35,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "study/render/detail/mask_atlas.h"
+#include "study/render/detail/method.h"
 #include "study/render/detail/passes.h"
 
 namespace dtlab::render::detail {
@@ -367,5 +368,13 @@ EffectFirst add_fast_direct_passes(FrameGraph& fg, const FrameContext& fc) {
       });
   return add_effect_first_tail(fg, fc, {direct.color, direct.depth}, regions);
 }
+
+namespace {
+MethodFrame add_fast(FrameGraph& fg, const FrameContext& fc, MethodSlot& slot) {
+  return add_coherent(fg, fc, slot, add_fast_direct_passes, add_fast_passes);
+}
+}  // namespace
+
+extern const MethodPasses k_passes_dt_fast{nullptr, add_fast, /*frame_coherent=*/true};
 
 }  // namespace dtlab::render::detail

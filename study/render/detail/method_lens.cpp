@@ -14,6 +14,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "study/render/detail/lens_volume.h"
+#include "study/render/detail/method.h"
 #include "study/render/detail/passes.h"
 
 namespace dtlab::render::detail {
@@ -167,5 +169,61 @@ Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& le
   const auto [inside_color, inside_depth] = scene_pass("lens-inside", Class::inside, behind.color, behind.depth);
   return scene_pass("lens-in-front", Class::in_front, inside_color, inside_depth).first;
 }
+
+namespace {
+
+// The lens's GL buffer, re-filled every lens frame (a few hundred triangles), and this frame's
+// volume on the GPU (the passes read it when they run).
+class LensState final : public MethodState {
+ public:
+  ~LensState() override {
+    if (vao_ != 0) glDeleteVertexArrays(1, &vao_);
+    if (vbo_ != 0) glDeleteBuffers(1, &vbo_);
+  }
+  // Uploads `v` into the lens buffer (inside the frame's GlStateGuard: binds VAO and array buffer).
+  void upload(const LensVolume& v) {
+    if (vao_ == 0) {
+      glGenVertexArrays(1, &vao_);
+      glGenBuffers(1, &vbo_);
+      glBindVertexArray(vao_);
+      glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+      glEnableVertexAttribArray(0);
+      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.triangles.size() * sizeof(glm::vec3)), v.triangles.data(),
+                 GL_STREAM_DRAW);
+    gpu = LensGpu{vao_, static_cast<int>(v.triangles.size()), v.eye_inside, footprint};
+  }
+  LensVolume volume;   // this frame's, from footprint()
+  PixelRect footprint;
+  LensGpu gpu;
+
+ private:
+  unsigned vao_ = 0, vbo_ = 0;
+};
+
+LensState& lens_state(MethodSlot& slot) {
+  if (!slot.state) slot.state = std::make_unique<LensState>();
+  return static_cast<LensState&>(*slot.state);
+}
+
+std::optional<PixelRect> lens_footprint_of(MethodSlot& slot, const FrameSettings& s, const Camera& camera, int width,
+                                           int height) {
+  LensState& l = lens_state(slot);
+  l.volume = make_lens_volume(s.lens, camera, width, height);
+  l.footprint = lens_footprint(l.volume, camera, width, height);
+  return l.footprint;
+}
+
+MethodFrame add_lens(FrameGraph& fg, const FrameContext& fc, MethodSlot& slot) {
+  LensState& l = lens_state(slot);
+  l.upload(l.volume);
+  return {add_lens_passes(fg, fc, l.gpu), {}};
+}
+
+}  // namespace
+
+extern const MethodPasses k_passes_lens{lens_footprint_of, add_lens};
 
 }  // namespace dtlab::render::detail

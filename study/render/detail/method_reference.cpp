@@ -7,6 +7,7 @@
 #include <glad/gl.h>
 
 #include "study/render/detail/compositor.h"
+#include "study/render/detail/method.h"
 #include "study/render/detail/passes.h"
 
 namespace dtlab::render::detail {
@@ -75,5 +76,11 @@ Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc) {
       });
   return data.color;
 }
+
+namespace {
+MethodFrame add_reference(FrameGraph& fg, const FrameContext& fc, MethodSlot&) { return {add_reference_pass(fg, fc), {}}; }
+}  // namespace
+
+extern const MethodPasses k_passes_reference{nullptr, add_reference};
 
 }  // namespace dtlab::render::detail

@@ -27,6 +27,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "study/render/detail/compositor.h"
+#include "study/render/detail/method.h"
 #include "study/render/detail/passes.h"
 #include "study/render/detail/pixel_masks.h"
 
@@ -323,5 +324,13 @@ MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainT
   }
   return {color, main.depth};
 }
+
+namespace {
+MethodFrame add_screen_door(FrameGraph& fg, const FrameContext& fc, MethodSlot&) {
+  return add_standard_first(fg, fc, add_screen_door_passes);
+}
+}  // namespace
+
+extern const MethodPasses k_passes_screen_door{nullptr, add_screen_door};
 
 }  // namespace dtlab::render::detail

@@ -34,6 +34,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "study/render/detail/mask_atlas.h"
+#include "study/render/detail/method.h"
 #include "study/render/detail/passes.h"
 
 namespace dtlab::render::detail {
@@ -228,5 +229,13 @@ EffectFirst add_seed_direct_passes(FrameGraph& fg, const FrameContext& fc) {
   // dt-seed's effect can change any pixel (its objects are drawn over the whole view).
   return add_effect_first_tail(fg, fc, effect, std::make_shared<const std::vector<PixelRect>>(1, fc.view.viewport()));
 }
+
+namespace {
+MethodFrame add_seed(FrameGraph& fg, const FrameContext& fc, MethodSlot& slot) {
+  return add_coherent(fg, fc, slot, add_seed_direct_passes, add_seed_passes);
+}
+}  // namespace
+
+extern const MethodPasses k_passes_dt_seed{nullptr, add_seed, /*frame_coherent=*/true};
 
 }  // namespace dtlab::render::detail

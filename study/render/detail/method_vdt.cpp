@@ -17,25 +17,10 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "study/render/detail/method.h"
 #include "study/render/detail/passes.h"
 #include "study/render/detail/vdt.h"
 #include "study/render/render.h"
-
-namespace dtlab::render {
-
-std::optional<std::string> check(const VdtSettings& s) {
-  const std::pair<const char*, float> members[] = {
-      {"falloff", s.falloff}, {"opaque_alpha", s.opaque_alpha}, {"background_alpha", s.background_alpha}};
-  for (const auto& [name, v] : members) {
-    if (v >= 0.0f && v <= 1.0f) continue;
-    std::ostringstream o;
-    o << name << " must be 0..1 (got " << v << ")";
-    return o.str();
-  }
-  return std::nullopt;
-}
-
-}  // namespace dtlab::render
 
 namespace dtlab::render::detail {
 
@@ -249,5 +234,29 @@ Handle add_vdt_passes(FrameGraph& fg, const FrameContext& fc, const VdtFrame& fr
       });
   return foreground.color;
 }
+
+namespace {
+
+// The vdt state (alpha buffer, edge lists) and this frame's object classes (the passes read them
+// when they run).
+class VdtMethodState final : public MethodState {
+ public:
+  ~VdtMethodState() override { state.destroy(); }
+  VdtState state;
+  VdtFrame frame;
+};
+
+// No transparent object in view: standard's frame.
+MethodFrame add_vdt(FrameGraph& fg, const FrameContext& fc, MethodSlot& slot) {
+  if (!slot.state) slot.state = std::make_unique<VdtMethodState>();
+  auto& v = static_cast<VdtMethodState&>(*slot.state);
+  v.frame = VdtFrame{};
+  if (v.state.prepare(fc, v.frame)) return {add_vdt_passes(fg, fc, v.frame), {}};
+  return add_standard_first(fg, fc, nullptr);
+}
+
+}  // namespace
+
+extern const MethodPasses k_passes_vdt{nullptr, add_vdt};
 
 }  // namespace dtlab::render::detail

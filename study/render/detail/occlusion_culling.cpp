@@ -111,9 +111,9 @@ std::vector<float> OcclusionCuller::occluder_map(const FrameView& view, const Fr
 
 namespace {
 
-// Pixels a transparency method or the lens may change: each target's mask support (in active
-// mode cut to the searchlight circle's box, where masks act), the lens footprint.
-std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRect& lens_footprint) {
+// Pixels a transparency method or a method with a footprint may change: each target's mask support
+// (in active mode cut to the searchlight circle's box, where masks act), the footprint (a lens's).
+std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRect* footprint) {
   std::vector<PixelRect> out;
   if (uses_transparency(method)) {
     const glm::vec3 sl = view.searchlight;
@@ -124,7 +124,7 @@ std::vector<PixelRect> holes(const FrameView& view, Method method, const PixelRe
                                           : view.viewport();
     for (const TargetView& t : view.targets) out.push_back(t.support.intersect(circle));
   }
-  if (method == Method::lens) out.push_back(lens_footprint);
+  if (footprint != nullptr) out.push_back(*footprint);
   return out;
 }
 
@@ -137,7 +137,7 @@ double OcclusionCuller::prepare() {
   return ms_since(t);
 }
 
-Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& fc, const PixelRect& lens_footprint) {
+Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& fc, const PixelRect* footprint) {
   CullingReport report;
   if (!scene_.plan) return report;
   report.ran = true;
@@ -146,9 +146,9 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
       ++report.objects_in_view;
       report.triangles_in_view += objects_[i].index_count / 3;
     }
-  // vdt: every distractor (every inner wall) is see-through, so no wall hides anything by itself
-  // and nothing can be culled: no occluder database, no GPU work.
-  if (fc.settings.method == Method::vdt) return report;
+  // A method under which no wall hides anything by itself (vdt: every inner wall is see-through)
+  // culls nothing: no occluder database, no GPU work.
+  if (!technique::of(fc.settings.method).cullable) return report;
   report.preprocess_ms = prepare();
   if (reduce_.id == 0) {
     auto p = link_program("fullscreen.vert", "depth_reduce.frag");
@@ -165,7 +165,7 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   // (occluder_map sizes the map: call it before reading map_w_, map_h_, block_.)
   std::vector<float> depth = occluder_map(view, fc, report);
   const OcclusionMap map =
-      make_occlusion_map(std::move(depth), map_w_, map_h_, block_, holes(view, fc.settings.method, lens_footprint));
+      make_occlusion_map(std::move(depth), map_w_, map_h_, block_, holes(view, fc.settings.method, footprint));
   // Step 4: the hierarchy; targets stay under a transparency method (a mask may reveal them).
   const bool transparency = uses_transparency(fc.settings.method);
   std::vector<bool> keep(objects_.size(), false);

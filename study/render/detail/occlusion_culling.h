@@ -34,8 +34,9 @@ class OcclusionCuller {
   double prepare();
 
   // Culls `view` in place (its rects and draw lists) for a frame drawn with `fc` (built on `view`).
-  // `lens_footprint`: the lens method's footprint (pixels it may change), else empty.
-  Result<CullingReport> run(FrameView& view, const FrameContext& fc, const PixelRect& lens_footprint);
+  // `footprint`: pixels the method may change beyond the targets' masks (a lens's; detail/method.h),
+  // nullptr for none.
+  Result<CullingReport> run(FrameView& view, const FrameContext& fc, const PixelRect* footprint);
 
  private:
   void ensure_targets(int width, int height);

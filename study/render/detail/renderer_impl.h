@@ -5,18 +5,18 @@
 #pragma once
 #include <glad/gl.h>
 
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "study/render/detail/gl_backend.h"
-#include "study/render/detail/lens_volume.h"
+#include "study/render/detail/method.h"
 #include "study/render/detail/occlusion_culling.h"
 #include "study/render/detail/passes.h"
 #include "study/render/detail/programs.h"
 #include "study/render/detail/scene_gpu.h"
 #include "study/render/detail/sort.h"
-#include "study/render/detail/vdt.h"
 #include "study/render/render.h"
 
 namespace dtlab::render {
@@ -32,44 +32,20 @@ struct Renderer::Impl {
   unsigned out_fbo = 0, out_tex = 0;
   int out_w = 0, out_h = 0;
   bool out_float = false;
-  // dt-fast, dt-seed: did the last frame of the method need the effect (some target occluded)?
-  // Picks the frame plan (passes.h EffectFirst): effect-first when it did, standard-first otherwise.
-  bool fast_effect_hint = false;
-  bool seed_effect_hint = false;
+  // Each method's state between frames (detail/method.h), by technique::Method.
+  std::array<detail::MethodSlot, technique::kMethodCount> slots;
   // Where the last frame was presented (for read_color).
   ImportedTarget last_target;
   bool last_float = false;
 
-  // The lens method's volume, re-uploaded every lens frame (a few hundred triangles).
-  unsigned lens_vao = 0, lens_vbo = 0;
-  // The vdt method's per-vertex alpha buffer and the meshes' edge lists (built on first use).
-  detail::VdtState vdt;
   std::unique_ptr<detail::OcclusionCuller> culler;  // made on the first frame with occlusion culling on
 
   ~Impl() {
-    vdt.destroy();
+    for (detail::MethodSlot& s : slots) s.state.reset();
     culler.reset();
-    if (lens_vao != 0) glDeleteVertexArrays(1, &lens_vao);
-    if (lens_vbo != 0) glDeleteBuffers(1, &lens_vbo);
     if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
     if (out_tex != 0) glDeleteTextures(1, &out_tex);
     programs.destroy();
-  }
-
-  // Uploads `v` into the lens buffer (inside the frame's GlStateGuard: binds VAO and array buffer).
-  detail::LensGpu upload_lens(const detail::LensVolume& v) {
-    if (lens_vao == 0) {
-      glGenVertexArrays(1, &lens_vao);
-      glGenBuffers(1, &lens_vbo);
-      glBindVertexArray(lens_vao);
-      glBindBuffer(GL_ARRAY_BUFFER, lens_vbo);
-      glEnableVertexAttribArray(0);
-      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-    }
-    glBindBuffer(GL_ARRAY_BUFFER, lens_vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.triangles.size() * sizeof(glm::vec3)), v.triangles.data(),
-                 GL_STREAM_DRAW);
-    return detail::LensGpu{lens_vao, static_cast<int>(v.triangles.size()), v.eye_inside, {}};
   }
 
   // The occlusion culler when `settings` ask for culling and the scene has a floor plan to cull
@@ -81,11 +57,12 @@ struct Renderer::Impl {
   }
 
   // Occlusion culling of `view` (in place) when `settings` ask for it; throws on a shader error.
-  CullingReport cull(detail::FrameView& view, const FrameSettings& settings, const detail::PixelRect& lens_footprint) {
+  // `footprint`: pixels the method may change beyond the targets' masks (nullptr: none).
+  CullingReport cull(detail::FrameView& view, const FrameSettings& settings, const detail::PixelRect* footprint) {
     detail::OcclusionCuller* c = culler_for(settings);
     if (c == nullptr) return {};
     const detail::FrameContext fc{*gpu, programs, view, settings, scene, TextureFormat::rgba8, {}};
-    auto r = c->run(view, fc, lens_footprint);
+    auto r = c->run(view, fc, footprint);
     if (!r) throw std::runtime_error("occlusion culling: " + r.error().to_string());
     return r.value();
   }
