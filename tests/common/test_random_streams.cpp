@@ -12,15 +12,13 @@
 #include <utility>
 #include <vector>
 
-#include "study/common/stream.h"
-#include "study/design/detail/prng.h"
-#include "study/scene/detail/rng.h"
+#include "study/common/random.h"
 
 namespace dtlab {
 namespace {
 
-using Scene = scene::detail::Rng;
-using Design = design::detail::SplitMix64;
+using Scene = SceneRandom;
+using Design = Random<SplitMix64>;
 
 const std::vector<std::uint64_t> kBounds = {1, 2, 3, 6, 10, 1000, 1000003};
 
@@ -42,7 +40,7 @@ TEST(RandomStreams, SceneDraws) {
   EXPECT_EQ(r.below((1ULL << 63) + 1), 1335963699746337971ULL);
   for (int v : {2, 3, -5, 4}) EXPECT_EQ(r.between(-5, 5), v);
   EXPECT_EQ(r.between(-2147483647 - 1, 2147483647), -247136855);
-  for (double v : {0x1.829a598a16d2cp-3, 0x1.20bc11362c53p-2, 0x1.33fd953a5c951p-1}) EXPECT_EQ(r.unit(), v);
+  for (double v : {0x1.829a598a16d2cp-3, 0x1.20bc11362c53p-2, 0x1.33fd953a5c951p-1}) EXPECT_EQ(r.uniform(), v);
   for (double v : {-0x1.641b4580025fap+0, 0x1.7211df3f3e67ep+0, -0x1.e91ffc3fd28dap-1}) EXPECT_EQ(r.uniform(-2.5, 7.0), v);
 }
 
@@ -79,7 +77,7 @@ TEST(RandomStreams, SessionAndSimulationDraws) {
   EXPECT_EQ(r.normal(10.0, 2.0), 0x1.5e5b308ee773fp+3);
   // The session's shuffle (study/session/questionnaire.cpp): Fisher-Yates from the back.
   std::vector<int> v{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
-  for (std::size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[r.below(i)]);
+  r.shuffle(v);
   EXPECT_EQ(v, (std::vector<int>{8, 0, 9, 5, 3, 7, 4, 2, 6, 1}));
 }
 
