@@ -135,9 +135,9 @@ TEST(PixelMasks, AlphaOneIsFullAndZeroIsEmpty) {
 // The masks' random streams as they stood before the generators became one family
 // (study/common/random.h): white noise draws pixels (a partial Fisher-Yates), the pixel tree
 // shuffles its splitting sequence. A screen-door image made from a seed stays the same only
-// while these hold; never regenerate them to make a change pass. (The pixel tree's masks came
-// out the same for seeds 1 to 4 and 99: for these alphas, with the error carried from leaf to
-// leaf, each leaf rounds to the same count in any splitting order.)
+// while these hold; never regenerate them to make a change pass. The pixel tree's masks for the
+// first alphas come out the same for seeds 1 to 4 and 99 (the error carried from leaf to leaf
+// rounds each leaf alike in any splitting order); for the second alphas seeds 1 and 2 differ.
 TEST(PixelMasks, SeededMasksArePinned) {
   struct Pin {
     MaskGeneration generation;
@@ -157,6 +157,21 @@ TEST(PixelMasks, SeededMasksArePinned) {
     ASSERT_EQ(masks.size(), p.words.size());
     for (std::size_t i = 0; i < masks.size(); ++i)
       EXPECT_EQ(masks[i].words, p.words[i]) << "generation " << static_cast<int>(p.generation) << " seed " << p.seed << " mask " << i;
+  }
+  const Pin tree[] = {
+      {MaskGeneration::pixel_tree, 1,
+       {{0x0007ffffu, 0x00000000u}, {0xfff81fffu, 0x0007ffffu}, {0xfff8e07fu, 0x03f8001fu}, {0x00382081u, 0x04080060u},
+        {0xffdbefbfu, 0x7cf8ffe3u}}},
+      {MaskGeneration::pixel_tree, 2,
+       {{0x0007ffffu, 0x00000000u}, {0xfff83fffu, 0x0003ffffu}, {0xfff8c07fu, 0x03fc001fu}, {0x00384081u, 0x04040060u},
+        {0xffffdfbfu, 0x7cf87fa3u}}},
+  };
+  for (const Pin& p : tree) {
+    const auto masks = generate_masks(64, opts(p.generation, true, p.seed), {0.3f, 0.7f, 0.55f, 0.15f, 0.8f},
+                                      {2.f, 0.f, 3.f, 1.f, 4.f});
+    ASSERT_EQ(masks.size(), p.words.size());
+    for (std::size_t i = 0; i < masks.size(); ++i)
+      EXPECT_EQ(masks[i].words, p.words[i]) << "pixel tree seed " << p.seed << " mask " << i;
   }
 }
 
