@@ -6,27 +6,10 @@
 
 #include "analysis/stats/detail/lmm_design.h"
 #include "analysis/stats/detail/lmm_model.h"
-#include "study/common/hash.h"
+#include "study/common/random.h"
 
 namespace dtlab::stats {
 namespace {
-
-// A SplitMix64 stream: uniforms, normals (Box-Muller), Bernoulli draws.
-class Stream {
- public:
-  explicit Stream(std::uint64_t seed) : state_(seed) {}
-  double uniform() {
-    state_ = mix64(state_);
-    return static_cast<double>(state_ >> 11) * 0x1.0p-53;
-  }
-  double normal() {
-    const double u1 = std::max(uniform(), 0x1.0p-60), u2 = uniform();
-    return std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-  }
-
- private:
-  std::uint64_t state_;
-};
 
 // The fitted random-effects terms in lme4's order, each with its factor T (scaled by sigma for an LMM).
 struct Structure {
@@ -65,7 +48,7 @@ Result<Structure> structure_of(const detail::PreparedModel& m, const LmmFit& fit
 
 // One simulated study of n subjects (designs of pilot subjects drawn with replacement).
 LmmData simulate(const detail::PreparedModel& m, const LmmData& pilot, const LmmFit& fit, const Structure& st,
-                 const std::vector<std::vector<size_t>>& rows_of, size_t n, Stream& rng) {
+                 const std::vector<std::vector<size_t>>& rows_of, size_t n, Random<SplitMix64>& rng) {
   LmmData sim;
   sim.subject_name = pilot.subject_name;
   sim.item_name = pilot.item_name;
@@ -87,7 +70,7 @@ LmmData simulate(const detail::PreparedModel& m, const LmmData& pilot, const Lmm
   };
   std::vector<double> values;
   for (size_t j = 0; j < n; ++j) {
-    const size_t s = static_cast<size_t>(rng.uniform() * static_cast<double>(rows_of.size())) % rows_of.size();
+    const size_t s = static_cast<size_t>(rng.below(rows_of.size()));
     std::vector<Eigen::VectorXd> subject_b(st.terms.size());
     for (size_t t = 0; t < st.terms.size(); ++t)
       if (st.terms[t].grouping == 0) subject_b[t] = draw(t);
@@ -152,7 +135,7 @@ Result<std::vector<LmmPowerRow>> lmm_power(const LmmData& pilot, const LmmOption
     LmmPowerRow row{n, {}};
     row.power.replications = power.replications;
     for (size_t b = 0; b < power.replications; ++b) {
-      Stream rng(mix64(mix64(power.seed, n), b));
+      Random<SplitMix64> rng(mix64(mix64(power.seed, n), b));
       auto f = fit_lmm(simulate(m, pilot, fit, *st, rows_of, n, rng), refit);
       const double p = f ? p_of(*f, power.term) : std::nan("");
       if (std::isnan(p)) ++row.power.undefined;

@@ -16,6 +16,7 @@
 #include "analysis/stats/detail/ranks.h"
 #include "analysis/stats/detail/sum.h"
 #include "analysis/stats/distributions.h"
+#include "study/common/random.h"
 
 namespace dtlab::stats {
 namespace {
@@ -154,7 +155,7 @@ WilcoxonResult wilcoxon_signed_rank(const std::vector<double>& x, const std::vec
   // Exact or resampled permutation p.
   if (r.n > 0 && o.exact.mode != ExactMode::never) {
     if (o.exact.mode == ExactMode::monte_carlo) {
-      detail::SplitMixStream rng(o.exact.seed);
+      Random<SplitMix64> rng(o.exact.seed);
       std::size_t hi = 0, lo = 0;
       const std::size_t total = o.exact.monte_carlo_samples, every = std::max<std::size_t>(1, total / 100);
       for (std::size_t b = 0; b < total; ++b) {

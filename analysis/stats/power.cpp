@@ -13,10 +13,10 @@
 #include <thread>
 #include <utility>
 
-#include "analysis/stats/detail/friedman_exact.h"  // SplitMixStream
 #include "analysis/stats/detail/numbers.h"
 
 #include "analysis/stats/detail/policy.h"
+#include "study/common/random.h"
 
 namespace dtlab::stats {
 namespace {
@@ -131,7 +131,7 @@ std::vector<ResampledPower> power_by_resampling(std::size_t participants, std::s
   auto work = [&](unsigned t) {
     std::vector<std::size_t> draw(n);
     for (std::size_t b = t; b < replications; b += threads) {
-      detail::SplitMixStream rng(seed ^ (0x9E3779B97F4A7C15ULL * (b + 1)));
+      Random<SplitMix64> rng(mix64(seed, b));
       for (auto& i : draw) i = static_cast<std::size_t>(rng.below(participants));
       const std::vector<double> p = test(draw);
       for (std::size_t h = 0; h < hypotheses; ++h) {

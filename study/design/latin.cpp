@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "study/design/detail/prng.h"
+#include "study/common/random.h"
 
 namespace dtlab::design {
 
@@ -95,13 +95,10 @@ OrderTable all_permutations(int n) {
 Order random_order(int n, std::uint64_t seed, int row) {
   require(n >= 1 && n <= kMaxSquare, "random_order: n must be in [1, 4096], got " + std::to_string(n));
   require(row >= 0, "random_order: row must be >= 0, got " + std::to_string(row));
-  detail::SplitMix64 rng(mix64(seed, static_cast<std::uint64_t>(row)));
+  Random<SplitMix64> rng(mix64(seed, static_cast<std::uint64_t>(row)));
   Order order(n);
   std::iota(order.begin(), order.end(), 0);
-  for (int i = n - 1; i > 0; --i) {  // Fisher-Yates
-    const int j = static_cast<int>(rng.below(static_cast<std::uint64_t>(i) + 1));
-    std::swap(order[i], order[j]);
-  }
+  rng.shuffle(order);  // Fisher-Yates
   return order;
 }
 

@@ -1,7 +1,7 @@
 // Counterbalancing designs: orders of n conditions (0..n-1) for successive
 // participants, and property checks that say what a design guarantees.
 // Guarantees: every constructor is a pure function of its arguments and gives
-// the same table on every machine (our own SplitMix64 stream, no std::rand,
+// the same table on every machine (a SplitMix64 stream from study/common/random.h, no std::rand,
 // no std::random_device, no std:: distributions, whose outputs differ between
 // standard libraries). Violated preconditions throw std::invalid_argument.
 #pragma once

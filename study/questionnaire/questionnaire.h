@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "study/common/error.h"
-#include "study/common/stream.h"
+#include "study/common/random.h"
 
 namespace dtlab::questionnaire {
 

@@ -11,7 +11,7 @@
 
 #include "study/design/seeds.h"
 #include "study/render/camera.h"
-#include "study/common/stream.h"
+#include "study/common/random.h"
 #include "study/session/session.h"
 #include "study/store/read.h"
 
@@ -108,7 +108,7 @@ Result<DepthTestKey> depth_test_view(const protocol::Protocol& p, const protocol
       const double yaw = k * 6.283185307179586 / 16;
       std::vector<Seen> seen = in_view(yaw);
       // Seeded shuffle, then greedy disjoint pairs whose distance ratio lies in [lo, hi].
-      for (std::size_t i = seen.size(); i > 1; --i) std::swap(seen[i - 1], seen[rng.below(i)]);
+      rng.shuffle(seen);
       std::vector<std::pair<Seen, Seen>> pairs;
       std::vector<char> used(seen.size(), 0);
       for (std::size_t i = 0; i < seen.size() && static_cast<int>(pairs.size()) < pairs_wanted; ++i) {

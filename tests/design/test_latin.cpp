@@ -97,6 +97,17 @@ TEST(RandomOrders, AreUniformOverThePermutations) {
   EXPECT_LT(chi2, 49.73);
 }
 
+// Random orders as they stood before the generators became one family (study/common/random.h):
+// a protocol's `random` order rows come from these streams, so a stored study's plan reproduces
+// only while they hold. Never regenerate them to make a change pass.
+TEST(RandomOrders, ArePinnedForASeed) {
+  EXPECT_EQ(random_orders(3, 3, 1234), (OrderTable{{1, 2, 0}, {0, 1, 2}, {2, 0, 1}}));
+  EXPECT_EQ(random_orders(6, 3, 1234), (OrderTable{{4, 5, 2, 1, 3, 0}, {1, 0, 4, 5, 3, 2}, {0, 5, 2, 4, 3, 1}}));
+  EXPECT_EQ(random_orders(12, 3, 1234), (OrderTable{{9, 1, 11, 3, 6, 5, 10, 4, 8, 7, 2, 0},
+                                                   {7, 10, 5, 1, 6, 9, 11, 4, 8, 0, 3, 2},
+                                                   {10, 0, 11, 4, 2, 3, 8, 9, 5, 7, 6, 1}}));
+}
+
 TEST(Checks, RejectTablesWithoutTheProperty) {
   EXPECT_FALSE(is_permutation_table({}));
   EXPECT_FALSE(is_permutation_table({{0, 0, 1}}));        // repeated condition

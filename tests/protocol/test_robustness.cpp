@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "study/common/hash.h"
+#include "study/common/random.h"
 #include "study/design/design.h"
 #include "study/protocol/protocol.h"
 
@@ -79,19 +79,18 @@ TEST(Robustness, EveryLineDeleted) {
 TEST(Robustness, SeededByteMutations) {
   const std::string text = reference_text();
   static const char kBytes[] = "[]{}\"'=,.#\n\\0123456789-+xeZ \t\x7f\xff\xc3";
-  std::uint64_t state = 20240601;
-  const auto next = [&state] { return dtlab::mix64(state++); };
+  dtlab::Random<dtlab::SplitMix64> rng(20240601);  // dtlab's own stream (study/common/random.h)
   int valid = 0;
   for (int i = 0; i < 3000; ++i) {
     std::string t = text;
-    const int edits = 1 + static_cast<int>(next() % 3);
+    const int edits = 1 + static_cast<int>(rng.below(3));
     for (int e = 0; e < edits; ++e) {
-      const std::size_t at = next() % t.size();
-      const char b = kBytes[next() % (sizeof kBytes - 1)];
-      switch (next() % 3) {
+      const std::size_t at = rng.below(t.size());
+      const char b = kBytes[rng.below(sizeof kBytes - 1)];
+      switch (rng.below(3)) {
         case 0: t[at] = b; break;
         case 1: t.insert(t.begin() + static_cast<std::ptrdiff_t>(at), b); break;
-        default: t.erase(at, 1 + next() % 8); break;
+        default: t.erase(at, 1 + rng.below(8)); break;
       }
       if (t.empty()) t = " ";
     }

@@ -4,26 +4,30 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
+#include <cstdint>
 #include <vector>
 
+#include "study/common/random.h"
 #include "study/render/detail/mask_atlas.h"
 
 namespace dtlab::render::detail {
 namespace {
 
 // A frame view with `n` targets whose covers are random rectangles of up to `side` texels (some
-// cut by the grid's edges, every seventh empty) on a 128 x 128 grid with n' = 8.
-FrameView view_with_targets(int n, int side, unsigned seed) {
+// cut by the grid's edges, every seventh empty) on a 128 x 128 grid with n' = 8. The stream is
+// dtlab's own (study/common/random.h), the same with every standard library.
+FrameView view_with_targets(int n, int side, std::uint64_t seed) {
   FrameView v;
   v.grid = MaskGrid{128, 128, 6.25f, 4.6875f, 8};
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> size(1, side), at(-side / 2, 128);
+  Random<SplitMix64> rng(seed);
   for (int i = 0; i < n; ++i) {
     TargetView t;
     if (i % 7 != 6) {
-      const int x = at(rng), y = at(rng);
-      t.cover = PixelRect{x, y, x + size(rng), y + size(rng)};
+      const int x = rng.between(-side / 2, 128);
+      const int y = rng.between(-side / 2, 128);
+      const int w = rng.between(1, side);
+      const int h = rng.between(1, side);
+      t.cover = PixelRect{x, y, x + w, y + h};
     }
     v.targets.push_back(t);
   }
@@ -68,7 +72,7 @@ void expect_packed(const FrameView& v, const MaskAtlas& a) {
 }
 
 TEST(MaskAtlas, TilesArePaddedCoversInsideTheirPagesWithoutOverlap) {
-  for (unsigned seed = 1; seed <= 5; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const FrameView v = view_with_targets(40, 60, seed);
     expect_packed(v, plan_mask_atlas(v));
   }

@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "study/common/random.h"
 #include "study/render/detail/occluder_sets.h"
 #include "study/render/detail/occlusion_map.h"
 #include "study/render/detail/scene_gpu.h"
@@ -106,11 +107,8 @@ TEST(SparseDepthMap, StepsJumpToTheNextPeak) {
 }
 
 TEST(SparseDepthMap, AgreesWithThePixelWiseTest) {
-  std::uint64_t state = 12345;
-  auto next = [&] {  // a small LCG (Knuth's MMIX constants): data only
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<float>((state >> 40) % 1000) / 1000.0f;
-  };
+  Random<SplitMix64> rng(12345);  // data only (study/common/random.h)
+  auto next = [&] { return static_cast<float>(rng.below(1000)) / 1000.0f; };
   const int w = 17, h = 9;
   for (int round = 0; round < 200; ++round) {
     std::vector<float> depth(static_cast<std::size_t>(w * h));

@@ -31,7 +31,7 @@
 #include <tuple>
 #include <vector>
 
-#include "study/common/hash.h"
+#include "study/common/random.h"
 #include "study/design/design.h"
 #include "study/protocol/limits.h"
 #include "study/session/mapping.h"
@@ -45,17 +45,13 @@ constexpr int kMutants = 400;
 constexpr std::uint64_t kSeed = 20261212;
 constexpr int kSecondsPerMutant = 60;
 
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() { return mix64(state_++); }
-  std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
-  template <class T>
-  const T& pick(const std::vector<T>& v) { return v[below(v.size())]; }
+// The mutants' stream: dtlab's own generator (study/common/random.h), unbiased bounded draws.
+using Rng = Random<SplitMix64>;
 
- private:
-  std::uint64_t state_;
-};
+template <class T>
+const T& pick(Rng& rng, const std::vector<T>& v) {  // a uniformly chosen element of a non-empty v
+  return v[rng.below(v.size())];
+}
 
 using dtlab::test::read_text;
 
@@ -173,15 +169,15 @@ std::vector<std::string> wild_values(const std::string& key) {
 // A value for `key`: mostly within its documented range, sometimes anything.
 std::string value_for(const std::string& key, Rng& rng) {
   const std::vector<std::string> in = documented_values(key);
-  if (!in.empty() && rng.below(4) != 0) return rng.pick(in);
-  return rng.pick(wild_values(key));
+  if (!in.empty() && rng.below(4) != 0) return pick(rng, in);
+  return pick(rng, wild_values(key));
 }
 
 // A key = value line for a key a task or scenario may set, with a boundary value.
 std::string scene_key_line(Rng& rng) {
   static const std::vector<std::string> keys = {"objects", "extent", "object_radius", "target_ratio", "letters",
                                                 "grid", "cell_size", "count_range", "object_kinds", "trials"};
-  const std::string& key = rng.pick(keys);
+  const std::string& key = pick(rng, keys);
   return key + " = " + value_for(key, rng);
 }
 
@@ -195,20 +191,20 @@ std::string edit(std::vector<std::string>& lines, Rng& rng) {
     case 2:
     case 10:
     case 11: {  // a value to a boundary, an extreme, or another type
-      const std::size_t i = rng.pick(keys);
+      const std::size_t i = pick(rng, keys);
       const std::string key = key_of(lines[i]);
       const std::string old = lines[i];
       lines[i] = key + " = " + value_for(key, rng);
       return "line " + std::to_string(i + 1) + ": '" + old + "' -> '" + lines[i] + "'";
     }
     case 3: {  // delete a key
-      const std::size_t i = rng.pick(keys);
+      const std::size_t i = pick(rng, keys);
       const std::string old = lines[i];
       lines.erase(lines.begin() + static_cast<long>(i));
       return "deleted line " + std::to_string(i + 1) + " '" + old + "'";
     }
     case 4: {  // duplicate a key
-      const std::size_t i = rng.pick(keys);
+      const std::size_t i = pick(rng, keys);
       lines.insert(lines.begin() + static_cast<long>(i), lines[i]);
       return "duplicated line " + std::to_string(i + 1) + " '" + lines[i] + "'";
     }
@@ -233,7 +229,7 @@ std::string edit(std::vector<std::string>& lines, Rng& rng) {
       for (std::size_t h : headers)
         if (lines[h].rfind("[scenarios.", 0) == 0 || lines[h].rfind("[questionnaire.", 0) == 0) tables.push_back(h);
       if (tables.empty()) return "nothing";
-      const std::size_t h = rng.pick(tables);
+      const std::size_t h = pick(rng, tables);
       const std::string line =
           lines[h].rfind("[questionnaire.", 0) == 0 ? "pairs = " + value_for("pairs", rng) : scene_key_line(rng);
       lines.insert(lines.begin() + static_cast<long>(h) + 1, line);
@@ -241,7 +237,7 @@ std::string edit(std::vector<std::string>& lines, Rng& rng) {
     }
     case 8: {  // reverse an array of names (levels, letters, kinds...) or swap two adjacent tables' first lines
       for (int tries = 0; tries < 20; ++tries) {
-        const std::size_t i = rng.pick(keys);
+        const std::size_t i = pick(rng, keys);
         const std::size_t open = lines[i].find(" = [\""), close = lines[i].rfind("\"]");
         if (open == std::string::npos || close == std::string::npos) continue;
         std::vector<std::string> items;
@@ -401,7 +397,8 @@ TEST(ProtocolFuzz, AcceptedMutantsRunAndNoneCrashesOrHangs) {
     const auto& [name, text] = bases[rng.below(bases.size())];
     std::vector<std::string> lines = split_lines(text);
     std::string how;
-    const int edits = 1 + static_cast<int>(rng.below(2)) * static_cast<int>(1 + rng.below(2));  // 1, 1, 2, 3
+    const int first = static_cast<int>(rng.below(2));  // one draw per statement: argument order is unspecified
+    const int edits = 1 + first * static_cast<int>(1 + rng.below(2));  // 1, 1, 2, 3
     for (int e = 0; e < edits; ++e) how += (e ? "; " : "") + edit(lines, rng);
     const std::string mutant = joined(lines);
     const Verdict v = check_isolated(mutant);

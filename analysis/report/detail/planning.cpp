@@ -9,6 +9,7 @@
 
 #include "analysis/report/detail/format.h"
 #include "analysis/stats/apa.h"
+#include "study/common/random.h"
 #include "study/protocol/protocol.h"
 
 namespace dtlab::report::detail {
@@ -38,12 +39,10 @@ CellMatrix resampled(const CellMatrix& m, const std::vector<size_t>& kept, const
   return r;
 }
 
-// One stream per test and planned size, so adding a size or a test leaves the others' draws alone.
+// One stream per test and planned size, so adding a size or a test leaves the others' draws alone:
+// mix64 of the seed plus (test x 1000003 + n) golden gammas (the values the report always drew).
 std::uint64_t stream_seed(std::uint64_t seed, std::size_t test, int n) {
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (static_cast<std::uint64_t>(test) * 1000003ULL + static_cast<std::uint64_t>(n) + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
+  return mix64(seed + kGoldenGamma * (static_cast<std::uint64_t>(test) * 1000003ULL + static_cast<std::uint64_t>(n)));
 }
 
 // The smallest planned size whose resampled power reaches `target` (0: none).

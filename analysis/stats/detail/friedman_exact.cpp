@@ -29,7 +29,7 @@
 #include <optional>
 #include <sstream>
 
-#include "study/common/hash.h"
+#include "study/common/random.h"
 
 namespace dtlab::stats::detail {
 namespace {
@@ -459,22 +459,6 @@ bool run_dp(const std::vector<std::vector<int>>& r, double budget, std::string* 
 
 }  // namespace
 
-std::uint64_t SplitMixStream::next() { return dtlab::mix64(seed_, counter_++); }
-
-std::uint64_t SplitMixStream::below(std::uint64_t bound) {
-  __extension__ typedef unsigned __int128 u128;
-  u128 m = static_cast<u128>(next()) * bound;
-  std::uint64_t low = static_cast<std::uint64_t>(m);
-  if (low < bound) {
-    const std::uint64_t threshold = (0 - bound) % bound;
-    while (low < threshold) {
-      m = static_cast<u128>(next()) * bound;
-      low = static_cast<std::uint64_t>(m);
-    }
-  }
-  return static_cast<std::uint64_t>(m >> 64);
-}
-
 std::int64_t friedman_s(const std::vector<std::vector<int>>& r) {
   if (r.empty()) return 0;
   std::vector<std::int64_t> t(r.front().size(), 0);
@@ -526,7 +510,7 @@ double friedman_exact_work(const std::vector<std::vector<int>>& r) {
 
 double friedman_monte_carlo_tail(const std::vector<std::vector<int>>& r, std::int64_t s_obs, std::size_t samples,
                                  std::uint64_t seed, const std::function<void(std::size_t, std::size_t)>& progress) {
-  SplitMixStream rng(seed);
+  Random<SplitMix64> rng(seed);
   const std::size_t k = r.empty() ? 0 : r.front().size();
   std::vector<std::int64_t> t(k);
   std::vector<int> row;
@@ -537,7 +521,7 @@ double friedman_monte_carlo_tail(const std::vector<std::vector<int>>& r, std::in
     std::fill(t.begin(), t.end(), 0);
     for (const auto& block : r) {
       row = block;
-      for (std::size_t j = k; j > 1; --j) std::swap(row[j - 1], row[rng.below(j)]);  // Fisher-Yates
+      rng.shuffle(row);  // Fisher-Yates
       for (std::size_t j = 0; j < k; ++j) t[j] += row[j];
     }
     std::int64_t s = 0;

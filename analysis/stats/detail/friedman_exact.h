@@ -43,15 +43,4 @@ double friedman_monte_carlo_tail(const std::vector<std::vector<int>>& doubled_ra
 // S for the given (doubled) ranks.
 std::int64_t friedman_s(const std::vector<std::vector<int>>& doubled_ranks);
 
-// Uniform integers from a SplitMix64 stream (dtlab::mix64); no global state.
-class SplitMixStream {
- public:
-  explicit SplitMixStream(std::uint64_t seed) : seed_(seed) {}
-  std::uint64_t next();                     // the next 64 random bits
-  std::uint64_t below(std::uint64_t bound);  // uniform in [0, bound), bound > 0 (Lemire 2019, unbiased)
-
- private:
-  std::uint64_t seed_, counter_ = 0;
-};
-
 }  // namespace dtlab::stats::detail

@@ -23,13 +23,6 @@ MaskTable::MaskTable(int n, Options options) : n_(n), opt_(options), rng_(option
   rows_.push_back(std::move(root));
 }
 
-std::uint64_t MaskTable::next_random() {  // SplitMix64 (Steele, Lea & Flood 2014)
-  std::uint64_t z = (rng_ += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
 std::vector<int> splitting_order(int n, const std::vector<PixelMask>& filled_by_priority) {
   const std::size_t m = filled_by_priority.size();
   std::vector<std::vector<bool>> f(m, std::vector<bool>(static_cast<std::size_t>(n))), e = f;
@@ -80,7 +73,7 @@ const PixelMask& MaskTable::add(float alpha_in, float depth) {
     std::iota(pixels.begin(), pixels.end(), 0);
     const int k = static_cast<int>(std::floor(alpha * n_ + 0.5));
     for (int i = 0; i < k; ++i) {
-      const int j = i + static_cast<int>(next_random() % static_cast<std::uint64_t>(n_ - i));
+      const int j = i + static_cast<int>(rng_.below(static_cast<std::uint64_t>(n_ - i)));
       std::swap(pixels[static_cast<std::size_t>(i)], pixels[static_cast<std::size_t>(j)]);
       mask.set(pixels[static_cast<std::size_t>(i)]);
     }
@@ -99,7 +92,7 @@ const PixelMask& MaskTable::add(float alpha_in, float depth) {
     }
     std::vector<int> order = row_order(rank);
     if (opt_.generation == MaskGeneration::pixel_tree)  // 4.2.2: a randomized splitting sequence
-      for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[next_random() % i]);
+      rng_.shuffle(order);
     const int old_end = end();
     double error = 0.0;
     for (int r : order) {

@@ -4,13 +4,15 @@
 // compensation (4.3.3), white-noise masks for comparison, and the thesis's
 // stacking test that counts faulty pixels (4.2.2). A mask of n pixels (n = s x s
 // sub-pixels of one output pixel) says which sub-pixels an object covers.
-// Guarantees: deterministic for a given seed (own SplitMix64, no global RNG);
+// Guarantees: deterministic for a given seed (a SplitMix64 stream, study/common/random.h; no global RNG);
 // a mask of alpha 1 is full, of alpha 0 empty. Pure C++; never touches GL.
 #pragma once
 #include <cstdint>
 #include <map>
 #include <utility>
 #include <vector>
+
+#include "study/common/random.h"
 
 namespace dtlab::render::detail {
 
@@ -70,8 +72,7 @@ class MaskTable {
   double tree_leaves_ = 1.0;  // pixel tree: leaves of the full tree, null ones included
   std::vector<PixelMask> masks_;
   std::vector<float> depths_;
-  std::uint64_t rng_;
-  std::uint64_t next_random();
+  Random<SplitMix64> rng_;  // unbiased bounded draws (study/common/random.h)
   std::vector<int> row_order(const std::vector<int>& rank) const;
 };
 

@@ -11,7 +11,7 @@
 
 #include "study/scene/detail/enclosure.h"
 #include "study/scene/detail/generators.h"
-#include "study/scene/detail/rng.h"
+#include "study/common/random.h"
 #include "study/scene/detail/sampling.h"
 #include "study/scene/letters.h"
 #include "study/scene/primitives.h"
@@ -50,7 +50,7 @@ bool conflicts(const Footprint3& fp, const std::vector<Placed>& placed) {
 // Places one object at a uniform position where it conflicts with no placed
 // object; false after kMaxPlacementTries tries (validate() makes that
 // practically impossible, but it is reported, never ignored).
-bool place(Rng& rng, const AbstractParams& p, Primitive shape, double radius, const glm::dmat3& rotation,
+bool place(SceneRandom& rng, const AbstractParams& p, Primitive shape, double radius, const glm::dmat3& rotation,
            std::vector<Placed>& placed) {
   const double lo = -0.5 * p.cube_size + radius, hi = 0.5 * p.cube_size - radius;
   for (int t = 0; t < kMaxPlacementTries; ++t) {
@@ -80,7 +80,7 @@ glm::mat4 to_transform(const Placed& o) {
 int count_low(double ratio, int n) { return static_cast<int>(std::ceil(ratio * n - 1e-9)); }
 int count_high(double ratio, int n) { return static_cast<int>(std::floor(ratio * n + 1e-9)); }
 
-glm::vec3 distractor_color(Rng& rng, const AbstractParams& p) {
+glm::vec3 distractor_color(SceneRandom& rng, const AbstractParams& p) {
   const int g = rng.between(p.color_min, 255), b = rng.between(p.color_min, 255);
   return {0.0f, static_cast<float>(g) / 255.0f, static_cast<float>(b) / 255.0f};
 }
@@ -106,7 +106,7 @@ double abstract_conflict_radius(double r_min, double r_max) {
 }
 
 Result<Scene> generate_abstract(Task task, std::uint64_t seed, const AbstractParams& p) {
-  Rng rng(seed, kStreamAbstract + static_cast<std::uint64_t>(task));
+  SceneRandom rng(seed, kStreamAbstract + static_cast<std::uint64_t>(task));
   Scene scene;
   scene.kind = Kind::abstract;
   scene.task = task;

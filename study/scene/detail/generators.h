@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "study/common/error.h"
+#include "study/common/random.h"
 #include "study/scene/generate.h"
 
 namespace dtlab::scene::detail {
@@ -14,8 +15,7 @@ Result<Scene> generate_abstract(Task task, std::uint64_t seed, const AbstractPar
 Result<Scene> generate_walkthrough(Task task, std::uint64_t seed, const WalkthroughParams& p);
 
 // The floor plan alone (rooms and doors), drawn from `rng`; see walkthrough.cpp.
-class Rng;
-FloorPlan generate_floor_plan(const WalkthroughParams& p, Rng& rng);
+FloorPlan generate_floor_plan(const WalkthroughParams& p, SceneRandom& rng);
 
 // The centre-to-centre radius within which a new ABSTRACT object may
 // conflict with a placed one, for any radii in [r_min, r_max] and any

@@ -1,5 +1,6 @@
-// Random rotations from the scene Rng using only IEEE-754 basic operations
-// and sqrt (correctly rounded everywhere), never sin/cos, so that rotations,
+// Random rotations from the scene stream (SceneRandom, study/common/random.h)
+// using only IEEE-754 basic operations and sqrt (correctly rounded
+// everywhere), never sin/cos, so that rotations,
 // and every decision that depends on them, are identical on every machine.
 // Each sampler rejects at most 1000 times (each try succeeds with p >= pi/4)
 // and then throws, so it can never loop forever or give up silently.
@@ -9,12 +10,12 @@
 
 #include <glm/glm.hpp>
 
-#include "study/scene/detail/rng.h"
+#include "study/common/random.h"
 
 namespace dtlab::scene::detail {
 
 // A point uniform in the open unit disc minus a tiny centre (so it normalizes).
-inline glm::dvec2 sample_disc(Rng& rng) {
+inline glm::dvec2 sample_disc(SceneRandom& rng) {
   for (int i = 0; i < 1000; ++i) {
     const double x = rng.uniform(-1.0, 1.0), y = rng.uniform(-1.0, 1.0);
     const double s = x * x + y * y;
@@ -24,14 +25,14 @@ inline glm::dvec2 sample_disc(Rng& rng) {
 }
 
 // (cos a, sin a) for an angle a uniform in [0, 2 pi).
-inline glm::dvec2 sample_direction(Rng& rng) {
+inline glm::dvec2 sample_direction(SceneRandom& rng) {
   const glm::dvec2 p = sample_disc(rng);
   return p / std::sqrt(p.x * p.x + p.y * p.y);
 }
 
 // A unit quaternion (w, x, y, z) uniform on SO(3): Marsaglia (1972), as used
 // for random rotations by Shoemake; q = (x1, y1, x2 f, y2 f), f = sqrt((1 - s1) / s2).
-inline glm::dvec4 sample_quaternion(Rng& rng) {
+inline glm::dvec4 sample_quaternion(SceneRandom& rng) {
   const glm::dvec2 a = sample_disc(rng), b = sample_disc(rng);
   const double s1 = a.x * a.x + a.y * a.y, s2 = b.x * b.x + b.y * b.y;
   const double f = std::sqrt((1.0 - s1) / s2);

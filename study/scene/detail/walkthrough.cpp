@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "study/scene/detail/generators.h"
-#include "study/scene/detail/rng.h"
+#include "study/common/random.h"
 #include "study/scene/detail/sampling.h"
 #include "study/scene/detail/walkthrough_layout.h"
 #include "study/scene/models.h"
@@ -34,7 +34,7 @@ struct Rect {
 
 // Recursive splits: a side longer than room_max must be split; a room that
 // could be split is split with probability 1/2, so sizes vary.
-void split(const WalkthroughParams& p, Rng& rng, Rect r, std::vector<Rect>& rooms) {
+void split(const WalkthroughParams& p, SceneRandom& rng, Rect r, std::vector<Rect>& rooms) {
   const bool must_w = r.w > p.room_max, must_d = r.d > p.room_max;
   const bool can_w = r.w >= 2 * p.room_min, can_d = r.d >= 2 * p.room_min;
   if (!must_w && !must_d && (!(can_w || can_d) || rng.below(2) == 0)) {
@@ -59,7 +59,7 @@ void split(const WalkthroughParams& p, Rng& rng, Rect r, std::vector<Rect>& room
 
 }  // namespace
 
-FloorPlan generate_floor_plan(const WalkthroughParams& p, Rng& rng) {
+FloorPlan generate_floor_plan(const WalkthroughParams& p, SceneRandom& rng) {
   FloorPlan plan;
   plan.width = p.grid_width;
   plan.height = p.grid_depth;
@@ -90,7 +90,7 @@ FloorPlan generate_floor_plan(const WalkthroughParams& p, Rng& rng) {
 }
 
 Result<Scene> generate_walkthrough(Task task, std::uint64_t seed, const WalkthroughParams& p) {
-  Rng rng(seed, kStreamWalkthrough + static_cast<std::uint64_t>(task));
+  SceneRandom rng(seed, kStreamWalkthrough + static_cast<std::uint64_t>(task));
   Scene scene;
   scene.kind = Kind::walkthrough;
   scene.task = task;

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "study/render/camera.h"
-#include "study/common/stream.h"
+#include "study/common/random.h"
 #include "study/sim/perception.h"
 #include "study/sim/sim.h"
 

@@ -3,13 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "analysis/stats/followup.h"
 #include "analysis/stats/power.h"
 #include "analysis/stats/rm_anova.h"
+#include "study/common/random.h"
 #include "test_util.h"
 
 namespace dtlab::stats {
@@ -162,8 +162,8 @@ TEST(Power, OfAnObservedEffectScalesLambdaWithN) {
 // of 4000 draws differs from a normal population by O(1/sqrt(4000)) in d_z; the
 // tolerance is 4 MC SEs.
 TEST(Power, ResamplingConvergesToTheAnalyticPower) {
-  std::mt19937_64 gen(20240501);
-  std::normal_distribution<double> z(0.0, 1.0);
+  Random<SplitMix64> gen(20240501);  // dtlab\'s stream: the same data with every standard library
+  const auto z = [](Random<SplitMix64>& g) { return g.normal(); };
   std::vector<std::vector<double>> pilot;
   for (int i = 0; i < 4000; ++i) {
     const double base = 10 + 2 * z(gen);
@@ -197,8 +197,8 @@ TEST(Power, ResamplingConvergesToTheAnalyticPower) {
 // Several hypotheses at once, on several threads: the same numbers for 1 and 2 threads (each replication
 // has its own stream), and the one-hypothesis overload is the same computation.
 TEST(Power, ResamplingIsTheSameOnAnyNumberOfThreads) {
-  std::mt19937_64 gen(11);
-  std::normal_distribution<double> z(0.0, 1.0);
+  Random<SplitMix64> gen(11);  // dtlab\'s stream: the same data with every standard library
+  const auto z = [](Random<SplitMix64>& g) { return g.normal(); };
   std::vector<std::vector<double>> pilot;
   for (int i = 0; i < 30; ++i) {
     const double base = z(gen);
@@ -243,8 +243,8 @@ TEST(Power, ResamplingIsTheSameOnAnyNumberOfThreads) {
 // (sphericity holds, so the uncorrected F test is exact) converges to the analytic noncentral-F power of
 // the pilot's observed effect, lambda = F df1 n / N. Tolerance: 4 Monte Carlo SEs of R = 1000 replications.
 TEST(Power, ResamplingAThreeLevelEffectConvergesToTheNoncentralF) {
-  std::mt19937_64 gen(20261202);
-  std::normal_distribution<double> z(0.0, 1.0);
+  Random<SplitMix64> gen(20261202);  // dtlab\'s stream: the same data with every standard library
+  const auto z = [](Random<SplitMix64>& g) { return g.normal(); };
   const std::size_t N = 3000;
   std::vector<std::vector<double>> pilot;
   for (std::size_t i = 0; i < N; ++i) {
