@@ -113,7 +113,7 @@ void TechniqueOptions::add_to(CLI::App& cmd) {
   for (const technique::KeyGroup* g : technique::key_groups())
     for (const KeySpec& k : g->keys) {
       if (k.cli.empty()) continue;
-      Entry& e = entries_.emplace_back(Entry{g, &k});
+      Entry& e = entries_.emplace_back(Entry{g, &k, nullptr, {}});
       e.option = cmd.add_option(std::string(k.cli), e.value, help_of(k));
     }
 }
