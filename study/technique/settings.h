@@ -18,7 +18,7 @@ namespace dtlab::technique {
 // Every rendering method, in Method order; each X(id) has a registration `k_method_<id>` in the
 // file that implements it (technique.h). A new method adds one line here.
 #define DTLAB_TECHNIQUE_METHODS(X) \
-  X(standard) X(dt_seed) X(dt_fast) X(reference) X(lens) X(screen_door) X(vdt)
+  X(standard) X(dt_seed) X(dt_fast) X(reference) X(lens) X(screen_door) X(vdt) X(ghosting)
 
 enum class Method {
 #define DTLAB_TECHNIQUE_ENUM(id) id,
@@ -135,12 +135,24 @@ struct VdtSettings {
 // nullopt when fine; else what is wrong, naming the member ("falloff must be 0..1 (got 2)").
 std::optional<std::string> check(const VdtSettings& s);
 
+// --- ghosting ---------------------------------------------------------------------------------
+
+// Every distractor in front of a target in view is drawn as a ghost: at a fixed weight over what it
+// hides, with its edges (silhouettes, creases) drawn as opaque lines (docs/render.md, "ghosting").
+struct GhostingSettings {
+  float alpha = 0.25f;  // [0, 1): weight of a ghost's surface
+  bool edges = true;    // draw the ghosts' edges as dark opaque lines
+};
+// nullopt when fine; else what is wrong, naming the member.
+std::optional<std::string> check(const GhostingSettings& s);
+
 // --- what a frame draws with, what a protocol holds -------------------------------------------
 
 // The settings of every method a frame can draw (render::FrameSettings is one); a method reads
 // only its own. A new method with settings adds one line here.
 #define DTLAB_TECHNIQUE_FRAME_GROUPS(X) \
-  X(dt, DtSettings) X(lens, LensSettings) X(screen_door, ScreenDoorSettings) X(vdt, VdtSettings)
+  X(dt, DtSettings) X(lens, LensSettings) X(screen_door, ScreenDoorSettings) X(vdt, VdtSettings) \
+  X(ghosting, GhostingSettings)
 struct MethodSettings {
   Method method = Method::standard;
 #define DTLAB_TECHNIQUE_MEMBER(member, Type) Type member;
@@ -186,10 +198,10 @@ struct VdtKeys {                      // vdt: eq. (2)'s k and the fixed blend we
 
 // Every key group, in the order of the design hash; each X(member, Type) has a registration
 // `k_keys_<member>` in the file that reads it (technique.h). A new method with protocol keys adds
-// one line here (its keys may be its frame settings).
+// one line here (its keys may be its frame settings, as ghosting's are).
 #define DTLAB_TECHNIQUE_KEY_GROUPS(X) \
   X(dt, DtKeys) X(culling, CullingKeys) X(guard, GuardKeys) X(lens, LensKeys) X(screen_door, ScreenDoorKeys) \
-  X(vdt, VdtKeys)
+  X(vdt, VdtKeys) X(ghosting, GhostingSettings)
 struct Keys {
   DTLAB_TECHNIQUE_KEY_GROUPS(DTLAB_TECHNIQUE_MEMBER)
 };

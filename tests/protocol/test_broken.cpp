@@ -96,7 +96,7 @@ const Case kCases[] = {
     {"unknown key in a task", {{17, "trails = 2"}}, 17, "scenarios.abstract.tasks.T1.trails",
      "did you mean 'trials'"},
     {"unknown key in training", {{29, "warmup = 3"}}, 29, "training.warmup", "unknown key"},
-    {"unknown key in a rendering", {{26, "method = \"dt-seed\"\nalpha = 0.5"}}, 27, "rendering.on.alpha",
+    {"unknown key in a rendering", {{26, "method = \"dt-seed\"\nopacity = 0.5"}}, 27, "rendering.on.opacity",
      "unknown key"},
     {"unknown top-level table", {{29, "[extras]\nx = 1"}}, 29, "extras", "unknown key"},
     // wrong types
@@ -483,6 +483,8 @@ const WarningCase kWarnings[] = {
     {"transparency keys on a lens", {{26, "method = \"lens\"\ndistance = 10.0\nradius = 2.0\naT = 0.2"}}, 29,
      "rendering.on.aT", "no effect"},
     {"vdt keys on dt-seed", {{26, "method = \"dt-seed\"\nfalloff = 0.5"}}, 27, "rendering.on.falloff", "a vdt key"},
+    {"ghosting keys on dt-seed", {{26, "method = \"dt-seed\"\nalpha = 0.5"}}, 27, "rendering.on.alpha", "a ghosting key"},
+    {"transparency keys on ghosting", {{26, "method = \"ghosting\"\naT = 0.2"}}, 27, "rendering.on.aT", "no effect"},
     {"transparency keys on vdt", {{26, "method = \"vdt\"\naT = 0.2"}}, 27, "rendering.on.aT", "no effect"},
 };
 

@@ -189,6 +189,8 @@ std::vector<Writer> writers() {
        "method = \"vdt\"\nopaque_alpha = {}\n"},
       {"rendering", "background_alpha", false, "rendering.off.background_alpha", "method = \"standard\"  ",
        "method = \"vdt\"\nbackground_alpha = {}\n"},
+      {"rendering", "alpha", false, "rendering.off.alpha", "method = \"standard\"  ",
+       "method = \"ghosting\"\nalpha = {}\n"},
       {"questionnaire", "scale", true, "questionnaire.rating.scale[0]", "scale = [0, 4]", "scale = [{}, 100]"},
       // The item types' keys: an item of the type added before [demographics.age].
       {"questionnaire", "points", true, "questionnaire.x.points", "[demographics.age]",

@@ -193,6 +193,18 @@ TEST(RenderCli, VdtRendersItsPassesAndShowsTargetsThroughDistractors) {
   fs::remove(out);
 }
 
+// The ghosting method (docs/render.md, "ghosting"), added through the technique registry: its
+// options come from its keys, its passes run, and targets hidden under standard show through
+// the ghosts.
+TEST(RenderCli, GhostingRendersItsPassesAndShowsTargetsThroughGhosts) {
+  const fs::path out = png_path("ghosting");
+  const auto [standard, standard_passes] = visible("standard", out);
+  const auto [ghosting, ghosting_passes] = visible("ghosting --ghosting-alpha 0.3 --ghosting-edges false", out);
+  EXPECT_EQ(ghosting_passes, nlohmann::json({"ghost-opaque", "ghost-blend", "present"}));
+  EXPECT_GT(ghosting, standard);
+  fs::remove(out);
+}
+
 // --profile: per pass, the median over the timed frames and the mesh draws and triangles it
 // submitted. dt-fast's mask and query passes each draw every target once; present draws no mesh.
 TEST(RenderCli, ProfileCountsTheDrawsAndTrianglesOfEachPass) {
@@ -322,6 +334,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "drop --lens-shape"},
         BadCase{"occlusion_culling_on_abstract", kAbstract + " --occlusion-culling", "walkthrough scenes only"},
         BadCase{"screen_door_option_without_screen_door", kAbstract + " --screen-door-mask 16", "--method screen-door only"},
+        BadCase{"ghosting_option_without_ghosting", kAbstract + " --ghosting-alpha 0.3", "--method ghosting only"},
+        BadCase{"ghosting_alpha_one", "--scene abstract --task T1 --seed 1 --method ghosting --ghosting-alpha 1",
+                "--ghosting-alpha: must be 0..0.99"},
+        BadCase{"ghosting_edges_not_boolean", "--scene abstract --task T1 --seed 1 --method ghosting --ghosting-edges maybe",
+                "--ghosting-edges: expected true or false"},
         BadCase{"screen_door_mask_12", "--scene abstract --task T1 --seed 1 --method screen-door --screen-door-mask 12",
                 "--screen-door-mask"}),
     [](const auto& info) { return std::string(info.param.name); });
