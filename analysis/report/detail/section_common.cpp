@@ -45,6 +45,16 @@ void collect_subjects(Context& ctx) {
   }
 }
 
+const TestReport* TimeResult::of(const std::string& scope) const {
+  const auto it = by_scope.find(scope);
+  return it == by_scope.end() ? nullptr : it->second;
+}
+
+const TestReport* AccuracyResult::of(const std::string& id) const {
+  const auto it = by_task.find(id);
+  return it == by_task.end() ? nullptr : it->second;
+}
+
 const TestReport& Context::add_test(const std::string& section, TestReport r) {
   if (r.anova)
     tests += static_cast<int>(r.anova->effects.size());

@@ -49,7 +49,8 @@ std::string effect_size_text(const TestReport& r, const std::string& factor) {
 
 }  // namespace
 
-void section_errors(Context& ctx) {
+AccuracyResult section_errors(Context& ctx) {
+  AccuracyResult result;
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
@@ -67,6 +68,7 @@ void section_errors(Context& ctx) {
   std::string csv = matrix_csv_header(d);
   std::vector<std::string> notes;
   auto add = [&](Row row, const CellMatrix& m, const std::string& csv_measure) {
+    result.tests.push_back(row.r);
     jtests.push_back(to_json(*row.r, d));
     csv += matrix_csv_rows(m, d, csv_measure, row.r->scope);
     rows.push_back(std::move(row));
@@ -96,7 +98,7 @@ void section_errors(Context& ctx) {
         if (std::find(count_factors.begin(), count_factors.end(), f) == count_factors.end()) count_factors.push_back(f);
       const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.rel_error; }));
       const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
-      ctx.accuracy[task.id] = &r1;
+      result.by_task[task.id] = &r1;
       add({task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
       const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
       const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
@@ -110,12 +112,12 @@ void section_errors(Context& ctx) {
     } else if (task.type == TaskType::identify_letter) {
       const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
       const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
-      ctx.accuracy[task.id] = &r;
+      result.by_task[task.id] = &r;
       add({task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
     } else if (task.type == TaskType::find_unique) {
       const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.distance; }));
       const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
-      ctx.accuracy[task.id] = &r;
+      result.by_task[task.id] = &r;
       add({task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
     }
   }
@@ -140,7 +142,7 @@ void section_errors(Context& ctx) {
   if (rows.empty()) {
     s.text("The protocol has no task with an answer key the report scores.");
     ctx.doc.sections.push_back(std::move(s));
-    return;
+    return result;
   }
 
   Table t;
@@ -204,6 +206,7 @@ void section_errors(Context& ctx) {
   ctx.json["accuracy"] = {{"table", jrows}, {"tests", jtests}};
   ctx.csv["accuracy_means.csv"] = csv;
   ctx.doc.sections.push_back(std::move(s));
+  return result;
 }
 
 }  // namespace dtlab::report::detail

@@ -40,7 +40,7 @@ std::string condition_of(const Design& d, const TrialRow& t) {
 
 }  // namespace
 
-void section_position(Context& ctx) {
+void section_position(Context& ctx, const TimeResult& time) {
   const Design& d = ctx.design;
   Section s{"position", "Position effects and counterbalancing", 2, {}};
   s.text("A within-subject design is only as good as its counterbalancing: practice and fatigue must not "
@@ -197,12 +197,12 @@ void section_position(Context& ctx) {
   }
 
   // Order row as a between-subject factor (mixed ANOVA) on the overall condition means.
-  auto oi = ctx.time.find("overall");
+  const TestReport* oi = time.of("overall");
   std::set<int> rows_seen;
   std::map<std::string, int> row_of;
   for (const auto& p : ctx.data.participants) row_of[p.id] = p.order_row;
-  if (oi != ctx.time.end()) {
-    const TestReport& ov = *oi->second;
+  if (oi) {
+    const TestReport& ov = *oi;
     for (size_t si : ov.kept) rows_seen.insert(row_of[ov.m->subjects[si]]);
     if (rows_seen.size() >= 2 && ov.kept.size() > rows_seen.size()) {
       auto data = long_data(*ov.m, d, ov.kept, "time");

@@ -38,7 +38,7 @@ double error_value(const CellMatrix& m, TaskType type, size_t s, size_t c) {
 
 }  // namespace
 
-void section_speed_accuracy(Context& ctx) {
+void section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   Section s{"speed-accuracy", "Speed and accuracy", 2, {}};
@@ -73,22 +73,22 @@ void section_speed_accuracy(Context& ctx) {
   std::vector<std::string> panels;
   int panel_index = 0;
   for (const auto& task : d.tasks) {
-    auto ti = ctx.time.find(task.id);
-    auto ai = ctx.accuracy.find(task.id);
-    if (ti == ctx.time.end() || ai == ctx.accuracy.end()) continue;
-    const TestReport& tr = *ti->second;
-    const TestReport& ar = *ai->second;
+    const TestReport* ti = time.of(task.id);
+    const TestReport* ai = accuracy.of(task.id);
+    if (!ti || !ai) continue;
+    const TestReport& tr = *ti;
+    const TestReport& ar = *ai;
     const auto* tm = tr.marginal_of(d.primary);
     const auto* am = ar.marginal_of(d.primary);
     std::vector<std::string> row = {task.id, error_name(task.type)};
     nlohmann::json jr{{"task", task.id}, {"error_measure", error_name(task.type)}, {"levels", nlohmann::json::array()}};
     for (size_t l = 0; l < primary.levels.size(); ++l) {
-      const double time = tm ? (*tm)[l].mean : NAN;
+      const double mean_time = tm ? (*tm)[l].mean : NAN;
       double err = am ? (*am)[l].mean : NAN;
       if (task.type == TaskType::identify_letter) err = 1 - err;
-      row.push_back(fixed(time, 2));
+      row.push_back(fixed(mean_time, 2));
       row.push_back(fixed(err, task.type == TaskType::find_unique ? 2 : 3));
-      jr["levels"].push_back({{"level", primary.levels[l]}, {"time_s", num(time)}, {"error", num(err)}});
+      jr["levels"].push_back({{"level", primary.levels[l]}, {"time_s", num(mean_time)}, {"error", num(err)}});
     }
     // The reading, for a two-level primary factor, from the paired time difference and the error test.
     std::string reading = kDash;

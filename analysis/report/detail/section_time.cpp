@@ -135,7 +135,8 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
   return p;
 }
 
-void section_time(Context& ctx) {
+TimeResult section_time(Context& ctx) {
+  TimeResult result;
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
@@ -152,14 +153,16 @@ void section_time(Context& ctx) {
   for (const auto& task : d.tasks) {
     const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.task == task.id; }, mean_of(time_of));
     const auto& r = ctx.add_test("time", run_rm_anova(m, d, "completion time", "s", task.id));
-    ctx.time[task.id] = &r;
+    result.by_scope[task.id] = &r;
+    result.tests.push_back(&r);
     rows.push_back({task.id, &r});
     jtests.push_back(to_json(r, d));
     means_csv += matrix_csv_rows(m, d, "completion_time_s", task.id);
   }
   const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, time_of));
   const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "completion time", "s", "overall"));
-  ctx.time["overall"] = &overall;
+  result.by_scope["overall"] = &overall;
+  result.tests.push_back(&overall);
   rows.push_back({"All tasks", &overall});
   jtests.push_back(to_json(overall, d));
   means_csv += matrix_csv_rows(mo, d, "completion_time_s", "overall");
@@ -250,9 +253,9 @@ void section_time(Context& ctx) {
 
   // Robustness and assumptions (section_time_checks.cpp).
   nlohmann::json jranks = nlohmann::json::array();
-  add_rank_tests(ctx, s, rows, jranks);
+  add_rank_tests(ctx, s, rows, jranks, result.tests);
   add_normality(ctx, s, rows, "time", false);
-  if (ctx.options.log_time) add_log_time(ctx, s);
+  if (ctx.options.log_time) add_log_time(ctx, s, result.tests);
 
   // Descriptives of every cell.
   Table dt;
@@ -274,6 +277,7 @@ void section_time(Context& ctx) {
   ctx.json["completion_time"] = {{"table", jrows}, {"tests", jtests}, {"rank_tests", jranks}};
   ctx.csv["completion_time_means.csv"] = means_csv;
   ctx.doc.sections.push_back(std::move(s));
+  return result;
 }
 
 }  // namespace dtlab::report::detail
