@@ -86,10 +86,18 @@ void section_questionnaire(Context& ctx);   // ratings, preference, self-reporte
 void section_instruments(Context& ctx);     // instruments' scores and items asked per condition; free text
 // Position in the session, order rows of the counterbalancing; the overall completion time of `time`.
 void section_position(Context& ctx, const TimeResult& time);
-void section_frames(Context& ctx);          // frame-time audit per condition
+// What the frame-time audit found that the top of the report repeats.
+struct FramesResult {
+  std::vector<std::string> warnings;  // why render cost may confound completion time; empty: no reason
+};
+FramesResult section_frames(Context& ctx);  // frame-time audit per condition
+// The audit's warnings also at the top of the report, in the data section (section_overview's), where a
+// reader starts; the report's assembly calls it once both sections exist.
+void warn_at_top(Document& doc, const FramesResult& frames);
 // Planning the next study: analytic power of every ANOVA effect of `time` and `accuracy`.
 void section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
-void section_notes(Context& ctx);           // what the report does not say; files written
+// What the report does not say; files written (`path_figures`: section_paths added its section).
+void section_notes(Context& ctx, bool path_figures);
 
 // A walked-path figure written beside the report (report.cpp draws them through ReportOptions::path_figure).
 struct PathFigure {
@@ -98,7 +106,8 @@ struct PathFigure {
   std::string file;  // relative to the report's directory, e.g. "paths/03-P03-T3.svg"
 };
 // The table linking them, and the trials left out of them ("participant trial N: why"; also a warning).
-void section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out);
+// Returns whether it added the section (false: no figure and nothing left out).
+bool section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out);
 
 // --- plots shared by the sections (section_time.cpp) -------------------------------------------
 // Bars per row (x groups) and primary level (series), SD error bars (the article's Figs. 9 and 10).
