@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/mixed_models.h"
 #include "analysis/report/detail/planning.h"

@@ -14,7 +14,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/document.h"
 #include "analysis/report/detail/plots.h"
 #include "analysis/report/detail/sections.h"

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/report/detail/tests.h"
+#include "analysis/report/detail/inference.h"
 #include "analysis/stats/emmeans.h"
 #include "analysis/stats/lmm.h"
 

@@ -2,7 +2,7 @@
 // design, the order rows and the completion-time and accuracy sections'
 // declared results, never the report's Context): which tests are planned
 // (their repeated-measures ANOVAs), their analytic power, and the
-// resampling that reruns rm_anova_of (tests.h) on participants drawn from the
+// resampling that reruns rm_anova_of (inference.h) on participants drawn from the
 // test's own participant x cell matrix. Shared by `dtlab power` and the
 // report's "Planning the next study" section, so both say the same numbers.
 // Never reads the database, never writes.

@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "analysis/report/detail/cells.h"
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/document.h"
 #include "analysis/report/detail/plots.h"
 #include "analysis/report/detail/study_data.h"
-#include "analysis/report/detail/tests.h"
+#include "analysis/report/detail/inference.h"
 #include "analysis/report/report.h"
 
 namespace dtlab::report::detail {

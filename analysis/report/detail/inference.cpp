@@ -1,7 +1,7 @@
-// Tests on participant x cell tables; see tests.h. The statistics themselves
+// Tests on participant x cell tables; see inference.h. The statistics themselves
 // are analysis/stats' (validated there against R and NIST); this file only
 // chooses the data each test sees and collects what the tables show.
-#include "analysis/report/detail/tests.h"
+#include "analysis/report/detail/inference.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// The analysed design from a protocol; see design.h.
-#include "analysis/report/detail/design.h"
+// The analysed design from a protocol; see report_design.h.
+#include "analysis/report/detail/report_design.h"
 
 #include <algorithm>
 #include <cctype>
