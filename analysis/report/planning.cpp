@@ -1,5 +1,5 @@
 // plan_power: read one design revision, run the report's completion-time and
-// accuracy sections (their tests are what is planned), plan (planning.h).
+// accuracy tests (what is planned; without the sections' layout), plan (planning.h).
 #include "analysis/report/planning.h"
 
 #include <nlohmann/json.hpp>
@@ -75,8 +75,8 @@ Result<PowerPlan> plan_power(store::StudyReader& reader, const PlanningOptions& 
     return Error{data->path, 0, 0, "trial_table",
                  "no recorded trial to analyse in design revision " + std::to_string(data->design_revision) +
                      "; run sessions first"};
-  const TimeResult time = section_time(ctx);
-  const AccuracyResult accuracy = section_errors(ctx);
+  const TimeResult time = time_tests(ctx);
+  const AccuracyResult accuracy = accuracy_tests(ctx);
 
   PowerPlan plan;
   plan.database = data->path;

@@ -206,6 +206,12 @@ Table accuracy_table(const Design& d, const AccuracyTests& at, nlohmann::json& j
 
 }  // namespace
 
+AccuracyResult accuracy_tests(Context& ctx) {
+  AccuracyResult result;
+  run_accuracy_tests(ctx, result);
+  return result;
+}
+
 AccuracyResult section_errors(Context& ctx) {
   AccuracyResult result;
   const Design& d = ctx.design;

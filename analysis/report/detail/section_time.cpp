@@ -278,6 +278,12 @@ Table time_cells_table(const Rows& rows) {
 
 }  // namespace
 
+TimeResult time_tests(Context& ctx) {
+  TimeResult result;
+  run_time_tests(ctx, result);
+  return result;
+}
+
 TimeResult section_time(Context& ctx) {
   TimeResult result;
   const Design& d = ctx.design;

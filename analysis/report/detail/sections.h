@@ -78,6 +78,11 @@ void section_overview(Context& ctx);        // title, data summary, warnings, me
 void section_participants(Context& ctx);    // demographics, pauses and notes per participant
 TimeResult section_time(Context& ctx);      // completion time: Table III layout, full ANOVAs, Fig. 9, participants
 AccuracyResult section_errors(Context& ctx);  // accuracy: relative error, correctness, distance
+// The tests of section_time and section_errors alone, without their layout (no document section, no
+// report.json entry, no figure; the tests are still stored in ctx): what `dtlab power` plans. A TimeResult
+// from time_tests holds the per-task and overall ANOVAs, not section_time's rank and log-time tests.
+TimeResult time_tests(Context& ctx);
+AccuracyResult accuracy_tests(Context& ctx);
 // Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp).
 void section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
 // Time vs error per condition and participant, from the tests of `time` and `accuracy`.
