@@ -246,7 +246,7 @@ TestReport order_row_report(const TestReport& ov, const Design& d, const std::ma
 }
 
 // Order row as a between-subject factor (mixed ANOVA) on the overall condition means of `overall`.
-void order_rows(Context& ctx, Section& s, const TestReport& ov, nlohmann::json& jp) {
+void order_row_test(Context& ctx, Section& s, const TestReport& ov, nlohmann::json& jp) {
   std::set<int> rows_seen;
   std::map<std::string, int> row_of;
   for (const auto& p : ctx.data.participants) row_of[p.id] = p.order_row;
@@ -310,7 +310,7 @@ void section_position(Context& ctx, const TimeResult& time) {
   for (const auto& [name, levels] : std::vector<std::pair<std::string, int>>{{"block position", rt.blocks},
                                                                              {"repetition", rt.reps}})
     if (levels >= 2) position_split(ctx, s, name, levels, rt, balanced, plot, jp);
-  if (const TestReport* overall = time.of("overall")) order_rows(ctx, s, *overall, jp);
+  if (const TestReport* overall = time.of("overall")) order_row_test(ctx, s, *overall, jp);
   if (!plot.titles.empty())
     ctx.add_figure(s, position_figure(plot), "Mean relative completion time by block position and by repetition "
                                              "inside a task set (error bars: standard error over participants).");
