@@ -1,5 +1,5 @@
 // plan_power: read one design revision, run the report's completion-time and
-// accuracy sections (their tests are what is planned), plan (planning.h).
+// accuracy tests (what is planned; without the sections' layout), plan (planning.h).
 #include "analysis/report/planning.h"
 
 #include <nlohmann/json.hpp>
@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/mixed_models.h"
 #include "analysis/report/detail/planning.h"
@@ -20,12 +20,14 @@ namespace dtlab::report {
 namespace {
 
 // The primary factor of each of the report's mixed models, planned by simulation.
-std::vector<PlannedMixedModel> plan_mixed_models(const detail::Context& ctx, const PlanningOptions& options) {
+std::vector<PlannedMixedModel> plan_mixed_models(const detail::Context& ctx, const detail::TimeResult& time,
+                                                 const detail::AccuracyResult& accuracy,
+                                                 const PlanningOptions& options) {
   const std::string primary = ctx.design.factor(ctx.design.primary).name;
   std::vector<std::size_t> sizes;
   for (int n : options.sizes) sizes.push_back(static_cast<std::size_t>(n));
   std::vector<PlannedMixedModel> out;
-  const auto models = detail::compute_mixed_models(ctx);
+  const auto models = detail::compute_mixed_models(ctx, time, accuracy);
   for (const auto& m : models) {
     PlannedMixedModel p{m.section, m.measure, m.scope, m.fit ? m.fit->formula : "", primary, NAN, {}, m.not_fitted};
     if (m.fit) {
@@ -73,8 +75,8 @@ Result<PowerPlan> plan_power(store::StudyReader& reader, const PlanningOptions& 
     return Error{data->path, 0, 0, "trial_table",
                  "no recorded trial to analyse in design revision " + std::to_string(data->design_revision) +
                      "; run sessions first"};
-  section_time(ctx);
-  section_errors(ctx);
+  const TimeResult time = time_tests(ctx);
+  const AccuracyResult accuracy = accuracy_tests(ctx);
 
   PowerPlan plan;
   plan.database = data->path;
@@ -84,8 +86,8 @@ Result<PowerPlan> plan_power(store::StudyReader& reader, const PlanningOptions& 
   plan.order_scheme = std::string(protocol::to_string(data->protocol.order.scheme));
   plan.options = options;
   plan.options.progress = nullptr;
-  plan.effects = plan_effects(ctx, options, plan.not_planned);
-  if (options.mixed) plan.mixed = plan_mixed_models(ctx, options);
+  plan.effects = plan_effects(planning_input(design, data->protocol, time, accuracy), options, plan.not_planned);
+  if (options.mixed) plan.mixed = plan_mixed_models(ctx, time, accuracy, options);
   return plan;
 }
 

@@ -14,7 +14,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/document.h"
 #include "analysis/report/detail/plots.h"
 #include "analysis/report/detail/sections.h"
@@ -109,6 +109,86 @@ Result<DrawnPaths> draw_paths(store::StudyReader& reader, const Context& ctx) {
   return out;
 }
 
+// Every section in a paper's order, each handed the declared results it builds on, then the walked paths.
+Result<DrawnPaths> run_sections(store::StudyReader& reader, Context& ctx, const ProgressFn& say) {
+  say("participants and design (" + std::to_string(ctx.subjects.size()) + " participants, " +
+      std::to_string(ctx.analysed_trials) + " trials)");
+  section_overview(ctx);
+  section_participants(ctx);
+  say("completion time");
+  const TimeResult time = section_time(ctx);
+  say("accuracy");
+  const AccuracyResult accuracy = section_errors(ctx);
+  say("mixed models");
+  section_mixed_models(ctx, time, accuracy);
+  say("speed and accuracy");
+  section_speed_accuracy(ctx, time, accuracy);
+  say("questionnaire");
+  section_questionnaire(ctx);
+  say("instruments and questions per condition");
+  section_instruments(ctx);
+  say("position effects");
+  section_position(ctx, time);
+  say("frame-time audit");
+  const FramesResult frames = section_frames(ctx);
+  warn_at_top(ctx.doc, frames);
+  say("planning the next study");
+  section_planning(ctx, time, accuracy);
+  if (ctx.options.path_figure) say("walked paths");
+  auto paths = draw_paths(reader, ctx);
+  if (!paths) return paths.error();
+  std::vector<PathFigure> path_figures;
+  for (const auto& [f, svg] : paths->figures) path_figures.push_back(f);
+  const bool with_paths = section_paths(ctx, path_figures, paths->left_out);
+  section_notes(ctx, with_paths);
+  return paths;
+}
+
+// report.json's list of every enrolled participant: analysed, simulated, excluded.
+nlohmann::json participants_json(const StudyData& data, const Context& ctx) {
+  nlohmann::json parts = nlohmann::json::array();
+  for (const auto& p : data.participants) {
+    const bool analysed = std::find(ctx.subjects.begin(), ctx.subjects.end(), p.id) != ctx.subjects.end();
+    const bool sim = std::find(ctx.simulated.begin(), ctx.simulated.end(), p.id) != ctx.simulated.end();
+    const bool excluded = std::find(data.excluded_participants.begin(), data.excluded_participants.end(), p.id) !=
+                          data.excluded_participants.end();
+    parts.push_back({{"id", p.id}, {"index", p.index}, {"order_row", p.order_row},
+                     {"session", p.session_status ? nlohmann::json(store::to_string(*p.session_status)) : nlohmann::json(nullptr)},
+                     {"planned", p.planned}, {"recorded", p.recorded}, {"analysed", analysed}, {"simulated", sim},
+                     {"excluded", excluded}});
+  }
+  return parts;
+}
+
+// report.json's entries about the study as a whole, beside the sections' own.
+void study_json(nlohmann::json& j, const StudyData& data, const Design& design, const Context& ctx,
+                const ReportSummary& sum) {
+  j["report_format"] = 1;
+  j["generated_by"] = std::string(dtlab::version_string());
+  j["generated_at"] = utc_now();
+  j["database"] = data.path;
+  j["protocol"] = {{"id", data.protocol.id}, {"title", data.protocol.title}, {"sha256", data.protocol.sha256},
+                   {"design_sha256", protocol::design_sha256(data.protocol)},
+                   {"design_revision", data.design_revision}, {"design_revisions", data.design_revisions},
+                   {"protocol_texts", data.protocol_texts}, {"software_version", data.software_version}};
+  j["design"] = design_json(design);
+  j["participants"] = participants_json(data, ctx);
+  nlohmann::json excl = nlohmann::json::array();
+  for (const auto& x : data.exclusions)
+    excl.push_back({{"participant", x.participant},
+                    {"trial", x.position ? nlohmann::json(*x.position) : nlohmann::json(nullptr)},
+                    {"decision", x.exclude ? "exclude" : "include"}, {"reason", x.reason}, {"by", x.by}, {"at", x.at}});
+  j["exclusions"] = excl;
+  j["summary"] = {{"participants", sum.participants}, {"trials", sum.trials}, {"tests", sum.tests},
+                  {"excluded_trials", data.excluded_trials}, {"with_excluded", data.with_excluded},
+                  {"simulated", sum.simulated}, {"simulated_participants", ctx.simulated}};
+  j["warnings"] = ctx.warnings;
+  std::vector<std::string> figure_files;
+  for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
+  j["figures"] = figure_files;
+  j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
+}
+
 // The report of one design revision into `out`.
 Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& data, const fs::path& out,
                                 const std::string& tidy, const std::string& gnuplot, const ProgressFn& say,
@@ -132,36 +212,8 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   if (ec || !fs::is_directory(figures))
     return output_error(out, "cannot create the output directory: " + (ec ? ec.message() : "not a directory"));
 
-  say("participants and design (" + std::to_string(ctx.subjects.size()) + " participants, " +
-      std::to_string(ctx.analysed_trials) + " trials)");
-  section_overview(ctx);
-  section_participants(ctx);
-  say("completion time");
-  section_time(ctx);
-  say("accuracy");
-  section_errors(ctx);
-  say("mixed models");
-  section_mixed_models(ctx);
-  say("speed and accuracy");
-  section_speed_accuracy(ctx);
-  say("questionnaire");
-  section_questionnaire(ctx);
-  say("instruments and questions per condition");
-  section_instruments(ctx);
-  say("position effects");
-  section_position(ctx);
-  say("frame-time audit");
-  section_frames(ctx);
-  say("planning the next study");
-  section_planning(ctx);
-  if (options.path_figure) say("walked paths");
-  auto paths = draw_paths(reader, ctx);
+  auto paths = run_sections(reader, ctx, say);
   if (!paths) return paths.error();
-  std::vector<PathFigure> path_figures;
-  for (const auto& [f, svg] : paths->figures) path_figures.push_back(f);
-  section_paths(ctx, path_figures, paths->left_out);
-  section_notes(ctx);
-
   say("drawing " + std::to_string(ctx.plots.size()) + " figures with " + gnuplot);
   auto svg = render_plots(ctx.plots, figures.string(), gnuplot);
   if (!svg) return svg.error();
@@ -175,49 +227,13 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   sum.simulated = !ctx.simulated.empty() && ctx.simulated.size() == ctx.subjects.size();
   sum.revisions = {data.design_revision};
   sum.warnings = ctx.warnings;
-
-  nlohmann::json& j = ctx.json;
-  j["report_format"] = 1;
-  j["generated_by"] = std::string(dtlab::version_string());
-  j["generated_at"] = utc_now();
-  j["database"] = data.path;
-  j["protocol"] = {{"id", data.protocol.id}, {"title", data.protocol.title}, {"sha256", data.protocol.sha256},
-                   {"design_sha256", protocol::design_sha256(data.protocol)},
-                   {"design_revision", data.design_revision}, {"design_revisions", data.design_revisions},
-                   {"protocol_texts", data.protocol_texts}, {"software_version", data.software_version}};
-  j["design"] = design_json(design);
-  nlohmann::json parts = nlohmann::json::array();
-  for (const auto& p : data.participants) {
-    const bool analysed = std::find(ctx.subjects.begin(), ctx.subjects.end(), p.id) != ctx.subjects.end();
-    const bool sim = std::find(ctx.simulated.begin(), ctx.simulated.end(), p.id) != ctx.simulated.end();
-    const bool excluded = std::find(data.excluded_participants.begin(), data.excluded_participants.end(), p.id) !=
-                          data.excluded_participants.end();
-    parts.push_back({{"id", p.id}, {"index", p.index}, {"order_row", p.order_row},
-                     {"session", p.session_status.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.session_status)},
-                     {"planned", p.planned}, {"recorded", p.recorded}, {"analysed", analysed}, {"simulated", sim},
-                     {"excluded", excluded}});
-  }
-  j["participants"] = parts;
-  nlohmann::json excl = nlohmann::json::array();
-  for (const auto& x : data.exclusions)
-    excl.push_back({{"participant", x.participant},
-                    {"trial", x.position ? nlohmann::json(*x.position) : nlohmann::json(nullptr)},
-                    {"decision", x.exclude ? "exclude" : "include"}, {"reason", x.reason}, {"by", x.by}, {"at", x.at}});
-  j["exclusions"] = excl;
-  j["summary"] = {{"participants", sum.participants}, {"trials", sum.trials}, {"tests", sum.tests},
-                  {"excluded_trials", data.excluded_trials}, {"with_excluded", data.with_excluded},
-                  {"simulated", sum.simulated}, {"simulated_participants", ctx.simulated}};
-  j["warnings"] = ctx.warnings;
-  std::vector<std::string> figure_files;
-  for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
-  j["figures"] = figure_files;
-  j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
+  study_json(ctx.json, data, design, ctx, sum);
 
   say("writing " + out.string());
   std::vector<std::pair<std::string, std::string>> files = {
       {"trials.csv", tidy},
       {"tests.csv", tests_csv(ctx)},
-      {"report.json", j.dump(2) + "\n"},
+      {"report.json", ctx.json.dump(2) + "\n"},
       {"report.md", render_markdown(ctx.doc)},
       {"index.html", render_html(ctx.doc, *svg)},
       {"report.tex", render_latex(ctx.doc)},
@@ -282,13 +298,15 @@ Result<ReportSummary> write_report(store::StudyReader& reader, const std::string
   if (!designs) return designs.error();
   auto chosen = chosen_revisions(options.revision, static_cast<int>(designs->size()), reader.path());
   if (!chosen) return chosen.error();
+  auto trials = reader.trials();  // read once: for trials.csv and every revision's analysis
+  if (!trials) return trials.error();
   std::ostringstream tidy;
-  if (auto exported = store::export_trials_csv(reader, tidy); !exported) return exported.error();
+  if (auto exported = store::export_trials_csv(reader, *trials, tidy); !exported) return exported.error();
 
   const fs::path out(out_dir);
   std::vector<ReportSummary> reports;
   for (int k : *chosen) {
-    auto data = read_study(reader, k, options.with_excluded);
+    auto data = read_study(reader, *trials, k, options.with_excluded);
     if (!data) return data.error();
     const bool separate = chosen->size() > 1;
     auto one = write_one(reader, *data, separate ? out / ("revision-" + std::to_string(k)) : out, tidy.str(), gnuplot,

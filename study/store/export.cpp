@@ -126,12 +126,16 @@ std::vector<std::string> export_columns(const std::vector<Revision>& revisions, 
 }
 
 Result<ExportSummary> export_trials_csv(StudyReader& reader, std::ostream& out) {
+  auto trials = reader.trials();
+  if (!trials) return trials.error();
+  return export_trials_csv(reader, *trials, out);
+}
+
+Result<ExportSummary> export_trials_csv(StudyReader& reader, const std::vector<TrialRow>& trials, std::ostream& out) {
   auto revisions = reader.revisions();
   if (!revisions) return revisions.error();
   auto ledger = reader.ledger();
   if (!ledger) return ledger.error();
-  auto trials = reader.trials();
-  if (!trials) return trials.error();
   ExportSummary sum;
   sum.columns = export_columns(*revisions, *ledger);
   const std::vector<std::string> factors = factor_names(*revisions), fields = demographic_fields(*ledger);
@@ -144,7 +148,7 @@ Result<ExportSummary> export_trials_csv(StudyReader& reader, std::ostream& out) 
   for (std::size_t c = 0; c < sum.columns.size(); ++c) line += (c ? "," : "") + csv_field(sum.columns[c]);
   out << line << '\n';
   std::vector<std::string> row;
-  for (const TrialRow& t : *trials) {
+  for (const TrialRow& t : trials) {
     if (t.withdrawn) {  // invariant 13: a participant who withdrew their consent is left out
       ++sum.withdrawn_rows;
       continue;

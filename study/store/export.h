@@ -44,6 +44,8 @@ const std::vector<std::string>& measured_columns();
 // name the file; on error `out` may hold a partial table (callers write to a temporary file
 // and rename, e.g. write_file_atomically in study/common).
 Result<ExportSummary> export_trials_csv(StudyReader& reader, std::ostream& out);
+// The same with the trials already read from `reader` (reader.trials()), so a caller that needs them too reads once.
+Result<ExportSummary> export_trials_csv(StudyReader& reader, const std::vector<TrialRow>& trials, std::ostream& out);
 // The same for the database at `db_path`, opened read-only with `options`.
 Result<ExportSummary> export_trials_csv(const std::string& db_path, std::ostream& out, ReadOptions options = {});
 

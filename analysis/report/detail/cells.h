@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/study_data.h"
 #include "analysis/stats/long_data.h"
 

@@ -91,30 +91,26 @@ MixedModelResult fit_one(const Context& ctx, const ModelSpec& spec) {
   return m;
 }
 
-const TestReport* find(const std::map<std::string, const TestReport*>& tests, const std::string& scope) {
-  const auto it = tests.find(scope);
-  return it == tests.end() ? nullptr : it->second;
-}
-
 }  // namespace
 
-std::vector<MixedModelResult> compute_mixed_models(const Context& ctx) {
+std::vector<MixedModelResult> compute_mixed_models(const Context& ctx, const TimeResult& time,
+                                                   const AccuracyResult& accuracy) {
   const Design& d = ctx.design;
   std::vector<ModelSpec> specs;
-  const Field time = [](const TrialRow& t) { return std::optional<double>(t.time_s); };
+  const Field time_s = [](const TrialRow& t) { return std::optional<double>(t.time_s); };
   for (const auto& task : d.tasks)
-    specs.push_back({"time", task.id, task.id, "log completion time", "completion_time_s", task.factors, false, time,
-                     stats::Family::gaussian, stats::Transform::log, find(ctx.time, task.id)});
+    specs.push_back({"time", task.id, task.id, "log completion time", "completion_time_s", task.factors, false, time_s,
+                     stats::Family::gaussian, stats::Transform::log, time.of(task.id)});
   if (d.tasks.size() > 1) {
     std::vector<int> factors;  // the task stands for its scenario
     for (int f : d.all_factors)
       if (f != d.scenario_factor) factors.push_back(f);
-    specs.push_back({"time", "overall", "All tasks", "log completion time", "completion_time_s", factors, true, time,
-                     stats::Family::gaussian, stats::Transform::log, find(ctx.time, "overall")});
+    specs.push_back({"time", "overall", "All tasks", "log completion time", "completion_time_s", factors, true, time_s,
+                     stats::Family::gaussian, stats::Transform::log, time.of("overall")});
   }
   for (const auto& task : d.tasks) {
     ModelSpec s{"accuracy", task.id, task.id, "", "", task.factors, false, {}, stats::Family::gaussian,
-                stats::Transform::none, find(ctx.accuracy, task.id)};
+                stats::Transform::none, accuracy.of(task.id)};
     if (task.type == protocol::TaskType::count_targets || task.type == protocol::TaskType::count_kind) {
       s.measure = "relative error";
       s.column = "rel_error";

@@ -15,13 +15,15 @@
 #include <string>
 #include <vector>
 
-#include "analysis/report/detail/tests.h"
+#include "analysis/report/detail/inference.h"
 #include "analysis/stats/emmeans.h"
 #include "analysis/stats/lmm.h"
 
 namespace dtlab::report::detail {
 
 struct Context;
+struct TimeResult;
+struct AccuracyResult;
 
 // One effect both the ANOVA (or Friedman) and the mixed model test.
 struct ModelDecision {
@@ -48,7 +50,9 @@ struct MixedModelResult {
   long long trials = 0;    // trials with a value that entered the model
 };
 
-// Every mixed model the report shows, in section order (time, then accuracy).
-std::vector<MixedModelResult> compute_mixed_models(const Context& ctx);
+// Every mixed model the report shows, in section order (time, then accuracy); each beside the test of
+// the same scope in `time` or `accuracy`.
+std::vector<MixedModelResult> compute_mixed_models(const Context& ctx, const TimeResult& time,
+                                                   const AccuracyResult& accuracy);
 
 }  // namespace dtlab::report::detail

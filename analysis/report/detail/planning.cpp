@@ -123,14 +123,23 @@ nlohmann::json to_json(const PlannedEffect& e) {
           {"resampled_n_for_80", n_or_null(e.resampled_n80)}, {"resampled_n_for_90", n_or_null(e.resampled_n90)}};
 }
 
-std::vector<PlannedEffect> plan_effects(const Context& ctx, const PlanningOptions& o,
-                                        std::vector<std::string>& not_planned) {
-  // The tests to plan, then their effects; progress counts (test, size) steps.
-  std::vector<const TestReport*> tests;
-  std::vector<std::string> sections;
-  for (std::size_t i = 0; i < ctx.reports.size(); ++i) {
-    const TestReport& r = ctx.reports[i];
-    if (!planned_section(ctx.report_section[i]) || r.test != "rm-anova") continue;
+PlanningInput planning_input(const Design& design, const protocol::Protocol& protocol, const TimeResult& time,
+                             const AccuracyResult& accuracy) {
+  PlanningInput in{design, std::max<long long>(1, protocol::declared_order_rows(protocol)), {}};
+  for (const TestReport* r : time.tests) in.tests.emplace_back("time", r);
+  for (const TestReport* r : accuracy.tests) in.tests.emplace_back("accuracy", r);
+  return in;
+}
+
+namespace {
+
+// The tests of `in` that can be planned (section, test); the others go to `not_planned` with their reason.
+std::vector<std::pair<std::string, const TestReport*>> plannable(const PlanningInput& in,
+                                                                 std::vector<std::string>& not_planned) {
+  std::vector<std::pair<std::string, const TestReport*>> out;
+  for (const auto& [section, test] : in.tests) {
+    const TestReport& r = *test;
+    if (!planned_section(section) || r.test != "rm-anova") continue;
     const std::string label = (r.scope == "overall" ? std::string("all tasks") : r.scope) + ", " + r.measure;
     if (!r.anova || r.anova->effects.empty()) {
       not_planned.push_back(label + ": not tested (" + (r.not_tested.empty() ? "no effect" : r.not_tested) + ")");
@@ -140,22 +149,29 @@ std::vector<PlannedEffect> plan_effects(const Context& ctx, const PlanningOption
       not_planned.push_back(label + ": fewer than 2 participants with every cell");
       continue;
     }
-    tests.push_back(&r);
-    sections.push_back(ctx.report_section[i]);
+    out.emplace_back(section, test);
   }
+  return out;
+}
+
+}  // namespace
+
+std::vector<PlannedEffect> plan_effects(const PlanningInput& in, const PlanningOptions& o,
+                                        std::vector<std::string>& not_planned) {
+  // The tests to plan, then their effects; progress counts (test, size) steps.
+  const auto tests = plannable(in, not_planned);
   std::vector<PlannedEffect> out;
   const std::size_t steps = tests.size() * o.sizes.size();
   std::size_t done = 0;
-  const long long rows = std::max<long long>(1, protocol::declared_order_rows(ctx.data.protocol));
   for (std::size_t t = 0; t < tests.size(); ++t) {
-    const TestReport& r = *tests[t];
-    std::vector<PlannedEffect> effects = effects_of(r, sections[t], o, rows);
+    const TestReport& r = *tests[t].second;
+    std::vector<PlannedEffect> effects = effects_of(r, tests[t].first, o, in.order_rows);
     if (o.replications > 0) {
       const auto test = [&](const std::vector<std::size_t>& draw) {
         const CellMatrix m = resampled(*r.m, r.kept, draw);
         std::vector<size_t> all(m.subjects.size());
         for (size_t s = 0; s < all.size(); ++s) all[s] = s;
-        const auto res = rm_anova_of(m, ctx.design, all);
+        const auto res = rm_anova_of(m, in.design, all);
         std::vector<double> p(effects.size(), kNaN);
         if (!res) return p;
         for (std::size_t h = 0; h < effects.size(); ++h)

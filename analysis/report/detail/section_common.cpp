@@ -45,6 +45,27 @@ void collect_subjects(Context& ctx) {
   }
 }
 
+const TestReport* TimeResult::of(const std::string& scope) const {
+  const auto it = by_scope.find(scope);
+  return it == by_scope.end() ? nullptr : it->second;
+}
+
+const TestReport* AccuracyResult::of(const std::string& id) const {
+  const auto it = by_task.find(id);
+  return it == by_task.end() ? nullptr : it->second;
+}
+
+void warn_at_top(Document& doc, const FramesResult& frames) {
+  if (frames.warnings.empty()) return;
+  for (auto& sec : doc.sections)
+    if (sec.id == "data") {
+      std::vector<std::string> items = frames.warnings;
+      items.push_back("See the frame-time audit (#frames) before reading completion-time differences as the "
+                      "conditions' effect on the participants.");
+      sec.blocks.insert(sec.blocks.begin(), Callout{"warning", "Render cost may confound completion time", items});
+    }
+}
+
 const TestReport& Context::add_test(const std::string& section, TestReport r) {
   if (r.anova)
     tests += static_cast<int>(r.anova->effects.size());
@@ -325,6 +346,34 @@ std::string matrix_csv_rows(const CellMatrix& m, const Design& d, const std::str
   return out;
 }
 
+namespace {
+
+// The tests.csv fields of one simple effect of a followed-up interaction, over the test's `base` fields.
+std::map<std::string, std::string> simple_effect_fields(std::map<std::string, std::string> f,
+                                                        const stats::SimpleEffect& se) {
+  auto v = [](double x) { return csv_number(x); };
+  f["n"] = std::to_string(se.n);
+  f["test"] = "simple effect (" + se.test + ")";
+  f["effect"] = se.factor + " at " + se.at_factor + " = " + se.at_level;
+  f["p"] = v(se.p);
+  f["p_holm"] = v(se.p_holm);
+  if (se.test == "paired t") {
+    const auto& c = se.contrast;
+    f.insert({{"df1", v(c.df)}, {"statistic", v(c.statistic)}, {"estimate", v(c.estimate)}, {"se", v(c.se)},
+              {"ci_low", v(c.ci_low)}, {"ci_high", v(c.ci_high)}, {"dz", v(c.dz)},
+              {"apa", "t(" + stats::apa_df(c.df) + ") = " + stats::apa_number(c.statistic) + ", " +
+                          stats::apa_p(se.p) + " (Holm " + stats::apa_p(se.p_holm) + "), d_z = " +
+                          stats::apa_number(c.dz)}});
+  } else {
+    const auto& e = se.anova;
+    f.insert({{"df1", v(e.df1)}, {"df2", v(e.df2)}, {"statistic", v(e.F)}, {"gg_epsilon", v(e.gg_epsilon)},
+              {"p_gg", v(e.p_gg)}, {"eta_p2", v(e.eta_p2)}, {"apa", effect_sentence(e)}});
+  }
+  return f;
+}
+
+}  // namespace
+
 std::string tests_csv(const Context& ctx) {
   const std::vector<std::string> columns = {
       "section", "measure", "unit", "scope", "test", "effect", "n", "df1", "df2", "statistic", "p", "log10_p",
@@ -363,27 +412,7 @@ std::string tests_csv(const Context& ctx) {
         out += line(f);
       }
     for (const auto& fu : r.followups)
-      for (const auto& se : fu.simple.rows) {
-        auto f = base;
-        f["n"] = std::to_string(se.n);
-        f["test"] = "simple effect (" + se.test + ")";
-        f["effect"] = se.factor + " at " + se.at_factor + " = " + se.at_level;
-        f["p"] = v(se.p);
-        f["p_holm"] = v(se.p_holm);
-        if (se.test == "paired t") {
-          const auto& c = se.contrast;
-          f.insert({{"df1", v(c.df)}, {"statistic", v(c.statistic)}, {"estimate", v(c.estimate)}, {"se", v(c.se)},
-                    {"ci_low", v(c.ci_low)}, {"ci_high", v(c.ci_high)}, {"dz", v(c.dz)},
-                    {"apa", "t(" + stats::apa_df(c.df) + ") = " + stats::apa_number(c.statistic) + ", " +
-                                stats::apa_p(se.p) + " (Holm " + stats::apa_p(se.p_holm) + "), d_z = " +
-                                stats::apa_number(c.dz)}});
-        } else {
-          const auto& e = se.anova;
-          f.insert({{"df1", v(e.df1)}, {"df2", v(e.df2)}, {"statistic", v(e.F)}, {"gg_epsilon", v(e.gg_epsilon)},
-                    {"p_gg", v(e.p_gg)}, {"eta_p2", v(e.eta_p2)}, {"apa", effect_sentence(e)}});
-        }
-        out += line(f);
-      }
+      for (const auto& se : fu.simple.rows) out += line(simple_effect_fields(base, se));
     if (r.normality) {
       auto f = base;
       f.insert({{"test", "shapiro-wilk"}, {"effect", "residuals"}, {"statistic", v(r.normality->W)}, {"p", v(r.normality->p)},

@@ -47,102 +47,133 @@ std::string effect_size_text(const TestReport& r, const std::string& factor) {
   return kDash;
 }
 
-}  // namespace
-
-void section_errors(Context& ctx) {
-  const Design& d = ctx.design;
-  const auto& primary = d.factor(d.primary);
-  const bool two = primary.levels.size() == 2;
-  Section s{"accuracy", "Accuracy", 2, {}};
-  s.text("Accuracy is measured per task type. Counting tasks: the relative error |answer − truth| / truth of each "
-         "trial, averaged per participant and condition; and the aggregated form, |sum of the true "
-         "counts − sum of the answers| / sum of the true counts over a participant's trials in a condition (an "
-         "over-count and an under-count cancel in it). Letter tasks: the proportion of correct answers per "
-         "participant and condition, tested with Friedman's test. Find-unique tasks: the "
-         "Euclidean distance between the marked and the true position, in world units. Continuous measures are "
-         "tested with repeated-measures ANOVA over the participant x condition means.");
-
+// The accuracy tests of every task (and of all counting tasks together), computed before any layout.
+struct AccuracyTests {
   std::vector<Row> rows;
-  nlohmann::json jtests = nlohmann::json::array();
-  std::string csv = matrix_csv_header(d);
-  std::vector<std::string> notes;
-  auto add = [&](Row row, const CellMatrix& m, const std::string& csv_measure) {
-    jtests.push_back(to_json(*row.r, d));
+  nlohmann::json json = nlohmann::json::array();  // each test as report.json records it
+  std::string csv;                                // accuracy_means.csv
+  std::vector<std::string> notes;                 // unanswered trials, true counts of 0
+  std::vector<const TaskInfo*> count_tasks;
+  std::vector<int> count_factors;                 // the factors varying in any counting task
+  void add(AccuracyResult& result, const Design& d, Row row, const CellMatrix& m, const std::string& csv_measure) {
+    result.tests.push_back(row.r);
+    json.push_back(to_json(*row.r, d));
     csv += matrix_csv_rows(m, d, csv_measure, row.r->scope);
     rows.push_back(std::move(row));
-  };
+  }
+};
 
-  std::vector<const TaskInfo*> count_tasks;
-  std::vector<int> count_factors;
-  for (const auto& task : d.tasks) {
-    auto in_task = [id = task.id](const TrialRow& t) { return t.task == id; };
-    int unanswered = 0, zero_truth = 0, n = 0;
-    for (const auto& t : ctx.data.trials)
-      if (t.task == task.id && ctx.analysed(t)) {
-        ++n;
-        const bool answered = t.answer_count || t.answer_letter || t.answer_x;
-        unanswered += answered ? 0 : 1;
-        zero_truth += (t.truth_count && *t.truth_count == 0) ? 1 : 0;
-      }
-    if (unanswered)
-      notes.push_back(task.id + ": " + std::to_string(unanswered) + " of " + dtlab::count(n, "trial") +
-                      " without an answer, left out of its error measures.");
-    if (zero_truth)
-      notes.push_back(task.id + ": " + dtlab::count(zero_truth, "trial") + " with a true count of 0 have no per-trial "
-                      "relative error (division by 0); the aggregated form keeps them.");
-    if (is_count(task.type)) {
-      count_tasks.push_back(&task);
-      for (int f : task.factors)
-        if (std::find(count_factors.begin(), count_factors.end(), f) == count_factors.end()) count_factors.push_back(f);
-      const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.rel_error; }));
-      const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
-      ctx.accuracy[task.id] = &r1;
-      add({task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
-      const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
-      const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
-      add({task.id, "rel. error, aggregated", "", &r2, task.id, 3}, m2,
-          "rel_error_aggregated");
-      const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
-                                   return t.signed_error ? std::optional<double>(static_cast<double>(*t.signed_error))
-                                                         : std::nullopt;
-                                 }));
-      csv += matrix_csv_rows(m3, d, "signed_error_mean", task.id);
-    } else if (task.type == TaskType::identify_letter) {
-      const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
-      const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
-      ctx.accuracy[task.id] = &r;
-      add({task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
-    } else if (task.type == TaskType::find_unique) {
-      const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.distance; }));
-      const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
-      ctx.accuracy[task.id] = &r;
-      add({task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
+// Notes on the task's trials without an answer or with a true count of 0.
+void answer_notes(const Context& ctx, const TaskInfo& task, std::vector<std::string>& notes) {
+  int unanswered = 0, zero_truth = 0, n = 0;
+  for (const auto& t : ctx.data.trials)
+    if (t.task == task.id && ctx.analysed(t)) {
+      ++n;
+      const bool answered = t.answer_count || t.answer_letter || t.answer_x;
+      unanswered += answered ? 0 : 1;
+      zero_truth += (t.truth_count && *t.truth_count == 0) ? 1 : 0;
     }
-  }
-  if (count_tasks.size() > 1) {
-    std::string ids;
-    for (const auto* t : count_tasks) ids += (ids.empty() ? "" : "+") + t->id;
-    auto in_count = [&count_tasks](const TrialRow& t) {
-      for (const auto* c : count_tasks)
-        if (c->id == t.task) return true;
-      return false;
-    };
-    std::sort(count_factors.begin(), count_factors.end());
-    const auto& m1 = ctx.cells(count_factors, in_count, mean_of([](const TrialRow& t) { return t.rel_error; }));
-    add({ids, "rel. error, mean of trials", "",
-         &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), "", 3},
-        m1, "rel_error_mean");
-    const auto& m2 = ctx.cells(count_factors, in_count, aggregated_relative_error());
-    add({ids, "rel. error, aggregated", "",
-         &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), "counting", 3},
-        m2, "rel_error_aggregated");
-  }
-  if (rows.empty()) {
-    s.text("The protocol has no task with an answer key the report scores.");
-    ctx.doc.sections.push_back(std::move(s));
-    return;
-  }
+  if (unanswered)
+    notes.push_back(task.id + ": " + std::to_string(unanswered) + " of " + dtlab::count(n, "trial") +
+                    " without an answer, left out of its error measures.");
+  if (zero_truth)
+    notes.push_back(task.id + ": " + dtlab::count(zero_truth, "trial") + " with a true count of 0 have no per-trial "
+                    "relative error (division by 0); the aggregated form keeps them.");
+}
 
+// The tests of one task by its type: relative errors (counting), proportion correct (letter), distance (find-unique).
+void task_tests(Context& ctx, const TaskInfo& task, AccuracyTests& out, AccuracyResult& result) {
+  const Design& d = ctx.design;
+  auto in_task = [id = task.id](const TrialRow& t) { return t.task == id; };
+  if (is_count(task.type)) {
+    out.count_tasks.push_back(&task);
+    for (int f : task.factors)
+      if (std::find(out.count_factors.begin(), out.count_factors.end(), f) == out.count_factors.end())
+        out.count_factors.push_back(f);
+    const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.rel_error; }));
+    const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
+    result.by_task[task.id] = &r1;
+    out.add(result, d, {task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
+    const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
+    const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
+    out.add(result, d, {task.id, "rel. error, aggregated", "", &r2, task.id, 3}, m2, "rel_error_aggregated");
+    const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
+                                 return t.signed_error ? std::optional<double>(static_cast<double>(*t.signed_error))
+                                                       : std::nullopt;
+                               }));
+    out.csv += matrix_csv_rows(m3, d, "signed_error_mean", task.id);
+  } else if (task.type == TaskType::identify_letter) {
+    const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
+    const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
+    result.by_task[task.id] = &r;
+    out.add(result, d, {task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
+  } else if (task.type == TaskType::find_unique) {
+    const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.distance; }));
+    const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
+    result.by_task[task.id] = &r;
+    out.add(result, d, {task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
+  }
+}
+
+// The relative errors of all counting tasks together (when there are several).
+void pooled_count_tests(Context& ctx, AccuracyTests& out, AccuracyResult& result) {
+  const Design& d = ctx.design;
+  std::string ids;
+  for (const auto* t : out.count_tasks) ids += (ids.empty() ? "" : "+") + t->id;
+  auto in_count = [&out](const TrialRow& t) {
+    for (const auto* c : out.count_tasks)
+      if (c->id == t.task) return true;
+    return false;
+  };
+  std::sort(out.count_factors.begin(), out.count_factors.end());
+  const auto& m1 = ctx.cells(out.count_factors, in_count, mean_of([](const TrialRow& t) { return t.rel_error; }));
+  out.add(result, d, {ids, "rel. error, mean of trials", "",
+          &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), "", 3},
+          m1, "rel_error_mean");
+  const auto& m2 = ctx.cells(out.count_factors, in_count, aggregated_relative_error());
+  out.add(result, d, {ids, "rel. error, aggregated", "",
+          &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), "counting", 3},
+          m2, "rel_error_aggregated");
+}
+
+AccuracyTests run_accuracy_tests(Context& ctx, AccuracyResult& result) {
+  AccuracyTests out;
+  out.csv = matrix_csv_header(ctx.design);
+  for (const auto& task : ctx.design.tasks) {
+    answer_notes(ctx, task, out.notes);
+    task_tests(ctx, task, out, result);
+  }
+  if (out.count_tasks.size() > 1) pooled_count_tests(ctx, out, result);
+  return out;
+}
+
+// The table's cells of one row: measure, mean (SD) per level, test, p, effect size, difference, published.
+std::vector<std::string> accuracy_cells(const Design& d, const Row& row, nlohmann::json& jrows) {
+  const auto& primary = d.factor(d.primary);
+  const TestReport& r = *row.r;
+  std::vector<std::string> cells = {row.label, row.measure};
+  for (const auto& c : primary_cells(r, d, row.decimals)) cells.push_back(c);
+  cells.push_back(std::to_string(r.kept.size()));
+  cells.push_back(statistic_text(r, primary.name));
+  cells.push_back(p_of(r, primary.name));
+  cells.push_back(effect_size_text(r, primary.name));
+  if (primary.levels.size() == 2) {
+    cells.push_back(r.paired ? fixed(r.paired->t.mean_difference, row.decimals) + " [" +
+                                   fixed(r.paired->t.ci_low, row.decimals) + ", " +
+                                   fixed(r.paired->t.ci_high, row.decimals) + "]"
+                             : kDash);
+  }
+  nlohmann::json jr{{"scope", r.scope}, {"label", row.label}, {"measure", row.measure}, {"n", r.kept.size()}};
+  const auto* a = row.published.empty() ? nullptr : d.published("accuracy", row.published);
+  for (const auto& c : d.published_cells("accuracy", row.published, row.decimals)) cells.push_back(a ? c : "");
+  if (a) jr["published"] = published_json(*a, d);
+  jrows.push_back(jr);
+  return cells;
+}
+
+Table accuracy_table(const Design& d, const AccuracyTests& at, nlohmann::json& jrows) {
+  const auto& primary = d.factor(d.primary);
+  const bool two = primary.levels.size() == 2;
   Table t;
   t.id = "table-accuracy";
   t.caption = "Accuracy per task: mean (SD) over participants of the participant x condition values, and the test "
@@ -154,28 +185,7 @@ void section_errors(Context& ctx) {
   if (two) t.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
   const size_t ours = t.header.size();
   for (const auto& h : d.published_header()) t.header.push_back(h);
-  nlohmann::json jrows = nlohmann::json::array();
-  for (const auto& row : rows) {
-    const TestReport& r = *row.r;
-    std::vector<std::string> cells = {row.label, row.measure};
-    for (const auto& c : primary_cells(r, d, row.decimals)) cells.push_back(c);
-    cells.push_back(std::to_string(r.kept.size()));
-    cells.push_back(statistic_text(r, primary.name));
-    cells.push_back(p_of(r, primary.name));
-    cells.push_back(effect_size_text(r, primary.name));
-    if (two) {
-      cells.push_back(r.paired ? fixed(r.paired->t.mean_difference, row.decimals) + " [" +
-                                     fixed(r.paired->t.ci_low, row.decimals) + ", " +
-                                     fixed(r.paired->t.ci_high, row.decimals) + "]"
-                               : kDash);
-    }
-    nlohmann::json jr{{"scope", r.scope}, {"label", row.label}, {"measure", row.measure}, {"n", r.kept.size()}};
-    const auto* a = row.published.empty() ? nullptr : d.published("accuracy", row.published);
-    for (const auto& c : d.published_cells("accuracy", row.published, row.decimals)) cells.push_back(a ? c : "");
-    if (a) jr["published"] = published_json(*a, d);
-    jrows.push_back(jr);
-    t.rows.push_back(std::move(cells));
-  }
+  for (const auto& row : at.rows) t.rows.push_back(accuracy_cells(d, row, jrows));
   if (d.reference)
     t.groups = {{"this study", static_cast<int>(ours)},
                 {d.published_group("accuracy"), static_cast<int>(t.header.size() - ours)}};
@@ -190,8 +200,38 @@ void section_errors(Context& ctx) {
                       " with its 95% CI (paired t); negative = smaller error / fewer correct with " + primary.levels[1] +
                       ".");
   if (d.reference) t.notes.push_back(d.published_note("accuracy"));
-  for (const auto& n : notes) t.notes.push_back(n);
-  s.add(t);
+  for (const auto& n : at.notes) t.notes.push_back(n);
+  return t;
+}
+
+}  // namespace
+
+AccuracyResult accuracy_tests(Context& ctx) {
+  AccuracyResult result;
+  run_accuracy_tests(ctx, result);
+  return result;
+}
+
+AccuracyResult section_errors(Context& ctx) {
+  AccuracyResult result;
+  const Design& d = ctx.design;
+  Section s{"accuracy", "Accuracy", 2, {}};
+  s.text("Accuracy is measured per task type. Counting tasks: the relative error |answer − truth| / truth of each "
+         "trial, averaged per participant and condition; and the aggregated form, |sum of the true "
+         "counts − sum of the answers| / sum of the true counts over a participant's trials in a condition (an "
+         "over-count and an under-count cancel in it). Letter tasks: the proportion of correct answers per "
+         "participant and condition, tested with Friedman's test. Find-unique tasks: the "
+         "Euclidean distance between the marked and the true position, in world units. Continuous measures are "
+         "tested with repeated-measures ANOVA over the participant x condition means.");
+  const AccuracyTests at = run_accuracy_tests(ctx, result);
+  if (at.rows.empty()) {
+    s.text("The protocol has no task with an answer key the report scores.");
+    ctx.doc.sections.push_back(std::move(s));
+    return result;
+  }
+  nlohmann::json jrows = nlohmann::json::array();
+  s.add(accuracy_table(d, at, jrows));
+  const auto& rows = at.rows;
   for (const auto& row : rows) {
     const TestReport& r = *row.r;
     for (const auto& note : test_notes(r))
@@ -201,9 +241,10 @@ void section_errors(Context& ctx) {
     if (row.r->m->factors.size() > 1 && row.r->anova)
       add_anova(ctx, s, *row.r, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
                         "Repeated-measures ANOVA of " + row.measure + ", " + row.label + ".");
-  ctx.json["accuracy"] = {{"table", jrows}, {"tests", jtests}};
-  ctx.csv["accuracy_means.csv"] = csv;
+  ctx.json["accuracy"] = {{"table", jrows}, {"tests", at.json}};
+  ctx.csv["accuracy_means.csv"] = at.csv;
   ctx.doc.sections.push_back(std::move(s));
+  return result;
 }
 
 }  // namespace dtlab::report::detail

@@ -121,22 +121,112 @@ std::string simulated_text(const Gathered& g) {
          "would show; they say nothing about fluency in a real session.";
 }
 
-// The audit's warnings also at the top of the report (the data section), where a reader starts.
-void warn_at_top(Context& ctx, const std::vector<std::string>& warnings) {
-  if (warnings.empty()) return;
-  for (const auto& w : warnings) ctx.warnings.push_back("frame-time audit: " + w);
-  for (auto& sec : ctx.doc.sections)
-    if (sec.id == "data") {
-      std::vector<std::string> items = warnings;
-      items.push_back("See the frame-time audit (#frames) before reading completion-time differences as the "
-                      "conditions' effect on the participants.");
-      sec.blocks.insert(sec.blocks.begin(), Callout{"warning", "Render cost may confound completion time", items});
+// The per-condition table with its report.json and frames.csv rows, and the warnings the numbers give.
+struct FramesTable {
+  Table t;
+  nlohmann::json json = nlohmann::json::array();
+  std::string csv;
+  long long with_frames = 0;           // trials with frame times
+  std::vector<std::string> warnings;   // render cost may confound completion time
+  std::vector<std::string> below;      // conditions below the display's rate
+};
+
+FramesTable frames_table(const Context& ctx, const Gathered& g, double threshold) {
+  const double min_fps = 1000 / threshold;
+  FramesTable out;
+  Table& t = out.t;
+  t.id = "table-frames";
+  t.caption = "Frame times per condition: median frame rate, late frames, the warm-up frame and the 95th percentile.";
+  t.header = {"Condition", "Method", "Display", "Trials", "Frames", "Display Hz", "Median fps", "Late frames",
+              "First frame (ms)", "p95 (ms)", "Slow trials"};
+  t.text_columns = 3;
+  out.csv = csv_line({"condition", "method", "display", "trials", "trials_with_frames", "frames", "display_hz",
+                      "median_fps", "late_frames", "late_share", "median_first_ms", "median_p95_ms",
+                      "slow_trials", "slow_share"});
+  const bool known_hz = std::any_of(ctx.data.trials.begin(), ctx.data.trials.end(),
+                                    [](const TrialRow& tr) { return tr.refresh_hz.has_value(); });
+  const ConditionFrames* fastest = nullptr;
+  const ConditionFrames* slowest = nullptr;
+  for (const auto& c : g.conds) {
+    out.with_frames += static_cast<long long>(c.rate_ms.size());
+    const double fps = c.fps(), hz = median(c.hz), first = median(c.first), p95 = median(c.p95);
+    const double late_share = c.steady_frames > 0 ? static_cast<double>(c.late) / c.steady_frames : NAN;
+    const double slow_share = c.p95.empty() ? NAN : static_cast<double>(c.slow) / static_cast<double>(c.p95.size());
+    const double steady_ms = median(c.rate_ms);
+    const bool is_below = known_hz && steady_ms > (1 + kBelowDisplayTolerance) * 1000 / hz;
+    if (is_below) out.below.push_back(c.name);
+    std::string display;
+    for (const auto& x : c.displays) display += (display.empty() ? "" : "; ") + x;
+    // The confound warnings look at people's frames only: a simulated participant's offscreen frames
+    // are no screen anyone watched (simulated_text says what they are).
+    if (const double people = c.people_fps(); std::isfinite(people)) {
+      if (people < min_fps)
+        out.warnings.push_back(c.name + (c.method == c.name ? "" : " (" + c.method + ")") + " rendered at a median " +
+                               fixed(people, 1) + " fps, below " + fixed(min_fps, 0) + " fps" +
+                               (c.p95.empty() ? "" : "; " + percent(slow_share, 0) + " of its trials were slow") + ".");
+      if (!fastest || people > fastest->people_fps()) fastest = &c;
+      if (!slowest || people < slowest->people_fps()) slowest = &c;
     }
+    t.rows.push_back({c.name, c.method, display.empty() ? kDash : display, integer(c.trials), integer(c.frames),
+                      c.hz.empty() ? kDash : fixed(hz, 0) + (known_hz ? "" : " (assumed)"),
+                      fixed(fps, 1) + (is_below ? " (below display)" : ""),
+                      c.steady_frames > 0 ? integer(c.late) + " (" + percent(late_share) + ")" : kDash,
+                      fixed(first, 1), fixed(p95, 1),
+                      c.p95.empty() ? kDash : integer(c.slow) + " (" + percent(slow_share) + ")"});
+    out.json.push_back({{"condition", c.name}, {"method", c.method}, {"display", display}, {"trials", c.trials},
+                        {"trials_with_frames", c.rate_ms.size()}, {"frames", c.frames}, {"display_hz", num(hz)},
+                        {"display_hz_known", known_hz}, {"median_fps", num(fps)}, {"median_steady_ms", num(steady_ms)},
+                        {"below_display", is_below}, {"late_frames", c.late},
+                        {"late_share", num(late_share)}, {"median_first_ms", num(first)}, {"median_p95_ms", num(p95)},
+                        {"slow_trials", c.slow}, {"slow_share", num(slow_share)}});
+    out.csv += csv_line({c.name, c.method, display, std::to_string(c.trials), std::to_string(c.rate_ms.size()),
+                         std::to_string(c.frames), csv_number(hz), csv_number(fps), std::to_string(c.late),
+                         csv_number(late_share), csv_number(first), csv_number(p95), std::to_string(c.slow),
+                         csv_number(slow_share)});
+  }
+  if (fastest && slowest && fastest->people_fps() > kRateSpread * slowest->people_fps())
+    out.warnings.push_back("Median frame rates differ by more than " + fixed(100 * (kRateSpread - 1), 0) +
+                           "% between conditions: " + fastest->name + " " + fixed(fastest->people_fps(), 1) + " fps, " +
+                           slowest->name + " " + fixed(slowest->people_fps(), 1) + " fps (" +
+                           fixed(fastest->people_fps() / slowest->people_fps(), 1) + " times).");
+  return out;
+}
+
+// The table with its notes, then what the numbers say (simulated frames, no confound, or the warnings).
+void frames_layout(Section& s, FramesTable ft, const Gathered& g, double threshold) {
+  const double min_fps = 1000 / threshold;
+  Table& t = ft.t;
+  t.notes.push_back("Display: the kind and framebuffer size the session recorded (window: a participant's screen; "
+                    "headless: offscreen, simulated). Median fps: 1000 / the median over trials of each trial's "
+                    "median frame time after its first frame (its mean in databases written before frame timing "
+                    "was split). Late frames: frames after the first that took more than 1.5 display intervals, "
+                    "share of those frames. First frame: median over trials (warm-up, not in the other columns). "
+                    "p95: median over trials of each trial's 95th-percentile frame time (all frames). Slow trials: "
+                    "p95 above " + fixed(threshold, 1) + " ms (--frame-threshold-ms). Below display: on a display of "
+                    "known rate, the median frame took more than " + fixed(100 * kBelowDisplayTolerance, 0) +
+                    "% longer than a refresh interval.");
+  if (!g.renderers.empty()) {
+    std::string list;
+    for (const auto& r : g.renderers) list += (list.empty() ? "" : "; ") + ("`" + r + "`");
+    t.notes.push_back("Renderer: " + list + ".");
+  }
+  s.add(std::move(t));
+  if (g.simulated_frames) s.text(simulated_text(g));
+  const bool people =
+      std::any_of(g.conds.begin(), g.conds.end(), [](const ConditionFrames& c) { return !c.people_ms.empty(); });
+  if (!people)
+    s.text("Every trial with frames was a simulated participant's: there is no participant's screen to check for a "
+           "render-cost confound.");
+  else if (ft.warnings.empty())
+    s.text("Every condition rendered at a median of at least " + fixed(min_fps, 0) + " fps and the conditions' "
+           "median frame rates are within " + fixed(100 * (kRateSpread - 1), 0) + "% of each other.");
+  else
+    s.add(Callout{"warning", "Render cost may confound completion time", ft.warnings});
 }
 
 }  // namespace
 
-void section_frames(Context& ctx) {
+FramesResult section_frames(Context& ctx) {
   const double threshold = ctx.options.frame_threshold_ms;
   const double min_fps = 1000 / threshold;
   Section s{"frames", "Frame-time audit", 2, {}};
@@ -147,108 +237,22 @@ void section_frames(Context& ctx) {
          "trial is slow when its 95th-percentile frame time exceeds " + fixed(threshold, 1) + " ms (" +
          fixed(min_fps, 0) + " fps). If conditions render at different speeds, completion time may measure "
          "render cost as well as the condition's effect on the participant.");
-
   const Gathered g = gather(ctx, threshold);
-  const auto& conds = g.conds;
-  const auto& renderers = g.renderers;
-
-  Table t;
-  t.id = "table-frames";
-  t.caption = "Frame times per condition: median frame rate, late frames, the warm-up frame and the 95th percentile.";
-  t.header = {"Condition", "Method", "Display", "Trials", "Frames", "Display Hz", "Median fps", "Late frames",
-              "First frame (ms)", "p95 (ms)", "Slow trials"};
-  t.text_columns = 3;
-  nlohmann::json jf = nlohmann::json::array();
-  std::string csv = csv_line({"condition", "method", "display", "trials", "trials_with_frames", "frames", "display_hz",
-                              "median_fps", "late_frames", "late_share", "median_first_ms", "median_p95_ms",
-                              "slow_trials", "slow_share"});
-  long long with_frames = 0;
-  std::vector<std::string> warnings, below;
-  const bool known_hz = std::any_of(ctx.data.trials.begin(), ctx.data.trials.end(),
-                                    [](const TrialRow& tr) { return tr.refresh_hz.has_value(); });
-  const ConditionFrames* fastest = nullptr;
-  const ConditionFrames* slowest = nullptr;
-  for (const auto& c : conds) {
-    with_frames += static_cast<long long>(c.rate_ms.size());
-    const double fps = c.fps(), hz = median(c.hz), first = median(c.first), p95 = median(c.p95);
-    const double late_share = c.steady_frames > 0 ? static_cast<double>(c.late) / c.steady_frames : NAN;
-    const double slow_share = c.p95.empty() ? NAN : static_cast<double>(c.slow) / static_cast<double>(c.p95.size());
-    const double steady_ms = median(c.rate_ms);
-    const bool is_below = known_hz && steady_ms > (1 + kBelowDisplayTolerance) * 1000 / hz;
-    if (is_below) below.push_back(c.name);
-    std::string display;
-    for (const auto& x : c.displays) display += (display.empty() ? "" : "; ") + x;
-    // The confound warnings look at people's frames only: a simulated participant's offscreen frames
-    // are no screen anyone watched (simulated_text says what they are).
-    if (const double people = c.people_fps(); std::isfinite(people)) {
-      if (people < min_fps)
-        warnings.push_back(c.name + (c.method == c.name ? "" : " (" + c.method + ")") + " rendered at a median " +
-                           fixed(people, 1) + " fps, below " + fixed(min_fps, 0) + " fps" +
-                           (c.p95.empty() ? "" : "; " + percent(slow_share, 0) + " of its trials were slow") + ".");
-      if (!fastest || people > fastest->people_fps()) fastest = &c;
-      if (!slowest || people < slowest->people_fps()) slowest = &c;
-    }
-    t.rows.push_back({c.name, c.method, display.empty() ? kDash : display, integer(c.trials), integer(c.frames),
-                      c.hz.empty() ? kDash : fixed(hz, 0) + (known_hz ? "" : " (assumed)"),
-                      fixed(fps, 1) + (is_below ? " (below display)" : ""),
-                      c.steady_frames > 0 ? integer(c.late) + " (" + percent(late_share) + ")" : kDash,
-                      fixed(first, 1), fixed(p95, 1),
-                      c.p95.empty() ? kDash : integer(c.slow) + " (" + percent(slow_share) + ")"});
-    jf.push_back({{"condition", c.name}, {"method", c.method}, {"display", display}, {"trials", c.trials},
-                  {"trials_with_frames", c.rate_ms.size()}, {"frames", c.frames}, {"display_hz", num(hz)},
-                  {"display_hz_known", known_hz}, {"median_fps", num(fps)}, {"median_steady_ms", num(steady_ms)},
-                  {"below_display", is_below}, {"late_frames", c.late},
-                  {"late_share", num(late_share)}, {"median_first_ms", num(first)}, {"median_p95_ms", num(p95)},
-                  {"slow_trials", c.slow}, {"slow_share", num(slow_share)}});
-    csv += csv_line({c.name, c.method, display, std::to_string(c.trials), std::to_string(c.rate_ms.size()),
-                     std::to_string(c.frames), csv_number(hz), csv_number(fps), std::to_string(c.late),
-                     csv_number(late_share), csv_number(first), csv_number(p95), std::to_string(c.slow),
-                     csv_number(slow_share)});
-  }
-  if (fastest && slowest && fastest->people_fps() > kRateSpread * slowest->people_fps())
-    warnings.push_back("Median frame rates differ by more than " + fixed(100 * (kRateSpread - 1), 0) +
-                       "% between conditions: " + fastest->name + " " + fixed(fastest->people_fps(), 1) + " fps, " +
-                       slowest->name + " " + fixed(slowest->people_fps(), 1) + " fps (" +
-                       fixed(fastest->people_fps() / slowest->people_fps(), 1) + " times).");
-
-  if (with_frames == 0) {
+  FramesTable ft = frames_table(ctx, g, threshold);
+  const FramesResult result{ft.warnings};
+  for (const auto& w : ft.warnings) ctx.warnings.push_back("frame-time audit: " + w);
+  ctx.json["frames"] = {{"threshold_ms", threshold},     {"min_fps", min_fps},
+                        {"rate_spread", kRateSpread},     {"trials_with_frames", ft.with_frames},
+                        {"warnings", ft.warnings},        {"below_display", ft.below},
+                        {"conditions", ft.json}};
+  ctx.csv["frames.csv"] = ft.csv;
+  if (ft.with_frames == 0)
     s.text("No trial in the database recorded frame times (frame_count = 0 everywhere): the trials were not "
            "rendered while they ran. The audit has nothing to check.");
-  } else {
-    t.notes.push_back("Display: the kind and framebuffer size the session recorded (window: a participant's screen; "
-                      "headless: offscreen, simulated). Median fps: 1000 / the median over trials of each trial's "
-                      "median frame time after its first frame (its mean in databases written before frame timing "
-                      "was split). Late frames: frames after the first that took more than 1.5 display intervals, "
-                      "share of those frames. First frame: median over trials (warm-up, not in the other columns). "
-                      "p95: median over trials of each trial's 95th-percentile frame time (all frames). Slow trials: "
-                      "p95 above " + fixed(threshold, 1) + " ms (--frame-threshold-ms). Below display: on a display of "
-                      "known rate, the median frame took more than " + fixed(100 * kBelowDisplayTolerance, 0) +
-                      "% longer than a refresh interval.");
-    if (!renderers.empty()) {
-      std::string list;
-      for (const auto& r : renderers) list += (list.empty() ? "" : "; ") + ("`" + r + "`");
-      t.notes.push_back("Renderer: " + list + ".");
-    }
-    s.add(t);
-    if (g.simulated_frames) s.text(simulated_text(g));
-    const bool people =
-        std::any_of(conds.begin(), conds.end(), [](const ConditionFrames& c) { return !c.people_ms.empty(); });
-    if (!people)
-      s.text("Every trial with frames was a simulated participant's: there is no participant's screen to check for a "
-             "render-cost confound.");
-    else if (warnings.empty())
-      s.text("Every condition rendered at a median of at least " + fixed(min_fps, 0) + " fps and the conditions' "
-             "median frame rates are within " + fixed(100 * (kRateSpread - 1), 0) + "% of each other.");
-    else
-      s.add(Callout{"warning", "Render cost may confound completion time", warnings});
-  }
-  warn_at_top(ctx, warnings);
-  ctx.json["frames"] = {{"threshold_ms", threshold},     {"min_fps", min_fps},
-                        {"rate_spread", kRateSpread},     {"trials_with_frames", with_frames},
-                        {"warnings", warnings},           {"below_display", below},
-                        {"conditions", jf}};
-  ctx.csv["frames.csv"] = csv;
+  else
+    frames_layout(s, std::move(ft), g, threshold);
   ctx.doc.sections.push_back(std::move(s));
+  return result;
 }
 
 }  // namespace dtlab::report::detail

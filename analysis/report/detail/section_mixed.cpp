@@ -166,8 +166,8 @@ void lay_out_group(Context& ctx, Section& s, const std::vector<MixedModelResult>
 
 }  // namespace
 
-void section_mixed_models(Context& ctx) {
-  const std::vector<MixedModelResult> models = compute_mixed_models(ctx);
+void section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+  const std::vector<MixedModelResult> models = compute_mixed_models(ctx, time, accuracy);
   Section s{"mixed-models", "Mixed models on trial-level data", 2, {}};
   s.text("The ANOVAs above average each participant's trials per condition first. A mixed model uses the trials "
          "themselves: participants enter as random effects, so an unbalanced participant, a missing or excluded "

@@ -24,17 +24,8 @@ std::string join(const std::vector<std::string>& v, const std::string& sep) {
   return out;
 }
 
-}  // namespace
-
-void section_overview(Context& ctx) {
-  const StudyData& data = ctx.data;
-  const Design& d = ctx.design;
-  const auto& p = *d.protocol;
-  ctx.doc.title = "Results: " + p.title;
-  ctx.doc.subtitle = "Protocol `" + p.id + "` (SHA-256 " + p.sha256.substr(0, 12) + "…), database `" + data.path +
-                     "`, recorded with " + data.software_version + ".";
-
-  Section s{"data", "Data", 2, {}};
+// The design revision and protocol text notes at the top of the data section.
+void revision_notes(const StudyData& data, Section& s) {
   if (data.design_revisions > 1)
     s.add(Callout{"warning",
                   "Design revision " + std::to_string(data.design_revision) + " of " +
@@ -48,42 +39,27 @@ void section_overview(Context& ctx) {
            (data.protocol_texts == 2 ? " time" : " times") +
            " without changing its design (comments, wording): all its participants are pooled, and the latest text "
            "is shown here.");
-  // Who and what is in the file.
-  int finished = 0, running = 0, abandoned = 0, none = 0;
-  long long planned = 0, recorded = 0;
-  for (const auto& pr : data.participants) {
-    finished += pr.session_status == "finished";
-    running += pr.session_status == "running";
-    abandoned += pr.session_status == "abandoned";
-    none += pr.session_status.empty();
-    planned += pr.planned;
-    recorded += pr.recorded;
-  }
-  long long practice = 0, unknown = 0;
-  for (const auto& t : data.trials) {
-    practice += t.practice ? 1 : 0;
-    if (!t.practice && !ctx.analysed(t)) ++unknown;
-  }
-  if (!ctx.simulated.empty()) {
-    const bool all = ctx.simulated.size() == ctx.subjects.size();
-    s.add(Callout{"warning",
-                  all ? "Simulated participants: every participant in this database is simulated."
-                      : "Simulated participants: " + std::to_string(ctx.simulated.size()) + " of " +
-                            dtlab::count(static_cast<long long>(ctx.subjects.size()), "participant") + " are simulated.",
-                  {"The database marks them as simulated in their enrollment record (demographics): " +
-                       join(ctx.simulated, ", ") + ".",
-                   "Their times, answers and ratings come from a model of a participant, not from people: the "
-                   "statistics below describe that model. They test the pipeline; they are not evidence about "
-                   "human performance" + (published_source(ctx).empty() ? std::string(".")
-                                                    : " and not a replication of " + published_source(ctx) + ".")}});
-  }
-  s.text(dtlab::count(static_cast<long long>(data.participants.size()), "participant") + " enrolled under protocol `" + p.id + "`; sessions: " +
-         std::to_string(finished) + " finished, " + std::to_string(running) + " still running (incomplete), " +
-         std::to_string(abandoned) + " abandoned" + (none ? ", " + std::to_string(none) + " never started" : "") +
-         ". " + std::to_string(recorded) + " of " + std::to_string(planned) + " planned trials are recorded; " +
-         dtlab::count(ctx.analysed_trials, "trial") + " from " + dtlab::count(static_cast<long long>(ctx.subjects.size()), "participant") +
-         " are analysed" + (practice ? " (" + dtlab::count(practice, "practice trial") + " excluded)" : "") +
-         ".");
+}
+
+// The call-out naming the simulated participants, when there are any.
+void simulated_callout(const Context& ctx, Section& s) {
+  if (ctx.simulated.empty()) return;
+  const bool all = ctx.simulated.size() == ctx.subjects.size();
+  s.add(Callout{"warning",
+                all ? "Simulated participants: every participant in this database is simulated."
+                    : "Simulated participants: " + std::to_string(ctx.simulated.size()) + " of " +
+                          dtlab::count(static_cast<long long>(ctx.subjects.size()), "participant") + " are simulated.",
+                {"The database marks them as simulated in their enrollment record (demographics): " +
+                     join(ctx.simulated, ", ") + ".",
+                 "Their times, answers and ratings come from a model of a participant, not from people: the "
+                 "statistics below describe that model. They test the pipeline; they are not evidence about "
+                 "human performance" + (published_source(ctx).empty() ? std::string(".")
+                                                  : " and not a replication of " + published_source(ctx) + ".")}});
+}
+
+// The sentence naming the factors, the order scheme and the tasks.
+std::string design_sentence(const Design& d) {
+  const auto& p = *d.protocol;
   std::string design = "Design: ";
   for (size_t f = 0; f < p.factors.size(); ++f)
     design += (f ? " x " : "") + p.factors[f].name + " {" + join(p.factors[f].levels, ", ") + "}";
@@ -93,15 +69,19 @@ void section_overview(Context& ctx) {
   std::vector<std::string> tasks;
   for (const auto& t : d.tasks)
     tasks.push_back(d.task_label(t) + " in " + t.scenario + ", " + dtlab::count(t.trials, "trial") + " per condition");
-  s.text(design + join(tasks, "; ") + ". Primary factor of the tables: " + d.factor(d.primary).name + ".");
+  return design + join(tasks, "; ") + ". Primary factor of the tables: " + d.factor(d.primary).name + ".";
+}
 
+// Incomplete sessions, unknown levels, exclusions, too few participants: shown at the top, and report.json's warnings.
+std::vector<std::string> data_warnings(const Context& ctx, long long unknown) {
+  const StudyData& data = ctx.data;
   std::vector<std::string> warnings;
   for (const auto& pr : data.participants) {
-    if (pr.session_status == "running" || pr.session_status == "abandoned")
-      warnings.push_back(pr.id + ": session " + pr.session_status + " with " + std::to_string(pr.recorded) + " of " +
+    if (pr.session_status == store::SessionStatus::running || pr.session_status == store::SessionStatus::abandoned)
+      warnings.push_back(pr.id + ": session " + store::to_string(*pr.session_status) + " with " + std::to_string(pr.recorded) + " of " +
                          dtlab::count(pr.planned, "trial") + " recorded; their recorded trials are analysed, and tests "
                          "needing a missing condition leave them out (named under each table).");
-    if (pr.session_status.empty()) warnings.push_back(pr.id + ": enrolled, no session started; not analysed.");
+    if (!pr.session_status) warnings.push_back(pr.id + ": enrolled, no session started; not analysed.");
     else if (pr.recorded == 0) warnings.push_back(pr.id + ": no trial recorded; not analysed.");
   }
   if (unknown)
@@ -120,41 +100,47 @@ void section_overview(Context& ctx) {
   if (ctx.subjects.size() < 2)
     warnings.push_back("Only " + std::to_string(ctx.subjects.size()) + " participant: no test across participants "
                        "is possible (F and p are undefined); the tables show descriptives only.");
-  ctx.warnings = warnings;
-  if (!warnings.empty()) s.add(Callout{"warning", "Incomplete or excluded data", warnings});
+  return warnings;
+}
 
+// Participants: enrollment, order row, session and trials.
+Table participants_table(const Context& ctx) {
   Table pt;
   pt.id = "table-participants";
   pt.caption = "Participants: enrollment, order row of the counterbalancing, session and trials.";
   pt.header = {"Participant", "Index", "Order row", "Session", "Trials", "Resumes", "Simulated"};
-  for (const auto& pr : data.participants) {
+  for (const auto& pr : ctx.data.participants) {
     const bool sim = std::find(ctx.simulated.begin(), ctx.simulated.end(), pr.id) != ctx.simulated.end();
     pt.rows.push_back({pr.id, std::to_string(pr.index), std::to_string(pr.order_row),
-                       pr.session_status.empty() ? "none" : pr.session_status,
+                       pr.session_status ? store::to_string(*pr.session_status) : "none",
                        std::to_string(pr.recorded) + " / " + std::to_string(pr.planned), std::to_string(pr.resumes),
                        sim ? "yes" : "no"});
   }
   pt.notes.push_back("Index: 0-based enrollment index. Trials: recorded / planned. Resumes: times the session was "
                      "resumed after an interruption.");
-  s.add(pt);
-  if (!data.exclusions.empty()) {
-    Table xt;
-    xt.id = "table-exclusions";
-    xt.caption = "Exclusions: every decision recorded about these participants (`dtlab exclude`, `dtlab include`, "
-                 "the experimenter console), in order; the latest decision about a participant or trial holds.";
-    xt.header = {"Participant", "Trial", "Decision", "Reason", "By", "When (UTC)"};
-    xt.text_columns = 6;
-    for (const auto& x : data.exclusions)
-      xt.rows.push_back({x.participant, x.position ? std::to_string(*x.position) : "all",
-                         x.exclude ? "excluded" : "included again", x.reason.empty() ? "-" : x.reason,
-                         x.by.empty() ? "-" : x.by, x.at});
-    xt.notes.push_back(data.with_excluded ? "Excluded data are kept in this report (--with-excluded)."
-                                          : "Excluded participants and trials are left out of every analysis; "
-                                            "`dtlab analyze --with-excluded` keeps them.");
-    s.add(xt);
-  }
-  ctx.doc.sections.push_back(std::move(s));
+  return pt;
+}
 
+// Every exclusion decision, in order.
+Table exclusions_table(const StudyData& data) {
+  Table xt;
+  xt.id = "table-exclusions";
+  xt.caption = "Exclusions: every decision recorded about these participants (`dtlab exclude`, `dtlab include`, "
+               "the experimenter console), in order; the latest decision about a participant or trial holds.";
+  xt.header = {"Participant", "Trial", "Decision", "Reason", "By", "When (UTC)"};
+  xt.text_columns = 6;
+  for (const auto& x : data.exclusions)
+    xt.rows.push_back({x.participant, x.position ? std::to_string(*x.position) : "all",
+                       x.exclude ? "excluded" : "included again", x.reason.empty() ? "-" : x.reason,
+                       x.by.empty() ? "-" : x.by, x.at});
+  xt.notes.push_back(data.with_excluded ? "Excluded data are kept in this report (--with-excluded)."
+                                        : "Excluded participants and trials are left out of every analysis; "
+                                          "`dtlab analyze --with-excluded` keeps them.");
+  return xt;
+}
+
+// The method of analysis: how trials are aggregated and what each test is (fixed text).
+Section methods_section() {
   Section m{"methods", "Method of analysis", 2, {}};
   m.text("Aggregation. Every test compares conditions within participants. For each participant and condition the "
          "trials are first reduced to one number (the mean of the trials' completion times, of their relative "
@@ -182,10 +168,57 @@ void section_overview(Context& ctx) {
          "and Wilcoxon), printed in APA style (p = .002, p < .001); report.json and the CSV files keep them exact "
          "(never rounded to 0, with their log10). The statistics library is validated against NIST StRD certified "
          "values and R (README, \"Statistics\"); the repeated-measures correlation against R's rmcorr.");
-  ctx.doc.sections.push_back(std::move(m));
+  return m;
 }
 
-void section_notes(Context& ctx) {
+}  // namespace
+
+void section_overview(Context& ctx) {
+  const StudyData& data = ctx.data;
+  const Design& d = ctx.design;
+  const auto& p = *d.protocol;
+  ctx.doc.title = "Results: " + p.title;
+  ctx.doc.subtitle = "Protocol `" + p.id + "` (SHA-256 " + p.sha256.substr(0, 12) + "…), database `" + data.path +
+                     "`, recorded with " + data.software_version + ".";
+
+  Section s{"data", "Data", 2, {}};
+  revision_notes(data, s);
+  // Who and what is in the file.
+  int finished = 0, running = 0, abandoned = 0, none = 0;
+  long long planned = 0, recorded = 0;
+  for (const auto& pr : data.participants) {
+    finished += pr.session_status == store::SessionStatus::finished;
+    running += pr.session_status == store::SessionStatus::running;
+    abandoned += pr.session_status == store::SessionStatus::abandoned;
+    none += !pr.session_status;
+    planned += pr.planned;
+    recorded += pr.recorded;
+  }
+  long long practice = 0, unknown = 0;
+  for (const auto& t : data.trials) {
+    practice += t.practice ? 1 : 0;
+    if (!t.practice && !ctx.analysed(t)) ++unknown;
+  }
+  simulated_callout(ctx, s);
+  s.text(dtlab::count(static_cast<long long>(data.participants.size()), "participant") + " enrolled under protocol `" + p.id + "`; sessions: " +
+         std::to_string(finished) + " finished, " + std::to_string(running) + " still running (incomplete), " +
+         std::to_string(abandoned) + " abandoned" + (none ? ", " + std::to_string(none) + " never started" : "") +
+         ". " + std::to_string(recorded) + " of " + std::to_string(planned) + " planned trials are recorded; " +
+         dtlab::count(ctx.analysed_trials, "trial") + " from " + dtlab::count(static_cast<long long>(ctx.subjects.size()), "participant") +
+         " are analysed" + (practice ? " (" + dtlab::count(practice, "practice trial") + " excluded)" : "") +
+         ".");
+  s.text(design_sentence(d));
+
+  const std::vector<std::string> warnings = data_warnings(ctx, unknown);
+  ctx.warnings = warnings;
+  if (!warnings.empty()) s.add(Callout{"warning", "Incomplete or excluded data", warnings});
+  s.add(participants_table(ctx));
+  if (!data.exclusions.empty()) s.add(exclusions_table(data));
+  ctx.doc.sections.push_back(std::move(s));
+  ctx.doc.sections.push_back(methods_section());
+}
+
+void section_notes(Context& ctx, bool path_figures) {
   Section s{"notes", "Notes and files", 2, {}};
   s.text("No correction for multiple testing is applied across tasks and measures: every task is its own family.");
   if (ctx.design.reference)
@@ -198,7 +231,7 @@ void section_notes(Context& ctx) {
          "it), `completion_time_means.csv` and `accuracy_means.csv` (the participant x condition values every "
          "test used), `tests.csv` (one row per test), `questionnaire.csv`, `frames.csv`, and `figures/` (each "
          "figure's SVG, PNG and PDF, its data and the gnuplot script `report.gp` that draws them)" +
-         std::string(ctx.json.contains("path_figures") ? ", and `paths/` (the walked-path figures)" : "") + ".");
+         std::string(path_figures ? ", and `paths/` (the walked-path figures)" : "") + ".");
   ctx.doc.sections.push_back(std::move(s));
 }
 

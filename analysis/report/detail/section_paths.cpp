@@ -7,8 +7,8 @@
 
 namespace dtlab::report::detail {
 
-void section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out) {
-  if (figures.empty() && left_out.empty()) return;
+bool section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out) {
+  if (figures.empty() && left_out.empty()) return false;
   Section s{"paths", "Walked paths", 2, {}};
   s.text("Where each participant walked in the WALKTHROUGH tasks: one figure per participant and task, a floor "
          "plan per trial (each trial has its own building) with the recorded eye positions as a line, the start "
@@ -39,6 +39,7 @@ void section_paths(Context& ctx, const std::vector<PathFigure>& figures, const s
   ctx.json["path_figures"] = std::move(list);
   ctx.json["path_figures_left_out"] = left_out;
   ctx.doc.sections.push_back(std::move(s));
+  return true;
 }
 
 }  // namespace dtlab::report::detail

@@ -17,12 +17,12 @@ std::string n_text(double n) { return std::isfinite(n) ? integer(static_cast<lon
 
 }  // namespace
 
-void section_planning(Context& ctx) {
+void section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
   PlanningOptions o;
   o.replications = 0;  // analytic only: `dtlab power` resamples
   o.alpha = 0.05;
   std::vector<std::string> not_planned;
-  const std::vector<PlannedEffect> effects = plan_effects(ctx, o, not_planned);
+  const std::vector<PlannedEffect> effects = plan_effects(planning_input(ctx.design, ctx.data.protocol, time, accuracy), o, not_planned);
 
   Section s{"planning", "Planning the next study", 2, {}};
   std::string sizes;

@@ -38,36 +38,35 @@ std::string condition_of(const Design& d, const TrialRow& t) {
   return c;
 }
 
-}  // namespace
-
-void section_position(Context& ctx) {
-  const Design& d = ctx.design;
-  Section s{"position", "Position effects and counterbalancing", 2, {}};
-  s.text("A within-subject design is only as good as its counterbalancing: practice and fatigue must not "
-         "favour a condition. Relative time below is a trial's completion time divided by the mean time of its task "
-         "and condition over all participants (1 = typical for that task and condition), so that positions holding "
-         "different tasks and conditions compare. Per participant, the relative times are averaged per block "
-         "position (a block is one condition) and per repetition inside a task set, and tested with "
-         "repeated-measures ANOVA.");
-
-  // Task x condition means for relative time.
-  std::map<std::string, std::pair<double, int>> cell_mean;
-  int blocks = 0, reps = 0;
-  for (const auto& t : ctx.data.trials) {
-    if (!ctx.analysed(t)) continue;
-    auto& cm = cell_mean[t.task + "|" + condition_of(d, t)];
-    cm.first += t.time_s;
-    ++cm.second;
-    blocks = std::max(blocks, t.block);
-    reps = std::max(reps, t.trial);
-  }
-  auto relative = [&](const TrialRow& t) -> std::optional<double> {
-    const auto& cm = cell_mean.at(t.task + "|" + condition_of(d, t));
+// Relative time: a trial's time / the mean time of its task and condition over all participants.
+struct RelativeTimes {
+  std::map<std::string, std::pair<double, int>> cell_mean;  // "task|condition" -> (sum of times, trials)
+  int blocks = 0, reps = 0;                                  // the largest block and repetition seen
+  const Design* design = nullptr;
+  std::optional<double> of(const TrialRow& t) const {
+    const auto& cm = cell_mean.at(t.task + "|" + condition_of(*design, t));
     const double mean = cm.first / cm.second;
     return mean > 0 ? std::optional<double>(t.time_s / mean) : std::nullopt;
-  };
+  }
+};
 
-  // Balance: how often each condition was at each block position.
+RelativeTimes relative_times(const Context& ctx) {
+  RelativeTimes rt;
+  rt.design = &ctx.design;
+  for (const auto& t : ctx.data.trials) {
+    if (!ctx.analysed(t)) continue;
+    auto& cm = rt.cell_mean[t.task + "|" + condition_of(ctx.design, t)];
+    cm.first += t.time_s;
+    ++cm.second;
+    rt.blocks = std::max(rt.blocks, t.block);
+    rt.reps = std::max(rt.reps, t.trial);
+  }
+  return rt;
+}
+
+// Balance: how often each condition was at each block position (counts per condition to `jb`).
+Table balance_table(const Context& ctx, int blocks, nlohmann::json& jb, bool& balanced) {
+  const Design& d = ctx.design;
   std::map<std::string, std::vector<int>> balance;
   std::set<std::pair<std::string, int>> seen;
   for (const auto& t : ctx.data.trials) {
@@ -83,8 +82,7 @@ void section_position(Context& ctx) {
   bt.caption = "Counterbalancing as run: number of participants who had each condition at each block position.";
   bt.header = {"Condition"};
   for (int b = 1; b <= blocks; ++b) bt.header.push_back("block " + std::to_string(b));
-  bool balanced = true;
-  nlohmann::json jb = nlohmann::json::object();
+  balanced = true;
   for (const auto& cond : d.protocol->conditions) {
     const auto it = balance.find(cond.name);
     std::vector<int> counts = it == balance.end() ? std::vector<int>(static_cast<size_t>(blocks), 0) : it->second;
@@ -102,165 +100,220 @@ void section_position(Context& ctx) {
                               : "Not every condition was at every position equally often (participants missing from "
                                 "a complete square, or an order scheme that does not balance positions): position "
                                 "effects can bias condition means.");
-  s.add(bt);
+  return bt;
+}
+
+// Per participant x position: mean relative time (m) and mean seconds (raw).
+struct PositionMatrices {
+  CellMatrix m, raw;
+};
+
+PositionMatrices position_matrices(const Context& ctx, const RelativeTimes& rt, bool by_block, int levels) {
+  PositionMatrices out;
+  CellMatrix &m = out.m, &raw = out.raw;
+  for (CellMatrix* x : {&m, &raw}) {
+    x->factors = {0};
+    for (int l = 0; l < levels; ++l) {
+      x->cell_levels.push_back({l});
+      x->cell_names.push_back(std::to_string(l + 1));
+    }
+    x->subjects = ctx.subjects;
+    x->value.assign(ctx.subjects.size(), std::vector<double>(static_cast<size_t>(levels), NAN));
+    x->trials.assign(ctx.subjects.size(), std::vector<int>(static_cast<size_t>(levels), 0));
+  }
+  std::vector<std::vector<double>> sum(ctx.subjects.size(), std::vector<double>(static_cast<size_t>(levels), 0)),
+      rsum = sum;
+  for (const auto& t : ctx.data.trials) {
+    if (!ctx.analysed(t)) continue;
+    const size_t si = static_cast<size_t>(std::find(ctx.subjects.begin(), ctx.subjects.end(), t.participant) -
+                                          ctx.subjects.begin());
+    const int pos = (by_block ? t.block : t.trial) - 1;
+    const auto rel = rt.of(t);
+    if (si >= ctx.subjects.size() || pos < 0 || pos >= levels || !rel) continue;
+    sum[si][static_cast<size_t>(pos)] += *rel;
+    rsum[si][static_cast<size_t>(pos)] += t.time_s;
+    ++m.trials[si][static_cast<size_t>(pos)];
+    ++raw.trials[si][static_cast<size_t>(pos)];
+  }
+  for (size_t si = 0; si < ctx.subjects.size(); ++si)
+    for (int l = 0; l < levels; ++l)
+      if (const int n = m.trials[si][static_cast<size_t>(l)]) {
+        m.value[si][static_cast<size_t>(l)] = sum[si][static_cast<size_t>(l)] / n;
+        raw.value[si][static_cast<size_t>(l)] = rsum[si][static_cast<size_t>(l)] / n;
+      }
+  return out;
+}
+
+// The figure's data of one split: position, mean relative time and its SE per level, then two blank lines.
+struct PositionPlot {
+  std::string data;
+  std::vector<std::pair<std::string, int>> titles;  // (title or "" when nothing to draw, positions)
+};
+
+// The table of one split (position, n, relative time, its CI, seconds); its levels as JSON to `jl`.
+Table position_table(const TestReport& r, const CellMatrix& raw, bool by_block, int levels, PositionPlot& plot,
+                     nlohmann::json& jl) {
+  Table t;
+  t.id = by_block ? "table-position-block" : "table-position-repetition";
+  t.caption = by_block ? "Completion time by block position in the session (each block is one condition)."
+                       : "Completion time by repetition inside a task set (trial 1, 2, ... of a task in a block).";
+  t.header = {by_block ? "Block position" : "Repetition", "n", "Relative time, mean (SD)", "95% CI",
+              "Time (s), mean (SD)"};
+  bool finite = false;
+  for (int l = 0; l < levels; ++l) {
+    std::vector<double> v;
+    for (size_t si : r.kept) v.push_back(raw.value[si][static_cast<size_t>(l)]);
+    const auto rd = stats::describe(v);
+    const auto& x = r.cells[static_cast<size_t>(l)];
+    t.rows.push_back({std::to_string(l + 1), std::to_string(x.n), mean_sd(x.mean, x.sd, 3),
+                      "[" + fixed(x.ci_low, 3) + ", " + fixed(x.ci_high, 3) + "]", mean_sd(rd.mean, rd.sd, 2)});
+    plot.data += std::to_string(l + 1) + " " + gp_value(x.mean) + " " + gp_value(std::isfinite(x.se) ? x.se : 0.0) + "\n";
+    finite = finite || std::isfinite(x.mean);
+    auto jx = to_json(x);
+    jx["position"] = l + 1;
+    jx["time_s"] = to_json(rd);
+    jl.push_back(jx);
+  }
+  plot.data += "\n\n";
+  plot.titles.push_back({finite ? (by_block ? "Block position" : "Repetition in the task set") : "", levels});
+  t.notes = test_notes(r);
+  return t;
+}
+
+// What the test of one split says, as a sentence ("" when there is no effect to speak of).
+std::string position_verdict(const std::string& name, const TestReport& r, bool by_block, bool balanced) {
+  const stats::Effect* e = r.effect(name);
+  std::string verdict = e ? name + ": " + effect_sentence(*e) + ". " : "";
+  const double first = r.cells.front().mean, last = r.cells.back().mean;
+  if (e && std::isfinite(e->p))
+    verdict += e->p_gg < 0.05
+                   ? std::string(last < first ? "Participants became faster at later " : "Participants became slower at later ") +
+                         (by_block ? "blocks of the session" : "repetitions inside a task set") + " (relative time " +
+                         fixed(first, 2) + " at the first, " + fixed(last, 2) + " at the last; " +
+                         (last < first ? "practice" : by_block ? "fatigue" : "fatigue, or trials that differ by repetition") +
+                         (balanced || !by_block ? "). With a balanced order this adds noise, not bias, to the "
+                                                  "condition means."
+                                                : "). With an unbalanced order it can bias the condition means.")
+                   : "No reliable position effect (relative time " + fixed(first, 2) + " at the first, " +
+                         fixed(last, 2) + " at the last).";
+  return verdict;
+}
+
+// One split (block position or repetition): its ANOVA of relative time, table, verdict and full ANOVA.
+void position_split(Context& ctx, Section& s, const std::string& name, int levels, const RelativeTimes& rt,
+                    bool balanced, PositionPlot& plot, nlohmann::json& jp) {
+  PositionDesign pd(name, levels);
+  const bool by_block = name == "block position";
+  PositionMatrices pm = position_matrices(ctx, rt, by_block, levels);
+  const auto& km = ctx.keep(std::move(pm.m));
+  const auto& r = ctx.add_test("position", run_rm_anova(km, pd.design, "relative time", "", name));
+  nlohmann::json jl = nlohmann::json::array();
+  const Table t = position_table(r, pm.raw, by_block, levels, plot, jl);
+  const std::string verdict = position_verdict(name, r, by_block, balanced);
+  if (!verdict.empty()) s.text(verdict);
+  s.add(t);
+  if (r.effect(name) && levels > 2)
+    add_anova(ctx, s, r, by_block ? "table-position-block-anova" : "table-position-repetition-anova",
+              std::string("Repeated-measures ANOVA of relative time by ") +
+                  (by_block ? "block position." : "repetition inside a task set."));
+  jp[by_block ? "block" : "repetition"] = {{"levels", jl}, {"test", to_json(r, pd.design)}};
+}
+
+// The overall test `ov` rerun with the order row as a between-subject factor.
+TestReport order_row_report(const TestReport& ov, const Design& d, const std::map<std::string, int>& row_of) {
+  auto data = long_data(*ov.m, d, ov.kept, "time");
+  stats::Factor between{"order_row", {}};
+  for (const auto& subject : data.subject) between.level.push_back("row " + std::to_string(row_of.at(subject)));
+  data.between.push_back(between);
+  auto res = stats::rm_anova(data);
+  TestReport r;
+  r.measure = "completion time";
+  r.unit = "s";
+  r.scope = "overall, by order row";
+  r.test = "rm-anova";
+  r.m = ov.m;
+  r.kept = ov.kept;
+  r.excluded = ov.excluded;
+  r.cells = ov.cells;  // the same participants and cells as the overall test
+  r.marginals = ov.marginals;
+  if (res) {
+    r.warnings = res->warnings;
+    r.anova = std::move(*res);
+  } else {
+    r.not_tested = res.error().message;
+  }
+  return r;
+}
+
+// Order row as a between-subject factor (mixed ANOVA) on the overall condition means of `overall`.
+void order_row_test(Context& ctx, Section& s, const TestReport& ov, nlohmann::json& jp) {
+  std::set<int> rows_seen;
+  std::map<std::string, int> row_of;
+  for (const auto& p : ctx.data.participants) row_of[p.id] = p.order_row;
+  for (size_t si : ov.kept) rows_seen.insert(row_of[ov.m->subjects[si]]);
+  if (rows_seen.size() >= 2 && ov.kept.size() > rows_seen.size()) {
+    const auto& kr = ctx.add_test("position", order_row_report(ov, ctx.design, row_of));
+    s.text("Order rows: the participants' row of the ordering scheme enters a mixed ANOVA of the overall condition "
+           "means as a between-subject factor. An order_row main effect says the groups differ in speed overall "
+           "(harmless, it is between participants); an interaction of order_row with a within factor says the "
+           "effect of that factor depends on the order (asymmetric transfer), which counterbalancing cannot "
+           "remove.");
+    add_anova(ctx, s, kr, "table-position-order", "Mixed ANOVA of completion time over all tasks with the order "
+                                                      "row as between-subject factor (s).");
+    jp["order_row"] = to_json(kr, ctx.design);
+  } else {
+    s.text("Order rows: not tested (" + std::to_string(rows_seen.size()) + " order row(s) among " +
+           std::to_string(ov.kept.size()) + " complete participants; a between-subject test needs at least two "
+           "rows and more participants than rows).");
+  }
+}
+
+PlotSpec position_figure(const PositionPlot& plot) {
+  PlotSpec p;
+  p.id = "fig-position";
+  p.data["fig-position.dat"] = plot.data;
+  p.width = 380 * static_cast<int>(plot.titles.size()) + 40;
+  p.height = 320;
+  const auto shown = std::count_if(plot.titles.begin(), plot.titles.end(), [](const auto& x) { return !x.first.empty(); });
+  std::string cmd = "set multiplot layout 1," + std::to_string(std::max<long>(shown, 1)) +
+                    "\nset ylabel 'Relative time (1 = task x condition mean)'\nunset key\nset xtics 1\n";
+  int drawn = 0;
+  for (size_t i = 0; i < plot.titles.size(); ++i)
+    if (!plot.titles[i].first.empty() && ++drawn)
+      cmd += "set title " + gp_quote(plot.titles[i].first) + "\nset xlabel " + gp_quote(plot.titles[i].first) +
+             "\nset xrange [0.5:" + std::to_string(plot.titles[i].second) + ".5]\nplot 'fig-position.dat' index " +
+             std::to_string(i) + " using 1:2:3 with yerrorlines lc rgb '" + series_color(0) + "' pt 7 lw 2\n";
+  p.commands = cmd;
+  p.empty = drawn == 0;
+  return p;
+}
+
+}  // namespace
+
+void section_position(Context& ctx, const TimeResult& time) {
+  Section s{"position", "Position effects and counterbalancing", 2, {}};
+  s.text("A within-subject design is only as good as its counterbalancing: practice and fatigue must not "
+         "favour a condition. Relative time below is a trial's completion time divided by the mean time of its task "
+         "and condition over all participants (1 = typical for that task and condition), so that positions holding "
+         "different tasks and conditions compare. Per participant, the relative times are averaged per block "
+         "position (a block is one condition) and per repetition inside a task set, and tested with "
+         "repeated-measures ANOVA.");
+  const RelativeTimes rt = relative_times(ctx);
+  bool balanced = true;
+  nlohmann::json jb = nlohmann::json::object();
+  s.add(balance_table(ctx, rt.blocks, jb, balanced));
 
   nlohmann::json jp = nlohmann::json::object();
   jp["balance"] = jb;
   jp["balanced"] = balanced;
-  std::vector<std::pair<std::string, int>> splits = {{"block position", blocks}, {"repetition", reps}};
-  std::string plot_data;
-  std::vector<std::pair<std::string, int>> plot_titles;  // (title or "" when nothing to draw, positions)
-  for (const auto& [name, levels] : splits) {
-    if (levels < 2) continue;
-    PositionDesign pd(name, levels);
-    const bool by_block = name == "block position";
-    // Per participant x position: mean relative time (and raw seconds for the table).
-    CellMatrix m, raw;
-    for (CellMatrix* x : {&m, &raw}) {
-      x->factors = {0};
-      for (int l = 0; l < levels; ++l) {
-        x->cell_levels.push_back({l});
-        x->cell_names.push_back(std::to_string(l + 1));
-      }
-      x->subjects = ctx.subjects;
-      x->value.assign(ctx.subjects.size(), std::vector<double>(static_cast<size_t>(levels), NAN));
-      x->trials.assign(ctx.subjects.size(), std::vector<int>(static_cast<size_t>(levels), 0));
-    }
-    std::vector<std::vector<double>> sum(ctx.subjects.size(), std::vector<double>(static_cast<size_t>(levels), 0)),
-        rsum = sum;
-    for (const auto& t : ctx.data.trials) {
-      if (!ctx.analysed(t)) continue;
-      const size_t si = static_cast<size_t>(std::find(ctx.subjects.begin(), ctx.subjects.end(), t.participant) -
-                                            ctx.subjects.begin());
-      const int pos = (by_block ? t.block : t.trial) - 1;
-      const auto rel = relative(t);
-      if (si >= ctx.subjects.size() || pos < 0 || pos >= levels || !rel) continue;
-      sum[si][static_cast<size_t>(pos)] += *rel;
-      rsum[si][static_cast<size_t>(pos)] += t.time_s;
-      ++m.trials[si][static_cast<size_t>(pos)];
-      ++raw.trials[si][static_cast<size_t>(pos)];
-    }
-    for (size_t si = 0; si < ctx.subjects.size(); ++si)
-      for (int l = 0; l < levels; ++l)
-        if (const int n = m.trials[si][static_cast<size_t>(l)]) {
-          m.value[si][static_cast<size_t>(l)] = sum[si][static_cast<size_t>(l)] / n;
-          raw.value[si][static_cast<size_t>(l)] = rsum[si][static_cast<size_t>(l)] / n;
-        }
-    const auto& km = ctx.keep(std::move(m));
-    const auto& r = ctx.add_test("position", run_rm_anova(km, pd.design, "relative time", "", name));
-    Table t;
-    t.id = by_block ? "table-position-block" : "table-position-repetition";
-    t.caption = by_block ? "Completion time by block position in the session (each block is one condition)."
-                         : "Completion time by repetition inside a task set (trial 1, 2, ... of a task in a block).";
-    t.header = {by_block ? "Block position" : "Repetition", "n", "Relative time, mean (SD)", "95% CI",
-                "Time (s), mean (SD)"};
-    nlohmann::json jl = nlohmann::json::array();
-    bool finite = false;
-    for (int l = 0; l < levels; ++l) {
-      std::vector<double> v;
-      for (size_t si : r.kept) v.push_back(raw.value[si][static_cast<size_t>(l)]);
-      const auto rd = stats::describe(v);
-      const auto& x = r.cells[static_cast<size_t>(l)];
-      t.rows.push_back({std::to_string(l + 1), std::to_string(x.n), mean_sd(x.mean, x.sd, 3),
-                        "[" + fixed(x.ci_low, 3) + ", " + fixed(x.ci_high, 3) + "]", mean_sd(rd.mean, rd.sd, 2)});
-      plot_data += std::to_string(l + 1) + " " + gp_value(x.mean) + " " + gp_value(std::isfinite(x.se) ? x.se : 0.0) + "\n";
-      finite = finite || std::isfinite(x.mean);
-      auto jx = to_json(x);
-      jx["position"] = l + 1;
-      jx["time_s"] = to_json(rd);
-      jl.push_back(jx);
-    }
-    plot_data += "\n\n";
-    plot_titles.push_back({finite ? (by_block ? "Block position" : "Repetition in the task set") : "", levels});
-    const stats::Effect* e = r.effect(name);
-    t.notes = test_notes(r);
-    std::string verdict = e ? name + ": " + effect_sentence(*e) + ". " : "";
-    const double first = r.cells.front().mean, last = r.cells.back().mean;
-    if (e && std::isfinite(e->p))
-      verdict += e->p_gg < 0.05
-                     ? std::string(last < first ? "Participants became faster at later " : "Participants became slower at later ") +
-                           (by_block ? "blocks of the session" : "repetitions inside a task set") + " (relative time " +
-                           fixed(first, 2) + " at the first, " + fixed(last, 2) + " at the last; " +
-                           (last < first ? "practice" : by_block ? "fatigue" : "fatigue, or trials that differ by repetition") +
-                           (balanced || !by_block ? "). With a balanced order this adds noise, not bias, to the "
-                                                    "condition means."
-                                                  : "). With an unbalanced order it can bias the condition means.")
-                     : "No reliable position effect (relative time " + fixed(first, 2) + " at the first, " +
-                           fixed(last, 2) + " at the last).";
-    if (!verdict.empty()) s.text(verdict);
-    s.add(t);
-    if (e && levels > 2)
-      add_anova(ctx, s, r, by_block ? "table-position-block-anova" : "table-position-repetition-anova",
-                std::string("Repeated-measures ANOVA of relative time by ") +
-                    (by_block ? "block position." : "repetition inside a task set."));
-    jp[by_block ? "block" : "repetition"] = {{"levels", jl}, {"test", to_json(r, pd.design)}};
-  }
-
-  // Order row as a between-subject factor (mixed ANOVA) on the overall condition means.
-  auto oi = ctx.time.find("overall");
-  std::set<int> rows_seen;
-  std::map<std::string, int> row_of;
-  for (const auto& p : ctx.data.participants) row_of[p.id] = p.order_row;
-  if (oi != ctx.time.end()) {
-    const TestReport& ov = *oi->second;
-    for (size_t si : ov.kept) rows_seen.insert(row_of[ov.m->subjects[si]]);
-    if (rows_seen.size() >= 2 && ov.kept.size() > rows_seen.size()) {
-      auto data = long_data(*ov.m, d, ov.kept, "time");
-      stats::Factor between{"order_row", {}};
-      for (const auto& subject : data.subject) between.level.push_back("row " + std::to_string(row_of[subject]));
-      data.between.push_back(between);
-      auto res = stats::rm_anova(data);
-      TestReport r;
-      r.measure = "completion time";
-      r.unit = "s";
-      r.scope = "overall, by order row";
-      r.test = "rm-anova";
-      r.m = ov.m;
-      r.kept = ov.kept;
-      r.excluded = ov.excluded;
-      r.cells = ov.cells;  // the same participants and cells as the overall test
-      r.marginals = ov.marginals;
-      if (res) {
-        r.warnings = res->warnings;
-        r.anova = std::move(*res);
-      } else {
-        r.not_tested = res.error().message;
-      }
-      const auto& kr = ctx.add_test("position", std::move(r));
-      s.text("Order rows: the participants' row of the ordering scheme enters a mixed ANOVA of the overall condition "
-             "means as a between-subject factor. An order_row main effect says the groups differ in speed overall "
-             "(harmless, it is between participants); an interaction of order_row with a within factor says the "
-             "effect of that factor depends on the order (asymmetric transfer), which counterbalancing cannot "
-             "remove.");
-      add_anova(ctx, s, kr, "table-position-order", "Mixed ANOVA of completion time over all tasks with the order "
-                                                        "row as between-subject factor (s).");
-      jp["order_row"] = to_json(kr, d);
-    } else {
-      s.text("Order rows: not tested (" + std::to_string(rows_seen.size()) + " order row(s) among " +
-             std::to_string(ov.kept.size()) + " complete participants; a between-subject test needs at least two "
-             "rows and more participants than rows).");
-    }
-  }
-  if (!plot_titles.empty()) {
-    PlotSpec p;
-    p.id = "fig-position";
-    p.data["fig-position.dat"] = plot_data;
-    p.width = 380 * static_cast<int>(plot_titles.size()) + 40;
-    p.height = 320;
-    const auto shown = std::count_if(plot_titles.begin(), plot_titles.end(), [](const auto& x) { return !x.first.empty(); });
-    std::string cmd = "set multiplot layout 1," + std::to_string(std::max<long>(shown, 1)) +
-                      "\nset ylabel 'Relative time (1 = task x condition mean)'\nunset key\nset xtics 1\n";
-    int drawn = 0;
-    for (size_t i = 0; i < plot_titles.size(); ++i)
-      if (!plot_titles[i].first.empty() && ++drawn)
-      cmd += "set title " + gp_quote(plot_titles[i].first) + "\nset xlabel " + gp_quote(plot_titles[i].first) +
-             "\nset xrange [0.5:" + std::to_string(plot_titles[i].second) + ".5]\nplot 'fig-position.dat' index " + std::to_string(i) +
-             " using 1:2:3 with yerrorlines lc rgb '" + series_color(0) + "' pt 7 lw 2\n";
-    p.commands = cmd;
-    p.empty = drawn == 0;
-    ctx.add_figure(s, p, "Mean relative completion time by block position and by repetition inside a task set "
-                         "(error bars: standard error over participants).");
-  }
+  PositionPlot plot;
+  for (const auto& [name, levels] : std::vector<std::pair<std::string, int>>{{"block position", rt.blocks},
+                                                                             {"repetition", rt.reps}})
+    if (levels >= 2) position_split(ctx, s, name, levels, rt, balanced, plot, jp);
+  if (const TestReport* overall = time.of("overall")) order_row_test(ctx, s, *overall, jp);
+  if (!plot.titles.empty())
+    ctx.add_figure(s, position_figure(plot), "Mean relative completion time by block position and by repetition "
+                                             "inside a task set (error bars: standard error over participants).");
   ctx.json["position"] = jp;
   ctx.doc.sections.push_back(std::move(s));
 }

@@ -84,6 +84,253 @@ bool reported_here(const protocol::QuestionnaireItem& item) {
          item.type->measure != Measure::text;
 }
 
+// The section's two tables, filled item by item: the ratings compared across the primary factor's levels
+// (summary) and the other items (others); fig_rows: the rating tests the bar chart draws.
+struct QuestionnaireTables {
+  Table summary, others;
+  size_t width = 0;  // summary's columns (rows are padded to it)
+  std::vector<std::pair<std::string, const TestReport*>> fig_rows;
+};
+
+QuestionnaireTables questionnaire_tables(const Design& d, const std::vector<std::string>& item_ids, size_t& ours) {
+  const int pf = d.primary;
+  QuestionnaireTables q;
+  Table& summary = q.summary;
+  summary.id = "table-questionnaire";
+  summary.caption = "Questionnaire: ratings per level of " + d.factor(pf).name + " (mean (SD) over participants) "
+                    "and Friedman's test.";
+  summary.header = {"Item", "Scope"};
+  summary.text_columns = 2;
+  for (size_t l = 0; l < d.factor(pf).levels.size(); ++l) summary.header.push_back(d.level_label(pf, static_cast<int>(l)));
+  summary.header.insert(summary.header.end(), {"n", "χ² (df)", "p", "Kendall's W"});
+  ours = summary.header.size();
+  for (const auto& h : d.published_header(/*with_f=*/false)) summary.header.push_back(h);
+  q.width = summary.header.size();
+  Table& others = q.others;
+  others.id = "table-questionnaire-items";
+  others.caption = "Questionnaire: the other items (self-reports, choices, depth test).";
+  others.header = {"Item", "Question", "Summary", "n", "Test", "p"};
+  others.text_columns = 3;
+  if (d.reference) others.header.push_back(d.published_group(item_ids));
+  return q;
+}
+
+// A rating's participant x primary-level matrices: one per combination of its other `per` factors (keyed by
+// their levels, -1 = unknown) and `all`, a participant's mean over the combinations (complete ones only).
+struct RatingMatrices {
+  std::map<std::vector<int>, CellMatrix> split;
+  CellMatrix all;
+};
+
+RatingMatrices rating_matrices(const Context& ctx, const protocol::QuestionnaireItem& item,
+                               const std::vector<std::string>& subjects, const std::vector<int>& others) {
+  const Design& d = ctx.design;
+  const int pf = d.primary;
+  RatingMatrices out;
+  out.all = empty_matrix(d, subjects, pf);
+  CellMatrix& all = out.all;
+  std::vector<std::vector<double>> sum(subjects.size(), std::vector<double>(all.cells(), 0));
+  std::vector<std::vector<int>> cnt(subjects.size(), std::vector<int>(all.cells(), 0));
+  for (const auto& a : ctx.data.answers) {
+    if (a.item != item.id || !a.number) continue;
+    const auto lv = parse_scope(d, a.scope);
+    if (lv[static_cast<size_t>(pf)] < 0) continue;
+    std::vector<int> key;
+    for (int f : others) key.push_back(lv[static_cast<size_t>(f)]);
+    auto it = out.split.find(key);
+    if (it == out.split.end()) it = out.split.emplace(key, empty_matrix(d, subjects, pf)).first;
+    const size_t si = index_of(subjects, a.participant), c = static_cast<size_t>(lv[static_cast<size_t>(pf)]);
+    it->second.value[si][c] = *a.number;
+    it->second.trials[si][c] = 1;
+    sum[si][c] += *a.number;
+    ++cnt[si][c];
+  }
+  size_t combos = 1;
+  for (int f : others) combos *= d.factor(f).levels.size();
+  for (size_t si = 0; si < subjects.size(); ++si)
+    for (size_t c = 0; c < all.cells(); ++c) {
+      all.trials[si][c] = cnt[si][c];
+      if (static_cast<size_t>(cnt[si][c]) == combos) all.value[si][c] = sum[si][c] / cnt[si][c];
+    }
+  return out;
+}
+
+// Friedman's test of one rating matrix: a row of the summary table, its notes, a bar of the figure.
+void rating_test(Context& ctx, const protocol::QuestionnaireItem& item, const CellMatrix& m, const std::string& scope,
+                 QuestionnaireTables& q, nlohmann::json& jt) {
+  const Design& d = ctx.design;
+  const auto& r = ctx.add_test("questionnaire", run_friedman(ctx.keep(m), d, item.id, "rating", scope, ctx.options.seed));
+  std::vector<std::string> row = {item.id, scope};
+  for (const auto& c : primary_cells(r, d, 2)) row.push_back(c);
+  row.push_back(std::to_string(r.kept.size()));
+  row.push_back(r.friedman ? fixed(r.friedman->Q, 2) + " (" + df_text(r.friedman->df) + ")" : kDash);
+  row.push_back(r.friedman ? p_text(r.friedman->p) +
+                                 (std::isfinite(r.friedman->p_exact)
+                                      ? " (exact " + p_text(r.friedman->p_exact) + ")"
+                                      : "")
+                           : kDash);
+  row.push_back(r.friedman ? bounded(r.friedman->kendall_W) : kDash);
+  const auto* a = d.published(item.id, scope);
+  for (const auto& c : d.published_cells(item.id, scope, 2, /*with_f=*/false)) row.push_back(a ? c : "");
+  row.resize(q.width, "");
+  q.summary.rows.push_back(row);
+  for (const auto& note : test_notes(r))
+    if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) q.summary.notes.push_back(item.id + " " + scope + ": " + note);
+  q.fig_rows.push_back({scope, &r});
+  jt.push_back(to_json(r, d));
+}
+
+// A rating asked per level of the primary factor: a test per combination of its other factors, and overall.
+void rating_item(Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
+                 const std::vector<std::string>& per, QuestionnaireTables& q, nlohmann::json& ji) {
+  const Design& d = ctx.design;
+  std::vector<int> others;
+  for (const auto& name : per)
+    for (int f : d.all_factors)
+      if (d.factor(f).name == name && f != d.primary) others.push_back(f);
+  const RatingMatrices rm = rating_matrices(ctx, item, subjects, others);
+  nlohmann::json jt = nlohmann::json::array();
+  for (const auto& [key, m] : rm.split) {
+    std::string scope;
+    bool known = true;
+    for (size_t k = 0; k < others.size(); ++k) {
+      if (key[k] < 0) known = false;
+      else scope += (scope.empty() ? "" : ", ") + d.factor(others[k]).levels[static_cast<size_t>(key[k])];
+    }
+    if (known) rating_test(ctx, item, m, scope.empty() ? "all" : scope, q, jt);
+  }
+  if (!others.empty()) rating_test(ctx, item, rm.all, "overall", q, jt);
+  ji["tests"] = jt;
+}
+
+// Per participant: a rating (mean if asked several times) or the depth-test pairs correct (summed); descriptives.
+void numeric_item(const Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
+                  QuestionnaireTables& q, nlohmann::json& ji) {
+  const Design& d = ctx.design;
+  const Measure measure = item.type->measure;
+  std::vector<double> v;
+  for (const auto& who : subjects) {
+    double sum = 0;
+    int n = 0;
+    for (const auto& a : ctx.data.answers)
+      if (a.item == item.id && a.participant == who && a.number) {
+        sum += *a.number;
+        ++n;
+      }
+    if (n) v.push_back(measure == Measure::correct ? sum : sum / n);
+  }
+  const auto ds = stats::describe(v);
+  const bool depth = measure == Measure::correct;
+  const int pairs = depth ? static_cast<int>(item.integer("pairs")) : 0;
+  const questionnaire::NumberPair b = item.type->bounds ? item.type->bounds(item) : questionnaire::NumberPair{};
+  std::string scope = depth ? "pairs correct of " + std::to_string(pairs) : "scale " + csv_number(b.min) + "–" + csv_number(b.max);
+  std::vector<std::string> row = {item.id, item.prompt + " (" + scope + ")",
+                                  "mean (SD) " + mean_sd(ds.mean, ds.sd, 2) + ", median " + fixed(ds.median, 1) +
+                                      (depth ? ", " + percent(ds.mean / pairs) + " of pairs" : ""),
+                                  std::to_string(ds.n), kDash, kDash};
+  ji["descriptives"] = to_json(ds);
+  if (depth) ji["proportion_correct"] = num(ds.mean / pairs);
+  if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
+  if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
+  q.others.rows.push_back(row);
+}
+
+// The answers of a choice item counted per option ("other: ..." for an answer outside them).
+struct ChoiceCounts {
+  std::vector<std::string> options;  // the item's options, or its factor's levels
+  int factor = -1;                   // the factor whose levels are the options, -1 = none
+  std::string neutral;
+  std::map<std::string, int> count;
+  int answered = 0;
+  std::vector<double> first, second;  // indicators for a sign test between two options
+};
+
+ChoiceCounts count_choices(const Context& ctx, const protocol::QuestionnaireItem& item,
+                           const std::vector<std::string>& subjects) {
+  const Design& d = ctx.design;
+  const Measure measure = item.type->measure;
+  ChoiceCounts c;
+  c.options = item.strings("options");
+  const std::string& item_factor = measure == Measure::nominal ? item.text("factor") : std::string();
+  c.neutral = measure == Measure::nominal ? item.text("neutral") : std::string();
+  for (int f : d.all_factors)
+    if (!item_factor.empty() && d.factor(f).name == item_factor) {
+      c.factor = f;
+      c.options = d.factor(f).levels;
+    }
+  for (const auto& who : subjects)
+    for (const auto& a : ctx.data.answers)
+      if (a.item == item.id && a.participant == who && a.text) {
+        ++c.answered;
+        if (measure == Measure::multiple) {  // each option chosen counts once
+          for (const auto& o : c.options)
+            if (("\n" + *a.text + "\n").find("\n" + o + "\n") != std::string::npos) ++c.count[o];
+          continue;
+        }
+        std::string chosen = "other: " + *a.text;
+        for (const auto& o : c.options)
+          if (lower(o) == lower(*a.text)) chosen = o;
+        if (!c.neutral.empty() && lower(c.neutral) == lower(*a.text)) chosen = c.neutral;
+        ++c.count[chosen];
+        if (c.options.size() == 2) {
+          c.first.push_back(chosen == c.options[0] ? 1 : 0);
+          c.second.push_back(chosen == c.options[1] ? 1 : 0);
+        }
+      }
+  return c;
+}
+
+// A choice item: counts and proportions per option, and for two options a sign test.
+void choice_item(Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
+                 QuestionnaireTables& q, nlohmann::json& ji) {
+  const Design& d = ctx.design;
+  const ChoiceCounts c = count_choices(ctx, item, subjects);
+  const auto& options = c.options;
+  nlohmann::json jc = nlohmann::json::object();
+  std::string text;
+  for (const auto& [option, n] : c.count) {
+    const double p = c.answered ? static_cast<double>(n) / c.answered : std::nan("");
+    const double sd = c.answered > 1 ? std::sqrt(p * (1 - p) * c.answered / (c.answered - 1)) : std::nan("");
+    jc[option] = {{"count", n}, {"proportion", num(p)}, {"sd", num(sd)}};
+    const std::string label = c.factor >= 0 && option.rfind("other: ", 0) != 0 && option != c.neutral
+                                  ? d.level_label(c.factor, static_cast<int>(index_of(options, option)))
+                                  : option;
+    text += (text.empty() ? "" : "; ") + label + " " + std::to_string(n) + "/" + std::to_string(c.answered) + " = " +
+            fixed(p, 2) + " (SD " + fixed(sd, 2) + ")";
+  }
+  ji["choices"] = jc;
+  std::vector<std::string> row = {item.id, item.prompt, text, std::to_string(c.answered), kDash, kDash};
+  if (item.type->measure == Measure::nominal && options.size() == 2 && c.answered > 0) {
+    const auto st = stats::sign_test(c.second, c.first);
+    row[4] = "sign test: " + std::to_string(st.positive) + " for " + options[1] + ", " +
+             std::to_string(st.negative) + " for " + options[0];
+    row[5] = p_text(st.p);
+    ji["sign_test"] = {{"n", st.n}, {"for_" + options[1], st.positive}, {"for_" + options[0], st.negative},
+                       {"p", num(st.p)}, {"log10_p", num(st.log10_p)}};
+    ++ctx.tests;
+  }
+  if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
+  if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
+  q.others.rows.push_back(row);
+}
+
+// One item by its measure; its report.json record.
+nlohmann::json questionnaire_item(Context& ctx, const protocol::QuestionnaireItem& item, QuestionnaireTables& q) {
+  const Design& d = ctx.design;
+  const auto subjects = answered_by(ctx.data, item.id);
+  nlohmann::json ji{{"type", item.type->name}, {"prompt", item.prompt}, {"n", subjects.size()}};
+  const Measure measure = item.type->measure;
+  const std::vector<std::string>& per = strings_or_none(item, "per");
+  const bool per_primary = std::find(per.begin(), per.end(), d.factor(d.primary).name) != per.end();
+  if (measure == Measure::ordinal && per_primary)
+    rating_item(ctx, item, subjects, per, q, ji);
+  else if (measure == Measure::ordinal || measure == Measure::interval || measure == Measure::correct)
+    numeric_item(ctx, item, subjects, q, ji);
+  else if (measure == Measure::nominal || measure == Measure::multiple)
+    choice_item(ctx, item, subjects, q, ji);
+  return ji;
+}
+
 }  // namespace
 
 void section_questionnaire(Context& ctx) {
@@ -114,189 +361,12 @@ void section_questionnaire(Context& ctx) {
   std::string csv = csv_line({"item", "participant", "scope", "value_number", "value_text"});
   for (const auto& a : ctx.data.answers)
     csv += csv_line({a.item, a.participant, a.scope, a.number ? csv_number(*a.number) : "NA", a.text ? *a.text : "NA"});
-
-  Table summary;
-  summary.id = "table-questionnaire";
-  summary.caption = "Questionnaire: ratings per level of " + d.factor(pf).name + " (mean (SD) over participants) "
-                    "and Friedman's test.";
-  summary.header = {"Item", "Scope"};
-  summary.text_columns = 2;
-  for (size_t l = 0; l < d.factor(pf).levels.size(); ++l) summary.header.push_back(d.level_label(pf, static_cast<int>(l)));
-  summary.header.insert(summary.header.end(), {"n", "χ² (df)", "p", "Kendall's W"});
-  const size_t ours = summary.header.size();
-  for (const auto& h : d.published_header(/*with_f=*/false)) summary.header.push_back(h);
-  const size_t width = summary.header.size();
-  auto pad = [&](std::vector<std::string> row) {
-    row.resize(width, "");
-    return row;
-  };
-  std::vector<std::pair<std::string, const TestReport*>> fig_rows;
-  Table others;
-  others.id = "table-questionnaire-items";
-  others.caption = "Questionnaire: the other items (self-reports, choices, depth test).";
-  others.header = {"Item", "Question", "Summary", "n", "Test", "p"};
-  others.text_columns = 3;
   std::vector<std::string> item_ids;
   for (const auto& item : items) item_ids.push_back(item.id);
-  if (d.reference) others.header.push_back(d.published_group(item_ids));
-
-  for (const auto& item : items) {
-    const auto subjects = answered_by(ctx.data, item.id);
-    nlohmann::json ji{{"type", item.type->name}, {"prompt", item.prompt}, {"n", subjects.size()}};
-    const Measure measure = item.type->measure;
-    const std::vector<std::string>& per = strings_or_none(item, "per");
-    const bool per_primary = std::find(per.begin(), per.end(), d.factor(pf).name) != per.end();
-    if (measure == Measure::ordinal && per_primary) {
-      // Split by the other `per` factors' level combinations; keyed by their levels.
-      std::vector<int> others;
-      for (const auto& name : per)
-        for (int f : d.all_factors)
-          if (d.factor(f).name == name && f != pf) others.push_back(f);
-      std::map<std::vector<int>, CellMatrix> split;
-      CellMatrix all = empty_matrix(d, subjects, pf);
-      std::vector<std::vector<double>> sum(subjects.size(), std::vector<double>(all.cells(), 0));
-      std::vector<std::vector<int>> cnt(subjects.size(), std::vector<int>(all.cells(), 0));
-      for (const auto& a : ctx.data.answers) {
-        if (a.item != item.id || !a.number) continue;
-        const auto lv = parse_scope(d, a.scope);
-        if (lv[static_cast<size_t>(pf)] < 0) continue;
-        std::vector<int> key;
-        for (int f : others) key.push_back(lv[static_cast<size_t>(f)]);
-        auto it = split.find(key);
-        if (it == split.end()) it = split.emplace(key, empty_matrix(d, subjects, pf)).first;
-        const size_t si = index_of(subjects, a.participant), c = static_cast<size_t>(lv[static_cast<size_t>(pf)]);
-        it->second.value[si][c] = *a.number;
-        it->second.trials[si][c] = 1;
-        sum[si][c] += *a.number;
-        ++cnt[si][c];
-      }
-      size_t combos = 1;
-      for (int f : others) combos *= d.factor(f).levels.size();
-      for (size_t si = 0; si < subjects.size(); ++si)
-        for (size_t c = 0; c < all.cells(); ++c) {
-          all.trials[si][c] = cnt[si][c];
-          if (static_cast<size_t>(cnt[si][c]) == combos) all.value[si][c] = sum[si][c] / cnt[si][c];
-        }
-      nlohmann::json jt = nlohmann::json::array();
-      auto report_one = [&](const CellMatrix& m, const std::string& scope) {
-        const auto& r = ctx.add_test("questionnaire", run_friedman(ctx.keep(m), d, item.id, "rating", scope, ctx.options.seed));
-        std::vector<std::string> row = {item.id, scope};
-        for (const auto& c : primary_cells(r, d, 2)) row.push_back(c);
-        row.push_back(std::to_string(r.kept.size()));
-        row.push_back(r.friedman ? fixed(r.friedman->Q, 2) + " (" + df_text(r.friedman->df) + ")" : kDash);
-        row.push_back(r.friedman ? p_text(r.friedman->p) +
-                                       (std::isfinite(r.friedman->p_exact)
-                                            ? " (exact " + p_text(r.friedman->p_exact) + ")"
-                                            : "")
-                                 : kDash);
-        row.push_back(r.friedman ? bounded(r.friedman->kendall_W) : kDash);
-        const auto* a = d.published(item.id, scope);
-        for (const auto& c : d.published_cells(item.id, scope, 2, /*with_f=*/false)) row.push_back(a ? c : "");
-        summary.rows.push_back(pad(row));
-        for (const auto& note : test_notes(r))
-          if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) summary.notes.push_back(item.id + " " + scope + ": " + note);
-        fig_rows.push_back({scope, &r});
-        jt.push_back(to_json(r, d));
-      };
-      for (const auto& [key, m] : split) {
-        std::string scope;
-        bool known = true;
-        for (size_t k = 0; k < others.size(); ++k) {
-          if (key[k] < 0) known = false;
-          else scope += (scope.empty() ? "" : ", ") + d.factor(others[k]).levels[static_cast<size_t>(key[k])];
-        }
-        if (known) report_one(m, scope.empty() ? "all" : scope);
-      }
-      if (!others.empty()) report_one(all, "overall");
-      ji["tests"] = jt;
-    } else if (measure == Measure::ordinal || measure == Measure::interval || measure == Measure::correct) {
-      // Per participant: a rating (mean if asked several times) or the depth-test pairs correct (summed).
-      std::vector<double> v;
-      for (const auto& who : subjects) {
-        double sum = 0;
-        int n = 0;
-        for (const auto& a : ctx.data.answers)
-          if (a.item == item.id && a.participant == who && a.number) {
-            sum += *a.number;
-            ++n;
-          }
-        if (n) v.push_back(measure == Measure::correct ? sum : sum / n);
-      }
-      const auto ds = stats::describe(v);
-      const bool depth = measure == Measure::correct;
-      const int pairs = depth ? static_cast<int>(item.integer("pairs")) : 0;
-      const questionnaire::NumberPair b = item.type->bounds ? item.type->bounds(item) : questionnaire::NumberPair{};
-      std::string scope = depth ? "pairs correct of " + std::to_string(pairs) : "scale " + csv_number(b.min) + "–" + csv_number(b.max);
-      std::vector<std::string> row = {item.id, item.prompt + " (" + scope + ")",
-                                      "mean (SD) " + mean_sd(ds.mean, ds.sd, 2) + ", median " + fixed(ds.median, 1) +
-                                          (depth ? ", " + percent(ds.mean / pairs) + " of pairs" : ""),
-                                      std::to_string(ds.n), kDash, kDash};
-      ji["descriptives"] = to_json(ds);
-      if (depth) ji["proportion_correct"] = num(ds.mean / pairs);
-      if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
-      if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
-      others.rows.push_back(row);
-    } else if (measure == Measure::nominal || measure == Measure::multiple) {
-      std::vector<std::string> options = item.strings("options");
-      const std::string& item_factor = measure == Measure::nominal ? item.text("factor") : std::string();
-      const std::string& neutral = measure == Measure::nominal ? item.text("neutral") : std::string();
-      int factor = -1;
-      for (int f : d.all_factors)
-        if (!item_factor.empty() && d.factor(f).name == item_factor) {
-          factor = f;
-          options = d.factor(f).levels;
-        }
-      std::map<std::string, int> count;
-      int answered = 0;
-      std::vector<double> first, second;  // indicators for a sign test between two options
-      for (const auto& who : subjects)
-        for (const auto& a : ctx.data.answers)
-          if (a.item == item.id && a.participant == who && a.text) {
-            ++answered;
-            if (measure == Measure::multiple) {  // each option chosen counts once
-              for (const auto& o : options)
-                if (("\n" + *a.text + "\n").find("\n" + o + "\n") != std::string::npos) ++count[o];
-              continue;
-            }
-            std::string chosen = "other: " + *a.text;
-            for (const auto& o : options)
-              if (lower(o) == lower(*a.text)) chosen = o;
-            if (!neutral.empty() && lower(neutral) == lower(*a.text)) chosen = neutral;
-            ++count[chosen];
-            if (options.size() == 2) {
-              first.push_back(chosen == options[0] ? 1 : 0);
-              second.push_back(chosen == options[1] ? 1 : 0);
-            }
-          }
-      nlohmann::json jc = nlohmann::json::object();
-      std::string text;
-      for (const auto& [option, n] : count) {
-        const double p = answered ? static_cast<double>(n) / answered : std::nan("");
-        const double sd = answered > 1 ? std::sqrt(p * (1 - p) * answered / (answered - 1)) : std::nan("");
-        jc[option] = {{"count", n}, {"proportion", num(p)}, {"sd", num(sd)}};
-        const std::string label = factor >= 0 && option.rfind("other: ", 0) != 0 && option != neutral
-                                      ? d.level_label(factor, static_cast<int>(index_of(options, option)))
-                                      : option;
-        text += (text.empty() ? "" : "; ") + label + " " + std::to_string(n) + "/" + std::to_string(answered) + " = " +
-                fixed(p, 2) + " (SD " + fixed(sd, 2) + ")";
-      }
-      ji["choices"] = jc;
-      std::vector<std::string> row = {item.id, item.prompt, text, std::to_string(answered), kDash, kDash};
-      if (measure == Measure::nominal && options.size() == 2 && answered > 0) {
-        const auto st = stats::sign_test(second, first);
-        row[4] = "sign test: " + std::to_string(st.positive) + " for " + options[1] + ", " +
-                 std::to_string(st.negative) + " for " + options[0];
-        row[5] = p_text(st.p);
-        ji["sign_test"] = {{"n", st.n}, {"for_" + options[1], st.positive}, {"for_" + options[0], st.negative},
-                           {"p", num(st.p)}, {"log10_p", num(st.log10_p)}};
-        ++ctx.tests;
-      }
-      if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
-      if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
-      others.rows.push_back(row);
-    }
-    jq[item.id] = ji;
-  }
+  size_t ours = 0;
+  QuestionnaireTables q = questionnaire_tables(d, item_ids, ours);
+  Table &summary = q.summary, &others = q.others;
+  for (const auto& item : items) jq[item.id] = questionnaire_item(ctx, item, q);
   if (d.reference)
     summary.groups = {{"this study", static_cast<int>(ours)},
                       {d.published_group(item_ids), static_cast<int>(summary.header.size() - ours)}};
@@ -313,8 +383,8 @@ void section_questionnaire(Context& ctx) {
     if (d.reference) others.notes.push_back(d.published_note(item_ids));
     s.add(others);
   }
-  if (!fig_rows.empty()) {
-    ctx.add_figure(s, bar_plot(ctx, fig_rows, "fig-ratings", "Rating"),
+  if (!q.fig_rows.empty()) {
+    ctx.add_figure(s, bar_plot(ctx, q.fig_rows, "fig-ratings", "Rating"),
                    "Average subjective rating per " + d.factor(pf).name +
                        " level (error bars: standard deviation over participants" + d.published_cf() + ").");
   }

@@ -36,154 +36,92 @@ double error_value(const CellMatrix& m, TaskType type, size_t s, size_t c) {
   return type == TaskType::identify_letter ? 1 - v : v;
 }
 
-}  // namespace
-
-void section_speed_accuracy(Context& ctx) {
-  const Design& d = ctx.design;
+// The reading of a two-level primary factor, from the paired time difference and the error test ("—" otherwise);
+// the differences and their p go to `jr`.
+std::string reading_of(const Design& d, const TaskInfo& task, const TestReport& tr, const TestReport& ar,
+                       nlohmann::json& jr) {
   const auto& primary = d.factor(d.primary);
-  Section s{"speed-accuracy", "Speed and accuracy", 2, {}};
-  s.text("Did participants buy speed with accuracy, or accuracy with time? For every task with an answer key, the "
-         "table sets the mean completion time beside the mean error of each level of " + primary.name +
-         " (error: relative error for counting, error rate = 1 − proportion correct for letters, distance for "
-         "positions; lower is better throughout). A level that is faster without being less accurate shows no "
-         "speed-accuracy trade-off. The within-participant correlation then asks whether, inside one participant "
-         "and condition, slower trials were more accurate (repeated-measures correlation, Bakdash & Marusich 2017).");
-
-  Table t;
-  t.id = "table-speed-accuracy";
-  t.caption = "Time and error per task and level of " + primary.name + " (means over participants), and what the "
-              "differences say.";
-  t.header = {"Task", "Error measure"};
-  for (size_t l = 0; l < primary.levels.size(); ++l) {
-    t.header.push_back("time (s), " + primary.levels[l]);
-    t.header.push_back("error, " + primary.levels[l]);
+  const auto* tm = tr.marginal_of(d.primary);
+  std::string reading = kDash;
+  if (primary.levels.size() == 2 && tr.paired && ar.paired) {
+    const double dt = tr.paired->t.mean_difference, pt = tr.paired->t.p;
+    double de = ar.paired->t.mean_difference;
+    if (task.type == TaskType::identify_letter) de = -de;
+    double pe = ar.paired->t.p;
+    if (const stats::Effect* e = ar.effect(primary.name)) pe = e->p;
+    if (ar.friedman) pe = ar.friedman->p;
+    const bool faster = pt < 0.05 && dt < 0, slower = pt < 0.05 && dt > 0;
+    const bool better = pe < 0.05 && de < 0, worse = pe < 0.05 && de > 0;
+    const std::string b = primary.levels[1];
+    const double base = tm ? (*tm)[0].mean : NAN;
+    const std::string pct = std::isfinite(base) && base > 0 ? " (" + fixed(100 * dt / base, 0) + "%)" : "";
+    if (faster && worse)
+      reading = "trade-off: " + b + " " + fixed(-dt, 1) + " s faster" + pct + " but less accurate";
+    else if (faster)
+      reading = b + " " + fixed(-dt, 1) + " s faster" + pct + (better ? " and more accurate" : " at no measurable cost in accuracy");
+    else if (slower && better)
+      reading = "trade-off: " + b + " more accurate but " + fixed(dt, 1) + " s slower" + pct;
+    else if (slower)
+      reading = b + " " + fixed(dt, 1) + " s slower" + pct + (worse ? " and less accurate" : " with no accuracy gain");
+    else if (better)
+      reading = b + " more accurate at no measurable cost in time";
+    else if (worse)
+      reading = b + " less accurate, time not reliably different";
+    else
+      reading = "no reliable difference in time or accuracy";
+    jr["time_difference_s"] = num(dt);
+    jr["time_difference_p"] = num(pt);
+    jr["error_difference"] = num(de);
+    jr["error_difference_p"] = num(pe);
   }
-  t.header.push_back("Reading");
-  t.text_columns = 2;
-  t.last_is_text = true;
-  Table c;
-  c.id = "table-speed-accuracy-rmcorr";
-  c.caption = "Within-participant relation of a trial's completion time and its error (repeated-measures "
-              "correlation over trials, groups = participant x condition).";
-  c.header = {"Task", "Error measure", "Trials", "Groups", "r_rm", "95% CI", "df", "p", "Error change per 10 s"};
-  c.text_columns = 2;
+  return reading;
+}
 
-  nlohmann::json jrows = nlohmann::json::array();
+// The repeated-measures correlation of the task's trials' time and error (groups: participant x condition).
+RmCorr trial_rmcorr(const Context& ctx, const TaskInfo& task) {
+  std::vector<std::string> group;
+  std::vector<double> x, y;
+  for (const auto& tri : ctx.data.trials) {
+    if (tri.task != task.id || !ctx.analysed(tri)) continue;
+    const auto e = trial_error(tri, task.type);
+    std::string cell;
+    for (int f : task.factors) cell += "/" + tri.levels[static_cast<size_t>(f)];
+    group.push_back(tri.participant + cell);
+    x.push_back(tri.time_s);
+    y.push_back(e ? *e : NAN);
+  }
+  return rm_corr(group, x, y);
+}
+
+// The scatter's data of one task: a dataset per primary level, points = participant x cell means; `finite`
+// becomes true when a point is finite.
+std::string scatter_data(const Design& d, const TaskInfo& task, const TestReport& tr, const TestReport& ar,
+                         bool& finite) {
+  const auto& primary = d.factor(d.primary);
   std::string scatter;
-  std::vector<std::string> panels;
-  int panel_index = 0;
-  for (const auto& task : d.tasks) {
-    auto ti = ctx.time.find(task.id);
-    auto ai = ctx.accuracy.find(task.id);
-    if (ti == ctx.time.end() || ai == ctx.accuracy.end()) continue;
-    const TestReport& tr = *ti->second;
-    const TestReport& ar = *ai->second;
-    const auto* tm = tr.marginal_of(d.primary);
-    const auto* am = ar.marginal_of(d.primary);
-    std::vector<std::string> row = {task.id, error_name(task.type)};
-    nlohmann::json jr{{"task", task.id}, {"error_measure", error_name(task.type)}, {"levels", nlohmann::json::array()}};
-    for (size_t l = 0; l < primary.levels.size(); ++l) {
-      const double time = tm ? (*tm)[l].mean : NAN;
-      double err = am ? (*am)[l].mean : NAN;
-      if (task.type == TaskType::identify_letter) err = 1 - err;
-      row.push_back(fixed(time, 2));
-      row.push_back(fixed(err, task.type == TaskType::find_unique ? 2 : 3));
-      jr["levels"].push_back({{"level", primary.levels[l]}, {"time_s", num(time)}, {"error", num(err)}});
-    }
-    // The reading, for a two-level primary factor, from the paired time difference and the error test.
-    std::string reading = kDash;
-    if (primary.levels.size() == 2 && tr.paired && ar.paired) {
-      const double dt = tr.paired->t.mean_difference, pt = tr.paired->t.p;
-      double de = ar.paired->t.mean_difference;
-      if (task.type == TaskType::identify_letter) de = -de;
-      double pe = ar.paired->t.p;
-      if (const stats::Effect* e = ar.effect(primary.name)) pe = e->p;
-      if (ar.friedman) pe = ar.friedman->p;
-      const bool faster = pt < 0.05 && dt < 0, slower = pt < 0.05 && dt > 0;
-      const bool better = pe < 0.05 && de < 0, worse = pe < 0.05 && de > 0;
-      const std::string b = primary.levels[1];
-      const double base = tm ? (*tm)[0].mean : NAN;
-      const std::string pct = std::isfinite(base) && base > 0 ? " (" + fixed(100 * dt / base, 0) + "%)" : "";
-      if (faster && worse)
-        reading = "trade-off: " + b + " " + fixed(-dt, 1) + " s faster" + pct + " but less accurate";
-      else if (faster)
-        reading = b + " " + fixed(-dt, 1) + " s faster" + pct + (better ? " and more accurate" : " at no measurable cost in accuracy");
-      else if (slower && better)
-        reading = "trade-off: " + b + " more accurate but " + fixed(dt, 1) + " s slower" + pct;
-      else if (slower)
-        reading = b + " " + fixed(dt, 1) + " s slower" + pct + (worse ? " and less accurate" : " with no accuracy gain");
-      else if (better)
-        reading = b + " more accurate at no measurable cost in time";
-      else if (worse)
-        reading = b + " less accurate, time not reliably different";
-      else
-        reading = "no reliable difference in time or accuracy";
-      jr["time_difference_s"] = num(dt);
-      jr["time_difference_p"] = num(pt);
-      jr["error_difference"] = num(de);
-      jr["error_difference_p"] = num(pe);
-    }
-    row.push_back(reading);
-    jr["reading"] = reading;
-    t.rows.push_back(row);
-
-    // Within-participant correlation over trials.
-    std::vector<std::string> group;
-    std::vector<double> x, y;
-    for (const auto& tri : ctx.data.trials) {
-      if (tri.task != task.id || !ctx.analysed(tri)) continue;
-      const auto e = trial_error(tri, task.type);
-      std::string cell;
-      for (int f : task.factors) cell += "/" + tri.levels[static_cast<size_t>(f)];
-      group.push_back(tri.participant + cell);
-      x.push_back(tri.time_s);
-      y.push_back(e ? *e : NAN);
-    }
-    const RmCorr rc = rm_corr(group, x, y);
-    c.rows.push_back({task.id, error_name(task.type), std::to_string(rc.n), std::to_string(rc.groups),
-                      bounded(rc.r),
-                      std::isfinite(rc.ci_low) ? stats::apa_interval(rc.ci_low, rc.ci_high, true) : kDash, df_text(rc.df),
-                      p_text(rc.p), fixed(10 * rc.slope, task.type == TaskType::find_unique ? 2 : 4)});
-    jr["rmcorr"] = {{"n", rc.n}, {"groups", rc.groups}, {"r", num(rc.r)}, {"df", num(rc.df)}, {"p", num(rc.p)},
-                    {"ci_low", num(rc.ci_low)}, {"ci_high", num(rc.ci_high)}, {"slope_per_s", num(rc.slope)}};
-    ++ctx.tests;
-    jrows.push_back(jr);
-
-    // Scatter data: one dataset per primary level, points = participant x cell means.
-    const CellMatrix& mt = *tr.m;
-    const CellMatrix& ma = *ar.m;
-    size_t k = mt.factors.size();
-    for (size_t i = 0; i < mt.factors.size(); ++i)
-      if (mt.factors[i] == d.primary) k = i;
-    bool finite = false;
-    for (size_t l = 0; l < primary.levels.size(); ++l) {
-      scatter += "# " + task.id + " " + primary.levels[l] + ": time_s error participant\n";
-      for (size_t si = 0; si < mt.subjects.size(); ++si)
-        for (size_t ci = 0; ci < mt.cells(); ++ci)
-          if (k < mt.factors.size() && mt.level(ci, k) == static_cast<int>(l)) {
-            finite = finite || (std::isfinite(mt.value[si][ci]) && std::isfinite(error_value(ma, task.type, si, ci)));
-            scatter += gp_value(mt.value[si][ci]) + " " + gp_value(error_value(ma, task.type, si, ci)) + " \"" +
-                       mt.subjects[si] + "\"\n";
-          }
-      scatter += "\n\n";
-    }
-    panels.push_back(finite ? d.task_label(task) + "|" + error_name(task.type) : "");
-    ++panel_index;
+  const CellMatrix& mt = *tr.m;
+  const CellMatrix& ma = *ar.m;
+  size_t k = mt.factors.size();
+  for (size_t i = 0; i < mt.factors.size(); ++i)
+    if (mt.factors[i] == d.primary) k = i;
+  for (size_t l = 0; l < primary.levels.size(); ++l) {
+    scatter += "# " + task.id + " " + primary.levels[l] + ": time_s error participant\n";
+    for (size_t si = 0; si < mt.subjects.size(); ++si)
+      for (size_t ci = 0; ci < mt.cells(); ++ci)
+        if (k < mt.factors.size() && mt.level(ci, k) == static_cast<int>(l)) {
+          finite = finite || (std::isfinite(mt.value[si][ci]) && std::isfinite(error_value(ma, task.type, si, ci)));
+          scatter += gp_value(mt.value[si][ci]) + " " + gp_value(error_value(ma, task.type, si, ci)) + " \"" +
+                     mt.subjects[si] + "\"\n";
+        }
+    scatter += "\n\n";
   }
-  if (t.rows.empty()) {
-    s.text("No task has both a completion time and an error measure.");
-    ctx.doc.sections.push_back(std::move(s));
-    return;
-  }
-  t.notes.push_back(d.tasks_note() + " Reading: from the paired difference of the participants' mean times (paired t) and the test of "
-                    "the error measure in the Accuracy section; \"reliable\" means p < .05. Percentages are relative "
-                    "to the first level's mean time.");
-  s.add(t);
-  c.notes.push_back("r_rm < 0: within a participant and condition, slower trials had smaller errors (time bought "
-                    "accuracy); r_rm > 0: slower trials were also less accurate (difficulty drives both). df = trials − "
-                    "groups − 1. Error change per 10 s: the common within-group slope times 10 s.");
-  s.add(c);
+  return scatter;
+}
 
+// The scatter figure: one panel per task with a finite point (`panels`: "title|ylabel", "" = nothing to draw).
+PlotSpec scatter_plot(const Design& d, const std::string& scatter, const std::vector<std::string>& panels) {
+  const auto& primary = d.factor(d.primary);
+  const int panel_index = static_cast<int>(panels.size());
   PlotSpec p;
   p.id = "fig-speed-accuracy";
   p.data["fig-speed-accuracy.dat"] = scatter;
@@ -209,6 +147,111 @@ void section_speed_accuracy(Context& ctx) {
   }
   p.commands = cmd;
   p.empty = drawn == 0;
+  return p;
+}
+
+// The empty time-and-error table: task, error measure, time and error per primary level, reading.
+Table speed_accuracy_table(const Design& d) {
+  const auto& primary = d.factor(d.primary);
+  Table t;
+  t.id = "table-speed-accuracy";
+  t.caption = "Time and error per task and level of " + primary.name + " (means over participants), and what the "
+              "differences say.";
+  t.header = {"Task", "Error measure"};
+  for (size_t l = 0; l < primary.levels.size(); ++l) {
+    t.header.push_back("time (s), " + primary.levels[l]);
+    t.header.push_back("error, " + primary.levels[l]);
+  }
+  t.header.push_back("Reading");
+  t.text_columns = 2;
+  t.last_is_text = true;
+  return t;
+}
+
+// The empty table of the repeated-measures correlations.
+Table rmcorr_table() {
+  Table c;
+  c.id = "table-speed-accuracy-rmcorr";
+  c.caption = "Within-participant relation of a trial's completion time and its error (repeated-measures "
+              "correlation over trials, groups = participant x condition).";
+  c.header = {"Task", "Error measure", "Trials", "Groups", "r_rm", "95% CI", "df", "p", "Error change per 10 s"};
+  c.text_columns = 2;
+  return c;
+}
+
+}  // namespace
+
+void section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+  const Design& d = ctx.design;
+  const auto& primary = d.factor(d.primary);
+  Section s{"speed-accuracy", "Speed and accuracy", 2, {}};
+  s.text("Did participants buy speed with accuracy, or accuracy with time? For every task with an answer key, the "
+         "table sets the mean completion time beside the mean error of each level of " + primary.name +
+         " (error: relative error for counting, error rate = 1 − proportion correct for letters, distance for "
+         "positions; lower is better throughout). A level that is faster without being less accurate shows no "
+         "speed-accuracy trade-off. The within-participant correlation then asks whether, inside one participant "
+         "and condition, slower trials were more accurate (repeated-measures correlation, Bakdash & Marusich 2017).");
+
+  Table t = speed_accuracy_table(d);
+  Table c = rmcorr_table();
+
+  nlohmann::json jrows = nlohmann::json::array();
+  std::string scatter;
+  std::vector<std::string> panels;
+  for (const auto& task : d.tasks) {
+    const TestReport* ti = time.of(task.id);
+    const TestReport* ai = accuracy.of(task.id);
+    if (!ti || !ai) continue;
+    const TestReport& tr = *ti;
+    const TestReport& ar = *ai;
+    const auto* tm = tr.marginal_of(d.primary);
+    const auto* am = ar.marginal_of(d.primary);
+    std::vector<std::string> row = {task.id, error_name(task.type)};
+    nlohmann::json jr{{"task", task.id}, {"error_measure", error_name(task.type)}, {"levels", nlohmann::json::array()}};
+    for (size_t l = 0; l < primary.levels.size(); ++l) {
+      const double mean_time = tm ? (*tm)[l].mean : NAN;
+      double err = am ? (*am)[l].mean : NAN;
+      if (task.type == TaskType::identify_letter) err = 1 - err;
+      row.push_back(fixed(mean_time, 2));
+      row.push_back(fixed(err, task.type == TaskType::find_unique ? 2 : 3));
+      jr["levels"].push_back({{"level", primary.levels[l]}, {"time_s", num(mean_time)}, {"error", num(err)}});
+    }
+    const std::string reading = reading_of(d, task, tr, ar, jr);
+    row.push_back(reading);
+    jr["reading"] = reading;
+    t.rows.push_back(row);
+
+    // Within-participant correlation over trials.
+    const RmCorr rc = trial_rmcorr(ctx, task);
+    c.rows.push_back({task.id, error_name(task.type), std::to_string(rc.n), std::to_string(rc.groups),
+                      bounded(rc.r),
+                      std::isfinite(rc.ci_low) ? stats::apa_interval(rc.ci_low, rc.ci_high, true) : kDash, df_text(rc.df),
+                      p_text(rc.p), fixed(10 * rc.slope, task.type == TaskType::find_unique ? 2 : 4)});
+    jr["rmcorr"] = {{"n", rc.n}, {"groups", rc.groups}, {"r", num(rc.r)}, {"df", num(rc.df)}, {"p", num(rc.p)},
+                    {"ci_low", num(rc.ci_low)}, {"ci_high", num(rc.ci_high)}, {"slope_per_s", num(rc.slope)}};
+    ++ctx.tests;
+    jrows.push_back(jr);
+
+    // Scatter data: one dataset per primary level, points = participant x cell means.
+    bool finite = false;
+    scatter += scatter_data(d, task, tr, ar, finite);
+    panels.push_back(finite ? d.task_label(task) + "|" + error_name(task.type) : "");
+  }
+  if (t.rows.empty()) {
+    s.text("No task has both a completion time and an error measure.");
+    ctx.doc.sections.push_back(std::move(s));
+    return;
+  }
+  t.notes.push_back(d.tasks_note() + " Reading: from the paired difference of the participants' mean times (paired t) and the test of "
+                    "the error measure in the Accuracy section; \"reliable\" means p < .05. Percentages are relative "
+                    "to the first level's mean time.");
+  s.add(t);
+  c.notes.push_back("r_rm < 0: within a participant and condition, slower trials had smaller errors (time bought "
+                    "accuracy); r_rm > 0: slower trials were also less accurate (difficulty drives both). df = trials − "
+                    "groups − 1. Error change per 10 s: the common within-group slope times 10 s.");
+  s.add(c);
+
+  const PlotSpec p = scatter_plot(d, scatter, panels);
   ctx.add_figure(s, p, "Speed-accuracy scatter: each point is one participant's mean completion time and mean error "
                        "in one condition of the task, coloured by " + primary.name + ".");
   ctx.json["speed_accuracy"] = jrows;

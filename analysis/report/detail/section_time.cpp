@@ -135,36 +135,47 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
   return p;
 }
 
-void section_time(Context& ctx) {
-  const Design& d = ctx.design;
-  const auto& primary = d.factor(d.primary);
-  const bool two = primary.levels.size() == 2;
-  Section s{"time", "Completion time", 2, {}};
-  s.text("Completion time is the time from a trial's start to the participant's answer, in seconds. For each "
-         "task, every participant contributes one value per condition: the mean of their trials in that "
-         "condition. These participant x condition means enter a repeated-measures ANOVA over participants "
-         "(with n participants and two levels, F has 1 and n − 1 degrees of freedom). Over all tasks, a participant's "
-         "condition value is the mean of their per-task means.");
+namespace {
 
-  std::vector<std::pair<std::string, const TestReport*>> rows;
-  nlohmann::json jtests = nlohmann::json::array();
-  std::string means_csv = matrix_csv_header(d);
+using Rows = std::vector<std::pair<std::string, const TestReport*>>;
+
+// The completion-time ANOVAs (one per task, then one over all tasks), computed before any layout.
+struct TimeTests {
+  Rows rows;                        // label, test: the tasks, then "All tasks"
+  const TestReport* overall = nullptr;
+  nlohmann::json json = nlohmann::json::array();  // each test as report.json records it
+  std::string means_csv;            // completion_time_means.csv
+};
+
+TimeTests run_time_tests(Context& ctx, TimeResult& result) {
+  const Design& d = ctx.design;
+  TimeTests out;
+  out.means_csv = matrix_csv_header(d);
   for (const auto& task : d.tasks) {
     const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.task == task.id; }, mean_of(time_of));
     const auto& r = ctx.add_test("time", run_rm_anova(m, d, "completion time", "s", task.id));
-    ctx.time[task.id] = &r;
-    rows.push_back({task.id, &r});
-    jtests.push_back(to_json(r, d));
-    means_csv += matrix_csv_rows(m, d, "completion_time_s", task.id);
+    result.by_scope[task.id] = &r;
+    result.tests.push_back(&r);
+    out.rows.push_back({task.id, &r});
+    out.json.push_back(to_json(r, d));
+    out.means_csv += matrix_csv_rows(m, d, "completion_time_s", task.id);
   }
   const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, time_of));
   const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "completion time", "s", "overall"));
-  ctx.time["overall"] = &overall;
-  rows.push_back({"All tasks", &overall});
-  jtests.push_back(to_json(overall, d));
-  means_csv += matrix_csv_rows(mo, d, "completion_time_s", "overall");
+  result.by_scope["overall"] = &overall;
+  result.tests.push_back(&overall);
+  out.overall = &overall;
+  out.rows.push_back({"All tasks", &overall});
+  out.json.push_back(to_json(overall, d));
+  out.means_csv += matrix_csv_rows(mo, d, "completion_time_s", "overall");
+  return out;
+}
 
-  // One row per task and one over all tasks, published values beside (when the protocol declares them).
+// One row per task and one over all tasks, published values beside (when the protocol declares them);
+// each row's report.json record goes to `jrows`.
+Table time_table(const Design& d, const Rows& rows, nlohmann::json& jrows) {
+  const auto& primary = d.factor(d.primary);
+  const bool two = primary.levels.size() == 2;
   Table t3;
   t3.id = "table-time";
   t3.caption = "Average completion time (s) per task: mean (SD) over participants, and the repeated-measures ANOVA "
@@ -176,7 +187,6 @@ void section_time(Context& ctx) {
     t3.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
   const size_t ours = t3.header.size();
   for (const auto& h : d.published_header()) t3.header.push_back(h);
-  nlohmann::json jrows = nlohmann::json::array();
   for (const auto& [label, r] : rows) {
     const TaskInfo* task = d.task(r->scope);
     std::vector<std::string> row = {task ? task->id : label};
@@ -207,9 +217,12 @@ void section_time(Context& ctx) {
     t3.notes.push_back("df and p are Greenhouse-Geisser corrected where ε < 1 (sphericity is not assumed with " +
                        std::to_string(primary.levels.size()) + " levels).");
   if (d.reference) t3.notes.push_back(d.published_note("time"));
-  s.add(t3);
+  return t3;
+}
 
-  // One sentence per row, as a results section would state them.
+// One sentence per row, as a results section would state them.
+void time_sentences(const Design& d, Section& s, const Rows& rows) {
+  const auto& primary = d.factor(d.primary);
   for (const auto& [label, r] : rows) {
     const stats::Effect* e = r->effect(primary.name);
     if (!e) {
@@ -225,36 +238,27 @@ void section_time(Context& ctx) {
               stats::apa_number(r->paired->dz);
     s.text(line + ".");
   }
+}
 
-  ctx.add_figure(s, bar_plot(ctx, rows, "fig-time", "Completion time (s)"),
-                 "Average completion time per task and over all tasks, by " + primary.name +
-                     " (error bars: standard deviation over participants" + d.published_cf() + ").");
-  ctx.add_figure(s, participant_lines(ctx, rows, "fig-time-participants", "Completion time (s)"),
-                 "Each participant's mean completion time per level of " + primary.name +
-                     " (grey lines, one per participant) and the mean over participants (black).");
-
-  // Full ANOVA tables: over all tasks always; per task when more than one factor varies in it.
-  add_anova(ctx, s, overall, "table-time-anova-overall",
+// Full ANOVA tables (over all tasks always; per task when more than one factor varies in it), then post-hoc tests.
+void time_anovas(Context& ctx, Section& s, const TimeTests& tt) {
+  add_anova(ctx, s, *tt.overall, "table-time-anova-overall",
                     "Repeated-measures ANOVA of completion time over all tasks (participant x condition means of the "
                     "per-task means, s).");
-  for (const auto& [label, r] : rows) {
-    if (r == &overall || r->m->factors.size() < 2) continue;
+  for (const auto& [label, r] : tt.rows) {
+    if (r == tt.overall || r->m->factors.size() < 2) continue;
     add_anova(ctx, s, *r, "table-time-anova-" + r->scope, "Repeated-measures ANOVA of completion time, " + label + ".");
   }
-  for (const auto& [label, r] : rows)
+  for (const auto& [label, r] : tt.rows)
     for (const auto& [factor, list] : r->posthoc)
       s.add(comparison_table(list, "table-time-posthoc-" + r->scope + "-" + factor,
                              "Post-hoc comparisons of completion time between the levels of " + factor + ", " + label +
                                  ": paired t tests on the participants' marginal means, Holm-corrected.",
                              "s"));
+}
 
-  // Robustness and assumptions (section_time_checks.cpp).
-  nlohmann::json jranks = nlohmann::json::array();
-  add_rank_tests(ctx, s, rows, jranks);
-  add_normality(ctx, s, rows, "time", false);
-  if (ctx.options.log_time) add_log_time(ctx, s);
-
-  // Descriptives of every cell.
+// Descriptives of every cell.
+Table time_cells_table(const Rows& rows) {
   Table dt;
   dt.id = "table-time-cells";
   dt.caption = "Completion time per task and condition (s): descriptives over the participants' means.";
@@ -269,11 +273,51 @@ void section_time(Context& ctx) {
     }
   dt.notes.push_back("Over the participants kept by the test of the row's task (complete cases). 95% CI: mean ± "
                      "t(0.975, n − 1) SE.");
-  s.add(dt);
+  return dt;
+}
 
-  ctx.json["completion_time"] = {{"table", jrows}, {"tests", jtests}, {"rank_tests", jranks}};
-  ctx.csv["completion_time_means.csv"] = means_csv;
+}  // namespace
+
+TimeResult time_tests(Context& ctx) {
+  TimeResult result;
+  run_time_tests(ctx, result);
+  return result;
+}
+
+TimeResult section_time(Context& ctx) {
+  TimeResult result;
+  const Design& d = ctx.design;
+  const auto& primary = d.factor(d.primary);
+  Section s{"time", "Completion time", 2, {}};
+  s.text("Completion time is the time from a trial's start to the participant's answer, in seconds. For each "
+         "task, every participant contributes one value per condition: the mean of their trials in that "
+         "condition. These participant x condition means enter a repeated-measures ANOVA over participants "
+         "(with n participants and two levels, F has 1 and n − 1 degrees of freedom). Over all tasks, a participant's "
+         "condition value is the mean of their per-task means.");
+  const TimeTests tt = run_time_tests(ctx, result);
+
+  nlohmann::json jrows = nlohmann::json::array();
+  s.add(time_table(d, tt.rows, jrows));
+  time_sentences(d, s, tt.rows);
+  ctx.add_figure(s, bar_plot(ctx, tt.rows, "fig-time", "Completion time (s)"),
+                 "Average completion time per task and over all tasks, by " + primary.name +
+                     " (error bars: standard deviation over participants" + d.published_cf() + ").");
+  ctx.add_figure(s, participant_lines(ctx, tt.rows, "fig-time-participants", "Completion time (s)"),
+                 "Each participant's mean completion time per level of " + primary.name +
+                     " (grey lines, one per participant) and the mean over participants (black).");
+  time_anovas(ctx, s, tt);
+
+  // Robustness and assumptions (section_time_checks.cpp).
+  nlohmann::json jranks = nlohmann::json::array();
+  add_rank_tests(ctx, s, tt.rows, jranks, result.tests);
+  add_normality(ctx, s, tt.rows, "time", false);
+  if (ctx.options.log_time) add_log_time(ctx, s, result.tests);
+  s.add(time_cells_table(tt.rows));
+
+  ctx.json["completion_time"] = {{"table", jrows}, {"tests", tt.json}, {"rank_tests", jranks}};
+  ctx.csv["completion_time_means.csv"] = tt.means_csv;
   ctx.doc.sections.push_back(std::move(s));
+  return result;
 }
 
 }  // namespace dtlab::report::detail

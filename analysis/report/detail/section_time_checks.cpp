@@ -67,7 +67,7 @@ PlotSpec qq_plot(const std::vector<std::pair<std::string, const TestReport*>>& r
 }  // namespace
 
 void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                    nlohmann::json& out) {
+                    nlohmann::json& out, std::vector<const TestReport*>& stored) {
   const Design& d = ctx.design;
   Table t;
   t.id = "table-time-ranks";
@@ -81,6 +81,7 @@ void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::s
       const std::string factor = d.factor(r->m->factors[k]).name;
       const auto& x = ctx.add_test("time", run_rank_test(mk, d, "completion time (ranks)", "s", r->scope,
                                                          ctx.options.seed));
+      stored.push_back(&x);
       out.push_back(to_json(x, d));
       std::vector<std::string> row = {label, factor};
       if (x.wilcoxon) {
@@ -132,7 +133,7 @@ void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::st
                  "qqnorm), with the line through the quartiles (qqline).");
 }
 
-void add_log_time(Context& ctx, Section& s) {
+void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored) {
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
@@ -145,9 +146,11 @@ void add_log_time(Context& ctx, Section& s) {
   for (const auto& task : d.tasks) {
     const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.task == task.id; }, mean_of(log_time));
     rows.push_back({task.id, &ctx.add_test("time", run_rm_anova(m, d, "log completion time", "log s", task.id))});
+    stored.push_back(rows.back().second);
   }
   const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, log_time));
   const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "log completion time", "log s", "overall"));
+  stored.push_back(&overall);
   rows.push_back({"All tasks", &overall});
 
   s.text("Log completion times (--log-time). Completion times are skewed to the right; on the log scale a "

@@ -1,6 +1,9 @@
 // The sections of the report, each a function that reads the study through
 // the Context, runs its tests and adds to the Context: document sections,
-// report.json entries, plots and CSV files. The order in report.cpp is the
+// report.json entries, plots and CSV files. A section that a later one builds
+// on returns a declared result (TimeResult, AccuracyResult) and the later one
+// takes it as an argument: no section reads another's output through the
+// Context, so the call order is written in the signatures. The order in report.cpp is the
 // order of a paper's results: data and method, completion time, accuracy,
 // mixed models of the trials, speed-accuracy, questionnaire, instruments, position effects,
 // frame-time audit, then planning the next study.
@@ -14,11 +17,11 @@
 #include <vector>
 
 #include "analysis/report/detail/cells.h"
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/document.h"
 #include "analysis/report/detail/plots.h"
 #include "analysis/report/detail/study_data.h"
-#include "analysis/report/detail/tests.h"
+#include "analysis/report/detail/inference.h"
 #include "analysis/report/report.h"
 
 namespace dtlab::report::detail {
@@ -43,8 +46,6 @@ struct Context {
   std::deque<CellMatrix> matrices;         // stable storage: TestReport points into it
   std::deque<TestReport> reports;          // every test reported, in order (tests.csv)
   std::vector<std::string> report_section; // section id of reports[i]
-  std::map<std::string, const TestReport*> time;  // completion-time tests by scope: task id, "overall"
-  std::map<std::string, const TestReport*> accuracy;  // per task, its per-trial error measure's test
 
   // True for a trial the report analyses: recorded, not practice, levels known.
   bool analysed(const TrialRow& t) const;
@@ -58,18 +59,50 @@ struct Context {
   std::string level_label(int f, int level) const { return design.level_label(f, level); }
 };
 
+// What the completion-time section found, for the sections that build on it (the tests live in ctx.reports).
+struct TimeResult {
+  std::map<std::string, const TestReport*> by_scope;  // the ANOVA of completion time by scope: task id, "overall"
+  std::vector<const TestReport*> tests;               // every test the section stored, in order (planning reads it)
+  // The ANOVA of `scope`, or nullptr.
+  const TestReport* of(const std::string& scope) const;
+};
+// What the accuracy section found: per task, the test of its per-trial error measure.
+struct AccuracyResult {
+  std::map<std::string, const TestReport*> by_task;
+  std::vector<const TestReport*> tests;  // every test the section stored, in order
+  // The test of task `id`'s per-trial error measure, or nullptr.
+  const TestReport* of(const std::string& id) const;
+};
+
 void section_overview(Context& ctx);        // title, data summary, warnings, methods
 void section_participants(Context& ctx);    // demographics, pauses and notes per participant
-void section_time(Context& ctx);            // completion time: Table III layout, full ANOVAs, Fig. 9, participants
-void section_errors(Context& ctx);          // accuracy: relative error, correctness, distance
-void section_mixed_models(Context& ctx);    // mixed models of the trials beside the ANOVAs (section_mixed.cpp)
-void section_speed_accuracy(Context& ctx);  // time vs error per condition and participant
+TimeResult section_time(Context& ctx);      // completion time: Table III layout, full ANOVAs, Fig. 9, participants
+AccuracyResult section_errors(Context& ctx);  // accuracy: relative error, correctness, distance
+// The tests of section_time and section_errors alone, without their layout (no document section, no
+// report.json entry, no figure; the tests are still stored in ctx): what `dtlab power` plans. A TimeResult
+// from time_tests holds the per-task and overall ANOVAs, not section_time's rank and log-time tests.
+TimeResult time_tests(Context& ctx);
+AccuracyResult accuracy_tests(Context& ctx);
+// Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp).
+void section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+// Time vs error per condition and participant, from the tests of `time` and `accuracy`.
+void section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
 void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test (asked at the end)
 void section_instruments(Context& ctx);     // instruments' scores and items asked per condition; free text
-void section_position(Context& ctx);        // position in the session, order rows of the counterbalancing
-void section_frames(Context& ctx);          // frame-time audit per condition
-void section_planning(Context& ctx);        // planning the next study: analytic power of every ANOVA effect
-void section_notes(Context& ctx);           // what the report does not say; files written
+// Position in the session, order rows of the counterbalancing; the overall completion time of `time`.
+void section_position(Context& ctx, const TimeResult& time);
+// What the frame-time audit found that the top of the report repeats.
+struct FramesResult {
+  std::vector<std::string> warnings;  // why render cost may confound completion time; empty: no reason
+};
+FramesResult section_frames(Context& ctx);  // frame-time audit per condition
+// The audit's warnings also at the top of the report, in the data section (section_overview's), where a
+// reader starts; the report's assembly calls it once both sections exist.
+void warn_at_top(Document& doc, const FramesResult& frames);
+// Planning the next study: analytic power of every ANOVA effect of `time` and `accuracy`.
+void section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+// What the report does not say; files written (`path_figures`: section_paths added its section).
+void section_notes(Context& ctx, bool path_figures);
 
 // A walked-path figure written beside the report (report.cpp draws them through ReportOptions::path_figure).
 struct PathFigure {
@@ -78,7 +111,8 @@ struct PathFigure {
   std::string file;  // relative to the report's directory, e.g. "paths/03-P03-T3.svg"
 };
 // The table linking them, and the trials left out of them ("participant trial N: why"; also a warning).
-void section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out);
+// Returns whether it added the section (false: no figure and nothing left out).
+bool section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out);
 
 // --- plots shared by the sections (section_time.cpp) -------------------------------------------
 // Bars per row (x groups) and primary level (series), SD error bars (the article's Figs. 9 and 10).
@@ -90,15 +124,16 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
 
 // --- checks beside the completion-time ANOVAs (section_time_checks.cpp) ---------------------------
 // Rank tests of each factor of each row on its marginal means (Wilcoxon for 2 levels, else Friedman);
-// their test objects are appended to `out`.
+// their test objects are appended to `out`, the stored tests to `stored`.
 void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                    nlohmann::json& out);
+                    nlohmann::json& out, std::vector<const TestReport*>& stored);
 // Shapiro-Wilk of each row's ANOVA residuals (a table) and their normal Q-Q plots (one figure).
 void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
                    const std::string& measure, bool log_scale);
 
-// --log-time: ANOVAs of log completion times per task and overall, a table beside the seconds'.
-void add_log_time(Context& ctx, Section& s);
+// --log-time: ANOVAs of log completion times per task and overall, a table beside the seconds'; the stored
+// tests are appended to `stored`.
+void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored);
 // Mean over the condition's tasks of the per-task means of `field`; NaN unless every task of the
 // condition's scenario has a trial (no silent re-weighting). (section_time.cpp)
 Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field);

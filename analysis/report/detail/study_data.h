@@ -53,7 +53,7 @@ struct ParticipantRow {
   int index = 0, order_row = 0;
   bool released = false;
   std::map<std::string, std::string> demographics;  // values as text
-  std::string session_status;                       // "" when no session was started
+  std::optional<store::SessionStatus> session_status;  // nullopt when no session was started
   int planned = 0, recorded = 0, resumes = 0;
   std::string software_version;                     // of the session
   int pauses = 0;                                   // the experimenter's pauses of the session
@@ -97,8 +97,12 @@ Result<std::vector<store::Revision>> design_revisions(store::StudyReader& reader
 // Which design revisions `spec` ("all", "latest", "N") names, of `count` (messages name `path`).
 Result<std::vector<int>> chosen_revisions(const std::string& spec, int count, const std::string& path);
 
-// Reads design revision `revision` (1-based) of the database. Excluded participants and trials
+// Reads design revision `revision` (1-based) of the database, its trials from `trials` (reader.trials(),
+// read once by the caller for every revision and the export). Excluded participants and trials
 // are dropped from `trials` and `answers` unless `with_excluded`.
+Result<StudyData> read_study(store::StudyReader& reader, const std::vector<store::TrialRow>& trials, int revision,
+                             bool with_excluded);
+// The same, reading the trials itself.
 Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with_excluded);
 
 }  // namespace dtlab::report::detail

@@ -1,7 +1,7 @@
-// Tests on participant x cell tables; see tests.h. The statistics themselves
+// Tests on participant x cell tables; see inference.h. The statistics themselves
 // are analysis/stats' (validated there against R and NIST); this file only
 // chooses the data each test sees and collects what the tables show.
-#include "analysis/report/detail/tests.h"
+#include "analysis/report/detail/inference.h"
 
 #include <algorithm>
 #include <cmath>
@@ -216,15 +216,12 @@ nlohmann::json to_json(const stats::Effect& e) {
   return j;
 }
 
-nlohmann::json to_json(const TestReport& r, const Design& d) {
+namespace {
+
+// Descriptives of every cell of the test, with the cell's name and levels.
+nlohmann::json cells_json(const TestReport& r, const Design& d) {
   using nlohmann::json;
   const CellMatrix& m = *r.m;
-  json j{{"measure", r.measure}, {"unit", r.unit}, {"scope", r.scope}, {"test", r.test}};
-  json factors = json::array();
-  for (int f : m.factors) factors.push_back(d.factor(f).name);
-  j["factors"] = factors;
-  j["n"] = r.kept.size();
-  j["excluded"] = r.excluded;
   json cells = json::array();
   for (size_t c = 0; c < m.cells(); ++c) {
     json levels = json::object();
@@ -235,7 +232,13 @@ nlohmann::json to_json(const TestReport& r, const Design& d) {
     cj["levels"] = levels;
     cells.push_back(cj);
   }
-  j["cells"] = cells;
+  return cells;
+}
+
+// Descriptives per level of each factor of the test.
+nlohmann::json marginals_json(const TestReport& r, const Design& d) {
+  using nlohmann::json;
+  const CellMatrix& m = *r.m;
   json marg = json::object();
   for (size_t k = 0; k < m.factors.size(); ++k) {
     json per = json::array();
@@ -246,28 +249,44 @@ nlohmann::json to_json(const TestReport& r, const Design& d) {
     }
     marg[d.factor(m.factors[k]).name] = per;
   }
-  j["marginals"] = marg;
+  return marg;
+}
+
+nlohmann::json friedman_json(const stats::FriedmanResult& f) {
+  return {{"Q", num(f.Q)},
+          {"df", num(f.df)},
+          {"p", num(f.p)},
+          {"log10_p", num(f.log10_p)},
+          {"p_exact", num(f.p_exact)},
+          {"exact_method", f.exact_method},
+          {"kendall_W", num(f.kendall_W)},
+          {"iman_davenport_F", num(f.iman_davenport_F)},
+          {"p_iman_davenport", num(f.p_iman_davenport)},
+          {"n", f.n},
+          {"k", f.k},
+          {"treatments", f.treatments},
+          {"mean_ranks", f.mean_ranks}};
+}
+
+}  // namespace
+
+nlohmann::json to_json(const TestReport& r, const Design& d) {
+  using nlohmann::json;
+  const CellMatrix& m = *r.m;
+  json j{{"measure", r.measure}, {"unit", r.unit}, {"scope", r.scope}, {"test", r.test}};
+  json factors = json::array();
+  for (int f : m.factors) factors.push_back(d.factor(f).name);
+  j["factors"] = factors;
+  j["n"] = r.kept.size();
+  j["excluded"] = r.excluded;
+  j["cells"] = cells_json(r, d);
+  j["marginals"] = marginals_json(r, d);
   if (r.anova) {
     json eff = json::array();
     for (const auto& e : r.anova->effects) eff.push_back(to_json(e));
     j["effects"] = eff;
   }
-  if (r.friedman) {
-    const auto& f = *r.friedman;
-    j["friedman"] = {{"Q", num(f.Q)},
-                     {"df", num(f.df)},
-                     {"p", num(f.p)},
-                     {"log10_p", num(f.log10_p)},
-                     {"p_exact", num(f.p_exact)},
-                     {"exact_method", f.exact_method},
-                     {"kendall_W", num(f.kendall_W)},
-                     {"iman_davenport_F", num(f.iman_davenport_F)},
-                     {"p_iman_davenport", num(f.p_iman_davenport)},
-                     {"n", f.n},
-                     {"k", f.k},
-                     {"treatments", f.treatments},
-                     {"mean_ranks", f.mean_ranks}};
-  }
+  if (r.friedman) j["friedman"] = friedman_json(*r.friedman);
   if (r.wilcoxon) {
     j["wilcoxon"] = stats::wilcoxon_json<json>(*r.wilcoxon);
     j["wilcoxon"]["x"] = m.cell_names[0];

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "analysis/report/detail/cells.h"
-#include "analysis/report/detail/design.h"
+#include "analysis/report/detail/report_design.h"
 #include "analysis/stats/stats.h"
 
 namespace dtlab::report::detail {

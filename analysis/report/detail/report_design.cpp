@@ -1,5 +1,5 @@
-// The analysed design from a protocol; see design.h.
-#include "analysis/report/detail/design.h"
+// The analysed design from a protocol; see report_design.h.
+#include "analysis/report/detail/report_design.h"
 
 #include <algorithm>
 #include <cctype>
@@ -15,20 +15,14 @@ std::string lower(std::string s) {
   return s;
 }
 
-const protocol::Rendering* rendering_named(const protocol::Protocol& p, const std::string& name) {
-  for (const auto& r : p.renderings)
-    if (r.name == name) return &r;
-  return nullptr;
-}
-
 // The reference study (STUDY.md): a rendering factor {off = standard, on =
 // dt-*}, tasks T1..T4 of the article's types. Other protocols get no article column.
 bool is_reference_design(const protocol::Protocol& p, const Design& d) {
   if (d.primary < 0 || p.factors[static_cast<size_t>(d.primary)].role != protocol::FactorRole::rendering) return false;
   const auto& lv = p.factors[static_cast<size_t>(d.primary)].levels;
   if (lv != std::vector<std::string>{"off", "on"}) return false;
-  const auto* off = rendering_named(p, "off");
-  const auto* on = rendering_named(p, "on");
+  const auto* off = protocol::find_rendering(p, "off");
+  const auto* on = protocol::find_rendering(p, "on");
   if (!off || !on || off->method != "standard" || on->method.rfind("dt-", 0) != 0) return false;
   const std::vector<std::pair<std::string, protocol::TaskType>> want = {
       {"T1", protocol::TaskType::count_targets},
@@ -47,7 +41,7 @@ std::string Design::level_label(int f, int level) const {
   const auto& fac = factor(f);
   const std::string& name = fac.levels[static_cast<size_t>(level)];
   if (fac.role != protocol::FactorRole::rendering) return name;
-  const auto* r = rendering_named(*protocol, name);
+  const auto* r = protocol::find_rendering(*protocol, name);
   if (article_names && f == primary) return (name == "off" ? "Standard" : "DynTrans") + std::string(" (") + name + ")";
   return r && r->method != name ? name + " (" + r->method + ")" : name;  // "standard", not "standard (standard)"
 }
