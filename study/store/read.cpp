@@ -11,6 +11,7 @@
 #include <map>
 #include <set>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/file_check.h"
 #include "study/store/detail/reader_impl.h"
 #include "study/store/detail/schema.h"
@@ -18,6 +19,9 @@
 namespace dtlab::store {
 
 using detail::Db;
+using detail::NamedColumns;
+using detail::find_table;
+using detail::select_list;
 using detail::Stmt;
 using detail::parse_seed;
 using detail::parse_status;
@@ -40,18 +44,55 @@ Demographics parse_demographics(const std::string& text) {
   return out;
 }
 
-// The answer of one kind from four columns (count, letter, x, z) starting at `c`.
-std::optional<Answer> read_answer(const Stmt& st, const std::string& kind, int c) {
+// The answer of one kind from its four columns (PREFIX_count, _letter, _x, _z), by name.
+std::optional<Answer> read_answer(const NamedColumns& col, const Stmt& q, const std::string& kind,
+                                  const std::string& prefix) {
   if (kind == "count") {
-    if (st.is_null(c)) return std::nullopt;
-    return Answer{Count{st.int64(c)}};
+    if (col.is_null(q, prefix + "_count")) return std::nullopt;
+    return Answer{Count{col.int64(q, prefix + "_count")}};
   }
   if (kind == "letter") {
-    if (st.is_null(c + 1)) return std::nullopt;
-    return Answer{Letter{st.text(c + 1)}};
+    if (col.is_null(q, prefix + "_letter")) return std::nullopt;
+    return Answer{Letter{col.text(q, prefix + "_letter")}};
   }
-  if (st.is_null(c + 2) || st.is_null(c + 3)) return std::nullopt;
-  return Answer{Position{st.real(c + 2), st.real(c + 3)}};
+  if (col.is_null(q, prefix + "_x") || col.is_null(q, prefix + "_z")) return std::nullopt;
+  return Answer{Position{col.real(q, prefix + "_x"), col.real(q, prefix + "_z")}};
+}
+
+// A recorded trial as trials() selects it: the trial_results columns by their names, and the
+// session, ledger and revision columns by the names the query gives them.
+TrialRow read_trial_row(const NamedColumns& col, const Stmt& q) {
+  TrialRow t;
+  t.participant = col.text(q, "participant");
+  t.enrollment_index = static_cast<int>(col.int64(q, "enrollment_index"));
+  t.order_row = static_cast<int>(col.int64(q, "order_row"));
+  t.session_id = col.int64(q, "session_id");
+  t.session_status = parse_status(col.text(q, "session_status"));
+  t.scene_hash = col.text(q, "scene_hash");
+  const std::string kind = col.text(q, "answer_kind");
+  t.answer = read_answer(col, q, kind, "answer");
+  t.truth = read_answer(col, q, kind, "truth").value_or(Answer{Count{0}});
+  t.scores.rel_error = col.opt_real(q, "rel_error");  // as stored (the schema's CHECK holds them to score())
+  t.scores.signed_error = col.opt_int(q, "signed_error");
+  if (auto c = col.opt_int(q, "correct")) t.scores.correct = *c != 0;
+  t.scores.distance = col.opt_real(q, "distance");
+  t.completion_s = col.real(q, "completion_s");
+  t.started_at = col.text(q, "started_at");
+  t.ended_at = col.text(q, "ended_at");
+  t.frames.frames = col.int64(q, "frame_count");
+  t.frames.mean_ms = col.opt_real(q, "frame_ms_mean");
+  t.frames.sd_ms = col.opt_real(q, "frame_ms_sd");
+  t.frames.p95_ms = col.opt_real(q, "frame_ms_p95");
+  t.frames.max_ms = col.opt_real(q, "frame_ms_max");
+  t.frames.first_ms = col.opt_real(q, "frame_first_ms");
+  t.frames.steady_median_ms = col.opt_real(q, "frame_ms_median");
+  t.frames.late = col.opt_int(q, "late_frames");
+  t.frames.refresh_hz = col.opt_real(q, "refresh_hz");
+  t.event_count = col.int64(q, "event_count");
+  t.study_id = col.int64(q, "study_id");
+  t.protocol_sha256 = col.text(q, "protocol_sha256");
+  t.withdrawn = col.int64(q, "withdrawn") != 0;
+  return t;
 }
 
 }  // namespace
@@ -372,55 +413,24 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
 
     std::vector<TrialRow> out;
     const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
+    std::optional<NamedColumns> col;
     Status st = each_row(
         *impl_->db,
-        "SELECT pa.participant, pa.enrollment_index, pa.order_row, s.id, s.status, p.position, r.scene_hash, "
-        "r.answer_kind, r.answer_count, r.answer_letter, r.answer_x, r.answer_z, r.truth_count, r.truth_letter, "
-        "r.truth_x, r.truth_z, r.completion_s, r.started_at, r.ended_at, r.frame_count, r.frame_ms_mean, "
-        "r.frame_ms_sd, r.frame_ms_p95, r.frame_ms_max, r.event_count, s.study_id, st.protocol_sha256, "
-        "r.rel_error, r.signed_error, r.correct, r.distance, " +
-        std::string(impl_->schema_version >= 3 ? "r.frame_first_ms, r.frame_ms_median, r.late_frames, r.refresh_hz, "
-                                               : "NULL, NULL, NULL, NULL, ") +
-        withdrawn_sql(impl_->schema_version, "pa.id") + " " +
-        "FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
+        "SELECT pa.participant AS participant, pa.enrollment_index AS enrollment_index, pa.order_row AS order_row, "
+        "s.id AS session_id, s.status AS session_status, p.position AS position, s.study_id AS study_id, "
+        "st.protocol_sha256 AS protocol_sha256, " + withdrawn_sql(impl_->schema_version, "pa.id") + " AS withdrawn, " +
+        select_list(*find_table("trial_results"), "r.", impl_->schema_version) +
+        " FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
         "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
         "JOIN studies st ON st.id = s.study_id" + filter + " ORDER BY pa.enrollment_index, p.position",
         "reading the trial results", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
         [&](const Stmt& q) {
-          TrialRow t;
-          t.participant = q.text(0);
-          t.enrollment_index = static_cast<int>(q.int64(1));
-          t.order_row = static_cast<int>(q.int64(2));
-          t.session_id = q.int64(3);
-          t.session_status = parse_status(q.text(4));
-          const int position = static_cast<int>(q.int64(5));
+          if (!col) col.emplace(q);
+          TrialRow t = read_trial_row(*col, q);
+          const int position = static_cast<int>(col->int64(q, "position"));
           if (auto it = by_position.find({t.session_id, position}); it != by_position.end()) t.planned = *it->second;
-          t.scene_hash = q.text(6);
-          const std::string kind = q.text(7);
-          t.answer = read_answer(q, kind, 8);
-          t.truth = read_answer(q, kind, 12).value_or(Answer{Count{0}});
-          t.scores.rel_error = opt_real(q, 27);  // as stored (the schema's CHECK holds them to score())
-          t.scores.signed_error = opt_int(q, 28);
-          if (auto c = opt_int(q, 29)) t.scores.correct = *c != 0;
-          t.scores.distance = opt_real(q, 30);
-          t.frames.first_ms = opt_real(q, 31);
-          t.frames.steady_median_ms = opt_real(q, 32);
-          t.frames.late = opt_int(q, 33);
-          t.frames.refresh_hz = opt_real(q, 34);
-          t.completion_s = q.real(16);
-          t.started_at = q.text(17);
-          t.ended_at = q.text(18);
-          t.frames.frames = q.int64(19);
-          t.frames.mean_ms = opt_real(q, 20);
-          t.frames.sd_ms = opt_real(q, 21);
-          t.frames.p95_ms = opt_real(q, 22);
-          t.frames.max_ms = opt_real(q, 23);
-          t.event_count = q.int64(24);
-          t.study_id = q.int64(25);
-          t.protocol_sha256 = q.text(26);
           if (auto it = rev.find(t.study_id); it != rev.end()) t.design_revision = it->second->design_revision;
           t.excluded = excluded(t.participant, position);
-          t.withdrawn = q.int64(35) != 0;
           out.push_back(std::move(t));
         });
     if (!st) return st.error();

@@ -1,10 +1,13 @@
-// Sessions and trials (docs/store.md, invariants 5-10 and the session state
-// diagram): the plan is stored once with its session, each finished trial is
-// one transaction holding its result, scores, events and poses, and the next
-// trial is always derived from the database, never from memory, so resuming
-// after a crash runs exactly the trials the session would have run.
+// The store's session and trial tables: Store's session and trial calls
+// (docs/store.md, invariants 5-10 and the session state diagram). The plan
+// is stored once with its session, each finished trial is one transaction
+// holding its result, scores, events and poses, and the next trial is always
+// derived from the database, never from memory, so resuming after a crash
+// runs exactly the trials the session would have run. A result's row is set
+// by column name (detail/columns.h), never by parameter number.
 #include <cmath>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/schema.h"
 #include "study/store/detail/store_impl.h"
 #include "study/store/detail/time.h"
@@ -14,6 +17,7 @@ namespace dtlab::store {
 namespace {
 
 using detail::Db;
+using detail::RowInsert;
 using detail::Stmt;
 using detail::Value;
 using detail::parse_seed;
@@ -212,40 +216,35 @@ Status validate_record(const Store::Impl& m, const TrialRecord& r) {
   return {};
 }
 
+// The trial_results row of `r`, set by column name; the score columns are score()'s (the schema's
+// CHECK holds them to it).
 Status insert_result(Db& db, std::int64_t planned_id, const TrialRecord& r) {
-  const char* what = "storing the trial result";
-  auto st = Stmt::prepare(db,
-                          "INSERT INTO trial_results (planned_trial_id, scene_hash, answer_kind, answered, "
-                          "answer_count, answer_letter, answer_x, answer_z, truth_count, truth_letter, truth_x, truth_z, "
-                          "rel_error, signed_error, correct, distance, completion_s, started_at, ended_at, frame_count, "
-                          "frame_ms_mean, frame_ms_sd, frame_ms_p95, frame_ms_max, event_count, recorded_at, "
-                          "frame_first_ms, frame_ms_median, late_frames, refresh_hz) "
-                          "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, "
-                          "?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30)",
-                          what);
-  if (!st) return st.error();
   static const char* kinds[] = {"count", "letter", "position"};
-  st->bind(1, planned_id).bind(2, r.scene_hash).bind(3, kinds[r.truth.index()]).bind(4, r.answer ? 1 : 0);
-  auto bind_answer = [&](int first, const Answer* a) {
+  RowInsert row("trial_results");
+  row.set("planned_trial_id", planned_id).set("scene_hash", r.scene_hash);
+  row.set("answer_kind", kinds[r.truth.index()]).set("answered", r.answer ? 1 : 0);
+  auto set_answer = [&](const std::string& prefix, const Answer* a) {
     if (!a) return;
-    if (const auto* c = std::get_if<Count>(a)) st->bind(first, c->n);
-    if (const auto* l = std::get_if<Letter>(a)) st->bind(first + 1, l->letter);
-    if (const auto* p = std::get_if<Position>(a)) st->bind(first + 2, p->x).bind(first + 3, p->z);
+    if (const auto* c = std::get_if<Count>(a)) row.set(prefix + "_count", c->n);
+    if (const auto* l = std::get_if<Letter>(a)) row.set(prefix + "_letter", l->letter);
+    if (const auto* p = std::get_if<Position>(a)) row.set(prefix + "_x", p->x).set(prefix + "_z", p->z);
   };
-  bind_answer(5, r.answer ? &*r.answer : nullptr);
-  bind_answer(9, &r.truth);
+  set_answer("answer", r.answer ? &*r.answer : nullptr);
+  set_answer("truth", &r.truth);
   const Scores s = score(r.answer, r.truth);
-  st->bind(13, s.rel_error).bind(14, s.signed_error).bind(16, s.distance);
-  if (s.correct) st->bind(15, *s.correct ? 1 : 0);
-  st->bind(17, r.completion_s).bind(18, detail::iso8601_utc(r.started_at)).bind(19, detail::iso8601_utc(r.ended_at));
-  st->bind(20, r.frames.frames).bind(21, r.frames.mean_ms).bind(22, r.frames.sd_ms).bind(23, r.frames.p95_ms);
-  st->bind(24, r.frames.max_ms).bind(25, static_cast<std::int64_t>(r.events.size()));
+  row.set("rel_error", s.rel_error).set("signed_error", s.signed_error).set("distance", s.distance);
+  if (s.correct) row.set("correct", *s.correct ? 1 : 0);
+  row.set("completion_s", r.completion_s);
+  row.set("started_at", detail::iso8601_utc(r.started_at)).set("ended_at", detail::iso8601_utc(r.ended_at));
+  row.set("frame_count", r.frames.frames).set("frame_ms_mean", r.frames.mean_ms).set("frame_ms_sd", r.frames.sd_ms);
+  row.set("frame_ms_p95", r.frames.p95_ms).set("frame_ms_max", r.frames.max_ms);
+  row.set("event_count", static_cast<std::int64_t>(r.events.size()));
   auto now = db.now_iso();
   if (!now) return now.error();
-  st->bind(26, *now);
-  st->bind(27, r.frames.first_ms).bind(28, r.frames.steady_median_ms).bind(29, r.frames.late);
-  st->bind(30, r.frames.refresh_hz);
-  if (auto x = st->run(what); !x) return x;
+  row.set("recorded_at", *now);
+  row.set("frame_first_ms", r.frames.first_ms).set("frame_ms_median", r.frames.steady_median_ms);
+  row.set("late_frames", r.frames.late).set("refresh_hz", r.frames.refresh_hz);
+  if (auto x = row.run(db, "storing the trial result"); !x) return x;
 
   std::vector<std::vector<Value>> events;
   events.reserve(r.events.size());
