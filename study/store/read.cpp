@@ -20,6 +20,7 @@ namespace dtlab::store {
 
 using detail::Db;
 using detail::NamedColumns;
+using detail::by_name;
 using detail::find_table;
 using detail::select_list;
 using detail::Stmt;
@@ -336,35 +337,38 @@ Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& particip
     std::map<std::int64_t, std::vector<std::pair<std::string, std::string>>> levels;
     const std::string filter = participant.empty() ? "" : " AND pa.participant = ?1";
     Status st = each_row(db,
-                         "SELECT l.planned_trial_id, l.factor, l.level FROM planned_levels l "
+                         "SELECT l.planned_trial_id AS planned_trial_id, l.factor AS factor, l.level AS level "
+                         "FROM planned_levels l "
                          "JOIN planned_trials p ON p.id = l.planned_trial_id JOIN sessions s ON s.id = p.session_id "
                          "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                              " ORDER BY l.planned_trial_id, l.factor_position",
                          "reading the planned levels",
                          [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-                         [&](const Stmt& q) { levels[q.int64(0)].emplace_back(q.text(1), q.text(2)); });
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
+                           levels[c.int64(q, "planned_trial_id")].emplace_back(c.text(q, "factor"), c.text(q, "level"));
+                         }));
     if (!st) return st.error();
     std::vector<PlannedRow> out;
     st = each_row(db,
-                  "SELECT p.id, p.session_id, pa.participant, p.position, p.block, p.task, p.trial, p.seed, p.method, "
-                  "p.practice FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
-                  "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
+                  "SELECT " + select_list(*find_table("planned_trials"), "p.", impl_->schema_version) +
+                      ", pa.participant AS participant FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
+                      "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                       " ORDER BY pa.enrollment_index, p.position",
                   "reading the planned trials", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-                  [&](const Stmt& q) {
+                  by_name([&](const NamedColumns& c, const Stmt& q) {
                     PlannedRow r;
-                    r.session_id = q.int64(1);
-                    r.participant = q.text(2);
-                    r.trial.position = static_cast<int>(q.int64(3));
-                    r.trial.block = static_cast<int>(q.int64(4));
-                    r.trial.task = q.text(5);
-                    r.trial.trial = static_cast<int>(q.int64(6));
-                    r.trial.seed = parse_seed(q.text(7));
-                    r.trial.method = q.text(8);
-                    r.trial.practice = q.int64(9) != 0;
-                    r.trial.levels = std::move(levels[q.int64(0)]);
+                    r.session_id = c.int64(q, "session_id");
+                    r.participant = c.text(q, "participant");
+                    r.trial.position = static_cast<int>(c.int64(q, "position"));
+                    r.trial.block = static_cast<int>(c.int64(q, "block"));
+                    r.trial.task = c.text(q, "task");
+                    r.trial.trial = static_cast<int>(c.int64(q, "trial"));
+                    r.trial.seed = parse_seed(c.text(q, "seed"));
+                    r.trial.method = c.text(q, "method");
+                    r.trial.practice = c.int64(q, "practice") != 0;
+                    r.trial.levels = std::move(levels[c.int64(q, "id")]);
                     out.push_back(std::move(r));
-                  });
+                  }));
     if (!st) return st.error();
     return out;
   });
@@ -413,7 +417,6 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
 
     std::vector<TrialRow> out;
     const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
-    std::optional<NamedColumns> col;
     Status st = each_row(
         *impl_->db,
         "SELECT pa.participant AS participant, pa.enrollment_index AS enrollment_index, pa.order_row AS order_row, "
@@ -424,15 +427,14 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
         "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
         "JOIN studies st ON st.id = s.study_id" + filter + " ORDER BY pa.enrollment_index, p.position",
         "reading the trial results", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-        [&](const Stmt& q) {
-          if (!col) col.emplace(q);
-          TrialRow t = read_trial_row(*col, q);
-          const int position = static_cast<int>(col->int64(q, "position"));
+        by_name([&](const NamedColumns& col, const Stmt& q) {
+          TrialRow t = read_trial_row(col, q);
+          const int position = static_cast<int>(col.int64(q, "position"));
           if (auto it = by_position.find({t.session_id, position}); it != by_position.end()) t.planned = *it->second;
           if (auto it = rev.find(t.study_id); it != rev.end()) t.design_revision = it->second->design_revision;
           t.excluded = excluded(t.participant, position);
           out.push_back(std::move(t));
-        });
+        }));
     if (!st) return st.error();
     return out;
   });
@@ -505,10 +507,14 @@ Result<std::vector<CameraPose>> StudyReader::poses(const std::string& participan
     auto id = impl_->result_id(participant, position);
     if (!id) return id.error();
     std::vector<CameraPose> out;
-    Status st = each_row(*impl_->db, "SELECT t_s, x, y, z, yaw, pitch FROM camera_poses WHERE trial_id = ? ORDER BY frame",
-                         "reading the camera poses", [&](Stmt& s) { s.bind(1, *id); }, [&](const Stmt& q) {
-                           out.push_back(CameraPose{q.real(0), q.real(1), q.real(2), q.real(3), q.real(4), q.real(5)});
-                         });
+    Status st = each_row(*impl_->db,
+                         "SELECT " + select_list(*find_table("camera_poses"), "", impl_->schema_version) +
+                             " FROM camera_poses WHERE trial_id = ? ORDER BY frame",
+                         "reading the camera poses", [&](Stmt& s) { s.bind(1, *id); },
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
+                           out.push_back(CameraPose{c.real(q, "t_s"), c.real(q, "x"), c.real(q, "y"), c.real(q, "z"),
+                                                    c.real(q, "yaw"), c.real(q, "pitch")});
+                         }));
     if (!st) return st.error();
     return out;
   });
@@ -519,10 +525,14 @@ Result<std::vector<InputEvent>> StudyReader::events(const std::string& participa
     auto id = impl_->result_id(participant, position);
     if (!id) return id.error();
     std::vector<InputEvent> out;
-    Status st = each_row(*impl_->db, "SELECT t_s, kind, detail, x, y FROM input_events WHERE trial_id = ? ORDER BY seq",
-                         "reading the input events", [&](Stmt& s) { s.bind(1, *id); }, [&](const Stmt& q) {
-                           out.push_back(InputEvent{q.real(0), parse_kind(q.text(1)), q.text(2), q.real(3), q.real(4)});
-                         });
+    Status st = each_row(*impl_->db,
+                         "SELECT " + select_list(*find_table("input_events"), "", impl_->schema_version) +
+                             " FROM input_events WHERE trial_id = ? ORDER BY seq",
+                         "reading the input events", [&](Stmt& s) { s.bind(1, *id); },
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
+                           out.push_back(InputEvent{c.real(q, "t_s"), parse_kind(c.text(q, "kind")), c.text(q, "detail"),
+                                                    c.real(q, "x"), c.real(q, "y")});
+                         }));
     if (!st) return st.error();
     return out;
   });

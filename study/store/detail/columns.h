@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "study/common/error.h"
@@ -68,5 +69,15 @@ class NamedColumns {
   int at(std::string_view name) const;  // -1 if the query has no such column
   std::map<std::string, int, std::less<>> index_;
 };
+
+// A row callback for each_row (reader_impl.h) that reads by name: calls f(columns, statement), the
+// names taken once, from the first row.
+template <class F>
+auto by_name(F f) {
+  return [f = std::move(f), col = std::optional<NamedColumns>()](const Stmt& q) mutable {
+    if (!col) col.emplace(q);
+    f(*col, q);
+  };
+}
 
 }  // namespace dtlab::store::detail
