@@ -220,21 +220,21 @@ Result<std::vector<LedgerEntry>> StudyReader::ledger() {
   return impl_->call([&]() -> Result<std::vector<LedgerEntry>> {
     std::vector<LedgerEntry> out;
     Status st = each_row(*impl_->db,
-                         "SELECT participant, enrollment_index, order_row, study_id, demographics, enrolled_at, "
-                         "released_at, " + withdrawn_sql(impl_->schema_version, "participants.id") +
-                             " FROM participants ORDER BY enrollment_index",
-                         "reading the participant ledger", no_bind, [&](const Stmt& q) {
+                         "SELECT " + select_list(*find_table("participants"), "", impl_->schema_version) + ", " +
+                             withdrawn_sql(impl_->schema_version, "participants.id") +
+                             " AS withdrawn FROM participants ORDER BY enrollment_index",
+                         "reading the participant ledger", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
                            LedgerEntry e;
-                           e.participant = q.text(0);
-                           e.index = static_cast<int>(q.int64(1));
-                           e.order_row = static_cast<int>(q.int64(2));
-                           e.study_id = q.int64(3);
-                           e.demographics = parse_demographics(q.text(4));
-                           e.enrolled_at = q.text(5);
-                           e.released_at = opt_text(q, 6);
-                           e.withdrawn = q.int64(7) != 0;
+                           e.participant = c.text(q, "participant");
+                           e.index = static_cast<int>(c.int64(q, "enrollment_index"));
+                           e.order_row = static_cast<int>(c.int64(q, "order_row"));
+                           e.study_id = c.int64(q, "study_id");
+                           e.demographics = parse_demographics(c.text(q, "demographics"));
+                           e.enrolled_at = c.text(q, "enrolled_at");
+                           e.released_at = c.opt_text(q, "released_at");
+                           e.withdrawn = c.int64(q, "withdrawn") != 0;
                            out.push_back(std::move(e));
-                         });
+                         }));
     if (!st) return st.error();
     return out;
   });
@@ -247,85 +247,87 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
     std::map<std::int64_t, std::size_t> at;
     Status st = each_row(
         db,
-        "SELECT s.id, pa.participant, s.study_id, s.software_version, s.status, s.started_at, s.ended_at, "
-        "(SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id), "
-        "(SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-        " WHERE p.session_id = s.id), " + withdrawn_sql(impl_->schema_version, "pa.id") +
-            " FROM sessions s JOIN participants pa ON pa.id = s.participant_id ORDER BY pa.enrollment_index",
-        "reading the sessions", no_bind, [&](const Stmt& q) {
+        "SELECT " + select_list(*find_table("sessions"), "s.", impl_->schema_version) +
+            ", pa.participant AS participant, "
+            "(SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id) AS planned, "
+            "(SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+            " WHERE p.session_id = s.id) AS recorded, " + withdrawn_sql(impl_->schema_version, "pa.id") +
+            " AS withdrawn FROM sessions s JOIN participants pa ON pa.id = s.participant_id ORDER BY pa.enrollment_index",
+        "reading the sessions", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
           SessionRecord r;
-          r.id = q.int64(0);
-          r.participant = q.text(1);
-          r.study_id = q.int64(2);
-          r.software_version = q.text(3);
-          r.status = parse_status(q.text(4));
-          r.started_at = q.text(5);
-          r.ended_at = opt_text(q, 6);
-          r.planned = static_cast<int>(q.int64(7));
-          r.recorded = static_cast<int>(q.int64(8));
-          r.withdrawn = q.int64(9) != 0;
+          r.id = c.int64(q, "id");
+          r.participant = c.text(q, "participant");
+          r.study_id = c.int64(q, "study_id");
+          r.software_version = c.text(q, "software_version");
+          r.status = parse_status(c.text(q, "status"));
+          r.started_at = c.text(q, "started_at");
+          r.ended_at = c.opt_text(q, "ended_at");
+          r.planned = static_cast<int>(c.int64(q, "planned"));
+          r.recorded = static_cast<int>(c.int64(q, "recorded"));
+          r.withdrawn = c.int64(q, "withdrawn") != 0;
           at[r.id] = out.size();
           out.push_back(std::move(r));
-        });
+        }));
     if (!st) return st.error();
     // Resumes and pauses of a session in the order they happened (time, then the plan's progress).
-    st = each_row(db, "SELECT session_id, resumed_at, software_version, next_position FROM session_resumes "
-                      "ORDER BY session_id, resumed_at, next_position IS NULL, next_position", "reading the resumes", no_bind, [&](const Stmt& q) {
-      if (auto it = at.find(q.int64(0)); it != at.end()) {
-        auto next = opt_int(q, 3);
-        out[it->second].resumes.push_back(
-            Resume{q.text(1), q.text(2), next ? std::optional<int>(static_cast<int>(*next)) : std::nullopt});
-      }
-    });
+    auto all_of = [&](const char* table) {
+      return "SELECT " + select_list(*find_table(table), "", impl_->schema_version) + " FROM " + table;
+    };
+    st = each_row(db, all_of("session_resumes") + " ORDER BY session_id, resumed_at, next_position IS NULL, next_position",
+                  "reading the resumes", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                      out[it->second].resumes.push_back(Resume{c.text(q, "resumed_at"), c.text(q, "software_version"),
+                                                               c.opt_int32(q, "next_position")});
+                  }));
     if (!st) return st.error();
     if (impl_->schema_version < 2) return out;
-    st = each_row(db, "SELECT session_id, position, paused_at, resumed_at, duration_s FROM session_pauses "
-                      "ORDER BY session_id, paused_at, resumed_at", "reading the pauses", no_bind, [&](const Stmt& q) {
-      if (auto it = at.find(q.int64(0)); it != at.end()) {
-        auto pos = opt_int(q, 1);
-        out[it->second].pauses.push_back(Pause{pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
-                                               q.text(2), q.text(3), q.real(4)});
-      }
-    });
+    st = each_row(db, all_of("session_pauses") + " ORDER BY session_id, paused_at, resumed_at", "reading the pauses",
+                  no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                      out[it->second].pauses.push_back(Pause{c.opt_int32(q, "position"), c.text(q, "paused_at"),
+                                                             c.text(q, "resumed_at"), c.real(q, "duration_s")});
+                  }));
     if (!st) return st.error();
     if (impl_->schema_version >= 3) {
-      st = each_row(db,
-                    std::string("SELECT session_id, recorded_at, kind, width, height, refresh_hz, renderer, monitor "
-                                "FROM session_displays ORDER BY ") + detail::kDisplayOrder,
-                    "reading the displays", no_bind, [&](const Stmt& q) {
-                      if (auto it = at.find(q.int64(0)); it != at.end()) {
-                        DisplayInfo d{q.text(2), static_cast<int>(q.int64(3)), static_cast<int>(q.int64(4)),
-                                      opt_real(q, 5), q.text(6), q.text(7)};
-                        out[it->second].displays.push_back(Display{q.text(1), std::move(d)});
+      st = each_row(db, all_of("session_displays") + " ORDER BY " + detail::kDisplayOrder, "reading the displays",
+                    no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                      if (auto it = at.find(c.int64(q, "session_id")); it != at.end()) {
+                        DisplayInfo d{c.text(q, "kind"), static_cast<int>(c.int64(q, "width")),
+                                      static_cast<int>(c.int64(q, "height")), c.opt_real(q, "refresh_hz"),
+                                      c.text(q, "renderer"), c.text(q, "monitor")};
+                        out[it->second].displays.push_back(Display{c.text(q, "recorded_at"), std::move(d)});
                       }
-                    });
+                    }));
       if (!st) return st.error();
     }
-    st = each_row(db, "SELECT session_id, owner, host, pid, claimed_at, heartbeat_at, expires_at FROM session_claims",
-                  "reading the session claims", no_bind, [&](const Stmt& q) {
-                    if (auto it = at.find(q.int64(0)); it != at.end())
-                      out[it->second].claim = Claim{q.text(1), q.text(2), q.int64(3), q.text(4), q.text(5), q.text(6)};
-                  });
+    st = each_row(db, all_of("session_claims"), "reading the session claims", no_bind,
+                  by_name([&](const NamedColumns& c, const Stmt& q) {
+                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                      out[it->second].claim = Claim{c.text(q, "owner"),      c.text(q, "host"),
+                                                    c.int64(q, "pid"),       c.text(q, "claimed_at"),
+                                                    c.text(q, "heartbeat_at"), c.text(q, "expires_at")};
+                  }));
     if (!st) return st.error();
     // An attempt ended without a result when a later attempt of the same trial exists, or when it is
     // the last one, has no result, and nobody runs the session now (unclaimed or no longer running).
     st = each_row(db,
-                  "SELECT a.session_id, a.position, a.attempt, a.started_at, "
+                  "SELECT " + select_list(*find_table("trial_attempts"), "a.", impl_->schema_version) + ", "
                   " CASE WHEN EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
-                  "         AND b.position = a.position AND b.attempt > a.attempt) THEN 1 ELSE 0 END, "
+                  "         AND b.position = a.position AND b.attempt > a.attempt) THEN 1 ELSE 0 END AS later, "
                   " CASE WHEN EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-                  "         WHERE p.session_id = a.session_id AND p.position = a.position) THEN 1 ELSE 0 END "
+                  "         WHERE p.session_id = a.session_id AND p.position = a.position) THEN 1 ELSE 0 END AS result "
                   "FROM trial_attempts a ORDER BY a.session_id, a.position, a.attempt",
-                  "reading the trial attempts", no_bind, [&](const Stmt& q) {
-                    auto it = at.find(q.int64(0));
+                  "reading the trial attempts", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                    auto it = at.find(c.int64(q, "session_id"));
                     if (it == at.end()) return;
                     SessionRecord& s = out[it->second];
-                    const bool later = q.int64(4) != 0, result = q.int64(5) != 0;
+                    const bool later = c.int64(q, "later") != 0, result = c.int64(q, "result") != 0;
                     const bool in_progress = s.status == SessionStatus::running && s.claim.has_value();
                     if (later || (!result && !in_progress))
-                      s.interruptions.push_back(
-                          Interruption{static_cast<int>(q.int64(1)), static_cast<int>(q.int64(2)), q.text(3)});
-                  });
+                      s.interruptions.push_back(Interruption{static_cast<int>(c.int64(q, "position")),
+                                                             static_cast<int>(c.int64(q, "attempt")),
+                                                             c.text(q, "started_at")});
+                  }));
     if (!st) return st.error();
     return out;
   });

@@ -93,4 +93,14 @@ std::optional<double> NamedColumns::opt_real(const Stmt& st, std::string_view na
   return real(st, name);
 }
 
+std::optional<std::string> NamedColumns::opt_text(const Stmt& st, std::string_view name) const {
+  if (is_null(st, name)) return std::nullopt;
+  return text(st, name);
+}
+
+std::optional<int> NamedColumns::opt_int32(const Stmt& st, std::string_view name) const {
+  if (is_null(st, name)) return std::nullopt;
+  return static_cast<int>(int64(st, name));
+}
+
 }  // namespace dtlab::store::detail

@@ -64,6 +64,8 @@ class NamedColumns {
   std::string text(const Stmt& st, std::string_view name) const;
   std::optional<std::int64_t> opt_int(const Stmt& st, std::string_view name) const;
   std::optional<double> opt_real(const Stmt& st, std::string_view name) const;
+  std::optional<std::string> opt_text(const Stmt& st, std::string_view name) const;
+  std::optional<int> opt_int32(const Stmt& st, std::string_view name) const;  // a position, a count
 
  private:
   int at(std::string_view name) const;  // -1 if the query has no such column
