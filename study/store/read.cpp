@@ -177,26 +177,29 @@ Result<std::vector<Revision>> StudyReader::Impl::read_revisions() {
   if (owned && revisions) return *revisions;
   std::vector<Revision> out;
   const bool v2 = schema_version >= 2;
-  const std::string sql = std::string("SELECT s.id, s.protocol_id, s.protocol_text, s.protocol_sha256, ") +
-                          (v2 ? "d.design_sha256" : "NULL") +
-                          ", s.software_version, s.order_rows, s.created_at FROM studies s " +
+  const std::string sql = "SELECT " + select_list(*find_table("studies"), "s.", schema_version) + ", " +
+                          (v2 ? "d.design_sha256" : "NULL") + " AS design_sha256 FROM studies s " +
                           (v2 ? "LEFT JOIN study_designs d ON d.study_id = s.id " : "") + "ORDER BY s.id";
-  Status st = each_row(*db, sql, "reading the protocol revisions", no_bind, [&](const Stmt& q) {
-    Revision r;
-    r.study_id = q.int64(0);
-    r.protocol_id = q.text(1);
-    r.protocol_text = q.text(2);
-    r.protocol_sha256 = q.text(3);
-    r.design_sha256 = q.is_null(4) ? "" : q.text(4);
-    r.software_version = q.text(5);
-    r.order_rows = static_cast<int>(q.int64(6));
-    r.created_at = q.text(7);
-    out.push_back(std::move(r));
-  });
+  Status st = each_row(*db, sql, "reading the protocol revisions", no_bind,
+                       by_name([&](const NamedColumns& c, const Stmt& q) {
+                         Revision r;
+                         r.study_id = c.int64(q, "id");
+                         r.protocol_id = c.text(q, "protocol_id");
+                         r.protocol_text = c.text(q, "protocol_text");
+                         r.protocol_sha256 = c.text(q, "protocol_sha256");
+                         r.design_sha256 = c.opt_text(q, "design_sha256").value_or("");
+                         r.software_version = c.text(q, "software_version");
+                         r.order_rows = static_cast<int>(c.int64(q, "order_rows"));
+                         r.created_at = c.text(q, "created_at");
+                         out.push_back(std::move(r));
+                       }));
   if (!st) return st.error();
   std::map<std::int64_t, std::vector<std::string>> factors;
-  st = each_row(*db, "SELECT study_id, name FROM study_factors ORDER BY study_id, position", "reading the factors",
-                no_bind, [&](const Stmt& q) { factors[q.int64(0)].push_back(q.text(1)); });
+  st = each_row(*db, "SELECT " + select_list(*find_table("study_factors"), "", schema_version) +
+                         " FROM study_factors ORDER BY study_id, position",
+                "reading the factors", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  factors[c.int64(q, "study_id")].push_back(c.text(q, "name"));
+                }));
   if (!st) return st.error();
   std::vector<std::string> designs;  // distinct design hashes in order of first appearance
   for (Revision& r : out) {
@@ -240,6 +243,77 @@ Result<std::vector<LedgerEntry>> StudyReader::ledger() {
   });
 }
 
+namespace {
+
+// The resumes, pauses, displays, claims and interrupted attempts of the sessions in `out` (`at`:
+// a session's id to its index there), each read by column name.
+Status read_session_details(Db& db, int version, std::vector<SessionRecord>& out,
+                            const std::map<std::int64_t, std::size_t>& at) {
+  Status st;
+  // Resumes and pauses of a session in the order they happened (time, then the plan's progress).
+  auto all_of = [&](const char* table) {
+    return "SELECT " + select_list(*find_table(table), "", version) + " FROM " + table;
+  };
+  st = each_row(db, all_of("session_resumes") + " ORDER BY session_id, resumed_at, next_position IS NULL, next_position",
+                "reading the resumes", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                    out[it->second].resumes.push_back(Resume{c.text(q, "resumed_at"), c.text(q, "software_version"),
+                                                             c.opt_int32(q, "next_position")});
+                }));
+  if (!st) return st;
+  if (version < 2) return {};
+  st = each_row(db, all_of("session_pauses") + " ORDER BY session_id, paused_at, resumed_at", "reading the pauses",
+                no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                    out[it->second].pauses.push_back(Pause{c.opt_int32(q, "position"), c.text(q, "paused_at"),
+                                                           c.text(q, "resumed_at"), c.real(q, "duration_s")});
+                }));
+  if (!st) return st;
+  if (version >= 3) {
+    st = each_row(db, all_of("session_displays") + " ORDER BY " + detail::kDisplayOrder, "reading the displays",
+                  no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end()) {
+                      DisplayInfo d{c.text(q, "kind"), static_cast<int>(c.int64(q, "width")),
+                                    static_cast<int>(c.int64(q, "height")), c.opt_real(q, "refresh_hz"),
+                                    c.text(q, "renderer"), c.text(q, "monitor")};
+                      out[it->second].displays.push_back(Display{c.text(q, "recorded_at"), std::move(d)});
+                    }
+                  }));
+    if (!st) return st;
+  }
+  st = each_row(db, all_of("session_claims"), "reading the session claims", no_bind,
+                by_name([&](const NamedColumns& c, const Stmt& q) {
+                  if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                    out[it->second].claim = Claim{c.text(q, "owner"),      c.text(q, "host"),
+                                                  c.int64(q, "pid"),       c.text(q, "claimed_at"),
+                                                  c.text(q, "heartbeat_at"), c.text(q, "expires_at")};
+                }));
+  if (!st) return st;
+  // An attempt ended without a result when a later attempt of the same trial exists, or when it is
+  // the last one, has no result, and nobody runs the session now (unclaimed or no longer running).
+  st = each_row(db,
+                "SELECT " + select_list(*find_table("trial_attempts"), "a.", version) + ", "
+                " CASE WHEN EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
+                "         AND b.position = a.position AND b.attempt > a.attempt) THEN 1 ELSE 0 END AS later, "
+                " CASE WHEN EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+                "         WHERE p.session_id = a.session_id AND p.position = a.position) THEN 1 ELSE 0 END AS result "
+                "FROM trial_attempts a ORDER BY a.session_id, a.position, a.attempt",
+                "reading the trial attempts", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  auto it = at.find(c.int64(q, "session_id"));
+                  if (it == at.end()) return;
+                  SessionRecord& s = out[it->second];
+                  const bool later = c.int64(q, "later") != 0, result = c.int64(q, "result") != 0;
+                  const bool in_progress = s.status == SessionStatus::running && s.claim.has_value();
+                  if (later || (!result && !in_progress))
+                    s.interruptions.push_back(Interruption{static_cast<int>(c.int64(q, "position")),
+                                                           static_cast<int>(c.int64(q, "attempt")),
+                                                           c.text(q, "started_at")});
+                }));
+  return st;
+}
+
+}  // namespace
+
 Result<std::vector<SessionRecord>> StudyReader::sessions() {
   return impl_->call([&]() -> Result<std::vector<SessionRecord>> {
     Db& db = *impl_->db;
@@ -269,66 +343,7 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
           out.push_back(std::move(r));
         }));
     if (!st) return st.error();
-    // Resumes and pauses of a session in the order they happened (time, then the plan's progress).
-    auto all_of = [&](const char* table) {
-      return "SELECT " + select_list(*find_table(table), "", impl_->schema_version) + " FROM " + table;
-    };
-    st = each_row(db, all_of("session_resumes") + " ORDER BY session_id, resumed_at, next_position IS NULL, next_position",
-                  "reading the resumes", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
-                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
-                      out[it->second].resumes.push_back(Resume{c.text(q, "resumed_at"), c.text(q, "software_version"),
-                                                               c.opt_int32(q, "next_position")});
-                  }));
-    if (!st) return st.error();
-    if (impl_->schema_version < 2) return out;
-    st = each_row(db, all_of("session_pauses") + " ORDER BY session_id, paused_at, resumed_at", "reading the pauses",
-                  no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
-                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
-                      out[it->second].pauses.push_back(Pause{c.opt_int32(q, "position"), c.text(q, "paused_at"),
-                                                             c.text(q, "resumed_at"), c.real(q, "duration_s")});
-                  }));
-    if (!st) return st.error();
-    if (impl_->schema_version >= 3) {
-      st = each_row(db, all_of("session_displays") + " ORDER BY " + detail::kDisplayOrder, "reading the displays",
-                    no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
-                      if (auto it = at.find(c.int64(q, "session_id")); it != at.end()) {
-                        DisplayInfo d{c.text(q, "kind"), static_cast<int>(c.int64(q, "width")),
-                                      static_cast<int>(c.int64(q, "height")), c.opt_real(q, "refresh_hz"),
-                                      c.text(q, "renderer"), c.text(q, "monitor")};
-                        out[it->second].displays.push_back(Display{c.text(q, "recorded_at"), std::move(d)});
-                      }
-                    }));
-      if (!st) return st.error();
-    }
-    st = each_row(db, all_of("session_claims"), "reading the session claims", no_bind,
-                  by_name([&](const NamedColumns& c, const Stmt& q) {
-                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
-                      out[it->second].claim = Claim{c.text(q, "owner"),      c.text(q, "host"),
-                                                    c.int64(q, "pid"),       c.text(q, "claimed_at"),
-                                                    c.text(q, "heartbeat_at"), c.text(q, "expires_at")};
-                  }));
-    if (!st) return st.error();
-    // An attempt ended without a result when a later attempt of the same trial exists, or when it is
-    // the last one, has no result, and nobody runs the session now (unclaimed or no longer running).
-    st = each_row(db,
-                  "SELECT " + select_list(*find_table("trial_attempts"), "a.", impl_->schema_version) + ", "
-                  " CASE WHEN EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
-                  "         AND b.position = a.position AND b.attempt > a.attempt) THEN 1 ELSE 0 END AS later, "
-                  " CASE WHEN EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-                  "         WHERE p.session_id = a.session_id AND p.position = a.position) THEN 1 ELSE 0 END AS result "
-                  "FROM trial_attempts a ORDER BY a.session_id, a.position, a.attempt",
-                  "reading the trial attempts", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
-                    auto it = at.find(c.int64(q, "session_id"));
-                    if (it == at.end()) return;
-                    SessionRecord& s = out[it->second];
-                    const bool later = c.int64(q, "later") != 0, result = c.int64(q, "result") != 0;
-                    const bool in_progress = s.status == SessionStatus::running && s.claim.has_value();
-                    if (later || (!result && !in_progress))
-                      s.interruptions.push_back(Interruption{static_cast<int>(c.int64(q, "position")),
-                                                             static_cast<int>(c.int64(q, "attempt")),
-                                                             c.text(q, "started_at")});
-                  }));
-    if (!st) return st.error();
+    if (auto d = read_session_details(db, impl_->schema_version, out, at); !d) return d.error();
     return out;
   });
 }
@@ -380,14 +395,14 @@ Result<std::vector<Exclusion>> StudyReader::Impl::read_exclusions() {
   std::vector<Exclusion> out;
   if (schema_version < 2) return out;
   Status st = each_row(*db,
-                       "SELECT x.id, pa.participant, x.position, x.action, x.reason, x.decided_by, x.decided_at "
-                       "FROM exclusions x JOIN participants pa ON pa.id = x.participant_id ORDER BY x.id",
-                       "reading the exclusions", no_bind, [&](const Stmt& q) {
-                         auto pos = opt_int(q, 2);
-                         out.push_back(Exclusion{q.int64(0), q.text(1),
-                                                 pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
-                                                 q.text(3) == "exclude", q.text(4), q.text(5), q.text(6)});
-                       });
+                       "SELECT " + select_list(*find_table("exclusions"), "x.", schema_version) +
+                           ", pa.participant AS participant "
+                           "FROM exclusions x JOIN participants pa ON pa.id = x.participant_id ORDER BY x.id",
+                       "reading the exclusions", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                         out.push_back(Exclusion{c.int64(q, "id"), c.text(q, "participant"), c.opt_int32(q, "position"),
+                                                 c.text(q, "action") == "exclude", c.text(q, "reason"),
+                                                 c.text(q, "decided_by"), c.text(q, "decided_at")});
+                       }));
   if (!st) return st.error();
   return out;
 }
@@ -447,23 +462,24 @@ Result<std::vector<QuestionnaireRecord>> StudyReader::questionnaire(const std::s
     std::vector<QuestionnaireRecord> out;
     const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
     Status st = each_row(*impl_->db,
-                         "SELECT pa.participant, q.session_id, q.item, q.scope, q.value_number, q.value_text, "
-                         "q.answered_at FROM questionnaire_answers q JOIN sessions s ON s.id = q.session_id "
-                         "JOIN participants pa ON pa.id = s.participant_id" + filter +
+                         "SELECT pa.participant AS participant, " +
+                             select_list(*find_table("questionnaire_answers"), "q.", impl_->schema_version) +
+                             " FROM questionnaire_answers q JOIN sessions s ON s.id = q.session_id "
+                             "JOIN participants pa ON pa.id = s.participant_id" + filter +
                              " ORDER BY pa.enrollment_index, q.item, q.scope",
                          "reading the questionnaire answers",
                          [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-                         [&](const Stmt& q) {
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
                            QuestionnaireRecord r;
-                           r.participant = q.text(0);
-                           r.session_id = q.int64(1);
-                           r.item = q.text(2);
-                           r.scope = q.text(3);
-                           if (q.is_null(4)) r.value = q.text(5);
-                           else r.value = q.real(4);
-                           r.answered_at = q.text(6);
+                           r.participant = c.text(q, "participant");
+                           r.session_id = c.int64(q, "session_id");
+                           r.item = c.text(q, "item");
+                           r.scope = c.text(q, "scope");
+                           if (c.is_null(q, "value_number")) r.value = c.text(q, "value_text");
+                           else r.value = c.real(q, "value_number");
+                           r.answered_at = c.text(q, "answered_at");
                            out.push_back(std::move(r));
-                         });
+                         }));
     if (!st) return st.error();
     return out;
   });
@@ -474,14 +490,13 @@ Result<std::vector<Note>> StudyReader::notes() {
     std::vector<Note> out;
     if (impl_->schema_version < 2) return out;
     Status st = each_row(*impl_->db,
-                         "SELECT n.id, coalesce(pa.participant, ''), n.position, n.author, n.text, n.written_at "
-                         "FROM notes n LEFT JOIN participants pa ON pa.id = n.participant_id ORDER BY n.id",
-                         "reading the notes", no_bind, [&](const Stmt& q) {
-                           auto pos = opt_int(q, 2);
-                           out.push_back(Note{q.int64(0), q.text(1),
-                                              pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
-                                              q.text(3), q.text(4), q.text(5)});
-                         });
+                         "SELECT " + select_list(*find_table("notes"), "n.", impl_->schema_version) +
+                             ", coalesce(pa.participant, '') AS participant "
+                             "FROM notes n LEFT JOIN participants pa ON pa.id = n.participant_id ORDER BY n.id",
+                         "reading the notes", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                           out.push_back(Note{c.int64(q, "id"), c.text(q, "participant"), c.opt_int32(q, "position"),
+                                              c.text(q, "author"), c.text(q, "text"), c.text(q, "written_at")});
+                         }));
     if (!st) return st.error();
     return out;
   });

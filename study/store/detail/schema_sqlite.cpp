@@ -11,9 +11,12 @@
 
 namespace dtlab::store::detail {
 
-std::string sqlite_triggers(int version) {
-  switch (version) {
-    case 1: return R"sql(
+namespace {
+
+// Invariants 2, 3, 5, 6, 7 and 9: results in plan order and append-only, enrollments fixed,
+// session status one-way.
+std::string v1() {
+  return R"sql(
 -- Invariant 6: the results of a session are a prefix of its plan, and only a
 -- running session takes results.
 CREATE TRIGGER trial_results_in_plan_order BEFORE INSERT ON trial_results
@@ -73,7 +76,11 @@ BEGIN
       AND NOT EXISTS (SELECT 1 FROM trial_results r WHERE r.planned_trial_id = p.id));
 END;
 )sql";
-    case 2: return R"sql(
+}
+
+// The lab's decisions and records are appended, never changed or deleted.
+std::string v2() {
+  return R"sql(
 -- Decisions and records are appended, never changed or deleted.
 CREATE TRIGGER study_designs_no_update BEFORE UPDATE ON study_designs
 BEGIN SELECT RAISE(ABORT, 'dtlab: a design hash is never changed'); END;
@@ -96,13 +103,21 @@ BEGIN SELECT RAISE(ABORT, 'dtlab: trial attempts are never changed'); END;
 CREATE TRIGGER trial_attempts_no_delete BEFORE DELETE ON trial_attempts
 BEGIN SELECT RAISE(ABORT, 'dtlab: trial attempts are never deleted'); END;
 )sql";
-    case 3: return R"sql(
+}
+
+// Display records are append-only.
+std::string v3() {
+  return R"sql(
 CREATE TRIGGER session_displays_no_update BEFORE UPDATE ON session_displays
 BEGIN SELECT RAISE(ABORT, 'dtlab: a display record is never changed'); END;
 CREATE TRIGGER session_displays_no_delete BEFORE DELETE ON session_displays
 BEGIN SELECT RAISE(ABORT, 'dtlab: a display record is never deleted'); END;
 )sql";
-    case 4: return R"sql(
+}
+
+// Invariant 13, and consents, withdrawals and the screen log append-only.
+std::string v4() {
+  return R"sql(
 -- Invariant 13: a participant who withdrew (or declined consent) never gets a session.
 CREATE TRIGGER sessions_not_after_withdrawal BEFORE INSERT ON sessions
 BEGIN
@@ -123,6 +138,16 @@ BEGIN SELECT RAISE(ABORT, 'dtlab: the screen log is never changed'); END;
 CREATE TRIGGER screens_no_delete BEFORE DELETE ON screens
 BEGIN SELECT RAISE(ABORT, 'dtlab: the screen log is never deleted'); END;
 )sql";
+}
+
+}  // namespace
+
+std::string sqlite_triggers(int version) {
+  switch (version) {
+    case 1: return v1();
+    case 2: return v2();
+    case 3: return v3();
+    case 4: return v4();
     default: return "";
   }
 }
