@@ -331,16 +331,12 @@ Result<Session> Store::begin_session(const std::string& participant_id, const de
                          "differs from the stored plan of " + describe(out) +
                              "; the protocol or the design code changed since the session began",
                          ErrorKind::conflict);
-    auto res = Stmt::prepare(m.db,
-                             "INSERT INTO session_resumes (session_id, resumed_at, software_version, next_position) "
-                             "VALUES (?, ?, ?, ?)",
-                             "recording the resume");
-    if (!res) return res.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
-    res->bind(1, out.id).bind(2, *now).bind(3, m.study.software_version);
-    if (out.recorded < out.planned) res->bind(4, out.recorded + 1);
-    if (auto s = res->run("recording the resume"); !s) return s;
+    RowInsert res("session_resumes");
+    res.set("session_id", out.id).set("resumed_at", *now).set("software_version", m.study.software_version);
+    if (out.recorded < out.planned) res.set("next_position", out.recorded + 1);
+    if (auto s = res.run(m.db, "recording the resume"); !s) return s;
     out.resumed = true;
     return {};
   });
@@ -420,15 +416,11 @@ Status Store::record_pause(const Session& session, std::optional<int> position,
     if (*status != SessionStatus::running)
       return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session pauses",
                        ErrorKind::conflict);
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO session_pauses (session_id, position, paused_at, resumed_at, duration_s) "
-                             "VALUES (?, ?, ?, ?, ?)",
-                             "recording the pause");
-    if (!ins) return ins.error();
     const double seconds = std::chrono::duration<double>(resumed_at - paused_at).count();
-    ins->bind(1, session.id).bind(2, position).bind(3, detail::iso8601_utc(paused_at));
-    ins->bind(4, detail::iso8601_utc(resumed_at)).bind(5, seconds);
-    return ins->run("recording the pause");
+    RowInsert ins("session_pauses");
+    ins.set("session_id", session.id).set("position", position).set("paused_at", detail::iso8601_utc(paused_at));
+    ins.set("resumed_at", detail::iso8601_utc(resumed_at)).set("duration_s", seconds);
+    return ins.run(m.db, "recording the pause");
   });
 }
 
@@ -440,11 +432,6 @@ Status Store::record_display(const Session& session, const DisplayInfo& d) {
     return m.invalid("display.refresh_hz", "must be finite and > 0");
   return m.write("recording the display of " + describe(session), [&]() -> Status {
     if (auto s = read_status(m.db, session); !s) return s.error();
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO session_displays (session_id, recorded_at, kind, width, height, refresh_hz, "
-                             "renderer, monitor) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-                             "recording the display");
-    if (!ins) return ins.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
     // Rows are read in recorded_at order (detail::kDisplayOrder): a display recorded in the same
@@ -456,9 +443,10 @@ Status Store::record_display(const Session& session, const DisplayInfo& d) {
     if (!last) return last.error();
     if (last->has_value() && **last >= *now)
       if (const auto t = detail::parse_iso8601_utc(**last)) now = detail::iso8601_utc(*t + std::chrono::milliseconds(1));
-    ins->bind(1, session.id).bind(2, *now).bind(3, d.kind).bind(4, d.width).bind(5, d.height);
-    ins->bind(6, d.refresh_hz).bind(7, d.renderer).bind(8, d.monitor);
-    return ins->run("recording the display");
+    RowInsert ins("session_displays");
+    ins.set("session_id", session.id).set("recorded_at", *now).set("kind", d.kind).set("width", d.width);
+    ins.set("height", d.height).set("refresh_hz", d.refresh_hz).set("renderer", d.renderer).set("monitor", d.monitor);
+    return ins.run(m.db, "recording the display");
   });
 }
 
@@ -512,12 +500,7 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
                        ErrorKind::conflict);
     auto seen = Stmt::prepare(m.db, "SELECT count(*) FROM questionnaire_answers WHERE session_id = ? AND item = ? AND scope = ?",
                               "checking the questionnaire");
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO questionnaire_answers (session_id, item, scope, value_number, value_text, "
-                             "answered_at) VALUES (?, ?, ?, ?, ?, ?)",
-                             "storing the questionnaire");
     if (!seen) return seen.error();
-    if (!ins) return ins.error();
     auto clock = m.db.now_iso();
     if (!clock) return clock.error();
     const std::string now = *clock;
@@ -531,10 +514,11 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
                          "item \"" + a.item + "\"" + (a.scope.empty() ? std::string() : " (" + a.scope + ")") +
                              " was already answered in " + describe(session),
                          ErrorKind::conflict);
-      ins->bind(1, session.id).bind(2, a.item).bind(3, a.scope).bind(6, now);
-      if (const auto* d = std::get_if<double>(&a.value)) ins->bind(4, *d);
-      else ins->bind(5, std::get<std::string>(a.value));
-      if (auto r = ins->run("storing the questionnaire"); !r) return r;
+      RowInsert ins("questionnaire_answers");
+      ins.set("session_id", session.id).set("item", a.item).set("scope", a.scope).set("answered_at", now);
+      if (const auto* d = std::get_if<double>(&a.value)) ins.set("value_number", *d);
+      else ins.set("value_text", std::get<std::string>(a.value));
+      if (auto r = ins.run(m.db, "storing the questionnaire"); !r) return r;
     }
     return {};
   });
