@@ -26,7 +26,7 @@ const Table* find_table(std::string_view name);
 // "p.a AS a, p.b AS b, ..." for the columns of `table` the schema `version` has, NULL AS the newer ones.
 std::string select_list(const Table& table, const std::string& prefix, int version);
 
-// One row of a described table, set column by column; unset columns are NULL.
+// One row of a described table, set column by column; unset columns are NULL (never their DEFAULT).
 class RowInsert {
  public:
   explicit RowInsert(std::string_view table);
