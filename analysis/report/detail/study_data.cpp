@@ -59,6 +59,137 @@ TrialRow to_report_row(const store::TrialRow& t, const protocol::Protocol& p) {
   return r;
 }
 
+// The ledger's participants of the analysed design (`studies`: its protocol texts) with their
+// sessions: the withdrawn ones counted in d.withdrawn, the others in d.participants and `members`.
+Status read_participants(store::StudyReader& reader, const std::vector<store::SessionRecord>& sessions,
+                         const std::set<std::int64_t>& studies, StudyData& d, std::set<std::string>& members) {
+  auto ledger = reader.ledger();
+  if (!ledger) return ledger.error();
+  std::map<std::string, const store::SessionRecord*> session_of;
+  for (const auto& s : sessions) session_of[s.participant] = &s;
+  for (const store::LedgerEntry& e : *ledger) {
+    const auto it = session_of.find(e.participant);
+    const std::int64_t study = it != session_of.end() ? it->second->study_id : e.study_id;
+    if (!studies.count(study)) continue;
+    if (e.withdrawn) {  // their data are never analysed: consent was declined or taken back
+      d.withdrawn.push_back(e.participant);
+      continue;
+    }
+    members.insert(e.participant);
+    ParticipantRow p;
+    p.id = e.participant;
+    p.index = e.index;
+    p.order_row = e.order_row;
+    p.released = e.released_at.has_value();
+    for (const auto& [k, v] : e.demographics) p.demographics[k] = v;
+    if (it != session_of.end()) {
+      p.session_status = status_text(it->second->status);
+      p.planned = it->second->planned;
+      p.recorded = it->second->recorded;
+      p.resumes = static_cast<int>(it->second->resumes.size());
+      p.software_version = it->second->software_version;
+      p.pauses = static_cast<int>(it->second->pauses.size());
+      p.paused_s = it->second->paused_s();
+    }
+    d.participants.push_back(std::move(p));
+  }
+  return {};
+}
+
+// Consent answers, notes and exclusions about the design's participants.
+Status read_decisions(store::StudyReader& reader, const std::set<std::string>& members, StudyData& d) {
+  // Consent answers of this design's participants (withdrawn ones included).
+  auto consents = reader.consents();
+  if (!consents) return consents.error();
+  for (const store::ConsentRecord& c : *consents)
+    if (members.count(c.participant) ||
+        std::find(d.withdrawn.begin(), d.withdrawn.end(), c.participant) != d.withdrawn.end())
+      (c.agreed ? d.consented : d.declined) += 1;
+
+  auto notes = reader.notes();
+  if (!notes) return notes.error();
+  for (const store::Note& n : *notes) {
+    if (n.participant.empty()) {
+      d.study_notes.push_back(n.text + " (" + n.author + ")");
+      continue;
+    }
+    for (ParticipantRow& p : d.participants)
+      if (p.id == n.participant)
+        p.notes.push_back((n.position ? "trial " + std::to_string(*n.position) + ": " : std::string()) + n.text + " (" +
+                          n.author + ")");
+  }
+
+  auto exclusions = reader.exclusions();
+  if (!exclusions) return exclusions.error();
+  std::map<std::string, bool> participant_out;  // the latest decision about each participant as a whole
+  for (const store::Exclusion& x : *exclusions) {
+    if (!members.count(x.participant)) continue;
+    d.exclusions.push_back(x);
+    if (!x.position) participant_out[x.participant] = x.exclude;
+  }
+  for (const auto& [who, out] : participant_out)
+    if (out) d.excluded_participants.push_back(who);
+
+  return {};
+}
+
+// The members' recorded trials as report rows, each with the display its session showed it on;
+// excluded ones counted and, unless with_excluded, left out.
+Status read_trials(store::StudyReader& reader, const std::set<std::string>& members,
+                   const std::map<std::int64_t, const store::SessionRecord*>& by_id, bool with_excluded,
+                   StudyData& d) {
+  auto trials = reader.trials();
+  if (!trials) return trials.error();
+  for (const store::TrialRow& t : *trials) {
+    if (!members.count(t.participant)) {
+      ++d.other_revision_trials;
+      continue;
+    }
+    if (t.excluded) {
+      ++d.excluded_trials;
+      if (!with_excluded) continue;
+    }
+    TrialRow row = to_report_row(t, d.protocol);
+    // The display the session recorded last at or before the trial started (its first when none).
+    const store::Display* shown = nullptr;
+    if (const auto it = by_id.find(t.session_id); it != by_id.end())
+      for (const auto& disp : it->second->displays)
+        if (!shown || disp.recorded_at <= t.started_at) shown = &disp;
+    if (shown) {
+      row.display_kind = shown->info.kind;
+      row.display_width = shown->info.width;
+      row.display_height = shown->info.height;
+      row.renderer = shown->info.renderer;
+    }
+    d.trials.push_back(std::move(row));
+  }
+
+  return {};
+}
+
+// The members' questionnaire answers (excluded participants' only with_excluded), per participant
+// in enrollment order, by item and scope.
+Status read_answers(store::StudyReader& reader, const std::set<std::string>& members, bool with_excluded,
+                    StudyData& d) {
+  auto answers = reader.questionnaire();
+  if (!answers) return answers.error();
+  const std::set<std::string> out(d.excluded_participants.begin(), d.excluded_participants.end());
+  for (const store::QuestionnaireRecord& a : *answers) {
+    if (!members.count(a.participant) || (!with_excluded && out.count(a.participant))) continue;
+    AnswerRow r{a.participant, a.item, a.scope, std::nullopt, std::nullopt};
+    if (const double* v = std::get_if<double>(&a.value)) r.number = *v;
+    else r.text = std::get<std::string>(a.value);
+    d.answers.push_back(std::move(r));
+  }
+  // Per participant (enrollment order), by item and scope.
+  std::map<std::string, int> order;
+  for (const auto& p : d.participants) order[p.id] = p.index;
+  std::stable_sort(d.answers.begin(), d.answers.end(), [&](const AnswerRow& a, const AnswerRow& b) {
+    return std::tie(order[a.participant], a.item, a.scope) < std::tie(order[b.participant], b.item, b.scope);
+  });
+  return {};
+}
+
 }  // namespace
 
 Result<std::vector<store::Revision>> design_revisions(store::StudyReader& reader) {
@@ -108,117 +239,15 @@ Result<StudyData> read_study(store::StudyReader& reader, int revision, bool with
   }
   d.protocol = std::move(*proto);
 
-  auto ledger = reader.ledger();
-  if (!ledger) return ledger.error();
+  std::set<std::string> members;  // the analysed design's participants who did not withdraw
+  std::map<std::int64_t, const store::SessionRecord*> by_id;
   auto sessions = reader.sessions();
   if (!sessions) return sessions.error();
-  std::map<std::string, const store::SessionRecord*> session_of;
-  std::map<std::int64_t, const store::SessionRecord*> by_id;
-  for (const auto& s : *sessions) {
-    session_of[s.participant] = &s;
-    by_id[s.id] = &s;
-  }
-  std::set<std::string> members;
-  for (const store::LedgerEntry& e : *ledger) {
-    const auto it = session_of.find(e.participant);
-    const std::int64_t study = it != session_of.end() ? it->second->study_id : e.study_id;
-    if (!studies.count(study)) continue;
-    if (e.withdrawn) {  // their data are never analysed: consent was declined or taken back
-      d.withdrawn.push_back(e.participant);
-      continue;
-    }
-    members.insert(e.participant);
-    ParticipantRow p;
-    p.id = e.participant;
-    p.index = e.index;
-    p.order_row = e.order_row;
-    p.released = e.released_at.has_value();
-    for (const auto& [k, v] : e.demographics) p.demographics[k] = v;
-    if (it != session_of.end()) {
-      p.session_status = status_text(it->second->status);
-      p.planned = it->second->planned;
-      p.recorded = it->second->recorded;
-      p.resumes = static_cast<int>(it->second->resumes.size());
-      p.software_version = it->second->software_version;
-      p.pauses = static_cast<int>(it->second->pauses.size());
-      p.paused_s = it->second->paused_s();
-    }
-    d.participants.push_back(std::move(p));
-  }
-  // Consent answers of this design's participants (withdrawn ones included).
-  auto consents = reader.consents();
-  if (!consents) return consents.error();
-  for (const store::ConsentRecord& c : *consents)
-    if (members.count(c.participant) ||
-        std::find(d.withdrawn.begin(), d.withdrawn.end(), c.participant) != d.withdrawn.end())
-      (c.agreed ? d.consented : d.declined) += 1;
-
-  auto notes = reader.notes();
-  if (!notes) return notes.error();
-  for (const store::Note& n : *notes) {
-    if (n.participant.empty()) {
-      d.study_notes.push_back(n.text + " (" + n.author + ")");
-      continue;
-    }
-    for (ParticipantRow& p : d.participants)
-      if (p.id == n.participant)
-        p.notes.push_back((n.position ? "trial " + std::to_string(*n.position) + ": " : std::string()) + n.text + " (" +
-                          n.author + ")");
-  }
-
-  auto exclusions = reader.exclusions();
-  if (!exclusions) return exclusions.error();
-  std::map<std::string, bool> participant_out;  // the latest decision about each participant as a whole
-  for (const store::Exclusion& x : *exclusions) {
-    if (!members.count(x.participant)) continue;
-    d.exclusions.push_back(x);
-    if (!x.position) participant_out[x.participant] = x.exclude;
-  }
-  for (const auto& [who, out] : participant_out)
-    if (out) d.excluded_participants.push_back(who);
-
-  auto trials = reader.trials();
-  if (!trials) return trials.error();
-  for (const store::TrialRow& t : *trials) {
-    if (!members.count(t.participant)) {
-      ++d.other_revision_trials;
-      continue;
-    }
-    if (t.excluded) {
-      ++d.excluded_trials;
-      if (!with_excluded) continue;
-    }
-    TrialRow row = to_report_row(t, d.protocol);
-    // The display the session recorded last at or before the trial started (its first when none).
-    const store::Display* shown = nullptr;
-    if (const auto it = by_id.find(t.session_id); it != by_id.end())
-      for (const auto& disp : it->second->displays)
-        if (!shown || disp.recorded_at <= t.started_at) shown = &disp;
-    if (shown) {
-      row.display_kind = shown->info.kind;
-      row.display_width = shown->info.width;
-      row.display_height = shown->info.height;
-      row.renderer = shown->info.renderer;
-    }
-    d.trials.push_back(std::move(row));
-  }
-
-  auto answers = reader.questionnaire();
-  if (!answers) return answers.error();
-  const std::set<std::string> out(d.excluded_participants.begin(), d.excluded_participants.end());
-  for (const store::QuestionnaireRecord& a : *answers) {
-    if (!members.count(a.participant) || (!with_excluded && out.count(a.participant))) continue;
-    AnswerRow r{a.participant, a.item, a.scope, std::nullopt, std::nullopt};
-    if (const double* v = std::get_if<double>(&a.value)) r.number = *v;
-    else r.text = std::get<std::string>(a.value);
-    d.answers.push_back(std::move(r));
-  }
-  // Per participant (enrollment order), by item and scope.
-  std::map<std::string, int> order;
-  for (const auto& p : d.participants) order[p.id] = p.index;
-  std::stable_sort(d.answers.begin(), d.answers.end(), [&](const AnswerRow& a, const AnswerRow& b) {
-    return std::tie(order[a.participant], a.item, a.scope) < std::tie(order[b.participant], b.item, b.scope);
-  });
+  for (const auto& s : *sessions) by_id[s.id] = &s;
+  if (auto st = read_participants(reader, *sessions, studies, d, members); !st) return st.error();
+  if (auto st = read_decisions(reader, members, d); !st) return st.error();
+  if (auto st = read_trials(reader, members, by_id, with_excluded, d); !st) return st.error();
+  if (auto st = read_answers(reader, members, with_excluded, d); !st) return st.error();
   return d;
 }
 
