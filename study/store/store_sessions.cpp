@@ -19,7 +19,6 @@ namespace {
 using detail::Db;
 using detail::RowInsert;
 using detail::Stmt;
-using detail::Value;
 using detail::parse_seed;
 using detail::parse_status;
 
@@ -152,21 +151,23 @@ Status insert_plan(Db& db, std::int64_t session_id, const design::Plan& plan) {
   const char* what = "storing the planned trials";
   auto first = detail::next_id(db, "planned_trials");
   if (!first) return first.error();
-  std::vector<std::vector<Value>> trials, levels;
+  std::vector<RowInsert> trials, levels;
   std::int64_t id = *first;
   for (const auto& t : plan.trials) {
-    trials.push_back({id, session_id, std::int64_t{t.position}, std::int64_t{t.block}, t.task, std::int64_t{t.trial},
-                      seed_text(t.seed), t.method, std::int64_t{t.practice ? 1 : 0}});
+    RowInsert& row = trials.emplace_back("planned_trials");
+    row.set("id", id).set("session_id", session_id).set("position", t.position).set("block", t.block);
+    row.set("task", t.task).set("trial", t.trial).set("seed", seed_text(t.seed)).set("method", t.method);
+    row.set("practice", t.practice ? 1 : 0);
     for (std::size_t f = 0; f < t.levels.size(); ++f)
-      levels.push_back({id, static_cast<std::int64_t>(f + 1), t.levels[f].first, t.levels[f].second});
+      levels.emplace_back("planned_levels")
+          .set("planned_trial_id", id)
+          .set("factor_position", static_cast<int>(f + 1))
+          .set("factor", t.levels[f].first)
+          .set("level", t.levels[f].second);
     ++id;
   }
-  if (auto s = db.conn().insert_rows("planned_trials",
-                                     {"id", "session_id", "position", "block", "task", "trial", "seed", "method", "practice"},
-                                     trials, what);
-      !s)
-    return s;
-  return db.conn().insert_rows("planned_levels", {"planned_trial_id", "factor_position", "factor", "level"}, levels, what);
+  if (auto s = detail::insert_all(db, trials, what); !s) return s;
+  return detail::insert_all(db, levels, what);
 }
 
 bool finite(double v) { return std::isfinite(v); }
@@ -246,24 +247,24 @@ Status insert_result(Db& db, std::int64_t planned_id, const TrialRecord& r) {
   row.set("late_frames", r.frames.late).set("refresh_hz", r.frames.refresh_hz);
   if (auto x = row.run(db, "storing the trial result"); !x) return x;
 
-  std::vector<std::vector<Value>> events;
+  std::vector<RowInsert> events;
   events.reserve(r.events.size());
   for (std::size_t i = 0; i < r.events.size(); ++i) {
     const auto& e = r.events[i];
-    events.push_back({planned_id, static_cast<std::int64_t>(i + 1), e.t_s, std::string(to_string(e.kind)), e.detail, e.x, e.y});
+    RowInsert& row = events.emplace_back("input_events");
+    row.set("trial_id", planned_id).set("seq", static_cast<std::int64_t>(i + 1)).set("t_s", e.t_s);
+    row.set("kind", to_string(e.kind)).set("detail", e.detail).set("x", e.x).set("y", e.y);
   }
-  if (auto x = db.conn().insert_rows("input_events", {"trial_id", "seq", "t_s", "kind", "detail", "x", "y"}, events,
-                                     "storing the input events");
-      !x)
-    return x;
-  std::vector<std::vector<Value>> poses;
+  if (auto x = detail::insert_all(db, events, "storing the input events"); !x) return x;
+  std::vector<RowInsert> poses;
   poses.reserve(r.poses.size());
   for (std::size_t i = 0; i < r.poses.size(); ++i) {
     const auto& p = r.poses[i];
-    poses.push_back({planned_id, static_cast<std::int64_t>(i + 1), p.t_s, p.x, p.y, p.z, p.yaw, p.pitch});
+    RowInsert& row = poses.emplace_back("camera_poses");
+    row.set("trial_id", planned_id).set("frame", static_cast<std::int64_t>(i + 1)).set("t_s", p.t_s);
+    row.set("x", p.x).set("y", p.y).set("z", p.z).set("yaw", p.yaw).set("pitch", p.pitch);
   }
-  return db.conn().insert_rows("camera_poses", {"trial_id", "frame", "t_s", "x", "y", "z", "yaw", "pitch"}, poses,
-                               "storing the camera poses");
+  return detail::insert_all(db, poses, "storing the camera poses");
 }
 
 }  // namespace

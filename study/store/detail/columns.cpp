@@ -38,11 +38,15 @@ RowInsert& RowInsert::set(std::string_view column, Value v) {
   return *this;
 }
 
+Status RowInsert::check(const Db& db, std::string_view what) const {
+  if (table_ && unknown_.empty()) return {};
+  return Error{db.path(), 0, 0, name_ + (table_ ? "." + unknown_ : ""),
+               std::string(what) + ": the schema has no " + (table_ ? "column " + unknown_ + " in " : "table ") + name_,
+               ErrorKind::internal};
+}
+
 Status RowInsert::run(Db& db, std::string_view what) const {
-  if (!table_ || !unknown_.empty())
-    return Error{db.path(), 0, 0, name_ + (table_ ? "." + unknown_ : ""),
-                 std::string(what) + ": the schema has no " + (table_ ? "column " + unknown_ + " in " : "table ") + name_,
-                 ErrorKind::internal};
+  if (auto s = check(db, what); !s) return s;
   std::string columns, values;
   for (std::size_t c = 0; c < table_->columns.size(); ++c) {
     columns += (c ? ", " : "") + table_->columns[c].name;
@@ -52,6 +56,22 @@ Status RowInsert::run(Db& db, std::string_view what) const {
   if (!st) return st.error();
   for (std::size_t c = 0; c < cells_.size(); ++c) st->bind(static_cast<int>(c + 1), cells_[c]);
   return st->run(what);
+}
+
+Status insert_all(Db& db, const std::vector<RowInsert>& rows, std::string_view what) {
+  if (rows.empty()) return {};
+  std::vector<std::vector<Value>> cells;
+  cells.reserve(rows.size());
+  for (const RowInsert& r : rows) {
+    if (auto s = r.check(db, what); !s) return s;
+    if (r.table() != rows.front().table())
+      return Error{db.path(), 0, 0, r.table()->name, std::string(what) + ": rows of two tables in one insert",
+                   ErrorKind::internal};
+    cells.push_back(r.cells());
+  }
+  std::vector<std::string> names;
+  for (const Column& c : rows.front().table()->columns) names.push_back(c.name);
+  return db.conn().insert_rows(rows.front().table()->name, names, cells, what);
 }
 
 NamedColumns::NamedColumns(const Stmt& st) {

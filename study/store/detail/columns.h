@@ -46,12 +46,22 @@ class RowInsert {
   // name is not a column of the table.
   Status run(Db& db, std::string_view what) const;
 
+  // Error (internal) if a set name is not a column of the table; else ok.
+  Status check(const Db& db, std::string_view what) const;
+  const Table* table() const { return table_; }
+  const std::vector<Value>& cells() const { return cells_; }
+
  private:
   const Table* table_ = nullptr;
   std::string name_;
   std::vector<Value> cells_;  // one per described column, in order
   std::string unknown_;       // the first name set that the table lacks
 };
+
+// Inserts `rows` (all of one described table) in one bulk insert (Connection::insert_rows: one
+// prepared INSERT on SQLite, one COPY on PostgreSQL), every described column listed by name.
+// Error (internal) if a row names a column the table lacks, or rows of two tables are mixed.
+Status insert_all(Db& db, const std::vector<RowInsert>& rows, std::string_view what);
 
 // The columns of a result row by name (built once per query from the statement's column names).
 class NamedColumns {
