@@ -6,6 +6,7 @@
 // latest one. Never: touches results, plans or sessions.
 #include <string>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/store_impl.h"
 #include "study/store/detail/time.h"
 
@@ -62,14 +63,10 @@ Status decide(Store::Impl& m, const char* action, const std::string& participant
     if (!row) return row.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO exclusions (id, participant_id, position, action, reason, decided_by, "
-                             "decided_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
-                             what);
-    if (!ins) return ins.error();
-    ins->bind(1, *row).bind(2, *id).bind(3, position).bind(4, action).bind(5, why).bind(6, trimmed(by));
-    ins->bind(7, *now);
-    return ins->run(what);
+    detail::RowInsert ins("exclusions");
+    ins.set("id", *row).set("participant_id", *id).set("position", position).set("action", action);
+    ins.set("reason", why).set("decided_by", trimmed(by)).set("decided_at", *now);
+    return ins.run(m.db, what);
   });
 }
 
@@ -102,13 +99,10 @@ Status Store::add_note(const std::string& participant_id, std::optional<int> pos
     if (!row) return row.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO notes (id, participant_id, position, author, text, written_at) "
-                             "VALUES (?, ?, ?, ?, ?, ?)",
-                             "adding a note");
-    if (!ins) return ins.error();
-    ins->bind(1, *row).bind(2, who).bind(3, position).bind(4, trimmed(author)).bind(5, body).bind(6, *now);
-    return ins->run("adding a note");
+    detail::RowInsert ins("notes");
+    ins.set("id", *row).set("participant_id", who).set("position", position).set("author", trimmed(author));
+    ins.set("text", body).set("written_at", *now);
+    return ins.run(m.db, "adding a note");
   });
 }
 

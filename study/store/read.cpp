@@ -11,6 +11,7 @@
 #include <map>
 #include <set>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/file_check.h"
 #include "study/store/detail/reader_impl.h"
 #include "study/store/detail/schema.h"
@@ -18,6 +19,10 @@
 namespace dtlab::store {
 
 using detail::Db;
+using detail::NamedColumns;
+using detail::by_name;
+using detail::find_table;
+using detail::select_list;
 using detail::Stmt;
 using detail::parse_seed;
 using detail::parse_status;
@@ -40,18 +45,55 @@ Demographics parse_demographics(const std::string& text) {
   return out;
 }
 
-// The answer of one kind from four columns (count, letter, x, z) starting at `c`.
-std::optional<Answer> read_answer(const Stmt& st, const std::string& kind, int c) {
+// The answer of one kind from its four columns (PREFIX_count, _letter, _x, _z), by name.
+std::optional<Answer> read_answer(const NamedColumns& col, const Stmt& q, const std::string& kind,
+                                  const std::string& prefix) {
   if (kind == "count") {
-    if (st.is_null(c)) return std::nullopt;
-    return Answer{Count{st.int64(c)}};
+    if (col.is_null(q, prefix + "_count")) return std::nullopt;
+    return Answer{Count{col.int64(q, prefix + "_count")}};
   }
   if (kind == "letter") {
-    if (st.is_null(c + 1)) return std::nullopt;
-    return Answer{Letter{st.text(c + 1)}};
+    if (col.is_null(q, prefix + "_letter")) return std::nullopt;
+    return Answer{Letter{col.text(q, prefix + "_letter")}};
   }
-  if (st.is_null(c + 2) || st.is_null(c + 3)) return std::nullopt;
-  return Answer{Position{st.real(c + 2), st.real(c + 3)}};
+  if (col.is_null(q, prefix + "_x") || col.is_null(q, prefix + "_z")) return std::nullopt;
+  return Answer{Position{col.real(q, prefix + "_x"), col.real(q, prefix + "_z")}};
+}
+
+// A recorded trial as trials() selects it: the trial_results columns by their names, and the
+// session, ledger and revision columns by the names the query gives them.
+TrialRow read_trial_row(const NamedColumns& col, const Stmt& q) {
+  TrialRow t;
+  t.participant = col.text(q, "participant");
+  t.enrollment_index = static_cast<int>(col.int64(q, "enrollment_index"));
+  t.order_row = static_cast<int>(col.int64(q, "order_row"));
+  t.session_id = col.int64(q, "session_id");
+  t.session_status = parse_status(col.text(q, "session_status"));
+  t.scene_hash = col.text(q, "scene_hash");
+  const std::string kind = col.text(q, "answer_kind");
+  t.answer = read_answer(col, q, kind, "answer");
+  t.truth = read_answer(col, q, kind, "truth").value_or(Answer{Count{0}});
+  t.scores.rel_error = col.opt_real(q, "rel_error");  // as stored (the schema's CHECK holds them to score())
+  t.scores.signed_error = col.opt_int(q, "signed_error");
+  if (auto c = col.opt_int(q, "correct")) t.scores.correct = *c != 0;
+  t.scores.distance = col.opt_real(q, "distance");
+  t.completion_s = col.real(q, "completion_s");
+  t.started_at = col.text(q, "started_at");
+  t.ended_at = col.text(q, "ended_at");
+  t.frames.frames = col.int64(q, "frame_count");
+  t.frames.mean_ms = col.opt_real(q, "frame_ms_mean");
+  t.frames.sd_ms = col.opt_real(q, "frame_ms_sd");
+  t.frames.p95_ms = col.opt_real(q, "frame_ms_p95");
+  t.frames.max_ms = col.opt_real(q, "frame_ms_max");
+  t.frames.first_ms = col.opt_real(q, "frame_first_ms");
+  t.frames.steady_median_ms = col.opt_real(q, "frame_ms_median");
+  t.frames.late = col.opt_int(q, "late_frames");
+  t.frames.refresh_hz = col.opt_real(q, "refresh_hz");
+  t.event_count = col.int64(q, "event_count");
+  t.study_id = col.int64(q, "study_id");
+  t.protocol_sha256 = col.text(q, "protocol_sha256");
+  t.withdrawn = col.int64(q, "withdrawn") != 0;
+  return t;
 }
 
 }  // namespace
@@ -135,26 +177,29 @@ Result<std::vector<Revision>> StudyReader::Impl::read_revisions() {
   if (owned && revisions) return *revisions;
   std::vector<Revision> out;
   const bool v2 = schema_version >= 2;
-  const std::string sql = std::string("SELECT s.id, s.protocol_id, s.protocol_text, s.protocol_sha256, ") +
-                          (v2 ? "d.design_sha256" : "NULL") +
-                          ", s.software_version, s.order_rows, s.created_at FROM studies s " +
+  const std::string sql = "SELECT " + select_list(*find_table("studies"), "s.", schema_version) + ", " +
+                          (v2 ? "d.design_sha256" : "NULL") + " AS design_sha256 FROM studies s " +
                           (v2 ? "LEFT JOIN study_designs d ON d.study_id = s.id " : "") + "ORDER BY s.id";
-  Status st = each_row(*db, sql, "reading the protocol revisions", no_bind, [&](const Stmt& q) {
-    Revision r;
-    r.study_id = q.int64(0);
-    r.protocol_id = q.text(1);
-    r.protocol_text = q.text(2);
-    r.protocol_sha256 = q.text(3);
-    r.design_sha256 = q.is_null(4) ? "" : q.text(4);
-    r.software_version = q.text(5);
-    r.order_rows = static_cast<int>(q.int64(6));
-    r.created_at = q.text(7);
-    out.push_back(std::move(r));
-  });
+  Status st = each_row(*db, sql, "reading the protocol revisions", no_bind,
+                       by_name([&](const NamedColumns& c, const Stmt& q) {
+                         Revision r;
+                         r.study_id = c.int64(q, "id");
+                         r.protocol_id = c.text(q, "protocol_id");
+                         r.protocol_text = c.text(q, "protocol_text");
+                         r.protocol_sha256 = c.text(q, "protocol_sha256");
+                         r.design_sha256 = c.opt_text(q, "design_sha256").value_or("");
+                         r.software_version = c.text(q, "software_version");
+                         r.order_rows = static_cast<int>(c.int64(q, "order_rows"));
+                         r.created_at = c.text(q, "created_at");
+                         out.push_back(std::move(r));
+                       }));
   if (!st) return st.error();
   std::map<std::int64_t, std::vector<std::string>> factors;
-  st = each_row(*db, "SELECT study_id, name FROM study_factors ORDER BY study_id, position", "reading the factors",
-                no_bind, [&](const Stmt& q) { factors[q.int64(0)].push_back(q.text(1)); });
+  st = each_row(*db, "SELECT " + select_list(*find_table("study_factors"), "", schema_version) +
+                         " FROM study_factors ORDER BY study_id, position",
+                "reading the factors", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  factors[c.int64(q, "study_id")].push_back(c.text(q, "name"));
+                }));
   if (!st) return st.error();
   std::vector<std::string> designs;  // distinct design hashes in order of first appearance
   for (Revision& r : out) {
@@ -178,25 +223,96 @@ Result<std::vector<LedgerEntry>> StudyReader::ledger() {
   return impl_->call([&]() -> Result<std::vector<LedgerEntry>> {
     std::vector<LedgerEntry> out;
     Status st = each_row(*impl_->db,
-                         "SELECT participant, enrollment_index, order_row, study_id, demographics, enrolled_at, "
-                         "released_at, " + withdrawn_sql(impl_->schema_version, "participants.id") +
-                             " FROM participants ORDER BY enrollment_index",
-                         "reading the participant ledger", no_bind, [&](const Stmt& q) {
+                         "SELECT " + select_list(*find_table("participants"), "", impl_->schema_version) + ", " +
+                             withdrawn_sql(impl_->schema_version, "participants.id") +
+                             " AS withdrawn FROM participants ORDER BY enrollment_index",
+                         "reading the participant ledger", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
                            LedgerEntry e;
-                           e.participant = q.text(0);
-                           e.index = static_cast<int>(q.int64(1));
-                           e.order_row = static_cast<int>(q.int64(2));
-                           e.study_id = q.int64(3);
-                           e.demographics = parse_demographics(q.text(4));
-                           e.enrolled_at = q.text(5);
-                           e.released_at = opt_text(q, 6);
-                           e.withdrawn = q.int64(7) != 0;
+                           e.participant = c.text(q, "participant");
+                           e.index = static_cast<int>(c.int64(q, "enrollment_index"));
+                           e.order_row = static_cast<int>(c.int64(q, "order_row"));
+                           e.study_id = c.int64(q, "study_id");
+                           e.demographics = parse_demographics(c.text(q, "demographics"));
+                           e.enrolled_at = c.text(q, "enrolled_at");
+                           e.released_at = c.opt_text(q, "released_at");
+                           e.withdrawn = c.int64(q, "withdrawn") != 0;
                            out.push_back(std::move(e));
-                         });
+                         }));
     if (!st) return st.error();
     return out;
   });
 }
+
+namespace {
+
+// The resumes, pauses, displays, claims and interrupted attempts of the sessions in `out` (`at`:
+// a session's id to its index there), each read by column name.
+Status read_session_details(Db& db, int version, std::vector<SessionRecord>& out,
+                            const std::map<std::int64_t, std::size_t>& at) {
+  Status st;
+  // Resumes and pauses of a session in the order they happened (time, then the plan's progress).
+  auto all_of = [&](const char* table) {
+    return "SELECT " + select_list(*find_table(table), "", version) + " FROM " + table;
+  };
+  st = each_row(db, all_of("session_resumes") + " ORDER BY session_id, resumed_at, next_position IS NULL, next_position",
+                "reading the resumes", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                    out[it->second].resumes.push_back(Resume{c.text(q, "resumed_at"), c.text(q, "software_version"),
+                                                             c.opt_int32(q, "next_position")});
+                }));
+  if (!st) return st;
+  if (version < 2) return {};
+  st = each_row(db, all_of("session_pauses") + " ORDER BY session_id, paused_at, resumed_at", "reading the pauses",
+                no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                    out[it->second].pauses.push_back(Pause{c.opt_int32(q, "position"), c.text(q, "paused_at"),
+                                                           c.text(q, "resumed_at"), c.real(q, "duration_s")});
+                }));
+  if (!st) return st;
+  if (version >= 3) {
+    st = each_row(db, all_of("session_displays") + " ORDER BY " + detail::kDisplayOrder, "reading the displays",
+                  no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                    if (auto it = at.find(c.int64(q, "session_id")); it != at.end()) {
+                      DisplayInfo d{c.text(q, "kind"), static_cast<int>(c.int64(q, "width")),
+                                    static_cast<int>(c.int64(q, "height")), c.opt_real(q, "refresh_hz"),
+                                    c.text(q, "renderer"), c.text(q, "monitor")};
+                      out[it->second].displays.push_back(Display{c.text(q, "recorded_at"), std::move(d)});
+                    }
+                  }));
+    if (!st) return st;
+  }
+  st = each_row(db, all_of("session_claims"), "reading the session claims", no_bind,
+                by_name([&](const NamedColumns& c, const Stmt& q) {
+                  if (auto it = at.find(c.int64(q, "session_id")); it != at.end())
+                    out[it->second].claim = Claim{c.text(q, "owner"),      c.text(q, "host"),
+                                                  c.int64(q, "pid"),       c.text(q, "claimed_at"),
+                                                  c.text(q, "heartbeat_at"), c.text(q, "expires_at")};
+                }));
+  if (!st) return st;
+  // An attempt ended without a result when a later attempt of the same trial exists, or when it is
+  // the last one, has no result, and nobody runs the session now (unclaimed or no longer running).
+  st = each_row(db,
+                "SELECT " + select_list(*find_table("trial_attempts"), "a.", version) + ", "
+                " CASE WHEN EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
+                "         AND b.position = a.position AND b.attempt > a.attempt) THEN 1 ELSE 0 END AS later, "
+                " CASE WHEN EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+                "         WHERE p.session_id = a.session_id AND p.position = a.position) THEN 1 ELSE 0 END AS result "
+                "FROM trial_attempts a ORDER BY a.session_id, a.position, a.attempt",
+                "reading the trial attempts", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                  auto it = at.find(c.int64(q, "session_id"));
+                  if (it == at.end()) return;
+                  SessionRecord& s = out[it->second];
+                  const bool later = c.int64(q, "later") != 0, result = c.int64(q, "result") != 0;
+                  const bool in_progress = s.status == SessionStatus::running && s.claim.has_value();
+                  if (later || (!result && !in_progress))
+                    s.interruptions.push_back(Interruption{static_cast<int>(c.int64(q, "position")),
+                                                           static_cast<int>(c.int64(q, "attempt")),
+                                                           c.text(q, "started_at")});
+                }));
+  return st;
+}
+
+}  // namespace
 
 Result<std::vector<SessionRecord>> StudyReader::sessions() {
   return impl_->call([&]() -> Result<std::vector<SessionRecord>> {
@@ -205,86 +321,29 @@ Result<std::vector<SessionRecord>> StudyReader::sessions() {
     std::map<std::int64_t, std::size_t> at;
     Status st = each_row(
         db,
-        "SELECT s.id, pa.participant, s.study_id, s.software_version, s.status, s.started_at, s.ended_at, "
-        "(SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id), "
-        "(SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-        " WHERE p.session_id = s.id), " + withdrawn_sql(impl_->schema_version, "pa.id") +
-            " FROM sessions s JOIN participants pa ON pa.id = s.participant_id ORDER BY pa.enrollment_index",
-        "reading the sessions", no_bind, [&](const Stmt& q) {
+        "SELECT " + select_list(*find_table("sessions"), "s.", impl_->schema_version) +
+            ", pa.participant AS participant, "
+            "(SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id) AS planned, "
+            "(SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+            " WHERE p.session_id = s.id) AS recorded, " + withdrawn_sql(impl_->schema_version, "pa.id") +
+            " AS withdrawn FROM sessions s JOIN participants pa ON pa.id = s.participant_id ORDER BY pa.enrollment_index",
+        "reading the sessions", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
           SessionRecord r;
-          r.id = q.int64(0);
-          r.participant = q.text(1);
-          r.study_id = q.int64(2);
-          r.software_version = q.text(3);
-          r.status = parse_status(q.text(4));
-          r.started_at = q.text(5);
-          r.ended_at = opt_text(q, 6);
-          r.planned = static_cast<int>(q.int64(7));
-          r.recorded = static_cast<int>(q.int64(8));
-          r.withdrawn = q.int64(9) != 0;
+          r.id = c.int64(q, "id");
+          r.participant = c.text(q, "participant");
+          r.study_id = c.int64(q, "study_id");
+          r.software_version = c.text(q, "software_version");
+          r.status = parse_status(c.text(q, "status"));
+          r.started_at = c.text(q, "started_at");
+          r.ended_at = c.opt_text(q, "ended_at");
+          r.planned = static_cast<int>(c.int64(q, "planned"));
+          r.recorded = static_cast<int>(c.int64(q, "recorded"));
+          r.withdrawn = c.int64(q, "withdrawn") != 0;
           at[r.id] = out.size();
           out.push_back(std::move(r));
-        });
+        }));
     if (!st) return st.error();
-    // Resumes and pauses of a session in the order they happened (time, then the plan's progress).
-    st = each_row(db, "SELECT session_id, resumed_at, software_version, next_position FROM session_resumes "
-                      "ORDER BY session_id, resumed_at, next_position IS NULL, next_position", "reading the resumes", no_bind, [&](const Stmt& q) {
-      if (auto it = at.find(q.int64(0)); it != at.end()) {
-        auto next = opt_int(q, 3);
-        out[it->second].resumes.push_back(
-            Resume{q.text(1), q.text(2), next ? std::optional<int>(static_cast<int>(*next)) : std::nullopt});
-      }
-    });
-    if (!st) return st.error();
-    if (impl_->schema_version < 2) return out;
-    st = each_row(db, "SELECT session_id, position, paused_at, resumed_at, duration_s FROM session_pauses "
-                      "ORDER BY session_id, paused_at, resumed_at", "reading the pauses", no_bind, [&](const Stmt& q) {
-      if (auto it = at.find(q.int64(0)); it != at.end()) {
-        auto pos = opt_int(q, 1);
-        out[it->second].pauses.push_back(Pause{pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
-                                               q.text(2), q.text(3), q.real(4)});
-      }
-    });
-    if (!st) return st.error();
-    if (impl_->schema_version >= 3) {
-      st = each_row(db,
-                    std::string("SELECT session_id, recorded_at, kind, width, height, refresh_hz, renderer, monitor "
-                                "FROM session_displays ORDER BY ") + detail::kDisplayOrder,
-                    "reading the displays", no_bind, [&](const Stmt& q) {
-                      if (auto it = at.find(q.int64(0)); it != at.end()) {
-                        DisplayInfo d{q.text(2), static_cast<int>(q.int64(3)), static_cast<int>(q.int64(4)),
-                                      opt_real(q, 5), q.text(6), q.text(7)};
-                        out[it->second].displays.push_back(Display{q.text(1), std::move(d)});
-                      }
-                    });
-      if (!st) return st.error();
-    }
-    st = each_row(db, "SELECT session_id, owner, host, pid, claimed_at, heartbeat_at, expires_at FROM session_claims",
-                  "reading the session claims", no_bind, [&](const Stmt& q) {
-                    if (auto it = at.find(q.int64(0)); it != at.end())
-                      out[it->second].claim = Claim{q.text(1), q.text(2), q.int64(3), q.text(4), q.text(5), q.text(6)};
-                  });
-    if (!st) return st.error();
-    // An attempt ended without a result when a later attempt of the same trial exists, or when it is
-    // the last one, has no result, and nobody runs the session now (unclaimed or no longer running).
-    st = each_row(db,
-                  "SELECT a.session_id, a.position, a.attempt, a.started_at, "
-                  " CASE WHEN EXISTS (SELECT 1 FROM trial_attempts b WHERE b.session_id = a.session_id "
-                  "         AND b.position = a.position AND b.attempt > a.attempt) THEN 1 ELSE 0 END, "
-                  " CASE WHEN EXISTS (SELECT 1 FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-                  "         WHERE p.session_id = a.session_id AND p.position = a.position) THEN 1 ELSE 0 END "
-                  "FROM trial_attempts a ORDER BY a.session_id, a.position, a.attempt",
-                  "reading the trial attempts", no_bind, [&](const Stmt& q) {
-                    auto it = at.find(q.int64(0));
-                    if (it == at.end()) return;
-                    SessionRecord& s = out[it->second];
-                    const bool later = q.int64(4) != 0, result = q.int64(5) != 0;
-                    const bool in_progress = s.status == SessionStatus::running && s.claim.has_value();
-                    if (later || (!result && !in_progress))
-                      s.interruptions.push_back(
-                          Interruption{static_cast<int>(q.int64(1)), static_cast<int>(q.int64(2)), q.text(3)});
-                  });
-    if (!st) return st.error();
+    if (auto d = read_session_details(db, impl_->schema_version, out, at); !d) return d.error();
     return out;
   });
 }
@@ -295,35 +354,38 @@ Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& particip
     std::map<std::int64_t, std::vector<std::pair<std::string, std::string>>> levels;
     const std::string filter = participant.empty() ? "" : " AND pa.participant = ?1";
     Status st = each_row(db,
-                         "SELECT l.planned_trial_id, l.factor, l.level FROM planned_levels l "
+                         "SELECT l.planned_trial_id AS planned_trial_id, l.factor AS factor, l.level AS level "
+                         "FROM planned_levels l "
                          "JOIN planned_trials p ON p.id = l.planned_trial_id JOIN sessions s ON s.id = p.session_id "
                          "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                              " ORDER BY l.planned_trial_id, l.factor_position",
                          "reading the planned levels",
                          [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-                         [&](const Stmt& q) { levels[q.int64(0)].emplace_back(q.text(1), q.text(2)); });
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
+                           levels[c.int64(q, "planned_trial_id")].emplace_back(c.text(q, "factor"), c.text(q, "level"));
+                         }));
     if (!st) return st.error();
     std::vector<PlannedRow> out;
     st = each_row(db,
-                  "SELECT p.id, p.session_id, pa.participant, p.position, p.block, p.task, p.trial, p.seed, p.method, "
-                  "p.practice FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
-                  "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
+                  "SELECT " + select_list(*find_table("planned_trials"), "p.", impl_->schema_version) +
+                      ", pa.participant AS participant FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
+                      "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                       " ORDER BY pa.enrollment_index, p.position",
                   "reading the planned trials", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-                  [&](const Stmt& q) {
+                  by_name([&](const NamedColumns& c, const Stmt& q) {
                     PlannedRow r;
-                    r.session_id = q.int64(1);
-                    r.participant = q.text(2);
-                    r.trial.position = static_cast<int>(q.int64(3));
-                    r.trial.block = static_cast<int>(q.int64(4));
-                    r.trial.task = q.text(5);
-                    r.trial.trial = static_cast<int>(q.int64(6));
-                    r.trial.seed = parse_seed(q.text(7));
-                    r.trial.method = q.text(8);
-                    r.trial.practice = q.int64(9) != 0;
-                    r.trial.levels = std::move(levels[q.int64(0)]);
+                    r.session_id = c.int64(q, "session_id");
+                    r.participant = c.text(q, "participant");
+                    r.trial.position = static_cast<int>(c.int64(q, "position"));
+                    r.trial.block = static_cast<int>(c.int64(q, "block"));
+                    r.trial.task = c.text(q, "task");
+                    r.trial.trial = static_cast<int>(c.int64(q, "trial"));
+                    r.trial.seed = parse_seed(c.text(q, "seed"));
+                    r.trial.method = c.text(q, "method");
+                    r.trial.practice = c.int64(q, "practice") != 0;
+                    r.trial.levels = std::move(levels[c.int64(q, "id")]);
                     out.push_back(std::move(r));
-                  });
+                  }));
     if (!st) return st.error();
     return out;
   });
@@ -333,14 +395,14 @@ Result<std::vector<Exclusion>> StudyReader::Impl::read_exclusions() {
   std::vector<Exclusion> out;
   if (schema_version < 2) return out;
   Status st = each_row(*db,
-                       "SELECT x.id, pa.participant, x.position, x.action, x.reason, x.decided_by, x.decided_at "
-                       "FROM exclusions x JOIN participants pa ON pa.id = x.participant_id ORDER BY x.id",
-                       "reading the exclusions", no_bind, [&](const Stmt& q) {
-                         auto pos = opt_int(q, 2);
-                         out.push_back(Exclusion{q.int64(0), q.text(1),
-                                                 pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
-                                                 q.text(3) == "exclude", q.text(4), q.text(5), q.text(6)});
-                       });
+                       "SELECT " + select_list(*find_table("exclusions"), "x.", schema_version) +
+                           ", pa.participant AS participant "
+                           "FROM exclusions x JOIN participants pa ON pa.id = x.participant_id ORDER BY x.id",
+                       "reading the exclusions", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                         out.push_back(Exclusion{c.int64(q, "id"), c.text(q, "participant"), c.opt_int32(q, "position"),
+                                                 c.text(q, "action") == "exclude", c.text(q, "reason"),
+                                                 c.text(q, "decided_by"), c.text(q, "decided_at")});
+                       }));
   if (!st) return st.error();
   return out;
 }
@@ -374,55 +436,22 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
     const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
     Status st = each_row(
         *impl_->db,
-        "SELECT pa.participant, pa.enrollment_index, pa.order_row, s.id, s.status, p.position, r.scene_hash, "
-        "r.answer_kind, r.answer_count, r.answer_letter, r.answer_x, r.answer_z, r.truth_count, r.truth_letter, "
-        "r.truth_x, r.truth_z, r.completion_s, r.started_at, r.ended_at, r.frame_count, r.frame_ms_mean, "
-        "r.frame_ms_sd, r.frame_ms_p95, r.frame_ms_max, r.event_count, s.study_id, st.protocol_sha256, "
-        "r.rel_error, r.signed_error, r.correct, r.distance, " +
-        std::string(impl_->schema_version >= 3 ? "r.frame_first_ms, r.frame_ms_median, r.late_frames, r.refresh_hz, "
-                                               : "NULL, NULL, NULL, NULL, ") +
-        withdrawn_sql(impl_->schema_version, "pa.id") + " " +
-        "FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
+        "SELECT pa.participant AS participant, pa.enrollment_index AS enrollment_index, pa.order_row AS order_row, "
+        "s.id AS session_id, s.status AS session_status, p.position AS position, s.study_id AS study_id, "
+        "st.protocol_sha256 AS protocol_sha256, " + withdrawn_sql(impl_->schema_version, "pa.id") + " AS withdrawn, " +
+        select_list(*find_table("trial_results"), "r.", impl_->schema_version) +
+        " FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
         "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
         "JOIN studies st ON st.id = s.study_id" + filter + " ORDER BY pa.enrollment_index, p.position",
         "reading the trial results", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-        [&](const Stmt& q) {
-          TrialRow t;
-          t.participant = q.text(0);
-          t.enrollment_index = static_cast<int>(q.int64(1));
-          t.order_row = static_cast<int>(q.int64(2));
-          t.session_id = q.int64(3);
-          t.session_status = parse_status(q.text(4));
-          const int position = static_cast<int>(q.int64(5));
+        by_name([&](const NamedColumns& col, const Stmt& q) {
+          TrialRow t = read_trial_row(col, q);
+          const int position = static_cast<int>(col.int64(q, "position"));
           if (auto it = by_position.find({t.session_id, position}); it != by_position.end()) t.planned = *it->second;
-          t.scene_hash = q.text(6);
-          const std::string kind = q.text(7);
-          t.answer = read_answer(q, kind, 8);
-          t.truth = read_answer(q, kind, 12).value_or(Answer{Count{0}});
-          t.scores.rel_error = opt_real(q, 27);  // as stored (the schema's CHECK holds them to score())
-          t.scores.signed_error = opt_int(q, 28);
-          if (auto c = opt_int(q, 29)) t.scores.correct = *c != 0;
-          t.scores.distance = opt_real(q, 30);
-          t.frames.first_ms = opt_real(q, 31);
-          t.frames.steady_median_ms = opt_real(q, 32);
-          t.frames.late = opt_int(q, 33);
-          t.frames.refresh_hz = opt_real(q, 34);
-          t.completion_s = q.real(16);
-          t.started_at = q.text(17);
-          t.ended_at = q.text(18);
-          t.frames.frames = q.int64(19);
-          t.frames.mean_ms = opt_real(q, 20);
-          t.frames.sd_ms = opt_real(q, 21);
-          t.frames.p95_ms = opt_real(q, 22);
-          t.frames.max_ms = opt_real(q, 23);
-          t.event_count = q.int64(24);
-          t.study_id = q.int64(25);
-          t.protocol_sha256 = q.text(26);
           if (auto it = rev.find(t.study_id); it != rev.end()) t.design_revision = it->second->design_revision;
           t.excluded = excluded(t.participant, position);
-          t.withdrawn = q.int64(35) != 0;
           out.push_back(std::move(t));
-        });
+        }));
     if (!st) return st.error();
     return out;
   });
@@ -433,23 +462,24 @@ Result<std::vector<QuestionnaireRecord>> StudyReader::questionnaire(const std::s
     std::vector<QuestionnaireRecord> out;
     const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
     Status st = each_row(*impl_->db,
-                         "SELECT pa.participant, q.session_id, q.item, q.scope, q.value_number, q.value_text, "
-                         "q.answered_at FROM questionnaire_answers q JOIN sessions s ON s.id = q.session_id "
-                         "JOIN participants pa ON pa.id = s.participant_id" + filter +
+                         "SELECT pa.participant AS participant, " +
+                             select_list(*find_table("questionnaire_answers"), "q.", impl_->schema_version) +
+                             " FROM questionnaire_answers q JOIN sessions s ON s.id = q.session_id "
+                             "JOIN participants pa ON pa.id = s.participant_id" + filter +
                              " ORDER BY pa.enrollment_index, q.item, q.scope",
                          "reading the questionnaire answers",
                          [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
-                         [&](const Stmt& q) {
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
                            QuestionnaireRecord r;
-                           r.participant = q.text(0);
-                           r.session_id = q.int64(1);
-                           r.item = q.text(2);
-                           r.scope = q.text(3);
-                           if (q.is_null(4)) r.value = q.text(5);
-                           else r.value = q.real(4);
-                           r.answered_at = q.text(6);
+                           r.participant = c.text(q, "participant");
+                           r.session_id = c.int64(q, "session_id");
+                           r.item = c.text(q, "item");
+                           r.scope = c.text(q, "scope");
+                           if (c.is_null(q, "value_number")) r.value = c.text(q, "value_text");
+                           else r.value = c.real(q, "value_number");
+                           r.answered_at = c.text(q, "answered_at");
                            out.push_back(std::move(r));
-                         });
+                         }));
     if (!st) return st.error();
     return out;
   });
@@ -460,14 +490,13 @@ Result<std::vector<Note>> StudyReader::notes() {
     std::vector<Note> out;
     if (impl_->schema_version < 2) return out;
     Status st = each_row(*impl_->db,
-                         "SELECT n.id, coalesce(pa.participant, ''), n.position, n.author, n.text, n.written_at "
-                         "FROM notes n LEFT JOIN participants pa ON pa.id = n.participant_id ORDER BY n.id",
-                         "reading the notes", no_bind, [&](const Stmt& q) {
-                           auto pos = opt_int(q, 2);
-                           out.push_back(Note{q.int64(0), q.text(1),
-                                              pos ? std::optional<int>(static_cast<int>(*pos)) : std::nullopt,
-                                              q.text(3), q.text(4), q.text(5)});
-                         });
+                         "SELECT " + select_list(*find_table("notes"), "n.", impl_->schema_version) +
+                             ", coalesce(pa.participant, '') AS participant "
+                             "FROM notes n LEFT JOIN participants pa ON pa.id = n.participant_id ORDER BY n.id",
+                         "reading the notes", no_bind, by_name([&](const NamedColumns& c, const Stmt& q) {
+                           out.push_back(Note{c.int64(q, "id"), c.text(q, "participant"), c.opt_int32(q, "position"),
+                                              c.text(q, "author"), c.text(q, "text"), c.text(q, "written_at")});
+                         }));
     if (!st) return st.error();
     return out;
   });
@@ -495,10 +524,14 @@ Result<std::vector<CameraPose>> StudyReader::poses(const std::string& participan
     auto id = impl_->result_id(participant, position);
     if (!id) return id.error();
     std::vector<CameraPose> out;
-    Status st = each_row(*impl_->db, "SELECT t_s, x, y, z, yaw, pitch FROM camera_poses WHERE trial_id = ? ORDER BY frame",
-                         "reading the camera poses", [&](Stmt& s) { s.bind(1, *id); }, [&](const Stmt& q) {
-                           out.push_back(CameraPose{q.real(0), q.real(1), q.real(2), q.real(3), q.real(4), q.real(5)});
-                         });
+    Status st = each_row(*impl_->db,
+                         "SELECT " + select_list(*find_table("camera_poses"), "", impl_->schema_version) +
+                             " FROM camera_poses WHERE trial_id = ? ORDER BY frame",
+                         "reading the camera poses", [&](Stmt& s) { s.bind(1, *id); },
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
+                           out.push_back(CameraPose{c.real(q, "t_s"), c.real(q, "x"), c.real(q, "y"), c.real(q, "z"),
+                                                    c.real(q, "yaw"), c.real(q, "pitch")});
+                         }));
     if (!st) return st.error();
     return out;
   });
@@ -509,10 +542,14 @@ Result<std::vector<InputEvent>> StudyReader::events(const std::string& participa
     auto id = impl_->result_id(participant, position);
     if (!id) return id.error();
     std::vector<InputEvent> out;
-    Status st = each_row(*impl_->db, "SELECT t_s, kind, detail, x, y FROM input_events WHERE trial_id = ? ORDER BY seq",
-                         "reading the input events", [&](Stmt& s) { s.bind(1, *id); }, [&](const Stmt& q) {
-                           out.push_back(InputEvent{q.real(0), parse_kind(q.text(1)), q.text(2), q.real(3), q.real(4)});
-                         });
+    Status st = each_row(*impl_->db,
+                         "SELECT " + select_list(*find_table("input_events"), "", impl_->schema_version) +
+                             " FROM input_events WHERE trial_id = ? ORDER BY seq",
+                         "reading the input events", [&](Stmt& s) { s.bind(1, *id); },
+                         by_name([&](const NamedColumns& c, const Stmt& q) {
+                           out.push_back(InputEvent{c.real(q, "t_s"), parse_kind(c.text(q, "kind")), c.text(q, "detail"),
+                                                    c.real(q, "x"), c.real(q, "y")});
+                         }));
     if (!st) return st.error();
     return out;
   });

@@ -103,21 +103,17 @@ struct PlannedRow {
   design::PlannedTrial trial;
 };
 
-// One recorded trial joined with its plan, session, ledger and protocol revision: the export's
-// row (README, "Study database and export"). Levels are the trial's own, in its study's factor order.
-struct TrialRow {
+// One recorded trial (the TrialResult the session recorded, store.h) joined with its plan, session,
+// ledger and protocol revision: the export's row (README, "Study database and export") and the
+// report's. Levels are the trial's own, in its study's factor order.
+struct TrialRow : TrialResult {
   std::string participant;
   int enrollment_index = 0, order_row = 0;
   std::int64_t session_id = 0;
   SessionStatus session_status = SessionStatus::running;
   design::PlannedTrial planned;
-  std::string scene_hash;
-  std::optional<Answer> answer;      // nullopt: not answered
-  Answer truth;
-  Scores scores;
-  double completion_s = 0;
-  std::string started_at, ended_at;
-  FrameStats frames;
+  Scores scores;                     // as stored (the schema holds them to score(answer, truth))
+  std::string started_at, ended_at;  // ISO-8601 UTC, as stored
   std::int64_t event_count = 0;
   std::int64_t study_id = 0;
   std::string protocol_sha256;

@@ -1,5 +1,5 @@
 // Score columns and frame-time statistics; see score.h for the definitions.
-// The schema (detail/schema.cpp) checks the same formulas as CHECK
+// The schema (detail/schema_tables.cpp) checks the same formulas as CHECK
 // constraints, so a change here must change there too.
 #include "study/store/score.h"
 

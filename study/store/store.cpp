@@ -12,6 +12,7 @@
 #include <cctype>
 
 #include "study/common/version.h"
+#include "study/store/detail/columns.h"
 #include "study/store/detail/file_check.h"
 #include "study/store/detail/schema.h"
 #include "study/store/detail/store_impl.h"
@@ -82,25 +83,20 @@ Result<std::int64_t> insert_study(Db& db, const StudyInfo& s) {
   const std::int64_t id = *id_or;
   auto now = db.now_iso();
   if (!now) return now.error();
-  auto st = Stmt::prepare(db,
-                          "INSERT INTO studies (id, protocol_id, protocol_text, protocol_sha256, software_version, "
-                          "order_rows, created_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
-                          what);
-  if (!st) return st.error();
-  st->bind(1, id).bind(2, s.protocol_id).bind(3, s.protocol_text).bind(4, s.protocol_sha256);
-  st->bind(5, s.software_version).bind(6, s.order_rows).bind(7, *now);
-  if (auto r = st->run(what); !r) return r.error();
-  auto f = Stmt::prepare(db, "INSERT INTO study_factors (study_id, position, name) VALUES (?, ?, ?)", what);
-  if (!f) return f.error();
+  detail::RowInsert study("studies");
+  study.set("id", id).set("protocol_id", s.protocol_id).set("protocol_text", s.protocol_text);
+  study.set("protocol_sha256", s.protocol_sha256).set("software_version", s.software_version);
+  study.set("order_rows", s.order_rows).set("created_at", *now);
+  if (auto r = study.run(db, what); !r) return r.error();
   for (std::size_t i = 0; i < s.factors.size(); ++i) {
-    f->bind(1, id).bind(2, static_cast<int>(i + 1)).bind(3, s.factors[i]);
-    if (auto r = f->run(what); !r) return r.error();
+    detail::RowInsert f("study_factors");
+    f.set("study_id", id).set("position", static_cast<int>(i + 1)).set("name", s.factors[i]);
+    if (auto r = f.run(db, what); !r) return r.error();
   }
   if (!s.design_sha256.empty()) {
-    auto d = Stmt::prepare(db, "INSERT INTO study_designs (study_id, design_sha256) VALUES (?, ?)", what);
-    if (!d) return d.error();
-    d->bind(1, id).bind(2, s.design_sha256);
-    if (auto r = d->run(what); !r) return r.error();
+    detail::RowInsert d("study_designs");
+    d.set("study_id", id).set("design_sha256", s.design_sha256);
+    if (auto r = d.run(db, what); !r) return r.error();
   }
   if (auto r = detail::create_trial_table_view(db); !r) return r.error();
   return id;
@@ -123,11 +119,10 @@ Status hash_legacy_designs(Db& db, const OpenOptions& options) {
     if (auto h = options.design_hash_of(st->text(1)); h && is_lower_hex(*h, 64)) missing.emplace_back(st->int64(0), *h);
   }
   if (missing.empty()) return {};
-  auto ins = Stmt::prepare(db, "INSERT INTO study_designs (study_id, design_sha256) VALUES (?, ?)", what);
-  if (!ins) return ins.error();
   for (const auto& [id, hash] : missing) {
-    ins->bind(1, id).bind(2, hash);
-    if (auto r = ins->run(what); !r) return r;
+    detail::RowInsert d("study_designs");
+    d.set("study_id", id).set("design_sha256", hash);
+    if (auto r = d.run(db, what); !r) return r;
   }
   return detail::create_trial_table_view(db);
 }
@@ -371,14 +366,11 @@ Result<Enrollment> Store::Impl::insert_enrollment(const std::string& participant
     for (const auto& [k, v] : given.items())
       new_field = new_field || std::find(known->begin(), known->end(), k) == known->end();
   }
-  auto ins = Stmt::prepare(db,
-                           "INSERT INTO participants (id, participant, enrollment_index, order_row, study_id, "
-                           "demographics, enrolled_at) VALUES (?, ?, ?, ?, ?, ?, ?)",
-                           "enrolling");
-  if (!ins) return ins.error();
-  ins->bind(1, *id).bind(2, participant_id).bind(3, next->value_or(0)).bind(4, static_cast<std::int64_t>(row));
-  ins->bind(5, study_id).bind(6, demo_text).bind(7, now);
-  if (auto s = ins->run("enrolling"); !s) return s.error();
+  detail::RowInsert ins("participants");
+  ins.set("id", *id).set("participant", participant_id).set("enrollment_index", next->value_or(0));
+  ins.set("order_row", static_cast<std::int64_t>(row)).set("study_id", study_id).set("demographics", demo_text);
+  ins.set("enrolled_at", now);
+  if (auto s = ins.run(db, "enrolling"); !s) return s.error();
   if (new_field)
     if (auto s = detail::create_trial_table_view(db); !s) return s.error();
   Enrollment e;

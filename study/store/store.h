@@ -115,15 +115,22 @@ struct CameraPose {
   double yaw = 0, pitch = 0;  // radians; yaw 0 looks along -z (scene.h's convention)
 };
 
-// Everything the session measured for one finished trial.
-struct TrialRecord {
-  int position = 0;                   // the planned trial's position; must be the next one (next_trial)
+// The one trial result: the participant's answer beside the answer key and what the session
+// measured, the same type from the session (TrialRecord, written) through the store to the
+// report (read.h's TrialRow, read back; the report's row is a TrialRow). Stored as one
+// trial_results row.
+struct TrialResult {
   std::string scene_hash;             // scene::Scene::hash, 64 hex digits
   std::optional<Answer> answer;       // nullopt: no answer given (timed out, skipped)
   Answer truth;                       // the answer key; same alternative as answer
   double completion_s = 0;            // completion time in seconds (steady clock), >= 0
-  std::chrono::system_clock::time_point started_at, ended_at;  // wall clock, stored as ISO-8601 UTC
   FrameStats frames;                  // see frame_stats()
+};
+
+// Everything the session measured for one finished trial: the result, when, and every event and pose.
+struct TrialRecord : TrialResult {
+  int position = 0;                   // the planned trial's position; must be the next one (next_trial)
+  std::chrono::system_clock::time_point started_at, ended_at;  // wall clock, stored as ISO-8601 UTC
   std::vector<InputEvent> events;     // in time order
   std::vector<CameraPose> poses;      // one per rendered frame, in frame order
 };

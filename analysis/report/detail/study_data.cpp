@@ -12,8 +12,6 @@
 namespace dtlab::report::detail {
 namespace {
 
-std::string status_text(store::SessionStatus s) { return store::to_string(s); }
-
 void split_answer(const std::optional<store::Answer>& a, std::optional<std::int64_t>& count,
                   std::optional<std::string>& letter, std::optional<double>& x, std::optional<double>& z) {
   if (!a) return;
@@ -27,10 +25,7 @@ void split_answer(const std::optional<store::Answer>& a, std::optional<std::int6
 
 TrialRow to_report_row(const store::TrialRow& t, const protocol::Protocol& p) {
   TrialRow r;
-  r.participant = t.participant;
-  r.enrollment_index = t.enrollment_index;
-  r.order_row = t.order_row;
-  r.session_status = status_text(t.session_status);
+  static_cast<store::TrialRow&>(r) = t;
   r.position = t.planned.position;
   r.block = t.planned.block;
   for (const protocol::Factor& f : p.factors) {
@@ -59,8 +54,6 @@ TrialRow to_report_row(const store::TrialRow& t, const protocol::Protocol& p) {
   r.late_frames = t.frames.late;
   r.refresh_hz = t.frames.refresh_hz;
   r.frame_first = t.frames.first_ms;
-  r.protocol_sha256 = t.protocol_sha256;
-  r.excluded = t.excluded;
   return r;
 }
 

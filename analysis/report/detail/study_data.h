@@ -17,11 +17,10 @@
 
 namespace dtlab::report::detail {
 
-struct TrialRow {
-  std::string participant;
-  int enrollment_index = 0;
-  int order_row = 0;
-  std::string session_status;
+// A recorded trial as the report reads it: the store's row itself (participant, enrollment index,
+// order row, session status, plan, result, scores, frames, protocol hash, exclusion), and the
+// columns the sections read, derived from it once by read_study.
+struct TrialRow : store::TrialRow {
   int position = 0, block = 0;
   std::vector<std::string> levels;  // per protocol factor, in protocol order ("" if absent)
   std::vector<int> level_index;     // index into the factor's levels; -1 if unknown
@@ -44,8 +43,6 @@ struct TrialRow {
   std::string display_kind;                 // the session's display at the trial: "window", "headless"; "" unknown
   int display_width = 0, display_height = 0;  // its framebuffer pixels (0 = not recorded)
   std::string renderer;                     // "GL_VERSION / GL_RENDERER" of that display
-  std::string protocol_sha256;
-  std::optional<std::string> excluded;  // the reason, when the trial or its participant is excluded (with_excluded)
 };
 
 struct ParticipantRow {

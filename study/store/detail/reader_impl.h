@@ -13,7 +13,8 @@
 namespace dtlab::store {
 namespace detail::reading {
 
-// Runs `sql` with `bind` applied, calling row(st) per result row.
+// Runs `sql` with `bind` applied, calling row(st) per result row (wrap it in detail::by_name,
+// columns.h, to read the row by column name).
 template <class Bind, class Row>
 Status each_row(Db& db, const std::string& sql, const char* what, Bind&& bind, Row&& row) {
   auto st = Stmt::prepare(db, sql, what);
@@ -28,16 +29,6 @@ Status each_row(Db& db, const std::string& sql, const char* what, Bind&& bind, R
 }
 
 inline constexpr auto no_bind = [](Stmt&) {};
-
-inline std::optional<std::string> opt_text(const Stmt& st, int c) {
-  return st.is_null(c) ? std::nullopt : std::optional<std::string>(st.text(c));
-}
-inline std::optional<double> opt_real(const Stmt& st, int c) {
-  return st.is_null(c) ? std::nullopt : std::optional<double>(st.real(c));
-}
-inline std::optional<std::int64_t> opt_int(const Stmt& st, int c) {
-  return st.is_null(c) ? std::nullopt : std::optional<std::int64_t>(st.int64(c));
-}
 
 // The SQL of a 0/1 column that says whether the participant with row id `participant_id` (an
 // SQL expression) withdrew; a constant 0 below schema v4.

@@ -1,28 +1,21 @@
-// The SQL text of the schema migrations and the CHECK-clause builders they
-// share (SQLite: schema.cpp v1, schema_v2.cpp v2, schema_v3.cpp v3,
-// schema_v4.cpp v4; PostgreSQL: schema_pg.cpp).
-// Internal to study/store: the migrations lists in schema.cpp are the only
-// callers. Each function returns DDL only; nothing here runs a statement.
+// The parts of the schema migrations that are not table description
+// (schema_tables.h generates the tables, columns, constraints and indexes of
+// both engines): each engine's triggers per migration (SQLite:
+// schema_sqlite.cpp; PostgreSQL: schema_pg.cpp) and the session_table view,
+// the same text on both. Internal to study/store: the migrations list in
+// schema.cpp is the only caller. Each function returns DDL only; nothing
+// here runs a statement.
 #pragma once
 #include <string>
-#include <string_view>
 
 namespace dtlab::store::detail {
 
-std::string iso_check(std::string_view column);           // CHECK (column GLOB <ISO-8601 UTC ms>)
-std::string iso_check_nullable(std::string_view column);  // the same, NULL allowed
-std::string hex_check(std::string_view column, int length);  // lowercase hex of exactly `length` digits
-
-std::string schema_v2();  // design hashes, exclusions, notes, pauses, trial attempts, session claims
-std::string schema_v3();  // warm-up and late frames per trial, the display of each session start
-std::string schema_v4();  // consent answers, withdrawals, the screen log
-
-// PostgreSQL: the header and migrations tables (what SQLite keeps in its file header and
-// schema_migrations) and the trigger function that refuses changes; then v1 to v4.
-std::string pg_bookkeeping();
-std::string pg_schema_v1();
-std::string pg_schema_v2();
-std::string pg_schema_v3();
-std::string pg_schema_v4();
+// SQLite's triggers of migration `version` (1-4); "" for any other.
+std::string sqlite_triggers(int version);
+// PostgreSQL's triggers of migration `version` (1-4), and for 0 what SQLite keeps in its file
+// header (the dtlab_header table) with the trigger function that refuses changes; "" for any other.
+std::string pg_triggers(int version);
+// The session_table view of schema v1, on both engines.
+std::string session_table_view();
 
 }  // namespace dtlab::store::detail

@@ -1,4 +1,4 @@
-// Store's private state, shared by store.cpp (open, ledger), session.cpp
+// Store's private state, shared by store.cpp (open, ledger), store_sessions.cpp
 // (sessions, trials), claim.cpp (who runs a session), consent.cpp (consent,
 // withdrawal, the screen log) and annotate.cpp (the lab's decisions). Holds the connection, the current study, this Store's
 // identity as a claimant and the sessions it claims; nothing of the study

@@ -1,10 +1,13 @@
-// Sessions and trials (docs/store.md, invariants 5-10 and the session state
-// diagram): the plan is stored once with its session, each finished trial is
-// one transaction holding its result, scores, events and poses, and the next
-// trial is always derived from the database, never from memory, so resuming
-// after a crash runs exactly the trials the session would have run.
+// The store's session and trial tables: Store's session and trial calls
+// (docs/store.md, invariants 5-10 and the session state diagram). The plan
+// is stored once with its session, each finished trial is one transaction
+// holding its result, scores, events and poses, and the next trial is always
+// derived from the database, never from memory, so resuming after a crash
+// runs exactly the trials the session would have run. A result's row is set
+// by column name (detail/columns.h), never by parameter number.
 #include <cmath>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/schema.h"
 #include "study/store/detail/store_impl.h"
 #include "study/store/detail/time.h"
@@ -14,8 +17,8 @@ namespace dtlab::store {
 namespace {
 
 using detail::Db;
+using detail::RowInsert;
 using detail::Stmt;
-using detail::Value;
 using detail::parse_seed;
 using detail::parse_status;
 
@@ -148,21 +151,23 @@ Status insert_plan(Db& db, std::int64_t session_id, const design::Plan& plan) {
   const char* what = "storing the planned trials";
   auto first = detail::next_id(db, "planned_trials");
   if (!first) return first.error();
-  std::vector<std::vector<Value>> trials, levels;
+  std::vector<RowInsert> trials, levels;
   std::int64_t id = *first;
   for (const auto& t : plan.trials) {
-    trials.push_back({id, session_id, std::int64_t{t.position}, std::int64_t{t.block}, t.task, std::int64_t{t.trial},
-                      seed_text(t.seed), t.method, std::int64_t{t.practice ? 1 : 0}});
+    RowInsert& row = trials.emplace_back("planned_trials");
+    row.set("id", id).set("session_id", session_id).set("position", t.position).set("block", t.block);
+    row.set("task", t.task).set("trial", t.trial).set("seed", seed_text(t.seed)).set("method", t.method);
+    row.set("practice", t.practice ? 1 : 0);
     for (std::size_t f = 0; f < t.levels.size(); ++f)
-      levels.push_back({id, static_cast<std::int64_t>(f + 1), t.levels[f].first, t.levels[f].second});
+      levels.emplace_back("planned_levels")
+          .set("planned_trial_id", id)
+          .set("factor_position", static_cast<int>(f + 1))
+          .set("factor", t.levels[f].first)
+          .set("level", t.levels[f].second);
     ++id;
   }
-  if (auto s = db.conn().insert_rows("planned_trials",
-                                     {"id", "session_id", "position", "block", "task", "trial", "seed", "method", "practice"},
-                                     trials, what);
-      !s)
-    return s;
-  return db.conn().insert_rows("planned_levels", {"planned_trial_id", "factor_position", "factor", "level"}, levels, what);
+  if (auto s = detail::insert_all(db, trials, what); !s) return s;
+  return detail::insert_all(db, levels, what);
 }
 
 bool finite(double v) { return std::isfinite(v); }
@@ -212,59 +217,54 @@ Status validate_record(const Store::Impl& m, const TrialRecord& r) {
   return {};
 }
 
+// The trial_results row of `r`, set by column name; the score columns are score()'s (the schema's
+// CHECK holds them to it).
 Status insert_result(Db& db, std::int64_t planned_id, const TrialRecord& r) {
-  const char* what = "storing the trial result";
-  auto st = Stmt::prepare(db,
-                          "INSERT INTO trial_results (planned_trial_id, scene_hash, answer_kind, answered, "
-                          "answer_count, answer_letter, answer_x, answer_z, truth_count, truth_letter, truth_x, truth_z, "
-                          "rel_error, signed_error, correct, distance, completion_s, started_at, ended_at, frame_count, "
-                          "frame_ms_mean, frame_ms_sd, frame_ms_p95, frame_ms_max, event_count, recorded_at, "
-                          "frame_first_ms, frame_ms_median, late_frames, refresh_hz) "
-                          "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, "
-                          "?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30)",
-                          what);
-  if (!st) return st.error();
   static const char* kinds[] = {"count", "letter", "position"};
-  st->bind(1, planned_id).bind(2, r.scene_hash).bind(3, kinds[r.truth.index()]).bind(4, r.answer ? 1 : 0);
-  auto bind_answer = [&](int first, const Answer* a) {
+  RowInsert row("trial_results");
+  row.set("planned_trial_id", planned_id).set("scene_hash", r.scene_hash);
+  row.set("answer_kind", kinds[r.truth.index()]).set("answered", r.answer ? 1 : 0);
+  auto set_answer = [&](const std::string& prefix, const Answer* a) {
     if (!a) return;
-    if (const auto* c = std::get_if<Count>(a)) st->bind(first, c->n);
-    if (const auto* l = std::get_if<Letter>(a)) st->bind(first + 1, l->letter);
-    if (const auto* p = std::get_if<Position>(a)) st->bind(first + 2, p->x).bind(first + 3, p->z);
+    if (const auto* c = std::get_if<Count>(a)) row.set(prefix + "_count", c->n);
+    if (const auto* l = std::get_if<Letter>(a)) row.set(prefix + "_letter", l->letter);
+    if (const auto* p = std::get_if<Position>(a)) row.set(prefix + "_x", p->x).set(prefix + "_z", p->z);
   };
-  bind_answer(5, r.answer ? &*r.answer : nullptr);
-  bind_answer(9, &r.truth);
+  set_answer("answer", r.answer ? &*r.answer : nullptr);
+  set_answer("truth", &r.truth);
   const Scores s = score(r.answer, r.truth);
-  st->bind(13, s.rel_error).bind(14, s.signed_error).bind(16, s.distance);
-  if (s.correct) st->bind(15, *s.correct ? 1 : 0);
-  st->bind(17, r.completion_s).bind(18, detail::iso8601_utc(r.started_at)).bind(19, detail::iso8601_utc(r.ended_at));
-  st->bind(20, r.frames.frames).bind(21, r.frames.mean_ms).bind(22, r.frames.sd_ms).bind(23, r.frames.p95_ms);
-  st->bind(24, r.frames.max_ms).bind(25, static_cast<std::int64_t>(r.events.size()));
+  row.set("rel_error", s.rel_error).set("signed_error", s.signed_error).set("distance", s.distance);
+  if (s.correct) row.set("correct", *s.correct ? 1 : 0);
+  row.set("completion_s", r.completion_s);
+  row.set("started_at", detail::iso8601_utc(r.started_at)).set("ended_at", detail::iso8601_utc(r.ended_at));
+  row.set("frame_count", r.frames.frames).set("frame_ms_mean", r.frames.mean_ms).set("frame_ms_sd", r.frames.sd_ms);
+  row.set("frame_ms_p95", r.frames.p95_ms).set("frame_ms_max", r.frames.max_ms);
+  row.set("event_count", static_cast<std::int64_t>(r.events.size()));
   auto now = db.now_iso();
   if (!now) return now.error();
-  st->bind(26, *now);
-  st->bind(27, r.frames.first_ms).bind(28, r.frames.steady_median_ms).bind(29, r.frames.late);
-  st->bind(30, r.frames.refresh_hz);
-  if (auto x = st->run(what); !x) return x;
+  row.set("recorded_at", *now);
+  row.set("frame_first_ms", r.frames.first_ms).set("frame_ms_median", r.frames.steady_median_ms);
+  row.set("late_frames", r.frames.late).set("refresh_hz", r.frames.refresh_hz);
+  if (auto x = row.run(db, "storing the trial result"); !x) return x;
 
-  std::vector<std::vector<Value>> events;
+  std::vector<RowInsert> events;
   events.reserve(r.events.size());
   for (std::size_t i = 0; i < r.events.size(); ++i) {
     const auto& e = r.events[i];
-    events.push_back({planned_id, static_cast<std::int64_t>(i + 1), e.t_s, std::string(to_string(e.kind)), e.detail, e.x, e.y});
+    RowInsert& row = events.emplace_back("input_events");
+    row.set("trial_id", planned_id).set("seq", static_cast<std::int64_t>(i + 1)).set("t_s", e.t_s);
+    row.set("kind", to_string(e.kind)).set("detail", e.detail).set("x", e.x).set("y", e.y);
   }
-  if (auto x = db.conn().insert_rows("input_events", {"trial_id", "seq", "t_s", "kind", "detail", "x", "y"}, events,
-                                     "storing the input events");
-      !x)
-    return x;
-  std::vector<std::vector<Value>> poses;
+  if (auto x = detail::insert_all(db, events, "storing the input events"); !x) return x;
+  std::vector<RowInsert> poses;
   poses.reserve(r.poses.size());
   for (std::size_t i = 0; i < r.poses.size(); ++i) {
     const auto& p = r.poses[i];
-    poses.push_back({planned_id, static_cast<std::int64_t>(i + 1), p.t_s, p.x, p.y, p.z, p.yaw, p.pitch});
+    RowInsert& row = poses.emplace_back("camera_poses");
+    row.set("trial_id", planned_id).set("frame", static_cast<std::int64_t>(i + 1)).set("t_s", p.t_s);
+    row.set("x", p.x).set("y", p.y).set("z", p.z).set("yaw", p.yaw).set("pitch", p.pitch);
   }
-  return db.conn().insert_rows("camera_poses", {"trial_id", "frame", "t_s", "x", "y", "z", "yaw", "pitch"}, poses,
-                               "storing the camera poses");
+  return detail::insert_all(db, poses, "storing the camera poses");
 }
 
 }  // namespace
@@ -332,16 +332,12 @@ Result<Session> Store::begin_session(const std::string& participant_id, const de
                          "differs from the stored plan of " + describe(out) +
                              "; the protocol or the design code changed since the session began",
                          ErrorKind::conflict);
-    auto res = Stmt::prepare(m.db,
-                             "INSERT INTO session_resumes (session_id, resumed_at, software_version, next_position) "
-                             "VALUES (?, ?, ?, ?)",
-                             "recording the resume");
-    if (!res) return res.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
-    res->bind(1, out.id).bind(2, *now).bind(3, m.study.software_version);
-    if (out.recorded < out.planned) res->bind(4, out.recorded + 1);
-    if (auto s = res->run("recording the resume"); !s) return s;
+    RowInsert res("session_resumes");
+    res.set("session_id", out.id).set("resumed_at", *now).set("software_version", m.study.software_version);
+    if (out.recorded < out.planned) res.set("next_position", out.recorded + 1);
+    if (auto s = res.run(m.db, "recording the resume"); !s) return s;
     out.resumed = true;
     return {};
   });
@@ -421,15 +417,11 @@ Status Store::record_pause(const Session& session, std::optional<int> position,
     if (*status != SessionStatus::running)
       return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session pauses",
                        ErrorKind::conflict);
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO session_pauses (session_id, position, paused_at, resumed_at, duration_s) "
-                             "VALUES (?, ?, ?, ?, ?)",
-                             "recording the pause");
-    if (!ins) return ins.error();
     const double seconds = std::chrono::duration<double>(resumed_at - paused_at).count();
-    ins->bind(1, session.id).bind(2, position).bind(3, detail::iso8601_utc(paused_at));
-    ins->bind(4, detail::iso8601_utc(resumed_at)).bind(5, seconds);
-    return ins->run("recording the pause");
+    RowInsert ins("session_pauses");
+    ins.set("session_id", session.id).set("position", position).set("paused_at", detail::iso8601_utc(paused_at));
+    ins.set("resumed_at", detail::iso8601_utc(resumed_at)).set("duration_s", seconds);
+    return ins.run(m.db, "recording the pause");
   });
 }
 
@@ -441,11 +433,6 @@ Status Store::record_display(const Session& session, const DisplayInfo& d) {
     return m.invalid("display.refresh_hz", "must be finite and > 0");
   return m.write("recording the display of " + describe(session), [&]() -> Status {
     if (auto s = read_status(m.db, session); !s) return s.error();
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO session_displays (session_id, recorded_at, kind, width, height, refresh_hz, "
-                             "renderer, monitor) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-                             "recording the display");
-    if (!ins) return ins.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
     // Rows are read in recorded_at order (detail::kDisplayOrder): a display recorded in the same
@@ -457,9 +444,10 @@ Status Store::record_display(const Session& session, const DisplayInfo& d) {
     if (!last) return last.error();
     if (last->has_value() && **last >= *now)
       if (const auto t = detail::parse_iso8601_utc(**last)) now = detail::iso8601_utc(*t + std::chrono::milliseconds(1));
-    ins->bind(1, session.id).bind(2, *now).bind(3, d.kind).bind(4, d.width).bind(5, d.height);
-    ins->bind(6, d.refresh_hz).bind(7, d.renderer).bind(8, d.monitor);
-    return ins->run("recording the display");
+    RowInsert ins("session_displays");
+    ins.set("session_id", session.id).set("recorded_at", *now).set("kind", d.kind).set("width", d.width);
+    ins.set("height", d.height).set("refresh_hz", d.refresh_hz).set("renderer", d.renderer).set("monitor", d.monitor);
+    return ins.run(m.db, "recording the display");
   });
 }
 
@@ -513,12 +501,7 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
                        ErrorKind::conflict);
     auto seen = Stmt::prepare(m.db, "SELECT count(*) FROM questionnaire_answers WHERE session_id = ? AND item = ? AND scope = ?",
                               "checking the questionnaire");
-    auto ins = Stmt::prepare(m.db,
-                             "INSERT INTO questionnaire_answers (session_id, item, scope, value_number, value_text, "
-                             "answered_at) VALUES (?, ?, ?, ?, ?, ?)",
-                             "storing the questionnaire");
     if (!seen) return seen.error();
-    if (!ins) return ins.error();
     auto clock = m.db.now_iso();
     if (!clock) return clock.error();
     const std::string now = *clock;
@@ -532,10 +515,11 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
                          "item \"" + a.item + "\"" + (a.scope.empty() ? std::string() : " (" + a.scope + ")") +
                              " was already answered in " + describe(session),
                          ErrorKind::conflict);
-      ins->bind(1, session.id).bind(2, a.item).bind(3, a.scope).bind(6, now);
-      if (const auto* d = std::get_if<double>(&a.value)) ins->bind(4, *d);
-      else ins->bind(5, std::get<std::string>(a.value));
-      if (auto r = ins->run("storing the questionnaire"); !r) return r;
+      RowInsert ins("questionnaire_answers");
+      ins.set("session_id", session.id).set("item", a.item).set("scope", a.scope).set("answered_at", now);
+      if (const auto* d = std::get_if<double>(&a.value)) ins.set("value_number", *d);
+      else ins.set("value_text", std::get<std::string>(a.value));
+      if (auto r = ins.run(m.db, "storing the questionnaire"); !r) return r;
     }
     return {};
   });
