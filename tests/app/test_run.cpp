@@ -26,6 +26,9 @@
 #include "study/render/image.h"
 #include "study/store/read.h"
 #include "tests/common/run_cli.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::run {
 namespace {
@@ -260,7 +263,7 @@ TEST_F(RunPilot, EveryScreenHasANonBlankScreenshotDistinctFromTheOthers) {
   }
   for (std::size_t a = 0; a < images.size(); ++a)
     for (std::size_t b = a + 1; b < images.size(); ++b)
-      EXPECT_GT(render::compare(images[a], images[b]).pixels_off_pct, 0.5) << shots[a] << " and " << shots[b];
+      EXPECT_GT(must(render::compare(images[a], images[b])).pixels_off_pct, 0.5) << shots[a] << " and " << shots[b];
 }
 
 TEST_F(RunPilot, ReplayReproducesTheLoggedPosesAndRendersWhatDtlabRenderDraws) {
@@ -294,7 +297,7 @@ TEST_F(RunPilot, ReplayReproducesTheLoggedPosesAndRendersWhatDtlabRenderDraws) {
                                           " --width 640 --height 480 --camera " + camera + " --out '" +
                                           rendered.string() + "'");
   ASSERT_EQ(ren.rc, 0) << ren.err;
-  const auto diff = render::compare(decode(out / "frame-00001.png"), decode(rendered));
+  const auto diff = must(render::compare(decode(out / "frame-00001.png"), decode(rendered)));
   EXPECT_LT(diff.mae, 0.5);
   EXPECT_LT(diff.pixels_off_pct, 0.5);
 }

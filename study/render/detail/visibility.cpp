@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "study/render/detail/boundary.h"
 #include "study/render/detail/gl_state.h"
 #include "study/render/detail/passes.h"
 #include "study/render/detail/renderer_impl.h"
@@ -18,7 +19,19 @@
 
 namespace dtlab::render {
 
-std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSettings settings, int width, int height) {
+Result<std::vector<TargetVisibility>> Renderer::visibility(const Camera& camera, FrameSettings settings, int width,
+                                                          int height) {
+  settings.flat_colors.clear();  // the weight frames set their own
+  const std::size_t objects = impl_->gpu->objects().size();
+  if (Status st = detail::check_frame("Renderer::visibility", settings, width, height, objects); !st) return st.error();
+  return detail::guarded<Result<std::vector<TargetVisibility>>>("Renderer::visibility",
+                                                                [&]() -> Result<std::vector<TargetVisibility>> {
+    return count_visibility(camera, std::move(settings), width, height);
+  });
+}
+
+std::vector<TargetVisibility> Renderer::count_visibility(const Camera& camera, FrameSettings settings, int width,
+                                                         int height) {
   const auto& objects = impl_->scene.objects;
   std::vector<TargetVisibility> out;
   std::vector<std::uint32_t> target_index;  // scene object index per entry of `out`
@@ -109,8 +122,8 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
         e[static_cast<int>(c)] = 1.0f;
         settings.flat_colors[target_index[k]] = e;
       }
-    render_offscreen(camera, settings, width, height);
-    const Image img = read_color();
+    detail::unwrap(render_offscreen(camera, settings, width, height));
+    const Image img = detail::unwrap(read_color());
     if (const char* dir = std::getenv("DTLAB_VIS_DUMP"))
       (void)write_png(img, std::string(dir) + "/vis-" + std::string(to_string(settings.method)) + "-" +
                                std::to_string(first / 3) + ".png");
