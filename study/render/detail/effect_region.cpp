@@ -64,7 +64,9 @@ std::vector<std::uint8_t> Renderer::region_mask(const Camera& camera, const DtSe
     fg.compile();
     detail::set_frame_baseline(impl_->gpu->vao());
     fg.execute(impl_->backend);
-    fg.report(impl_->backend, true);
+    const FrameReport report = fg.report(impl_->backend, true);
+    if (auto fatal = detail::fatal_gl_error("Renderer::effect_region", report.gl_errors))
+      throw detail::PassedError(*fatal);
     impl_->backend.end_frame();
   }
   std::vector<bool> covered(n);

@@ -91,13 +91,15 @@ std::vector<TargetVisibility> Renderer::count_visibility(const Camera& camera, F
     fg.compile();
     detail::set_frame_baseline(impl_->gpu->vao());
     fg.execute(impl_->backend);
-    fg.report(impl_->backend, true);
+    const FrameReport report = fg.report(impl_->backend, true);
     for (std::size_t k = 0; k < out.size(); ++k) {
       GLuint samples = 0;
       glGetQueryObjectuiv(queries[k], GL_QUERY_RESULT, &samples);
       out[k].silhouette_pixels = static_cast<long>(samples);
     }
     glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
+    if (auto fatal = detail::fatal_gl_error("Renderer::visibility", report.gl_errors))
+      throw detail::PassedError(*fatal);
   }
 
   // Visible pixels: weight frames; targets with disjoint rectangles share a channel.
