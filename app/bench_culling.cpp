@@ -56,9 +56,9 @@ RouteRow run_route(const CullingBenchOptions& o, std::uint64_t seed, const std::
     std::vector<render::CullingReport> reports;
     for (int k = 0; k < o.frames + 1; ++k) {  // the first pair warms up (and builds the database)
       f.occlusion_culling = false;
-      const double a = r.render_offscreen(cam, f, o.width, o.height).frame_ms;
+      const double a = value_or_fail("bench", r.render_offscreen(cam, f, o.width, o.height)).frame_ms;
       f.occlusion_culling = true;
-      const render::FrameReport rep = r.render_offscreen(cam, f, o.width, o.height);
+      const render::FrameReport rep = value_or_fail("bench", r.render_offscreen(cam, f, o.width, o.height));
       row.preprocess_ms += rep.culling.preprocess_ms;
       if (k == 0) continue;
       off.push_back(a);

@@ -97,7 +97,7 @@ struct Row {
 // Targets that nothing hides under `standard`: silhouette == visible pixels.
 std::vector<bool> unoccluded_targets(render::Renderer& r, const render::Camera& cam, int w, int h) {
   render::FrameSettings s;
-  const auto vis = r.visibility(cam, s, w, h);
+  const auto vis = value_or_fail("bench", r.visibility(cam, s, w, h));
   std::map<std::uint32_t, bool> ok;
   for (const auto& v : vis) ok[v.id] = v.silhouette_pixels > 0 && v.visible_pixels == v.silhouette_pixels;
   std::vector<bool> out;
@@ -184,10 +184,10 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
   for (Config& c : configs) {
     render::FrameSettings s = c.settings;
     s.timed = false;
-    const render::FrameReport rep = c.renderer->render_offscreen(cam, s, w, h);
+    const render::FrameReport rep = value_or_fail("bench", c.renderer->render_offscreen(cam, s, w, h));
     c.passes = static_cast<int>(rep.passes_run().size());
     if (!rep.gl_errors.empty()) c.note = "GL error: " + rep.gl_errors.front();
-    c.image = c.renderer->read_color();
+    c.image = value_or_fail("bench", c.renderer->read_color());
     // Only dynamic transparency's picture (and standard's, the baseline) has `reference` for a
     // yardstick; the lens and vdt draw another picture.
     const technique::Technique& method = technique::of(c.settings.method);
@@ -195,21 +195,22 @@ void measure_errors(std::vector<Config>& configs, const render::Renderer& main, 
     const std::pair<float, bool> key{s.dt.gradient_px, s.dt.r1_guard};
     if (!refs.count(key)) {
       s.method = render::Method::reference;
-      c.renderer->render_offscreen(cam, s, w, h);
-      refs[key] = c.renderer->read_color();
+      value_or_fail("bench", c.renderer->render_offscreen(cam, s, w, h));
+      refs[key] = value_or_fail("bench", c.renderer->read_color());
     }
-    if (!regions.count(key.first)) regions[key.first] = c.renderer->effect_region(cam, s.dt, w, h);
+    if (!regions.count(key.first))
+      regions[key.first] = value_or_fail("bench", c.renderer->effect_region(cam, s.dt, w, h));
     const auto& region = regions[key.first];
     c.error.frame = true;
-    c.error.whole = render::compare(c.image, refs[key]);
-    c.error.effect = render::compare_in(c.image, refs[key], region);
+    c.error.whole = value_or_fail("bench", render::compare(c.image, refs[key]));
+    c.error.effect = value_or_fail("bench", render::compare_in(c.image, refs[key], region));
     if (!method.approximates) continue;  // a faster version of another method: compared with it
     for (const Config& seed : configs) {
       if (seed.renderer != c.renderer || seed.settings.method != *method.approximates ||
           !same_mask(seed.settings.dt, c.settings.dt) || seed.image.rgba.empty())
         continue;
       c.error.vs_seed = true;
-      c.error.seed_effect = render::compare_in(c.image, seed.image, region);
+      c.error.seed_effect = value_or_fail("bench", render::compare_in(c.image, seed.image, region));
     }
   }
 }
@@ -221,7 +222,7 @@ void time_interleaved(const BenchOptions& o, std::vector<Config>& configs, const
     for (Config& c : configs) {
       if (f >= c.min_frames && c.spent_s > o.budget_s) continue;
       const double c0 = cpu_ms();
-      const render::FrameReport rep = c.renderer->render_offscreen(cam, c.settings, w, h);
+      const render::FrameReport rep = value_or_fail("bench", c.renderer->render_offscreen(cam, c.settings, w, h));
       c.cpu.push_back(cpu_ms() - c0);
       c.wall.push_back(rep.frame_ms);
       c.spent_s += rep.frame_ms / 1000.0;

@@ -318,7 +318,9 @@ void run(const RenderOptions& o) {
   // this a short run timed the warm-up, not the method (docs/performance.md).
   // One frame into `report`, its GL errors and preprocessing kept (warm-up frames included).
   auto render_frame = [&] {
-    report = r.render_offscreen(camera, settings, o.width, o.height);
+    auto drawn = r.render_offscreen(camera, settings, o.width, o.height);
+    if (!drawn) fail("render", drawn.error());
+    report = std::move(drawn.value());
     gl_errors.insert(gl_errors.end(), report.gl_errors.begin(), report.gl_errors.end());
     preprocess_ms += report.culling.preprocess_ms;
   };
@@ -341,8 +343,9 @@ void run(const RenderOptions& o) {
     return v.size() % 2 == 1 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
   };
   const double median = median_of(times), cpu_median = median_of(cpu_times);
-  const render::Image image = r.read_color();
-  if (Status st = render::write_png(image, o.out); !st) fail("render", kExitFailure, st.error().to_string());
+  const auto image = r.read_color();
+  if (!image) fail("render", image.error());
+  if (Status st = render::write_png(image.value(), o.out); !st) fail("render", kExitFailure, st.error().to_string());
   if (!o.graphviz.empty()) {
     std::ofstream dot(o.graphviz);
     dot << r.last_graphviz();
@@ -371,8 +374,9 @@ void run(const RenderOptions& o) {
   }
   settings.timed = false;
   const auto vis = r.visibility(camera, settings, o.width, o.height);
+  if (!vis) fail("render", vis.error());
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
-  for (const auto& v : vis)
+  for (const auto& v : vis.value())
     targets.push_back({{"id", v.id},
                        {"visible_pixels", v.visible_pixels},
                        {"silhouette_pixels", v.silhouette_pixels},

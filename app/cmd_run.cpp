@@ -9,7 +9,8 @@
 // and running the command again resumes at the first unfinished trial.
 // Exit 0: the session finished (or the experimenter quit or aborted it);
 // 1: invalid protocol, database or script; 2: bad command line; 3: no
-// display, GL or database failure; 130: the window was closed mid-session.
+// display, GL or database failure (mid-session: said in the window and on
+// stderr, and the session resumes); 130: the window was closed mid-session.
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
@@ -72,6 +73,23 @@ void list_monitors() {
     if (m.refresh_hz > 0) std::cout << "  " << m.refresh_hz << " Hz";
     std::cout << (i == 0 ? "  (primary)" : "") << "\n";
   }
+}
+
+// The environment failed mid-session (the renderer, the GL, the disk): the participant's window
+// says the session stopped and shows the experimenter the error until Close, then stderr says it
+// and the command ends with exit 3. The session stays running in the file: every finished trial is
+// kept, the trial in progress is recorded as interrupted, and the same command resumes it.
+[[noreturn]] void report_failure(run::Ui& ui, const protocol::Protocol& p, const std::string& participant,
+                                 const Error& e) {
+  const std::string error = e.to_string();
+  // A window that cannot draw any more (a lost context) still ends with the message on stderr.
+  (void)run::end_screen(ui, "end", protocol::text(p, "end.failed_title"),
+                        protocol::text(p, "end.failed_text") + "\n\n" +
+                            protocol::text(p, "end.failed_experimenter", {{"error", error}}),
+                        protocol::text(p, "end.close"));
+  fail("run", exit_code(e),
+       error + "; " + participant + "'s session stopped here: every finished trial is saved and running the same "
+                                    "command again resumes it");
 }
 
 void run_person(const RunArgs& a) {
@@ -154,6 +172,7 @@ void run_person(const RunArgs& a) {
       fail("run", kExitInterrupted, result.error().to_string() + "; run the same command again to resume " + participant);
     if (result.error().kind == ErrorKind::busy && result.error().field == store::kClaimField)
       fail("run", kExitFailure, result.error().to_string());
+    if (result.error().kind == ErrorKind::environment) report_failure(**ui, p.value(), participant, result.error());
     fail("run", result.error());
   }
   if (result->declined) {
@@ -191,7 +210,8 @@ void add_run_command(CLI::App& root) {
       "Keys: Enter answers a trial; in WALKTHROUGH the arrow keys move and turn, the mouse turns; in ABSTRACT "
       "left-drag turns the scene. docs/run.md describes every screen, the console, scripts and replay.\n"
       "Exit status: 0 finished (or quit, or aborted from the console), 1 invalid protocol, database or script, 2 bad "
-      "command line, 3 no display, GL or database failure, 130 window closed mid-session (rerun to resume).");
+      "command line, 3 no display, GL or database failure (mid-session: rerun to resume), 130 window closed mid-session "
+      "(rerun to resume).");
   // Before the required arguments are checked: --list-monitors alone is a whole command.
   cmd->add_flag_callback(
          "--list-monitors",

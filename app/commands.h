@@ -47,6 +47,12 @@ inline int exit_code(const Error& e) {
 [[noreturn]] void fail(std::string_view command, int code, const std::string& message);
 // The same for an Error: its text (file:line: field: message), with the exit code of its kind.
 [[noreturn]] void fail(std::string_view command, const Error& e);
+// The value of `r`, or fail(command, r.error()).
+template <class T>
+T value_or_fail(std::string_view command, Result<T> r) {
+  if (!r) fail(command, r.error());
+  return std::move(r).value();
+}
 
 void add_version_command(CLI::App& root);  // `dtlab version`: version and commit, --json
 void add_render_command(CLI::App& root);   // `dtlab render ... --method M --out FILE.png`: one frame headless, --json

@@ -33,7 +33,7 @@ class ItemScreen {
   virtual std::string name() const;
   // The 3D view behind the widgets (the depth test's scene); default none.
   virtual bool has_view() const { return false; }
-  virtual void draw3d() {}
+  virtual Status draw3d() { return {}; }
   // One frame of ImGui widgets; true once the participant has answered.
   virtual bool frame() = 0;
   // The answer given (valid after frame() returned true).

@@ -22,8 +22,8 @@ Result<std::vector<session::QuestionAnswer>> WindowResponder::answer_questionnai
     if (!screen) return screen.error();
     ItemScreen& s = *screen.value();
     ui_.new_instance();  // every question restarts its script section, even with the same screen name
-    std::function<void()> draw3d;
-    if (s.has_view()) draw3d = [&s] { s.draw3d(); };
+    std::function<Status()> draw3d;
+    if (s.has_view()) draw3d = [&s] { return s.draw3d(); };
     if (Status st = loop(s.name(), draw3d, [&s] { return s.frame(); }); !st) return st.error();
     answers.push_back(s.answer());
   }

@@ -62,7 +62,7 @@ void WindowResponder::on_trial_recorded(const session::TrialSpec&, const store::
   console_->set_trial(nullptr);
 }
 
-Status WindowResponder::loop(const std::string& screen, const std::function<void()>& draw3d,
+Status WindowResponder::loop(const std::string& screen, const std::function<Status()>& draw3d,
                              const std::function<bool()>& widgets) {
   console_->set_screen(screen);
   for (;;) {
@@ -187,7 +187,8 @@ Status WindowResponder::show_training(const session::TaskSetSpec& set) {
   ui_.input().capture_cursor((*view)->walking());
   const Clock::time_point start = Clock::now();
   double last = 0;
-  Status st = loop("training " + set.task, [&] { (*view)->draw(ui_.width(), ui_.height(), glm::vec2(ui_.input().cursor())); },
+  Status st = loop("training " + set.task,
+                   [&] { return (*view)->draw(ui_.width(), ui_.height(), glm::vec2(ui_.input().cursor())); },
                    [&] {
                      const double now = std::chrono::duration<double>(Clock::now() - start).count();
                      (*view)->steer(ui_.input(), now - last, !ImGui::GetIO().WantCaptureMouse);

@@ -46,7 +46,7 @@ class WindowResponder final : public session::Responder {
 
  private:
   // Runs frames of `screen` until `done` returns true; draw3d may be empty.
-  Status loop(const std::string& screen, const std::function<void()>& draw3d, const std::function<bool()>& widgets);
+  Status loop(const std::string& screen, const std::function<Status()>& draw3d, const std::function<bool()>& widgets);
   Status show_instructions(const session::TaskSetSpec& set);
   Status show_training(const session::TaskSetSpec& set);
 

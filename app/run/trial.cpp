@@ -162,8 +162,9 @@ Result<session::TrialOutcome> WindowResponder::run_trial(const session::TrialSpe
     console_->set_screen(screen);
     Status st = ui_.frame(
         screen,
-        [&] {
-          if (showing_view) (*view)->draw(ui_.width(), ui_.height(), glm::vec2(in.cursor()));
+        [&]() -> Status {
+          if (!showing_view) return {};
+          return (*view)->draw(ui_.width(), ui_.height(), glm::vec2(in.cursor()));
         },
         [&] {
           if (console_->paused()) {

@@ -121,7 +121,7 @@ void Ui::console_chords() {
   input_->swallow_press(GLFW_KEY_K);
 }
 
-Status Ui::frame(const std::string& screen, const std::function<void()>& draw3d, const std::function<void()>& widgets) {
+Status Ui::frame(const std::string& screen, const std::function<Status()>& draw3d, const std::function<void()>& widgets) {
   const Clock::time_point start = Clock::now();
   const float dt = frame_start_ == Clock::time_point{} ? 1.0f / 60.0f
                                                        : std::chrono::duration<float>(start - frame_start_).count();
@@ -163,7 +163,11 @@ Status Ui::frame(const std::string& screen, const std::function<void()>& draw3d,
   glViewport(0, 0, fw, fh);
   glClearColor(0.93f, 0.93f, 0.93f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  if (draw3d) draw3d();
+  if (draw3d)
+    if (Status drawn = draw3d(); !drawn) {
+      ImGui::EndFrame();  // the next frame (an end screen) starts clean
+      return drawn;
+    }
   if (widgets) widgets();
   // Over the participant's screen only without a console window: there, never.
   const bool overlay = !console_window_ && console_shown_ && console_;

@@ -55,8 +55,9 @@ class Ui {
   // One frame of screen `screen` (e.g. "trial T1"): the frame's events, then draw3d() (the 3D
   // view, into the default framebuffer), then widgets() (ImGui), the console if shown, and the
   // buffer swap. A new screen id, or new_instance(), restarts the script's section for it.
-  // Errors: the window was closed (kind conflict: the session stays resumable), a script step failed.
-  Status frame(const std::string& screen, const std::function<void()>& draw3d, const std::function<void()>& widgets);
+  // Errors: the window was closed (kind conflict: the session stays resumable), a script step
+  // failed, draw3d's Error (the renderer's: the frame ends there, unswapped).
+  Status frame(const std::string& screen, const std::function<Status()>& draw3d, const std::function<void()>& widgets);
   // Scripted: the screen's section has played out and the screen is still up (start.cpp turns a
   // refusal there into an error instead of waiting for a person forever). Its section's line.
   bool script_played_out() const { return player_ && player_->played_out(); }

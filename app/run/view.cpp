@@ -23,7 +23,8 @@ Result<std::unique_ptr<SceneView>> SceneView::create(const scene::Scene& scene, 
   auto r = render::Renderer::create(scene);
   if (!r) return r.error();
   v->renderer_ = std::move(r.value());
-  v->renderer_->prepare(frame);  // occlusion culling's occluder database now, not in the first frame
+  // Occlusion culling's occluder database now, not in the first frame.
+  if (auto prepared = v->renderer_->prepare(frame); !prepared) return prepared.error();
   v->yaw_ = start.yaw;
   v->pitch_ = start.pitch;
   v->position_ = start.position;
@@ -59,11 +60,13 @@ render::Camera SceneView::camera(int width, int height) const {
   return render::orbit_camera(c.target, c.distance, yaw_, pitch_, c.fov_y, aspect, c.near_plane, c.far_plane);
 }
 
-void SceneView::draw(int width, int height, glm::vec2 cursor) {
+Status SceneView::draw(int width, int height, glm::vec2 cursor) {
   render::FrameSettings s = frame_;
   const glm::vec2 pointer = walking() ? glm::vec2(width / 2.0f, height / 2.0f) : cursor;
   technique::aim(s, pointer);
-  renderer_->render(camera(width, height), s, render::ImportedTarget{0, width, height});
+  auto drawn = renderer_->render(camera(width, height), s, render::ImportedTarget{0, width, height});
+  if (!drawn) return drawn.error();
+  return {};
 }
 
 store::CameraPose SceneView::pose(double t_s) const {

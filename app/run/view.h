@@ -30,7 +30,8 @@ inline constexpr double kWalkUnitsPerSecond = 4.5;
 class SceneView {
  public:
   // Uploads the scene; needs the window's GL context current. The view starts at the scene's own
-  // camera, or at `start` (the depth test's fixed view); `scene` must outlive the view.
+  // camera, or at `start` (the depth test's fixed view); `scene` must outlive the view. Errors:
+  // the renderer's (a shader, the occluder database's allocation).
   static Result<std::unique_ptr<SceneView>> create(const scene::Scene& scene, const render::FrameSettings& frame);
   static Result<std::unique_ptr<SceneView>> create(const scene::Scene& scene, const render::FrameSettings& frame,
                                                    const scene::CameraStart& start);
@@ -39,8 +40,9 @@ class SceneView {
   // the UI does not want the mouse (no widget under it).
   void steer(const Input& input, double dt, bool mouse_free);
   // Draws into the default framebuffer; the active mode's searchlight follows `cursor` (pixels,
-  // origin top-left) in ABSTRACT and stays at the view's centre in WALKTHROUGH.
-  void draw(int width, int height, glm::vec2 cursor);
+  // origin top-left) in ABSTRACT and stays at the view's centre in WALKTHROUGH. Errors: the
+  // renderer's (render.h: environment when the GL fails; the caller ends the screen with it).
+  Status draw(int width, int height, glm::vec2 cursor);
   store::CameraPose pose(double t_s) const;
   render::Camera camera(int width, int height) const;
   bool walking() const { return start_.mode == scene::CameraStart::Mode::walk; }

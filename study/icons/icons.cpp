@@ -111,13 +111,17 @@ Result<render::Image> render_icon(const scene::ModelInfo& model, const IconOptio
   const int side = options.size * options.supersample;
   render::FrameSettings settings;
   settings.method = render::Method::standard;
-  settings.background = glm::vec3(0.0f);
-  r.render_offscreen(camera, settings, side, side);
-  const render::Image over_black = r.read_color();
-  settings.background = glm::vec3(1.0f);
-  r.render_offscreen(camera, settings, side, side);
-  const render::Image over_white = r.read_color();
-  return detail::key_and_downsample(over_black, over_white, options.supersample);
+  // The icon over black, then over white (the keying needs both).
+  auto over = [&](glm::vec3 background) -> Result<render::Image> {
+    settings.background = background;
+    if (auto drawn = r.render_offscreen(camera, settings, side, side); !drawn) return drawn.error();
+    return r.read_color();
+  };
+  auto over_black = over(glm::vec3(0.0f));
+  if (!over_black) return over_black.error();
+  auto over_white = over(glm::vec3(1.0f));
+  if (!over_white) return over_white.error();
+  return detail::key_and_downsample(over_black.value(), over_white.value(), options.supersample);
 }
 
 double coverage(const render::Image& icon) {

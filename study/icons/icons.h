@@ -43,7 +43,7 @@ render::Camera icon_camera(const scene::Mesh& mesh, const IconOptions& options);
 
 // Renders the icon of `model`: size x size RGBA, top row first, straight (not premultiplied)
 // alpha = the share of the pixel the model covers, 0 on the background. Needs a current
-// GL 3.3 core context; fails (Error) if the renderer cannot be created.
+// GL 3.3 core context; fails (Error) if the renderer cannot be created or a frame fails.
 Result<render::Image> render_icon(const scene::ModelInfo& model, const IconOptions& options = {});
 
 // Share of the image the object covers: the mean alpha over all pixels, in [0, 1].

@@ -109,6 +109,9 @@ constexpr std::array kKeys{
     TextKey{"end.close", "Close", ""},
     TextKey{"end.aborted_title", "Session aborted", ""},
     TextKey{"end.aborted_text", "The experimenter ended this session.", ""},
+    TextKey{"end.failed_title", "Session interrupted", ""},
+    TextKey{"end.failed_text", "A technical problem stopped the session. Everything you finished is saved. Please tell the experimenter.", ""},
+    TextKey{"end.failed_experimenter", "(Experimenter: {error}. Run the same command again to resume the session.)", "error"},
     // The experimenter's start screen.
     TextKey{"start.participant", "Participant", ""},
     TextKey{"start.id", "Participant ID", ""},

@@ -1,6 +1,7 @@
 // RGBA8 images as plain data and their PNG encoding (stb_image_write).
 // Guarantees: rows are stored top row first; write_png either writes the
-// whole file or returns an Error naming the path. Never: touches GL.
+// whole file or returns an Error naming the path; nothing here throws.
+// Never: touches GL.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -24,11 +25,11 @@ struct ImageDiff {
   int max_abs = 0;              // largest channel difference
   long pixels = 0;              // pixels compared
 };
-// Over every pixel. Throws std::invalid_argument if the sizes differ.
-ImageDiff compare(const Image& a, const Image& b);
+// Over every pixel. An invalid_input Error if the sizes differ.
+[[nodiscard]] Result<ImageDiff> compare(const Image& a, const Image& b);
 // Over the pixels whose byte in `region` (one per pixel, top row first, as Image) is non-zero;
-// all zero if none is. Throws std::invalid_argument if the sizes differ.
-ImageDiff compare_in(const Image& a, const Image& b, const std::vector<std::uint8_t>& region);
+// all zero if none is. An invalid_input Error if the sizes differ.
+[[nodiscard]] Result<ImageDiff> compare_in(const Image& a, const Image& b, const std::vector<std::uint8_t>& region);
 
 // Writes `image` as PNG. With `keep_alpha` false the alpha channel is written as 255
 // (the renderer's alpha is its cumulative alpha buffer, not coverage).

@@ -10,9 +10,13 @@
 // in view) runs no pass; with no target occluded the picture is standard's:
 // dt-seed and dt-fast decide on the GPU, and run no effect pass when the
 // previous frame needed none (standard-first plan), else draw the effect and
-// then standard's frame again (effect-first plan, docs/render.md). Never:
-// creates a GL context, reads files, or includes GL headers in this public
-// header.
+// then standard's frame again (effect-first plan, docs/render.md). Errors:
+// every public function returns Result/Status, never throws: settings out of
+// range or a bad size -> invalid_input; the GL out of memory, a lost context,
+// a framebuffer the driver calls incomplete, a failed allocation ->
+// environment; a broken internal promise -> internal (docs/render.md,
+// "Errors"). Never: creates a GL context, reads files, or includes GL headers
+// in this public header.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -58,8 +62,8 @@ using technique::to_string;
 using technique::uses_transparency;
 using technique::VdtSettings;
 
-// Throws std::invalid_argument "DtSettings.<field>: <message>" if check() finds a problem.
-void validate(const DtSettings& s, int width = 0, int height = 0);
+// check() as a Status: an invalid_input Error, field "DtSettings.<field>", when it finds a problem.
+Status validate(const DtSettings& s, int width = 0, int height = 0);
 // A lens sized to `scene` at the centre of a width x height view: distance = the orbit distance
 // (ABSTRACT: centred on the orbit centre) or two floor-plan cells (WALKTHROUGH); radius = a
 // quarter of the view's half-height at that distance; length = 2 x radius.
@@ -87,11 +91,15 @@ struct TargetVisibility {
 };
 inline constexpr float kVisibleShare = 0.10f;  // docs/render.md, "Visible pixels"
 
-// A renderer bound to one scene and to the GL context current at create().
+// A renderer bound to one scene and to the GL context current at create(). No member throws: a
+// failure is an Error (field "render", the message starting with the function's name). After an
+// environment Error the renderer may be called again (the next frame starts from scratch) or
+// destroyed; the failed frame's picture is undefined.
 class Renderer {
  public:
   // Compiles the shaders and uploads the meshes. Needs a current GL 3.3 core context.
-  // Fails (Error with the shader's name and the compiler's log) if a shader does not compile.
+  // Fails (Error with the shader's name and the compiler's log) if a shader does not compile,
+  // (environment) if an allocation fails.
   static Result<std::unique_ptr<Renderer>> create(const scene::Scene& scene);
   ~Renderer();
   Renderer(const Renderer&) = delete;
@@ -99,29 +107,42 @@ class Renderer {
 
   // Renders one frame of target.width x target.height pixels and presents it into `target`
   // (blit). Keeps the context's GL state as it was. The report names the passes that ran.
-  FrameReport render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target);
-  // Renders into an internal offscreen target of width x height (no caller framebuffer needed).
-  FrameReport render_offscreen(const Camera& camera, const FrameSettings& settings, int width, int height);
+  // Errors: invalid_input for a non-positive size or settings out of range (check()); environment
+  // when the GL runs out of memory, loses its context or calls a framebuffer incomplete (e.g. a
+  // size beyond GL_MAX_TEXTURE_SIZE); other GL errors stay in FrameReport::gl_errors.
+  [[nodiscard]] Result<FrameReport> render(const Camera& camera, const FrameSettings& settings,
+                                           const ImportedTarget& target);
+  // Renders into an internal offscreen target of width x height, each 1..16384 (no caller
+  // framebuffer needed). Errors as render().
+  [[nodiscard]] Result<FrameReport> render_offscreen(const Camera& camera, const FrameSettings& settings, int width,
+                                                     int height);
 
-  // The last frame's final colour, RGBA8, top row first (alpha: the cumulative alpha buffer).
-  Image read_color() const;
-  // The last frame's final colour as RGBA floats, bottom row first (exact when rendered with float_color).
-  std::vector<float> read_color_float() const;
+  // The last frame's final colour, RGBA8, top row first (alpha: the cumulative alpha buffer);
+  // empty before the first frame. Errors: environment (GL out of memory, context lost).
+  [[nodiscard]] Result<Image> read_color() const;
+  // The last frame's final colour as RGBA floats, bottom row first (exact when rendered with
+  // float_color); empty before the first frame. Errors as read_color().
+  [[nodiscard]] Result<std::vector<float>> read_color_float() const;
 
   // Per-target silhouette and visible pixel counts under `settings.method`, computed with the
   // method's own passes (flat weight colours, 3 targets per frame). Targets in scene order.
-  std::vector<TargetVisibility> visibility(const Camera& camera, FrameSettings settings, int width, int height);
+  // Errors as render().
+  [[nodiscard]] Result<std::vector<TargetVisibility>> visibility(const Camera& camera, FrameSettings settings,
+                                                                 int width, int height);
 
   // The effect region: pixels where some target in view has an exact mask below 1 (its
   // silhouette or shape grown by the gradient, at full resolution as `reference` draws it; in
   // active mode cut to the searchlight), one byte per pixel (1 = in), top row first as Image.
-  std::vector<std::uint8_t> effect_region(const Camera& camera, const DtSettings& dt, int width, int height);
+  // Sizes 1..16384. Errors as render().
+  [[nodiscard]] Result<std::vector<std::uint8_t>> effect_region(const Camera& camera, const DtSettings& dt, int width,
+                                                                int height);
 
   // Builds now what the first frame drawn with `settings` would otherwise build inside it: the
   // occluder database of occlusion culling (FrameSettings::occlusion_culling on a scene with a
   // floor plan; 0.3-0.8 s for a WALKTHROUGH). A session calls it before a trial's first frame so
   // that the frame is not late. Returns the milliseconds it took (0: nothing to build). CPU only.
-  double prepare(const FrameSettings& settings);
+  // Errors: environment when an allocation fails.
+  [[nodiscard]] Result<double> prepare(const FrameSettings& settings);
 
   // The last frame's graph in Graphviz dot syntax (culled passes grey).
   const std::string& last_graphviz() const;
@@ -130,6 +151,11 @@ class Renderer {
  private:
   struct Impl;
   explicit Renderer(std::unique_ptr<Impl> impl);
+  // The bodies of render(), visibility() and effect_region() after their argument checks; they
+  // may throw (detail/boundary.h), the public functions turn that into an Error.
+  FrameReport draw_frame(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target);
+  std::vector<TargetVisibility> count_visibility(const Camera& camera, FrameSettings settings, int width, int height);
+  std::vector<std::uint8_t> region_mask(const Camera& camera, const DtSettings& dt, int width, int height);
   std::unique_ptr<Impl> impl_;
 };
 

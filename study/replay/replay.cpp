@@ -147,8 +147,11 @@ Status render_frames(const RecordedTrial& trial, int width, int height, int ever
     const glm::vec2 pointer =
         trial.scene.camera.mode == scene::CameraStart::Mode::walk ? glm::vec2(width / 2.0f, height / 2.0f) : cursor;
     technique::aim(s, pointer);
-    (*renderer)->render_offscreen(pose_camera(trial.scene, pose, width, height), s, width, height);
-    if (Status st = out(written++, i, (*renderer)->read_color()); !st) return st;
+    if (auto drawn = (*renderer)->render_offscreen(pose_camera(trial.scene, pose, width, height), s, width, height); !drawn)
+      return drawn.error();
+    auto image = (*renderer)->read_color();
+    if (!image) return image.error();
+    if (Status st = out(written++, i, image.value()); !st) return st;
   }
   return {};
 }

@@ -126,7 +126,7 @@ std::vector<ObjectBounds> object_bounds(const scene::Scene& scene) {
   return out;
 }
 
-View look(render::Renderer& renderer, const render::Camera& camera, const render::FrameSettings& settings, int width,
+Result<View> look(render::Renderer& renderer, const render::Camera& camera, const render::FrameSettings& settings, int width,
           int height, std::span<const std::uint32_t> objects, const std::vector<ObjectBounds>& bounds) {
   const scene::Scene& sc = renderer.scene();
   View view;
@@ -166,9 +166,12 @@ View look(render::Renderer& renderer, const render::Camera& camera, const render
       e[slot[i] % 3] = 1.0f;
       weight.flat_colors[objects[i]] = e;
     }
-    const render::FrameReport report = renderer.render_offscreen(camera, weight, width, height);
-    view.frame_ms.push_back(report.frame_ms);
-    const render::Image img = renderer.read_color();
+    const auto report = renderer.render_offscreen(camera, weight, width, height);
+    if (!report) return report.error();
+    view.frame_ms.push_back(report->frame_ms);
+    const auto read = renderer.read_color();
+    if (!read) return read.error();
+    const render::Image& img = read.value();
     for (std::size_t i = 0; i < objects.size(); ++i) {
       if (slot[i] < 0 || static_cast<std::size_t>(slot[i]) / 3 != f) continue;
       const int c = slot[i] % 3;

@@ -48,8 +48,8 @@ struct View {
 
 // Renders the view (camera, settings, width x height) in weight mode and counts each requested
 // object's visible pixels. Needs the renderer's GL context current. `objects` are indices
-// into the scene's objects; `bounds` = object_bounds(scene).
-View look(render::Renderer& renderer, const render::Camera& camera, const render::FrameSettings& settings, int width,
+// into the scene's objects; `bounds` = object_bounds(scene). Errors: the renderer's.
+Result<View> look(render::Renderer& renderer, const render::Camera& camera, const render::FrameSettings& settings, int width,
           int height, std::span<const std::uint32_t> objects, const std::vector<ObjectBounds>& bounds);
 
 // The on-screen radius in pixels of an aid that follows the cursor: the active searchlight's radius,

@@ -54,6 +54,7 @@ Result<session::TrialOutcome> SimulatedParticipant::run_trial(const session::Tri
     case scene::Task::T4: detail::run_count_kind(run); break;
   }
   trace_ = run.trace;
+  if (run.failure) return *run.failure;
   return std::move(run.out);
 }
 

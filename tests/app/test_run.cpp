@@ -4,7 +4,8 @@
 // the answers the script's); every screen's screenshot is non-blank and
 // differs from the others; kill -9 at several moments and a rerun with the
 // same script give the trial sequence and answers of an uninterrupted run,
-// with PRAGMA integrity_check ok after each kill; replay reproduces the
+// with PRAGMA integrity_check ok after each kill, and so does a rerun after a
+// render failure (which the window and stderr report); replay reproduces the
 // logged poses and its first frame equals `dtlab render` of that pose; and
 // real X events (xdotool) reach the app the way a person's do.
 #include <fcntl.h>
@@ -26,6 +27,9 @@
 #include "study/render/image.h"
 #include "study/store/read.h"
 #include "tests/common/run_cli.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::run {
 namespace {
@@ -260,7 +264,7 @@ TEST_F(RunPilot, EveryScreenHasANonBlankScreenshotDistinctFromTheOthers) {
   }
   for (std::size_t a = 0; a < images.size(); ++a)
     for (std::size_t b = a + 1; b < images.size(); ++b)
-      EXPECT_GT(render::compare(images[a], images[b]).pixels_off_pct, 0.5) << shots[a] << " and " << shots[b];
+      EXPECT_GT(must(render::compare(images[a], images[b])).pixels_off_pct, 0.5) << shots[a] << " and " << shots[b];
 }
 
 TEST_F(RunPilot, ReplayReproducesTheLoggedPosesAndRendersWhatDtlabRenderDraws) {
@@ -294,7 +298,7 @@ TEST_F(RunPilot, ReplayReproducesTheLoggedPosesAndRendersWhatDtlabRenderDraws) {
                                           " --width 640 --height 480 --camera " + camera + " --out '" +
                                           rendered.string() + "'");
   ASSERT_EQ(ren.rc, 0) << ren.err;
-  const auto diff = render::compare(decode(out / "frame-00001.png"), decode(rendered));
+  const auto diff = must(render::compare(decode(out / "frame-00001.png"), decode(rendered)));
   EXPECT_LT(diff.mae, 0.5);
   EXPECT_LT(diff.pixels_off_pct, 0.5);
 }
@@ -521,6 +525,65 @@ TEST_F(RunPilot, KilledAtSeveralMomentsAndResumedEqualsTheUninterruptedRun) {
   EXPECT_EQ((*sessions)[0].status, store::SessionStatus::finished);
   EXPECT_EQ(*reader(killed).integrity_check(), "ok");
   fs::remove_all(d);
+}
+
+// A render failure mid-session (the test builds' injected GL_OUT_OF_MEMORY: render.h's renderer
+// fails every frame while $DTLAB_TEST_RENDER_FAIL_FILE exists) once two trials are recorded: the
+// participant's window turns to the end screen, stderr names the error and says the session can
+// resume, the exit status is 3 (environment); the recorded trials stay, the session stays running
+// with the trial in progress recorded as interrupted, and the same command without the failure
+// resumes it to the uninterrupted run's outcome. (Before, the renderer threw std::runtime_error
+// through the session: the process died and nothing was said.)
+TEST_F(RunPilot, ARenderFailureShowsTheErrorKeepsTheTrialsAndTheSameCommandResumes) {
+  ASSERT_EQ(rc, 0);
+  const fs::path d = temp_dir("render_failure");
+  const fs::path db = d / "pilot.sqlite", log = d / "log.txt", items = d / "items.jsonl", flag = d / "fail-now";
+  const pid_t pid = start_run(db, log, {"--script", kScript},
+                              {{"DTLAB_TEST_RENDER_FAIL_FILE", flag.string()}, {"DTLAB_RUN_ITEMS_LOG", items.string()}});
+  auto count = [](const fs::path& file, const std::string& what) {
+    const std::string text = fs::exists(file) ? slurp(file) : "";
+    int n = 0;
+    for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  // The third trial's screen is up (the pilot's first participant does T1, T2, T3, T4 with
+  // instructions and training before each; trial 3 is T3): the failure lands inside a trial, not
+  // in training, which renders too (a failure there also stops the session, with no attempt).
+  const auto until = Clock::now() + std::chrono::seconds(240);
+  while ((count(log, " recorded (") < 2 || count(items, "\"screen\":\"trial T3\"") < 1) && Clock::now() < until &&
+         ::waitpid(pid, nullptr, WNOHANG) == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  { std::ofstream(flag) << "fail\n"; }
+  const int at_failure = count(log, " recorded (");
+  ASSERT_EQ(at_failure, 2) << slurp(log);
+  EXPECT_EQ(wait_exit_within(pid, 240), 3) << slurp(log);
+  const std::string text = slurp(log);
+  EXPECT_NE(text.find("dtlab run: error: "), std::string::npos) << text;
+  EXPECT_NE(text.find("the GL ran out of memory"), std::string::npos) << text;
+  EXPECT_NE(text.find("GL_OUT_OF_MEMORY (injected"), std::string::npos) << text;
+  EXPECT_NE(text.find("session stopped here: every finished trial is saved and running the same command again "
+                      "resumes it"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(slurp(items).find("\"screen\":\"end\""), std::string::npos)
+      << "the participant's window did not turn to the end screen";
+  {
+    auto r = reader(db);
+    EXPECT_EQ(*r.integrity_check(), "ok");
+    const auto sessions = r.sessions();
+    ASSERT_EQ(sessions->size(), 1u);
+    EXPECT_EQ((*sessions)[0].status, store::SessionStatus::running) << "neither finished nor abandoned";
+    EXPECT_GE(r.trials()->size(), static_cast<std::size_t>(at_failure)) << "a recorded trial was lost";
+  }
+  fs::remove(flag);
+  ASSERT_EQ(wait_exit_within(start_run(db, log, {"--script", kScript}), 300), 0) << slurp(log);
+  EXPECT_EQ(outcome(db), outcome(*RunPilot::db));
+  auto sessions = reader(db).sessions();
+  ASSERT_EQ(sessions->size(), 1u);
+  EXPECT_EQ((*sessions)[0].status, store::SessionStatus::finished);
+  ASSERT_EQ((*sessions)[0].interruptions.size(), 1u) << "the failed trial's attempt is recorded";
+  EXPECT_EQ((*sessions)[0].interruptions[0].position, 3);
+  if (!HasFailure()) fs::remove_all(d);
 }
 
 // Real X events: xdotool types the participant's ID and age into the start screen and clicks

@@ -15,6 +15,9 @@
 
 #include "study/scene/generate.h"
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -44,28 +47,28 @@ TEST_P(Fidelity, DtFastDrawsDtSeedsPicture) {
   settings.timed = true;  // the query's answer known at once: each method's second frame takes the other plan
   const Camera cam = camera_from_start(s->camera, static_cast<float>(kW) / kH);
   settings.method = Method::dt_seed;
-  const FrameReport seed_report = (*r)->render_offscreen(cam, settings, kW, kH);
-  const Image seed = (*r)->read_color();
-  const FrameReport seed_again = (*r)->render_offscreen(cam, settings, kW, kH);
-  const ImageDiff seed_plans = compare(seed, (*r)->read_color());
+  const FrameReport seed_report = must((*r)->render_offscreen(cam, settings, kW, kH));
+  const Image seed = must((*r)->read_color());
+  const FrameReport seed_again = must((*r)->render_offscreen(cam, settings, kW, kH));
+  const ImageDiff seed_plans = must(compare(seed, must((*r)->read_color())));
   EXPECT_EQ(seed_plans.max_abs, 0) << "dt-seed's two frame plans differ: " << seed_plans.pixels_off_pct
                                    << "% of pixels off by > 4";
   settings.method = Method::dt_fast;
-  const FrameReport first = (*r)->render_offscreen(cam, settings, kW, kH);
-  const Image fast_first = (*r)->read_color();
-  const FrameReport second = (*r)->render_offscreen(cam, settings, kW, kH);
-  const Image fast_second = (*r)->read_color();
-  const std::vector<std::uint8_t> region = (*r)->effect_region(cam, settings.dt, kW, kH);
-  const ImageDiff d = compare_in(fast_first, seed, region);
+  const FrameReport first = must((*r)->render_offscreen(cam, settings, kW, kH));
+  const Image fast_first = must((*r)->read_color());
+  const FrameReport second = must((*r)->render_offscreen(cam, settings, kW, kH));
+  const Image fast_second = must((*r)->read_color());
+  const std::vector<std::uint8_t> region = must((*r)->effect_region(cam, settings.dt, kW, kH));
+  const ImageDiff d = must(compare_in(fast_first, seed, region));
   std::cout << "effect region " << d.pixels << " px: mean " << d.mae << " levels, " << d.pixels_off_pct
-            << "% off by more than 4, max " << d.max_abs << "; whole frame mean " << compare(fast_first, seed).mae
+            << "% off by more than 4, max " << d.max_abs << "; whole frame mean " << must(compare(fast_first, seed)).mae
             << "\n";
   RecordProperty("effect_region_mae", std::to_string(d.mae));
   RecordProperty("effect_region_pixels_off_pct", std::to_string(d.pixels_off_pct));
   EXPECT_GT(d.pixels, 0) << "a scene without an effect region tests nothing";
   EXPECT_LE(d.mae, 1.5);
   EXPECT_LE(d.pixels_off_pct, 2.0);
-  const ImageDiff plans = compare(fast_first, fast_second);
+  const ImageDiff plans = must(compare(fast_first, fast_second));
   EXPECT_LE(plans.max_abs, 1) << "the two frame plans differ: " << plans.pixels_off_pct << "% of pixels off by > 4";
   const auto runs = [](const FrameReport& f, const char* pass) {
     const auto v = f.passes_run();

@@ -14,6 +14,9 @@
 
 #include "study/render/detail/lens_volume.h"
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -59,9 +62,9 @@ LensSettings lens(LensShape shape, LensStyle style, float distance, float radius
 Image render(const scene::Scene& s, const FrameSettings& f, const Camera& cam = front_camera(kW, kH)) {
   auto r = Renderer::create(s);
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
-  const FrameReport report = r.value()->render_offscreen(cam, f, kW, kH);
+  const FrameReport report = must(r.value()->render_offscreen(cam, f, kW, kH));
   EXPECT_TRUE(report.gl_errors.empty()) << report.gl_errors.front();
-  Image img = r.value()->read_color();
+  Image img = must(r.value()->read_color());
   testing::maybe_dump(img, std::string(to_string(f.method)) + "-" + std::string(to_string(f.lens.shape)) + "-" +
                                std::string(to_string(f.lens.style)));
   return img;
@@ -160,7 +163,7 @@ TEST_F(LensTest, PassesInThePapersOrder) {
   ASSERT_TRUE(r.ok());
   FrameSettings f = settings(Method::lens, false, s);
   f.lens = lens(LensShape::box, LensStyle::eraser, 8.0f, 2.0f);
-  const FrameReport report = r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH);
+  const FrameReport report = must(r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH));
   EXPECT_EQ(report.passes_run(),
             (std::vector<std::string>{"lens-back", "lens-front", "lens-behind", "lens-inside", "lens-in-front", "present"}));
 }
@@ -176,8 +179,8 @@ TEST_F(LensTest, EraserRevealsTargetBehindWall) {
   EXPECT_EQ(rgb_at(img, kW / 2, kH / 2), glm::ivec3(255, 0, 0));
   auto r = Renderer::create(s);
   ASSERT_TRUE(r.ok());
-  const auto seen_std = r.value()->visibility(front_camera(kW, kH), settings(Method::standard, false, s), kW, kH);
-  const auto seen_lens = r.value()->visibility(front_camera(kW, kH), f, kW, kH);
+  const auto seen_std = must(r.value()->visibility(front_camera(kW, kH), settings(Method::standard, false, s), kW, kH));
+  const auto seen_lens = must(r.value()->visibility(front_camera(kW, kH), f, kW, kH));
   ASSERT_EQ(seen_lens.size(), 1u);
   EXPECT_EQ(seen_std[0].visible_pixels, 0);
   EXPECT_GT(seen_lens[0].visible_pixels, 50);

@@ -13,6 +13,9 @@
 #include <vector>
 
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -55,12 +58,12 @@ TEST(ManyTargets, ATargetHiddenByTheTargetSixtyThreeLaterIsUncovered) {
     settings.method = m;
     settings.dt.gradient_px = 3.0f;
     settings.timed = true;
-    const FrameReport rep = (*r)->render_offscreen(cam, settings, kW, kH);
+    const FrameReport rep = must((*r)->render_offscreen(cam, settings, kW, kH));
     EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
     if (m != Method::standard) {
       EXPECT_TRUE(ran(rep, m == Method::dt_seed ? "dt-clear" : "dt-composite"));
     }
-    const auto vis = (*r)->visibility(cam, settings, kW, kH);
+    const auto vis = must((*r)->visibility(cam, settings, kW, kH));
     ASSERT_EQ(vis.size(), 300u);
     EXPECT_GT(vis[0].silhouette_pixels, 0);
     if (m == Method::standard) {
@@ -96,12 +99,12 @@ TEST(ManyTargets, MoreThan255OverlappingTargetsRunTheEffectWithoutAQuery) {
     settings.flat_colors = flat;
     settings.timed = true;
     for (int frame = 0; frame < 2; ++frame) {
-      const FrameReport rep = (*r)->render_offscreen(cam, settings, kW, kH);
+      const FrameReport rep = must((*r)->render_offscreen(cam, settings, kW, kH));
       EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
       EXPECT_FALSE(ran(rep, "target-query"));
       EXPECT_TRUE(ran(rep, m == Method::dt_seed ? "dt-clear" : "dt-composite"));
       // Weight mode: the red channel is the second target's share.
-      const int red = testing::rgb_at((*r)->read_color(), kW / 2, kH / 2).r;
+      const int red = testing::rgb_at(must((*r)->read_color()), kW / 2, kH / 2).r;
       const float aT = settings.dt.alpha_target;
       EXPECT_NEAR(red, aT * (1.0f - aT) * 255.0f, 2.0f);
     }

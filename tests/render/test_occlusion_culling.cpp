@@ -20,6 +20,9 @@
 #include "study/scene/generate.h"
 #include "study/scene/route.h"
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -220,11 +223,11 @@ TEST_P(CullingIsInvisible, SameImageOnAndOff) {
       doorways += p.doorway ? 1 : 0;
       const Camera cam = pose_camera(s, p);
       f.occlusion_culling = false;
-      renderer.render_offscreen(cam, f, kW, kH);
-      const Image off = renderer.read_color();
+      must(renderer.render_offscreen(cam, f, kW, kH));
+      const Image off = must(renderer.read_color());
       f.occlusion_culling = true;
-      const FrameReport rep = renderer.render_offscreen(cam, f, kW, kH);
-      const Image on = renderer.read_color();
+      const FrameReport rep = must(renderer.render_offscreen(cam, f, kW, kH));
+      const Image on = must(renderer.read_color());
       ASSERT_TRUE(rep.culling.ran);
       culled += rep.culling.objects_culled;
       ASSERT_EQ(on.rgba, off.rgba) << "seed " << seed << " eye (" << p.position.x << ", " << p.position.z
@@ -258,11 +261,11 @@ TEST(OcclusionCulling, ReferenceSameImageAtTheStartViews) {
     f.dt.searchlight_center = {0.5f * kW, 0.5f * kH};
     f.dt.searchlight_radius = 25.0f;
     const Camera cam = camera_from_start(s.camera, static_cast<float>(kW) / kH);
-    r->render_offscreen(cam, f, kW, kH);
-    const Image off = r->read_color();
+    must(r->render_offscreen(cam, f, kW, kH));
+    const Image off = must(r->read_color());
     f.occlusion_culling = true;
-    culled += r->render_offscreen(cam, f, kW, kH).culling.objects_culled;
-    EXPECT_EQ(r->read_color().rgba, off.rgba) << "seed " << seed;
+    culled += must(r->render_offscreen(cam, f, kW, kH)).culling.objects_culled;
+    EXPECT_EQ(must(r->read_color()).rgba, off.rgba) << "seed " << seed;
   }
   EXPECT_GT(culled, 0);
 }
@@ -278,9 +281,9 @@ TEST(OcclusionCulling, VisibilityCountsUnchanged) {
     for (std::size_t i = 0; i < route.size(); i += 5) {
       FrameSettings f;
       f.method = m;
-      const auto off = r->visibility(pose_camera(s, route[i]), f, kW, kH);
+      const auto off = must(r->visibility(pose_camera(s, route[i]), f, kW, kH));
       f.occlusion_culling = true;
-      const auto on = r->visibility(pose_camera(s, route[i]), f, kW, kH);
+      const auto on = must(r->visibility(pose_camera(s, route[i]), f, kW, kH));
       ASSERT_EQ(on.size(), off.size());
       for (std::size_t k = 0; k < on.size(); ++k) {
         EXPECT_EQ(on[k].visible_pixels, off[k].visible_pixels) << to_string(m) << " pose " << i << " target " << k;
@@ -299,8 +302,8 @@ TEST(OcclusionCulling, FirstFrameCullsLikeTheNext) {
   FrameSettings f;
   f.occlusion_culling = true;
   const Camera cam = camera_from_start(s.camera, static_cast<float>(kW) / kH);
-  const auto first = r->render_offscreen(cam, f, kW, kH).culling;
-  const auto second = r->render_offscreen(cam, f, kW, kH).culling;
+  const auto first = must(r->render_offscreen(cam, f, kW, kH)).culling;
+  const auto second = must(r->render_offscreen(cam, f, kW, kH)).culling;
   EXPECT_GT(first.preprocess_ms, 0.0);
   EXPECT_EQ(second.preprocess_ms, 0.0);  // built once per renderer
   EXPECT_GT(first.objects_culled, 0);
@@ -314,16 +317,16 @@ TEST(OcclusionCulling, PrepareBuildsTheDatabaseBeforeTheFirstFrame) {
   auto prepared = renderer_of(s), plain = renderer_of(s);
   ASSERT_TRUE(prepared && plain);
   FrameSettings f;
-  EXPECT_EQ(prepared->prepare(f), 0.0) << "culling off: nothing to build";
+  EXPECT_EQ(must(prepared->prepare(f)), 0.0) << "culling off: nothing to build";
   f.method = Method::vdt;
   f.occlusion_culling = true;
-  EXPECT_EQ(prepared->prepare(f), 0.0) << "vdt culls nothing: nothing to build";
+  EXPECT_EQ(must(prepared->prepare(f)), 0.0) << "vdt culls nothing: nothing to build";
   f.method = Method::standard;
-  EXPECT_GT(prepared->prepare(f), 0.0);
-  EXPECT_EQ(prepared->prepare(f), 0.0) << "built once per renderer";
+  EXPECT_GT(must(prepared->prepare(f)), 0.0);
+  EXPECT_EQ(must(prepared->prepare(f)), 0.0) << "built once per renderer";
   const Camera cam = camera_from_start(s.camera, static_cast<float>(kW) / kH);
-  const auto a = prepared->render_offscreen(cam, f, kW, kH).culling;
-  const auto b = plain->render_offscreen(cam, f, kW, kH).culling;
+  const auto a = must(prepared->render_offscreen(cam, f, kW, kH)).culling;
+  const auto b = must(plain->render_offscreen(cam, f, kW, kH)).culling;
   EXPECT_EQ(a.preprocess_ms, 0.0);
   EXPECT_GT(b.preprocess_ms, 0.0);
   EXPECT_GT(a.objects_culled, 0);
@@ -333,7 +336,7 @@ TEST(OcclusionCulling, PrepareBuildsTheDatabaseBeforeTheFirstFrame) {
   ASSERT_TRUE(abstract_scene.ok());
   auto no_plan = renderer_of(abstract_scene.value());
   ASSERT_TRUE(no_plan);
-  EXPECT_EQ(no_plan->prepare(f), 0.0) << "no floor plan: nothing to cull with";
+  EXPECT_EQ(must(no_plan->prepare(f)), 0.0) << "no floor plan: nothing to cull with";
 }
 
 TEST(OcclusionCulling, HolesOnlyRemoveCoverage) {
@@ -346,9 +349,9 @@ TEST(OcclusionCulling, HolesOnlyRemoveCoverage) {
   for (const scene::Pose& p : views(s)) {
     const Camera cam = pose_camera(s, p);
     f.method = Method::standard;
-    const auto std_rep = r->render_offscreen(cam, f, kW, kH).culling;
+    const auto std_rep = must(r->render_offscreen(cam, f, kW, kH)).culling;
     f.method = Method::dt_fast;
-    const auto dt_rep = r->render_offscreen(cam, f, kW, kH).culling;
+    const auto dt_rep = must(r->render_offscreen(cam, f, kW, kH)).culling;
     EXPECT_LE(dt_rep.objects_culled, std_rep.objects_culled);  // holes only remove coverage
     views_with_culling += std_rep.objects_culled > 0 ? 1 : 0;
   }

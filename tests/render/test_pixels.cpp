@@ -17,6 +17,9 @@
 #include <vector>
 
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -86,11 +89,11 @@ class BlendTest : public ::testing::TestWithParam<Case> {
     s.timed = true;  // query answers known at once (dt-fast picks its next frame plan from them)
     FrameReport rep;
     for (int f = 0; f < frames; ++f) {
-      rep = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+      rep = must((*r)->render_offscreen(front_camera(kW, kH), s, kW, kH));
       EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
     }
     if (report) *report = rep;
-    Image img = (*r)->read_color();
+    Image img = must((*r)->read_color());
     testing::maybe_dump(img, method ? "-" + std::string(to_string(*method)) : "");
     return img;
   }
@@ -165,7 +168,7 @@ TEST_P(BlendTest, ImpenetrableWallNeverTurnsTransparent) {
   const Image std_img = render(b, dt, nullptr, Method::standard);
   const glm::vec2 c = target_centre();
   EXPECT_EQ(rgb_at(dt_img, static_cast<int>(c.x), static_cast<int>(c.y)), glm::ivec3(0, 0, 255));
-  EXPECT_LE(compare(dt_img, std_img).max_abs, 1) << "nothing may differ from the standard frame";
+  EXPECT_LE(must(compare(dt_img, std_img)).max_abs, 1) << "nothing may differ from the standard frame";
 }
 
 TEST_P(BlendTest, LayerLimitOneLeavesTheSecondWallOpaque) {
@@ -191,7 +194,7 @@ TEST_P(BlendTest, ActiveModeActsOnlyInsideTheSearchlight) {
   FrameReport rep;
   const Image off = render(wall_scene(false), dt, &rep);
   const Image std_img = render(wall_scene(false), dt, nullptr, Method::standard);
-  EXPECT_LE(compare(off, std_img).max_abs, 1);
+  EXPECT_LE(must(compare(off, std_img)).max_abs, 1);
   if (GetParam().method != Method::reference) {
     EXPECT_TRUE(effect_passes(rep).empty()) << effect_passes(rep).front();
   }
@@ -228,7 +231,7 @@ TEST_P(BlendTest, NothingOccludedRunsNoEffectPassAndGivesTheStandardFrame) {
   FrameReport rep;
   const Image img = render(b, dt, &rep, std::nullopt, 2);
   const Image std_img = render(b, dt, nullptr, Method::standard);
-  EXPECT_LE(compare(img, std_img).max_abs, 1);
+  EXPECT_LE(must(compare(img, std_img)).max_abs, 1);
   if (GetParam().method != Method::reference) {
     EXPECT_TRUE(effect_passes(rep).empty()) << effect_passes(rep).front();
     EXPECT_EQ(rep.passes_run(), (std::vector<std::string>{"opaque", "target-query", "present"}));
@@ -315,16 +318,16 @@ TEST_P(FramePlans, BothPlansGiveTheSameImage) {
     auto r = Renderer::create(b.scene);
     ASSERT_TRUE(r.ok());
     const FrameSettings s = settings_for(b);
-    const FrameReport first = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
-    const Image a = (*r)->read_color();
-    const FrameReport second = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
-    const Image c = (*r)->read_color();
+    const FrameReport first = must((*r)->render_offscreen(front_camera(kW, kH), s, kW, kH));
+    const Image a = must((*r)->read_color());
+    const FrameReport second = must((*r)->render_offscreen(front_camera(kW, kH), s, kW, kH));
+    const Image c = must((*r)->read_color());
     EXPECT_TRUE(ran(first, "opaque"));
     EXPECT_TRUE(ran(first, effect_pass));
     EXPECT_FALSE(ran(second, "opaque")) << "the second frame must take the effect-first plan";
     EXPECT_TRUE(ran(second, "query-invert"));
     EXPECT_FALSE(ran(second, "standard-fallback"));
-    EXPECT_EQ(compare(a, c).max_abs, 0);
+    EXPECT_EQ(must(compare(a, c)).max_abs, 0);
   }
   // A wrong guess: the searchlight leaves the target, so after a frame that needed the effect,
   // the next one has nothing to uncover.
@@ -336,17 +339,17 @@ TEST_P(FramePlans, BothPlansGiveTheSameImage) {
   const glm::vec2 c = project(front_camera(kW, kH), {0, 0, -11}, kW, kH);
   s.dt.searchlight_center = {c.x, static_cast<float>(kH) - c.y};
   s.dt.searchlight_radius = 40.0f;
-  const FrameReport on = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
+  const FrameReport on = must((*r)->render_offscreen(front_camera(kW, kH), s, kW, kH));
   EXPECT_TRUE(ran(on, effect_pass));
   s.dt.searchlight_center = {20.0f, 20.0f};
   s.dt.searchlight_radius = 10.0f;
-  const FrameReport away = (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
-  const Image fell_back = (*r)->read_color();
+  const FrameReport away = must((*r)->render_offscreen(front_camera(kW, kH), s, kW, kH));
+  const Image fell_back = must((*r)->read_color());
   EXPECT_FALSE(ran(away, "opaque"));
   EXPECT_TRUE(ran(away, "standard-fallback"));
   s.method = Method::standard;
-  (*r)->render_offscreen(front_camera(kW, kH), s, kW, kH);
-  EXPECT_EQ(compare(fell_back, (*r)->read_color()).max_abs, 0);
+  must((*r)->render_offscreen(front_camera(kW, kH), s, kW, kH));
+  EXPECT_EQ(must(compare(fell_back, must((*r)->read_color()))).max_abs, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, FramePlans, ::testing::Values(Method::dt_seed, Method::dt_fast),

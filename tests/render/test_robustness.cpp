@@ -12,6 +12,9 @@
 #include <vector>
 
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -124,9 +127,9 @@ TEST_P(Robustness, NoGlErrorNoNanNoGarbage) {
     for (int frame = 0; frame < 2; ++frame) {
       FrameSettings s = settings();
       s.float_color = true;
-      const FrameReport rep = r.render_offscreen(h.camera, s, kW, kH);
+      const FrameReport rep = must(r.render_offscreen(h.camera, s, kW, kH));
       EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
-      const std::vector<float> px = r.read_color_float();
+      const std::vector<float> px = must(r.read_color_float());
       ASSERT_EQ(px.size(), static_cast<std::size_t>(kW * kH * 4));
       int bad = 0;
       for (float v : px)
@@ -139,9 +142,9 @@ TEST_P(Robustness, NoGlErrorNoNanNoGarbage) {
     // Weight mode with every object flat black: every pixel of every method is exactly black.
     FrameSettings s = settings();
     s.flat_colors.assign(h.scene.objects.size(), glm::vec3(0.0f));
-    const FrameReport rep = r.render_offscreen(h.camera, s, kW, kH);
+    const FrameReport rep = must(r.render_offscreen(h.camera, s, kW, kH));
     EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
-    const Image img = r.read_color();
+    const Image img = must(r.read_color());
     int nonblack = 0;
     for (std::size_t i = 0; i < img.rgba.size(); i += 4)
       nonblack += img.rgba[i] != 0 || img.rgba[i + 1] != 0 || img.rgba[i + 2] != 0;
@@ -190,16 +193,26 @@ TEST(RobustnessScene, ObjectWithMissingMeshIsAnError) {
   EXPECT_NE(r.error().to_string().find("objects[2]"), std::string::npos) << r.error().to_string();
 }
 
+// validate() is check() as a Status (render.h): an invalid_input Error naming the member.
 TEST(RobustnessScene, OutOfRangeSettingsAreRejected) {
-  DtSettings dt;
-  dt.alpha_target = 1.0f;
-  EXPECT_THROW(validate(dt), std::invalid_argument);
-  dt = DtSettings{};
-  dt.layer_limit = 101;
-  EXPECT_THROW(validate(dt), std::invalid_argument);
-  dt = DtSettings{};
-  dt.gradient_px = -1.0f;
-  EXPECT_THROW(validate(dt), std::invalid_argument);
+  struct Case {
+    const char* field;
+    DtSettings dt;
+  };
+  std::vector<Case> cases(3);
+  cases[0] = {"DtSettings.alpha_target", {}};
+  cases[0].dt.alpha_target = 1.0f;
+  cases[1] = {"DtSettings.layer_limit", {}};
+  cases[1].dt.layer_limit = 101;
+  cases[2] = {"DtSettings.gradient_px", {}};
+  cases[2].dt.gradient_px = -1.0f;
+  for (const Case& c : cases) {
+    const Status st = validate(c.dt);
+    ASSERT_FALSE(st.ok()) << c.field;
+    EXPECT_EQ(st.error().kind, ErrorKind::invalid_input) << c.field;
+    EXPECT_EQ(st.error().field, c.field);
+  }
+  EXPECT_TRUE(validate(DtSettings{}).ok());
 }
 
 }  // namespace

@@ -14,6 +14,9 @@
 #include <vector>
 
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -67,9 +70,9 @@ FrameSettings settings(Method m, int side, const Built& b) {
 std::vector<float> render_float(const Built& b, const FrameSettings& f) {
   auto r = Renderer::create(b.scene);
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
-  const FrameReport rep = r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH);
+  const FrameReport rep = must(r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH));
   EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
-  return r.value()->read_color_float();
+  return must(r.value()->read_color_float());
 }
 
 glm::vec3 at(const std::vector<float>& px, glm::ivec2 p) {
@@ -91,11 +94,11 @@ TEST_P(ScreenDoor, NothingOccludedIsTheStandardFrame) {
   f.float_color = false;
   auto r = Renderer::create(b.scene);
   ASSERT_TRUE(r.ok());
-  r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH);
-  const Image sd = r.value()->read_color();
+  must(r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH));
+  const Image sd = must(r.value()->read_color());
   f.method = Method::standard;
-  r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH);
-  EXPECT_EQ(sd.rgba, r.value()->read_color().rgba);
+  must(r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH));
+  EXPECT_EQ(sd.rgba, must(r.value()->read_color()).rgba);
 }
 
 TEST_P(ScreenDoor, AnImpenetrableWallStaysOpaque) {

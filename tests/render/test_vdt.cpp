@@ -15,6 +15,9 @@
 #include "study/render/detail/vdt_alpha.h"
 #include "study/scene/primitives.h"
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -76,10 +79,10 @@ Image render(const scene::Scene& s, const FrameSettings& f, const Camera& cam = 
              FrameReport* report = nullptr) {
   auto r = Renderer::create(s);
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
-  const FrameReport rep = r.value()->render_offscreen(cam, f, kW, kH);
+  const FrameReport rep = must(r.value()->render_offscreen(cam, f, kW, kH));
   EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
   if (report != nullptr) *report = rep;
-  Image img = r.value()->read_color();
+  Image img = must(r.value()->read_color());
   testing::maybe_dump(img, std::string(to_string(f.method)));
   return img;
 }
@@ -280,8 +283,8 @@ TEST_F(VdtTest, RestoresTheCallersGlState) {
   auto r = Renderer::create(s);
   ASSERT_TRUE(r.ok());
   FrameSettings standard;
-  r.value()->render_offscreen(front_camera(kW, kH), standard, kW, kH);
-  const Image before = r.value()->read_color();
+  must(r.value()->render_offscreen(front_camera(kW, kH), standard, kW, kH));
+  const Image before = must(r.value()->read_color());
   GLuint buffer = 0;
   glGenBuffers(1, &buffer);
   glBindBuffer(GL_ARRAY_BUFFER, buffer);
@@ -296,7 +299,7 @@ TEST_F(VdtTest, RestoresTheCallersGlState) {
   glActiveTexture(GL_TEXTURE2);
   FrameSettings f = flat(s);
   f.flat_colors.clear();
-  r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH);
+  must(r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH));
   GLint v = 0;
   glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &v);
   EXPECT_EQ(static_cast<GLuint>(v), buffer);
@@ -324,8 +327,8 @@ TEST_F(VdtTest, RestoresTheCallersGlState) {
   glDepthMask(GL_TRUE);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glDeleteBuffers(1, &buffer);
-  r.value()->render_offscreen(front_camera(kW, kH), standard, kW, kH);
-  EXPECT_EQ(r.value()->read_color().rgba, before.rgba);
+  must(r.value()->render_offscreen(front_camera(kW, kH), standard, kW, kH));
+  EXPECT_EQ(must(r.value()->read_color()).rgba, before.rgba);
 }
 
 // The edge lists eq. (1) runs on: split vertices welded, degenerate triangles left out, so a

@@ -13,6 +13,9 @@
 
 #include "study/scene/generate.h"
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -41,7 +44,7 @@ Count run(scene::Kind kind, scene::Task task, int first, int last, Method method
     settings.dt.gradient_px = gradient_px_from_mask_pixels(8.0f, 128, kW, kH);
     settings.dt.r1_guard = guard;
     const Camera cam = camera_from_start(s->camera, static_cast<float>(kW) / kH);
-    const auto vis = (*r)->visibility(cam, settings, kW, kH);
+    const auto vis = must((*r)->visibility(cam, settings, kW, kH));
     bool hidden = false;
     for (const auto& v : vis) {
       if (v.silhouette_pixels > 0 && v.visible_pixels == 0) {

@@ -12,6 +12,9 @@
 
 #include "app/platform/gl_context.h"
 #include "tests/render/scenes.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::render {
 namespace {
@@ -48,9 +51,9 @@ TEST(Window, EveryMethodGivesTheSamePixelsInAWindowAndHeadless) {
     {
       auto r = Renderer::create(s);
       ASSERT_TRUE(r.ok()) << r.error().to_string();
-      const FrameReport rep = (*r)->render(cam, settings, ImportedTarget{0, kW, kH});
+      const FrameReport rep = must((*r)->render(cam, settings, ImportedTarget{0, kW, kH}));
       EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
-      in_window = (*r)->read_color();
+      in_window = must((*r)->read_color());
     }
     win.swap_buffers();
     // Headless.
@@ -59,12 +62,12 @@ TEST(Window, EveryMethodGivesTheSamePixelsInAWindowAndHeadless) {
     {
       auto r = Renderer::create(s);
       ASSERT_TRUE(r.ok()) << r.error().to_string();
-      const FrameReport rep = (*r)->render_offscreen(cam, settings, kW, kH);
+      const FrameReport rep = must((*r)->render_offscreen(cam, settings, kW, kH));
       EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
-      offscreen = (*r)->read_color();
+      offscreen = must((*r)->read_color());
     }
     (void)headless;
-    const ImageDiff d = compare(in_window, offscreen);
+    const ImageDiff d = must(compare(in_window, offscreen));
     EXPECT_LE(d.max_abs, 1) << "mae " << d.mae;
     // Not a blank frame: the target region differs from the wall in the effect methods.
     int distinct = 0;
@@ -248,8 +251,8 @@ TEST(Window, RenderingIntoTheWindowRestoresTheCallersGlStateAndIgnoresIt) {
     FrameSettings settings;
     settings.method = m;
     settings.lens.center = {kW / 2.0f, kH / 2.0f};
-    (*r)->render(cam, settings, ImportedTarget{0, kW, kH});
-    clean.push_back((*r)->read_color());
+    must((*r)->render(cam, settings, ImportedTarget{0, kW, kH}));
+    clean.push_back(must((*r)->read_color()));
   }
   CallerState caller;
   caller.set();
@@ -259,12 +262,12 @@ TEST(Window, RenderingIntoTheWindowRestoresTheCallersGlStateAndIgnoresIt) {
     FrameSettings settings;
     settings.method = methods[k];
     settings.lens.center = {kW / 2.0f, kH / 2.0f};
-    const FrameReport rep = (*r)->render(cam, settings, ImportedTarget{0, kW, kH});
+    const FrameReport rep = must((*r)->render(cam, settings, ImportedTarget{0, kW, kH}));
     EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
     caller.expect_unchanged("render");
-    const Image img = (*r)->read_color();
+    const Image img = must((*r)->read_color());
     caller.expect_unchanged("read_color");
-    EXPECT_LE(compare(img, clean[k]).max_abs, 1) << "the caller's state changed the frame";
+    EXPECT_LE(must(compare(img, clean[k])).max_abs, 1) << "the caller's state changed the frame";
   }
   r.value().reset();
   caller.release();

@@ -13,6 +13,9 @@
 #include "study/render/render.h"
 #include "study/scene/generate.h"
 #include "study/sim/perception.h"
+#include "tests/common/must.h"
+
+using dtlab::test::must;
 
 namespace dtlab::sim {
 namespace {
@@ -83,7 +86,7 @@ TEST_F(Perception, VisiblePixelsEqualTheRenderersVisibility) {
     fs.lens = render::scene_lens(sc.value(), kW, kH);
     fs.lens.shape = render::LensShape::cone;
     fs.lens.length = 4.0f * fs.lens.radius;
-    const auto reference = r.value()->visibility(cam, fs, kW, kH);
+    const auto reference = must(r.value()->visibility(cam, fs, kW, kH));
 
     std::vector<std::uint32_t> targets;
     std::map<std::uint32_t, render::TargetVisibility> by_index;
@@ -92,7 +95,7 @@ TEST_F(Perception, VisiblePixelsEqualTheRenderersVisibility) {
       by_index[v.id - 1] = v;
     }
     ASSERT_FALSE(targets.empty());
-    const View view = look(*r.value(), cam, fs, kW, kH, targets, object_bounds(sc.value()));
+    const View view = must(look(*r.value(), cam, fs, kW, kH, targets, object_bounds(sc.value())));
     ASSERT_EQ(view.seen.size(), targets.size());
     long visible_sum = 0;
     for (const Seen& s : view.seen) {
@@ -122,7 +125,8 @@ TEST_F(Perception, PackingSavesFrames) {
     for (std::uint32_t i = 0; i < sc->objects.size(); ++i)
       if (sc->objects[i].target) targets.push_back(i);
     const render::Camera cam = render::camera_from_start(sc->camera, static_cast<float>(kW) / kH);
-    const View v = look(*r.value(), cam, settings(render::Method::standard), kW, kH, targets, object_bounds(sc.value()));
+    const View v =
+        must(look(*r.value(), cam, settings(render::Method::standard), kW, kH, targets, object_bounds(sc.value())));
     const std::size_t unpacked = (targets.size() + 2) / 3;
     EXPECT_LT(v.frame_ms.size() * 2, unpacked) << targets.size() << " targets in " << v.frame_ms.size() << " frames";
   }
@@ -146,8 +150,8 @@ TEST_F(Perception, ObjectsOutOfViewAreNotSeen) {
   scene::CameraStart away = sc->camera;
   away.yaw = yaw_to + 3.14159265f;
   const std::uint32_t one[] = {target};
-  const View v = look(*r.value(), render::camera_from_start(away, static_cast<float>(kW) / kH),
-                      settings(render::Method::dt_seed), kW, kH, one, bounds);
+  const View v = must(look(*r.value(), render::camera_from_start(away, static_cast<float>(kW) / kH),
+                           settings(render::Method::dt_seed), kW, kH, one, bounds));
   ASSERT_EQ(v.seen.size(), 1u);
   EXPECT_EQ(v.seen[0].rect_px, 0);
   EXPECT_EQ(v.seen[0].visible_px, 0);

@@ -19,7 +19,7 @@ class DepthTestScreen final : public ItemScreen {
       : ItemScreen(page), view_(view), scene_(std::move(scene)) {}
   std::string name() const override { return "depth_test"; }
   bool has_view() const override { return true; }
-  void draw3d() override { scene_->draw(ui().width(), ui().height(), glm::vec2(0)); }
+  Status draw3d() override { return scene_->draw(ui().width(), ui().height(), glm::vec2(0)); }
   bool frame() override {
     const ImGuiIO& io = ImGui::GetIO();
     const session::Viewport window{static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y)};

@@ -2,10 +2,12 @@
 // model lower alpha. The targets' silhouettes (or circles / ellipses) are
 // rasterized at full resolution in one pass and read back; the chessboard
 // distance to them (compositor.h) gives the gradient's reach, n + 1 pixels.
+// Errors, never exceptions, leave it (detail/boundary.h).
 #include <glad/gl.h>
 
 #include <cmath>
 
+#include "study/render/detail/boundary.h"
 #include "study/render/detail/compositor.h"
 #include "study/render/detail/gl_state.h"
 #include "study/render/detail/passes.h"
@@ -14,10 +16,20 @@
 
 namespace dtlab::render {
 
-std::vector<std::uint8_t> Renderer::effect_region(const Camera& camera, const DtSettings& dt, int width, int height) {
+Result<std::vector<std::uint8_t>> Renderer::effect_region(const Camera& camera, const DtSettings& dt, int width,
+                                                          int height) {
+  constexpr const char* kWhere = "Renderer::effect_region";
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
-    throw std::invalid_argument("Renderer::effect_region: size must be 1..16384");
-  validate(dt, width, height);
+    return detail::render_error(kWhere, "size must be 1..16384, got " + std::to_string(width) + "x" + std::to_string(height),
+                                ErrorKind::invalid_input);
+  if (const auto p = check(dt, width, height))
+    return detail::render_error(kWhere, "DtSettings." + std::string(to_string(p->field)) + ": " + p->message,
+                                ErrorKind::invalid_input);
+  return detail::guarded<Result<std::vector<std::uint8_t>>>(
+      kWhere, [&]() -> Result<std::vector<std::uint8_t>> { return region_mask(camera, dt, width, height); });
+}
+
+std::vector<std::uint8_t> Renderer::region_mask(const Camera& camera, const DtSettings& dt, int width, int height) {
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   const detail::FrameView view =
       detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, width, height, dt, *impl_->sorter);
@@ -52,7 +64,9 @@ std::vector<std::uint8_t> Renderer::effect_region(const Camera& camera, const Dt
     fg.compile();
     detail::set_frame_baseline(impl_->gpu->vao());
     fg.execute(impl_->backend);
-    fg.report(impl_->backend, true);
+    const FrameReport report = fg.report(impl_->backend, true);
+    if (auto fatal = detail::fatal_gl_error("Renderer::effect_region", report.gl_errors))
+      throw detail::PassedError(*fatal);
     impl_->backend.end_frame();
   }
   std::vector<bool> covered(n);

@@ -209,7 +209,12 @@ void FrameGraph::execute(FrameGraphBackend& backend, bool profile, const DrawCou
       const unsigned q = resources_[nodes_[*p.condition].resource].gl_name;
       pass_query_.emplace_back(pi, q);
       backend.begin_condition(q);
-      p.run(res);
+      try {
+        p.run(res);
+      } catch (...) {  // a GlFailure inside (boundary.h): leave no conditional rendering behind
+        backend.end_condition();
+        throw;
+      }
       backend.end_condition();
     } else {
       p.run(res);

@@ -2,9 +2,10 @@
 #include <glad/gl.h>
 
 #include <algorithm>
-#include <stdexcept>
+#include <cstdio>
 #include <string>
 
+#include "study/render/detail/boundary.h"
 #include "study/render/detail/gl_backend.h"
 
 namespace dtlab::render::detail {
@@ -36,6 +37,7 @@ const char* gl_error_name(unsigned code) {
     case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
     case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
     case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case kGlContextLost: return "GL_CONTEXT_LOST";
     default: return "GL error (unknown code)";
   }
 }
@@ -118,7 +120,9 @@ unsigned GlBackend::framebuffer(const std::vector<unsigned>& color, unsigned dep
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     glDeleteFramebuffers(1, &fbo);
-    throw std::runtime_error("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "0x%04X", static_cast<unsigned>(status));
+    throw GlFailure(std::string("framebuffer incomplete (status ") + hex + "; a texture the driver could not allocate?)");
   }
   fbos_.emplace(std::move(key), fbo);
   return fbo;

@@ -1,8 +1,10 @@
 // The OpenGL implementation of FrameGraphBackend: a pool of textures keyed
 // by description, a cache of framebuffers keyed by attachments, a pool of
 // occlusion queries, conditional rendering and glGetError draining.
-// Guarantees: every GL object it creates it deletes (destructor, or trim()
-// for pooled textures unused for a few frames). Needs a current GL context.
+// Guarantees: every GL object it creates it deletes (destructor, or end_frame()
+// for pooled textures unused for a few frames); a framebuffer the driver
+// calls incomplete throws GlFailure (boundary.h: an environment Error at
+// render.h). Needs a current GL context.
 // Never: changes GL state other than object creation and the framebuffer
 // binding it restores in framebuffer().
 #pragma once
@@ -47,6 +49,8 @@ class GlBackend final : public FrameGraphBackend {
   long frame_ = 0;
 };
 
-const char* gl_error_name(unsigned code);  // "GL_INVALID_ENUM", ...
+// GL_CONTEXT_LOST (GL 4.5, KHR_robustness): glGetError's code after a reset; the 3.3 loader lacks the name.
+inline constexpr unsigned kGlContextLost = 0x0507;
+const char* gl_error_name(unsigned code);  // "GL_INVALID_ENUM", ..., "GL_CONTEXT_LOST"
 
 }  // namespace dtlab::render::detail

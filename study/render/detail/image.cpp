@@ -1,22 +1,28 @@
-// PNG writing with Debian's libstb (stb_image_write), see image.h.
+// Image comparison and PNG writing with Debian's libstb (stb_image_write),
+// see image.h. Never throws: a size mismatch is an Error.
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
-
 #include <cstdlib>
-#include <stdexcept>
+#include <string>
 
 #include "study/render/image.h"
 
 namespace dtlab::render {
 
+namespace {
 
-static ImageDiff compare_over(const Image& a, const Image& b, const std::vector<std::uint8_t>* region) {
+Error compare_error(const std::string& message) {
+  return Error{"", 0, 0, "image", message, ErrorKind::invalid_input};
+}
+
+Result<ImageDiff> compare_over(const Image& a, const Image& b, const std::vector<std::uint8_t>* region) {
   if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
-    throw std::invalid_argument("compare: images differ in size");
+    return compare_error("compare: images differ in size (" + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                         " and " + std::to_string(b.width) + "x" + std::to_string(b.height) + ")");
   const std::size_t pixels = a.rgba.size() / 4;
   if (region != nullptr && region->size() != pixels)
-    throw std::invalid_argument("compare: the region is not one byte per pixel of the images");
+    return compare_error("compare: the region is not one byte per pixel of the images");
   ImageDiff d;
   double sum = 0.0;
   std::size_t off = 0, counted = 0;
@@ -39,9 +45,11 @@ static ImageDiff compare_over(const Image& a, const Image& b, const std::vector<
   return d;
 }
 
-ImageDiff compare(const Image& a, const Image& b) { return compare_over(a, b, nullptr); }
+}  // namespace
 
-ImageDiff compare_in(const Image& a, const Image& b, const std::vector<std::uint8_t>& region) {
+Result<ImageDiff> compare(const Image& a, const Image& b) { return compare_over(a, b, nullptr); }
+
+Result<ImageDiff> compare_in(const Image& a, const Image& b, const std::vector<std::uint8_t>& region) {
   return compare_over(a, b, &region);
 }
 

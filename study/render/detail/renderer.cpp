@@ -1,14 +1,17 @@
 // The Renderer (see render.h): owns the scene's GPU data, the programs, the
 // frame graph backend and the group order; builds one frame graph per frame
-// from the method and what the frame calls for.
+// from the method and what the frame calls for. Its public functions check
+// their arguments into Errors and run the rest under detail::guarded, so no
+// exception leaves them (detail/boundary.h).
 #include <glad/gl.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
-#include <stdexcept>
 
+#include "study/render/detail/boundary.h"
 #include "study/render/detail/gl_state.h"
 #include "study/render/detail/method.h"
 #include "study/render/detail/passes.h"
@@ -17,9 +20,10 @@
 
 namespace dtlab::render {
 
-void validate(const DtSettings& s, int width, int height) {
+Status validate(const DtSettings& s, int width, int height) {
   if (const auto p = check(s, width, height))
-    throw std::invalid_argument("DtSettings." + std::string(to_string(p->field)) + ": " + p->message);
+    return Error{"", 0, 0, "DtSettings." + std::string(to_string(p->field)), p->message, ErrorKind::invalid_input};
+  return {};
 }
 
 LensSettings scene_lens(const scene::Scene& sc, int width, int height) {
@@ -33,44 +37,66 @@ LensSettings scene_lens(const scene::Scene& sc, int width, int height) {
   return l;
 }
 
+Status detail::check_frame(const char* where, const FrameSettings& settings, int width, int height,
+                          std::size_t objects) {
+  auto bad = [where](const std::string& message) { return render_error(where, message, ErrorKind::invalid_input); };
+  if (width <= 0 || height <= 0)
+    return bad("target size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
+  if (const auto p = check(settings.dt, width, height))
+    return bad("DtSettings." + std::string(to_string(p->field)) + ": " + p->message);
+  if (settings.method == Method::lens)
+    if (const auto problem = check(settings.lens)) return bad("LensSettings." + *problem);
+  if (settings.method == Method::screen_door)
+    if (const auto problem = check(settings.screen_door)) return bad("ScreenDoorSettings." + *problem);
+  if (settings.method == Method::vdt)
+    if (const auto problem = check(settings.vdt)) return bad("VdtSettings." + *problem);
+  if (settings.flat_colors.size() > objects) return bad("more flat colours than objects");
+  return {};
+}
+
 Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Renderer::~Renderer() = default;
 
 Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& scene) {
-  auto impl = std::make_unique<Impl>();
-  impl->scene = scene;
-  auto gpu = detail::SceneGpu::create(impl->scene);
-  if (!gpu) return gpu.error();
-  impl->gpu = std::move(gpu.value());
-  auto programs = detail::compile_programs();
-  if (!programs) return programs.error();
-  impl->programs = std::move(programs.value());
-  impl->sorter = std::make_unique<detail::GroupSorter>(impl->gpu->objects());
-  return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+  return detail::guarded<Result<std::unique_ptr<Renderer>>>(
+      "Renderer::create", [&]() -> Result<std::unique_ptr<Renderer>> {
+        auto impl = std::make_unique<Impl>();
+        impl->scene = scene;
+        auto gpu = detail::SceneGpu::create(impl->scene);
+        if (!gpu) return gpu.error();
+        impl->gpu = std::move(gpu.value());
+        auto programs = detail::compile_programs();
+        if (!programs) return programs.error();
+        impl->programs = std::move(programs.value());
+        impl->sorter = std::make_unique<detail::GroupSorter>(impl->gpu->objects());
+        return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+      });
 }
 
 const scene::Scene& Renderer::scene() const { return impl_->scene; }
 const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
 
-double Renderer::prepare(const FrameSettings& settings) {
-  if (!technique::of(settings.method).cullable) return 0.0;  // culls nothing (OcclusionCuller::run)
-  detail::OcclusionCuller* culler = impl_->culler_for(settings);
-  return culler != nullptr ? culler->prepare() : 0.0;
+Result<double> Renderer::prepare(const FrameSettings& settings) {
+  return detail::guarded<Result<double>>("Renderer::prepare", [&]() -> Result<double> {
+    if (!technique::of(settings.method).cullable) return 0.0;  // culls nothing (OcclusionCuller::run)
+    detail::OcclusionCuller* culler = impl_->culler_for(settings);
+    return culler != nullptr ? culler->prepare() : 0.0;
+  });
 }
 
-FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {
-  if (target.width <= 0 || target.height <= 0)
-    throw std::invalid_argument("Renderer::render: target size must be positive, got " + std::to_string(target.width) +
-                                "x" + std::to_string(target.height));
-  validate(settings.dt, target.width, target.height);
-  if (settings.method == Method::lens)
-    if (const auto problem = check(settings.lens)) throw std::invalid_argument("LensSettings." + *problem);
-  if (settings.method == Method::screen_door)
-    if (const auto problem = check(settings.screen_door)) throw std::invalid_argument("ScreenDoorSettings." + *problem);
-  if (settings.method == Method::vdt)
-    if (const auto problem = check(settings.vdt)) throw std::invalid_argument("VdtSettings." + *problem);
-  if (settings.flat_colors.size() > impl_->gpu->objects().size())
-    throw std::invalid_argument("Renderer::render: more flat colours than objects");
+Result<FrameReport> Renderer::render(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {
+  const std::size_t objects = impl_->gpu->objects().size();
+  if (Status st = detail::check_frame("Renderer::render", settings, target.width, target.height, objects); !st)
+    return st.error();
+  return detail::guarded<Result<FrameReport>>("Renderer::render", [&]() -> Result<FrameReport> {
+    FrameReport report = draw_frame(camera, settings, target);
+    if (auto injected = detail::injected_gl_error()) report.gl_errors.push_back("pass 'present': " + *injected);
+    if (auto fatal = detail::fatal_gl_error("Renderer::render", report.gl_errors)) return *fatal;
+    return report;
+  });
+}
+
+FrameReport Renderer::draw_frame(const Camera& camera, const FrameSettings& settings, const ImportedTarget& target) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   detail::GlStateGuard guard;
@@ -113,11 +139,18 @@ FrameReport Renderer::render(const Camera& camera, const FrameSettings& settings
   return report;
 }
 
-FrameReport Renderer::render_offscreen(const Camera& camera, const FrameSettings& settings, int width, int height) {
+Result<FrameReport> Renderer::render_offscreen(const Camera& camera, const FrameSettings& settings, int width,
+                                               int height) {
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
-    throw std::invalid_argument("Renderer::render_offscreen: size must be 1..16384, got " + std::to_string(width) + "x" +
-                                std::to_string(height));
-  impl_->ensure_offscreen(width, height, settings.float_color);
+    return detail::render_error("Renderer::render_offscreen",
+                                "size must be 1..16384, got " + std::to_string(width) + "x" + std::to_string(height),
+                                ErrorKind::invalid_input);
+  if (Status st = detail::guarded<Status>("Renderer::render_offscreen", [&]() -> Status {
+        impl_->ensure_offscreen(width, height, settings.float_color);
+        return {};
+      });
+      !st)
+    return st.error();
   return render(camera, settings, ImportedTarget{impl_->out_fbo, width, height});
 }
 
@@ -149,30 +182,45 @@ void read_target(const ImportedTarget& t, GLenum type, void* out) {
   glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack_buffer));
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(fbo));
 }
+
+// The GL errors glReadPixels left, as an environment Error when one is fatal (boundary.h).
+std::optional<Error> read_failure(const char* where) {
+  std::vector<std::string> errors;
+  for (GLenum e = glGetError(), n = 0; e != GL_NO_ERROR && n < 32; e = glGetError(), ++n)
+    errors.emplace_back(detail::gl_error_name(e));
+  return detail::fatal_gl_error(where, errors);
+}
 }  // namespace
 
-Image Renderer::read_color() const {
-  const ImportedTarget& t = impl_->last_target;
-  Image img;
-  if (t.width <= 0) return img;
-  img.width = t.width;
-  img.height = t.height;
-  std::vector<std::uint8_t> rows(static_cast<std::size_t>(t.width) * t.height * 4);
-  read_target(t, GL_UNSIGNED_BYTE, rows.data());
-  img.rgba.resize(rows.size());
-  const std::size_t stride = static_cast<std::size_t>(t.width) * 4;
-  for (int y = 0; y < t.height; ++y)  // GL rows are bottom-up
-    std::copy_n(&rows[static_cast<std::size_t>(t.height - 1 - y) * stride], stride, &img.rgba[static_cast<std::size_t>(y) * stride]);
-  return img;
+Result<Image> Renderer::read_color() const {
+  return detail::guarded<Result<Image>>("Renderer::read_color", [&]() -> Result<Image> {
+    const ImportedTarget& t = impl_->last_target;
+    Image img;
+    if (t.width <= 0) return img;
+    img.width = t.width;
+    img.height = t.height;
+    std::vector<std::uint8_t> rows(static_cast<std::size_t>(t.width) * t.height * 4);
+    read_target(t, GL_UNSIGNED_BYTE, rows.data());
+    if (auto failed = read_failure("Renderer::read_color")) return *failed;
+    img.rgba.resize(rows.size());
+    const std::size_t stride = static_cast<std::size_t>(t.width) * 4;
+    for (int y = 0; y < t.height; ++y)  // GL rows are bottom-up
+      std::copy_n(&rows[static_cast<std::size_t>(t.height - 1 - y) * stride], stride,
+                  &img.rgba[static_cast<std::size_t>(y) * stride]);
+    return img;
+  });
 }
 
-std::vector<float> Renderer::read_color_float() const {
-  const ImportedTarget& t = impl_->last_target;
-  std::vector<float> out;
-  if (t.width <= 0) return out;
-  out.resize(static_cast<std::size_t>(t.width) * t.height * 4);
-  read_target(t, GL_FLOAT, out.data());
-  return out;
+Result<std::vector<float>> Renderer::read_color_float() const {
+  return detail::guarded<Result<std::vector<float>>>("Renderer::read_color_float", [&]() -> Result<std::vector<float>> {
+    const ImportedTarget& t = impl_->last_target;
+    std::vector<float> out;
+    if (t.width <= 0) return out;
+    out.resize(static_cast<std::size_t>(t.width) * t.height * 4);
+    read_target(t, GL_FLOAT, out.data());
+    if (auto failed = read_failure("Renderer::read_color_float")) return *failed;
+    return out;
+  });
 }
 
 }  // namespace dtlab::render

@@ -7,9 +7,9 @@
 
 #include <array>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
+#include "study/render/detail/boundary.h"
 #include "study/render/detail/gl_backend.h"
 #include "study/render/detail/method.h"
 #include "study/render/detail/occlusion_culling.h"
@@ -20,6 +20,12 @@
 #include "study/render/render.h"
 
 namespace dtlab::render {
+
+namespace detail {
+// Every range a frame of `settings` at width x height over `objects` objects needs (render.h,
+// check()), as an invalid_input Error from the public function `where`.
+Status check_frame(const char* where, const FrameSettings& settings, int width, int height, std::size_t objects);
+}  // namespace detail
 
 struct Renderer::Impl {
   scene::Scene scene;
@@ -56,17 +62,19 @@ struct Renderer::Impl {
     return culler.get();
   }
 
-  // Occlusion culling of `view` (in place) when `settings` ask for it; throws on a shader error.
+  // Occlusion culling of `view` (in place) when `settings` ask for it; a shader error throws
+  // GlFailure (an environment Error at render.h: the driver refused a shader that compiles elsewhere).
   // `footprint`: pixels the method may change beyond the targets' masks (nullptr: none).
   CullingReport cull(detail::FrameView& view, const FrameSettings& settings, const detail::PixelRect* footprint) {
     detail::OcclusionCuller* c = culler_for(settings);
     if (c == nullptr) return {};
     const detail::FrameContext fc{*gpu, programs, view, settings, scene, TextureFormat::rgba8, {}};
     auto r = c->run(view, fc, footprint);
-    if (!r) throw std::runtime_error("occlusion culling: " + r.error().to_string());
+    if (!r) throw detail::GlFailure("occlusion culling: " + r.error().to_string());
     return r.value();
   }
 
+  // The offscreen output of render_offscreen() at w x h; GlFailure if the driver cannot make it.
   void ensure_offscreen(int w, int h, bool fp) {
     if (out_fbo != 0 && out_w == w && out_h == h && out_float == fp) return;
     if (out_fbo != 0) glDeleteFramebuffers(1, &out_fbo);
@@ -85,9 +93,19 @@ struct Renderer::Impl {
     glGenFramebuffers(1, &out_fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, out_fbo);
     glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, out_tex, 0);
+    const GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
     glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(prev_tex));
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(prev_unpack));
+    if (status != GL_FRAMEBUFFER_COMPLETE) {  // the driver could not allocate the colour texture
+      if (last_target.framebuffer == out_fbo) last_target = {};  // read_color: nothing to read
+      glDeleteFramebuffers(1, &out_fbo);
+      glDeleteTextures(1, &out_tex);
+      out_fbo = out_tex = 0;
+      out_w = out_h = 0;
+      throw detail::GlFailure("the offscreen target of " + std::to_string(w) + "x" + std::to_string(h) +
+                              " is incomplete (status " + std::to_string(status) + ")");
+    }
     out_w = w;
     out_h = h;
     out_float = fp;

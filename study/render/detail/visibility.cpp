@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "study/render/detail/boundary.h"
 #include "study/render/detail/gl_state.h"
 #include "study/render/detail/passes.h"
 #include "study/render/detail/renderer_impl.h"
@@ -18,7 +19,19 @@
 
 namespace dtlab::render {
 
-std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSettings settings, int width, int height) {
+Result<std::vector<TargetVisibility>> Renderer::visibility(const Camera& camera, FrameSettings settings, int width,
+                                                          int height) {
+  settings.flat_colors.clear();  // the weight frames set their own
+  const std::size_t objects = impl_->gpu->objects().size();
+  if (Status st = detail::check_frame("Renderer::visibility", settings, width, height, objects); !st) return st.error();
+  return detail::guarded<Result<std::vector<TargetVisibility>>>("Renderer::visibility",
+                                                                [&]() -> Result<std::vector<TargetVisibility>> {
+    return count_visibility(camera, std::move(settings), width, height);
+  });
+}
+
+std::vector<TargetVisibility> Renderer::count_visibility(const Camera& camera, FrameSettings settings, int width,
+                                                         int height) {
   const auto& objects = impl_->scene.objects;
   std::vector<TargetVisibility> out;
   std::vector<std::uint32_t> target_index;  // scene object index per entry of `out`
@@ -78,13 +91,15 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
     fg.compile();
     detail::set_frame_baseline(impl_->gpu->vao());
     fg.execute(impl_->backend);
-    fg.report(impl_->backend, true);
+    const FrameReport report = fg.report(impl_->backend, true);
     for (std::size_t k = 0; k < out.size(); ++k) {
       GLuint samples = 0;
       glGetQueryObjectuiv(queries[k], GL_QUERY_RESULT, &samples);
       out[k].silhouette_pixels = static_cast<long>(samples);
     }
     glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
+    if (auto fatal = detail::fatal_gl_error("Renderer::visibility", report.gl_errors))
+      throw detail::PassedError(*fatal);
   }
 
   // Visible pixels: weight frames; targets with disjoint rectangles share a channel.
@@ -109,8 +124,8 @@ std::vector<TargetVisibility> Renderer::visibility(const Camera& camera, FrameSe
         e[static_cast<int>(c)] = 1.0f;
         settings.flat_colors[target_index[k]] = e;
       }
-    render_offscreen(camera, settings, width, height);
-    const Image img = read_color();
+    detail::unwrap(render_offscreen(camera, settings, width, height));
+    const Image img = detail::unwrap(read_color());
     if (const char* dir = std::getenv("DTLAB_VIS_DUMP"))
       (void)write_png(img, std::string(dir) + "/vis-" + std::string(to_string(settings.method)) + "-" +
                                std::to_string(first / 3) + ".png");

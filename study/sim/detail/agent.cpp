@@ -32,7 +32,15 @@ View TrialRun::look(const render::Camera& camera, float yaw, float pitch, std::s
       frame.dt.searchlight_center = frame.lens.center = spots[k];
       out.events.push_back({t_, store::InputEvent::Kind::cursor, "", spots[k].x, spots[k].y});
     }
-    View v = sim::look(renderer, camera, frame, width, height, objects, bounds);
+    auto looked = sim::look(renderer, camera, frame, width, height, objects, bounds);
+    if (!looked) {
+      if (!failure) failure = looked.error();
+      t_ = std::max(t_, spec.time_limit_s);  // out of time: the agent stops looking
+      View none;
+      for (std::uint32_t o : objects) none.seen.push_back(Seen{o});
+      return none;
+    }
+    View v = std::move(looked.value());
     for (double ms : v.frame_ms) {
       out.frame_ms.push_back(ms);
       out.poses.push_back(store::CameraPose{t_, camera.eye.x, camera.eye.y, camera.eye.z, yaw, pitch});

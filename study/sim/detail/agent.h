@@ -7,6 +7,7 @@
 // what a participant is told to look for: red, red cones, the kind shown).
 #pragma once
 #include <algorithm>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@ class TrialRun {
   const std::vector<ObjectBounds> bounds;
   TrialTrace trace;
   session::TrialOutcome out;
+  std::optional<Error> failure;  // the renderer's first Error in this trial
 
   double now() const { return t_; }
   double limit() const { return spec.time_limit_s; }
@@ -42,7 +44,9 @@ class TrialRun {
   void spend(double seconds) { t_ += std::max(0.0, seconds); }
   double scaled(double seconds) const { return seconds * traits.speed; }
 
-  // Renders the view and returns what it shows of `objects`; records frames and poses.
+  // Renders the view and returns what it shows of `objects`; records frames and poses. When the
+  // renderer fails, keeps its first Error in `failure`, sees nothing and ends the trial's time
+  // (the agent winds down; the participant returns the Error, not an outcome).
   View look(const render::Camera& camera, float yaw, float pitch, std::span<const std::uint32_t> objects);
   // P(notice) of an object with `visible_px` pixels in this viewport (model "Perception").
   double notice_probability(long visible_px) const;

@@ -59,7 +59,9 @@ Result<std::vector<session::QuestionAnswer>> SimulatedParticipant::answer_questi
       pairs.push_back(&q);
       for (std::uint32_t id : {q.object_a, q.object_b}) shown.push_back(id - 1);  // Object::id is index + 1
     }
-    const View v = look(*renderer.value(), cam, dt.frame, options_.width, options_.height, shown, bounds);
+    const auto looked = look(*renderer.value(), cam, dt.frame, options_.width, options_.height, shown, bounds);
+    if (!looked) return looked.error();
+    const View& v = looked.value();
     // Distance estimate: a model of known size (footprint x height) covering A pixels is about
     // sqrt(size / A) away, times lognormal noise; an object not seen at all is taken as farthest.
     auto estimate = [&](const Seen& s) {
