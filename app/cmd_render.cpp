@@ -546,7 +546,8 @@ void add_render_command(CLI::App& root) {
         if (opt->count() == 0)
           fail("render", kExitUsage, "give --scene KIND --task T --seed S --method M, or --protocol P --index K --trial N "
                            "(missing " + opt->get_name() + ")");
-      if (const std::string bad = given(lens_options); !bad.empty() && o->method != "lens")
+      if (const std::string bad = given(lens_options);
+          !bad.empty() && !technique::find(o->method)->reads(technique::Group::lens))
         fail("render", kExitUsage, bad + " apply to --method lens only");
       if (const std::string bad = o->technique.misplaced(*technique::find(o->method)); !bad.empty())
         fail("render", kExitUsage, bad);

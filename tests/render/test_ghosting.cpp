@@ -8,11 +8,13 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "tests/common/must.h"
 #include "tests/render/scenes.h"
 
 namespace dtlab::render {
 namespace {
 
+using dtlab::test::must;
 using testing::add_object;
 using testing::front_camera;
 using testing::headless_context;
@@ -46,10 +48,10 @@ FrameSettings settings(const scene::Scene& s, Method m, bool flat, bool edges = 
 Image render(const scene::Scene& s, const FrameSettings& f, FrameReport* report = nullptr) {
   auto r = Renderer::create(s);
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());
-  const FrameReport rep = r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH);
+  const FrameReport rep = must(r.value()->render_offscreen(front_camera(kW, kH), f, kW, kH));
   EXPECT_TRUE(rep.gl_errors.empty()) << rep.gl_errors.front();
   if (report != nullptr) *report = rep;
-  Image img = r.value()->read_color();
+  Image img = must(r.value()->read_color());
   testing::maybe_dump(img, std::string(to_string(f.method)));
   return img;
 }
@@ -131,8 +133,8 @@ TEST_F(GhostingTest, TheHiddenTargetBecomesVisible) {
   const scene::Scene s = scene_with();
   auto r = Renderer::create(s);
   ASSERT_TRUE(r.ok());
-  const auto ghost = r.value()->visibility(front_camera(kW, kH), settings(s, Method::ghosting, false), kW, kH);
-  const auto standard = r.value()->visibility(front_camera(kW, kH), settings(s, Method::standard, false), kW, kH);
+  const auto ghost = must(r.value()->visibility(front_camera(kW, kH), settings(s, Method::ghosting, false), kW, kH));
+  const auto standard = must(r.value()->visibility(front_camera(kW, kH), settings(s, Method::standard, false), kW, kH));
   ASSERT_EQ(ghost.size(), 1u);
   EXPECT_GT(ghost[0].silhouette_pixels, 100);
   EXPECT_EQ(ghost[0].visible_pixels, ghost[0].silhouette_pixels);
