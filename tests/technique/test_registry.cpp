@@ -36,8 +36,12 @@ TEST(Registry, EveryKeyNameBelongsToOneGroup) {
     for (const KeySpec& k : g->keys) {
       EXPECT_TRUE(keys.insert(std::string(k.name)).second) << k.name << " in two groups";
       EXPECT_NE(std::string(k.name), "method");
-      if (k.kind == KeySpec::Kind::number || k.kind == KeySpec::Kind::integer) EXPECT_LT(k.min, k.max) << k.name;
-      if (k.kind == KeySpec::Kind::choice) EXPECT_FALSE(k.choices.empty()) << k.name;
+      if (k.kind == KeySpec::Kind::number || k.kind == KeySpec::Kind::integer) {
+        EXPECT_LT(k.min, k.max) << k.name;
+      }
+      if (k.kind == KeySpec::Kind::choice) {
+        EXPECT_FALSE(k.choices.empty()) << k.name;
+      }
     }
   }
 }
