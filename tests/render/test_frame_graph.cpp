@@ -1,7 +1,8 @@
 // The frame graph core without GL: a recording backend stands in for OpenGL
 // (the GL backend is exercised by every other render test). Checks culling
 // by reference count, roots, execution order, transient lifetimes and pool
-// reuse, conditional passes, and that misuse names the pass and resource.
+// reuse, conditional passes, frames run in stages (flush), and that misuse
+// names the pass and resource.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -339,6 +340,105 @@ TEST(FrameGraph, AConditionalWriteKeepsThePreviousWriterAlive) {
   const FrameReport rep = fg.report(be, true);
   EXPECT_FALSE(rep.passes[1].culled) << "opaque";
   EXPECT_EQ(rep.passes_run(), (std::vector<std::string>{"query", "opaque", "present"}));
+}
+
+// A frame in two stages (occlusion culling's shape): the first stage's passes run at flush(),
+// in full, before the second stage is even declared; what the first stage computed on the CPU
+// decides what the second declares; the report, and the Graphviz export, hold both stages.
+TEST(FrameGraph, FlushRunsTheFirstStageBeforeTheSecondIsDeclared) {
+  FrameGraph fg;
+  RecordingBackend be;
+  std::vector<std::string> ran;
+  const Handle out = fg.import_target("output", {0, 16, 16});
+  const Handle map = fg.add_pass<One>(
+                          "cull-map", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create("map", kDesc)); },
+                          [&](const One& d, PassResources& r) {
+                            ran.push_back("cull-map");
+                            EXPECT_NE(r.texture(d.h), 0u);
+                          })
+                         .h;
+  int hidden = -1;  // the CPU's answer, known only once the first stage ran
+  fg.add_pass<One>(
+      "cull-test",
+      [&](FrameGraph::Builder& b, One& d) {
+        d.h = b.read(map);
+        b.side_effect();
+      },
+      [&](const One&, PassResources&) {
+        ran.push_back("cull-test");
+        hidden = 2;
+      });
+  // An unread pass of the first stage is culled there, as in any stage.
+  fg.add_pass<One>(
+      "orphan", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create("unused", kDesc)); },
+      [&](const One&, PassResources&) { ran.push_back("orphan"); });
+  fg.flush(be);
+  EXPECT_EQ(ran, (std::vector<std::string>{"cull-map", "cull-test"}));
+  ASSERT_EQ(hidden, 2);
+  const int created_first = be.created;
+  // The second stage: as many passes as the first stage's answer says, then present.
+  Handle color = fg.add_pass<One>(
+                      "scene", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create("color", kDesc)); },
+                      [&](const One&, PassResources&) { ran.push_back("scene"); })
+                     .h;
+  for (int i = 0; i < hidden; ++i) color = blend_pass(fg, ran, "layer " + std::to_string(i), color);
+  fg.add_pass<Two>(
+      "present",
+      [&](FrameGraph::Builder& b, Two& d) {
+        d.a = b.read(color);
+        d.b = b.write(out);
+      },
+      [&](const Two&, PassResources&) { ran.push_back("present"); });
+  fg.compile();
+  fg.execute(be);
+  EXPECT_EQ(ran, (std::vector<std::string>{"cull-map", "cull-test", "scene", "layer 0", "layer 1", "present"}));
+  EXPECT_EQ(be.created, created_first) << "the second stage reuses the first stage's freed texture (same desc)";
+  const FrameReport rep = fg.report(be, true);
+  EXPECT_EQ(rep.passes_run(),
+            (std::vector<std::string>{"cull-map", "cull-test", "scene", "layer 0", "layer 1", "present"}));
+  ASSERT_EQ(rep.passes.size(), 7u);
+  EXPECT_TRUE(rep.passes[2].culled) << "orphan";
+  const std::string dot = fg.graphviz();
+  EXPECT_NE(dot.find("subgraph cluster_stage0"), std::string::npos);
+  EXPECT_NE(dot.find("subgraph cluster_stage1"), std::string::npos);
+  EXPECT_LT(dot.find("label=\"cull-test\""), dot.find("subgraph cluster_stage1"));
+}
+
+// The second stage may not touch the first stage's transients (their passes ran and their
+// textures went back to the pool); imported targets carry over.
+TEST(FrameGraph, AStageCannotReadAFlushedStagesTransients) {
+  FrameGraph fg;
+  RecordingBackend be;
+  std::vector<std::string> ran;
+  const Handle out = fg.import_target("output", {0, 16, 16});
+  const Handle map = fg.add_pass<One>(
+                          "cull-map", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.create("map", kDesc)); },
+                          [](const One&, PassResources&) {})
+                         .h;
+  const Handle shown = blend_pass(fg, ran, "draw-to-output", out);
+  fg.add_pass<One>(
+      "keep",
+      [&](FrameGraph::Builder& b, One& d) {
+        d.h = b.read(map);
+        b.side_effect();
+      },
+      [](const One&, PassResources&) {});
+  fg.flush(be);
+  try {
+    fg.add_pass<One>("late", [&](FrameGraph::Builder& b, One& d) { d.h = b.read(map); }, [](const One&, PassResources&) {});
+    FAIL() << "reading a flushed stage's transient must throw";
+  } catch (const std::logic_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'late'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'map'"), std::string::npos) << what;
+    EXPECT_NE(what.find("flushed stage"), std::string::npos) << what;
+  }
+  // The imported output, written in the first stage, carries over.
+  fg.add_pass<One>("present", [&](FrameGraph::Builder& b, One& d) { d.h = b.write(b.read(shown)); },
+                   [&](const One&, PassResources&) { ran.push_back("present"); });
+  fg.compile();
+  fg.execute(be);
+  EXPECT_EQ(ran, (std::vector<std::string>{"draw-to-output", "present"}));
 }
 
 TEST(FrameGraph, GraphvizNamesPassesAndResourcesAndGreysCulledOnes) {

@@ -6,11 +6,13 @@
 // sightline) every method's image with culling on equals, pixel for pixel, the
 // image with culling off, while culling does remove objects (dynamic
 // transparency in active mode: in passive mode every hidden model is a target
-// a mask may reveal, so almost nothing is culled, and the test says so).
+// a mask may reveal, so almost nothing is culled, and the test says so); and
+// that its GPU work runs as the frame graph's first stage.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "study/common/random.h"
@@ -337,6 +339,38 @@ TEST(OcclusionCulling, PrepareBuildsTheDatabaseBeforeTheFirstFrame) {
   auto no_plan = renderer_of(abstract_scene.value());
   ASSERT_TRUE(no_plan);
   EXPECT_EQ(must(no_plan->prepare(f)), 0.0) << "no floor plan: nothing to cull with";
+}
+
+// Culling's GPU work is part of the frame graph: its three passes run first, in their own stage,
+// and show in the pass report (with their draws when profiled) and the Graphviz export; what they
+// cull, the method's passes do not draw. Off, or under vdt (which culls nothing), they are absent.
+TEST(OcclusionCulling, RunsAsTheFrameGraphsFirstStage) {
+  const auto s = walkthrough(1);
+  auto r = renderer_of(s);
+  ASSERT_TRUE(r);
+  const Camera cam = camera_from_start(s.camera, static_cast<float>(kW) / kH);
+  FrameSettings f;
+  f.profile_passes = true;
+  const FrameReport off = must(r->render_offscreen(cam, f, kW, kH));
+  f.occlusion_culling = true;
+  const FrameReport on = must(r->render_offscreen(cam, f, kW, kH));
+  const std::vector<std::string> cull_passes{"cull-occluders", "cull-map", "cull-test"};
+  const std::vector<std::string> run = on.passes_run();
+  ASSERT_GE(run.size(), 4u);
+  EXPECT_EQ(std::vector<std::string>(run.begin(), run.begin() + 3), cull_passes);
+  EXPECT_EQ(std::vector<std::string>(run.begin() + 3, run.end()), off.passes_run()) << "the method's passes follow";
+  ASSERT_GT(on.culling.objects_culled, 0);
+  EXPECT_EQ(on.passes[0].draws, on.culling.occluders) << "cull-occluders draws the occluders in view";
+  long method_on = 0, method_off = 0;
+  for (std::size_t i = 3; i < on.passes.size(); ++i) method_on += on.passes[i].triangles;
+  for (const PassRecord& p : off.passes) method_off += p.triangles;
+  EXPECT_LE(method_on, method_off - on.culling.triangles_culled) << "culled triangles are not drawn";
+  const std::string dot = r->last_graphviz();
+  EXPECT_NE(dot.find("label=\"cull-test\""), std::string::npos);
+  EXPECT_NE(dot.find("cluster_stage1"), std::string::npos);
+  f.method = Method::vdt;
+  for (const std::string& name : must(r->render_offscreen(cam, f, kW, kH)).passes_run())
+    EXPECT_EQ(name.rfind("cull-", 0), std::string::npos) << name << ": vdt culls nothing";
 }
 
 TEST(OcclusionCulling, HolesOnlyRemoveCoverage) {

@@ -3,6 +3,7 @@
 // Every misuse throws std::logic_error naming the pass and the resource.
 #include <algorithm>
 #include <ctime>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
@@ -42,6 +43,9 @@ const FrameGraph::Node& FrameGraph::checked(Handle h, std::uint32_t pass, const 
     fail("pass '" + pname + "' " + action + " an invalid (default or foreign) handle");
   const Node& n = nodes_[h.node_];
   const Resource& r = resources_[n.resource];
+  if (n.resource < stage_resource_ && r.kind != Resource::Kind::imported)
+    fail("pass '" + pname + "' " + action + " '" + r.name +
+         "' of a flushed stage: its passes ran and its transients are freed (only imported targets carry over a flush())");
   if (n.version != r.version)
     fail("pass '" + pname + "' " + action + " '" + r.name + "' through a stale handle (version " +
          std::to_string(n.version) + ", current " + std::to_string(r.version) +
@@ -130,9 +134,12 @@ void FrameGraph::Builder::side_effect() { graph_.passes_[pass_]->side_effect = t
 void FrameGraph::compile() {
   if (compiled_) fail("compile() called twice");
   compiled_ = true;
+  const auto stage = [this] {
+    return std::span<std::unique_ptr<PassNode>>(passes_).subspan(stage_pass_);
+  };
   // A conditional pass that does not run leaves what it writes as it was, so whoever reads its
   // output may see the previous version: each of its writes also reads the version it replaces.
-  for (auto& p : passes_) {
+  for (auto& p : stage()) {
     if (!p->condition) continue;
     for (auto w : p->writes) {
       const int prev = nodes_[w].previous;
@@ -141,7 +148,7 @@ void FrameGraph::compile() {
     }
   }
   for (auto& n : nodes_) n.refcount = 0;
-  for (auto& p : passes_) {
+  for (auto& p : stage()) {
     p->refcount = static_cast<int>(p->writes.size()) + (p->side_effect ? 1 : 0);
     for (auto r : p->reads) ++nodes_[r].refcount;
     if (p->condition) ++nodes_[*p->condition].refcount;
@@ -152,7 +159,7 @@ void FrameGraph::compile() {
   while (!stack.empty()) {
     const Node& n = nodes_[stack.back()];
     stack.pop_back();
-    if (n.writer < 0) continue;
+    if (n.writer < static_cast<int>(stage_pass_)) continue;  // created, imported, or written by a flushed stage
     PassNode& p = *passes_[static_cast<std::size_t>(n.writer)];
     if (--p.refcount > 0 || p.side_effect) continue;
     p.culled = true;
@@ -163,7 +170,7 @@ void FrameGraph::compile() {
     if (p.condition) release(*p.condition);
   }
   // Lifetimes of transient resources over the surviving passes.
-  for (std::uint32_t pi = 0; pi < passes_.size(); ++pi) {
+  for (std::uint32_t pi = stage_pass_; pi < passes_.size(); ++pi) {
     const PassNode& p = *passes_[pi];
     if (p.culled) continue;
     auto touch = [&](std::uint32_t node) {
@@ -183,11 +190,11 @@ void FrameGraph::execute(FrameGraphBackend& backend, bool profile, const DrawCou
   if (!compiled_) fail("execute() before compile()");
   if (executed_) fail("execute() called twice");
   executed_ = true;
-  backend.drain_errors();  // errors from before this frame are not ours
-  pass_ms_.assign(passes_.size(), 0.0);
-  pass_counts_.assign(passes_.size(), DrawCounts{});
+  if (stage_pass_ == 0) backend.drain_errors();  // errors from before this frame are not ours
+  pass_ms_.resize(passes_.size(), 0.0);
+  pass_counts_.resize(passes_.size(), DrawCounts{});
   if (profile) backend.finish();
-  for (std::uint32_t pi = 0; pi < passes_.size(); ++pi) {
+  for (std::uint32_t pi = stage_pass_; pi < passes_.size(); ++pi) {
     PassNode& p = *passes_[pi];
     if (p.culled) continue;
     for (auto& r : resources_) {
@@ -233,10 +240,21 @@ void FrameGraph::execute(FrameGraphBackend& backend, bool profile, const DrawCou
       r.gl_name = 0;
     }
   }
+  executed_passes_ = static_cast<std::uint32_t>(passes_.size());
+}
+
+void FrameGraph::flush(FrameGraphBackend& backend, bool profile, const DrawCounts* counts) {
+  compile();
+  execute(backend, profile, counts);
+  stage_pass_ = static_cast<std::uint32_t>(passes_.size());
+  stage_resource_ = static_cast<std::uint32_t>(resources_.size());
+  stage_starts_.push_back(stage_pass_);
+  compiled_ = false;
+  executed_ = false;
 }
 
 std::optional<bool> FrameGraph::answer(Handle query, FrameGraphBackend& backend, bool wait) const {
-  if (!executed_ || !query.valid() || query.node_ >= nodes_.size()) return std::nullopt;
+  if (executed_passes_ == 0 || !query.valid() || query.node_ >= nodes_.size()) return std::nullopt;
   const Resource& r = resources_[nodes_[query.node_].resource];
   if (r.kind != Resource::Kind::query || r.gl_name == 0) return std::nullopt;  // culled, or after report()
   return backend.query_any(r.gl_name, wait);
@@ -251,7 +269,7 @@ FrameReport FrameGraph::report(FrameGraphBackend& backend, bool wait_for_queries
       rec.draws = pass_counts_[pi].draws;
       rec.triangles = pass_counts_[pi].triangles;
     }
-    if (p.culled || !executed_) {
+    if (p.culled || pi >= executed_passes_) {
       rec.ran = false;
     } else if (!p.condition) {
       rec.ran = true;
@@ -272,10 +290,18 @@ FrameReport FrameGraph::report(FrameGraphBackend& backend, bool wait_for_queries
 std::string FrameGraph::graphviz() const {
   std::ostringstream o;
   o << "digraph framegraph {\n  rankdir=LR;\n  node [fontname=\"Helvetica\"];\n";
-  for (std::uint32_t pi = 0; pi < passes_.size(); ++pi) {
-    const PassNode& p = *passes_[pi];
-    o << "  P" << pi << " [shape=box, style=filled, fillcolor=\"" << (p.culled ? "grey80" : "orange")
-      << "\", label=\"" << p.name << (p.condition ? "\\n(conditional)" : "") << "\"];\n";
+  // A frame run in stages (flush()) shows each stage as a cluster, in order.
+  const bool staged = stage_starts_.size() > 1 && stage_starts_[1] < passes_.size();
+  for (std::size_t si = 0; si < stage_starts_.size(); ++si) {
+    const std::uint32_t end = si + 1 < stage_starts_.size() ? stage_starts_[si + 1] : static_cast<std::uint32_t>(passes_.size());
+    if (staged) o << "  subgraph cluster_stage" << si << " {\n    label=\"stage " << si + 1 << "\";\n";
+    for (std::uint32_t pi = stage_starts_[si]; pi < end; ++pi) {
+      const PassNode& p = *passes_[pi];
+      o << (staged ? "    P" : "  P") << pi << " [shape=box, style=filled, fillcolor=\""
+        << (p.culled ? "grey80" : "orange") << "\", label=\"" << p.name << (p.condition ? "\\n(conditional)" : "")
+        << "\"];\n";
+    }
+    if (staged) o << "  }\n";
   }
   for (std::uint32_t ni = 0; ni < nodes_.size(); ++ni) {
     const Resource& r = resources_[nodes_[ni].resource];

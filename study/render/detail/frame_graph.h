@@ -10,8 +10,15 @@
 // warm. A pass may be conditional on an occlusion query another pass wrote;
 // it then runs inside GL conditional rendering and the report says whether it
 // ran; each of its writes counts as a read of the version it replaces (when it
-// does not run, readers see that version). Guarantees: a stale handle (one that a later write() superseded) or an
-// undeclared access fails loudly with the pass's and the resource's names.
+// does not run, readers see that version). A frame whose later passes depend
+// on what its earlier passes computed on the CPU (occlusion culling reads its
+// map back and drops hidden objects from the lists the method's passes are
+// declared over) runs in stages: flush() compiles and executes the passes
+// declared so far, and later passes may touch only imported targets and their
+// own resources; the report, the profile and the Graphviz export show every
+// stage. Guarantees: a stale handle (one that a later write() superseded), an
+// undeclared access or a transient of an earlier stage fails loudly with the
+// pass's and the resource's names.
 // Never: touches GL itself (the FrameGraphBackend does), or runs a culled pass.
 #pragma once
 #include <cstdint>
@@ -132,11 +139,16 @@ class FrameGraph {
   Handle import_target(std::string name, const ImportedTarget& target);  // writes to it make a pass a root
   const std::string& name_of(Handle h) const;  // the resource's name, for messages
 
-  void compile();                              // culls; call once, after the last add_pass
-  // Runs the surviving passes, then frees transients. With `profile`, a glFinish after each
-  // pass gives per-pass process CPU times (llvmpipe renders on CPU threads; debugging only),
-  // and `counts` (if given) read before and after each pass gives its draws and triangles.
+  void compile();                              // culls the stage; call once, after its last add_pass
+  // Runs the stage's surviving passes, then frees their transients. With `profile`, a glFinish
+  // after each pass gives per-pass process CPU times (llvmpipe renders on CPU threads; debugging
+  // only), and `counts` (if given) read before and after each pass gives its draws and triangles.
   void execute(FrameGraphBackend& backend, bool profile = false, const DrawCounts* counts = nullptr);
+  // Ends a stage: compile() and execute() the passes declared since the last flush, then opens
+  // the next stage, whose passes may not touch this stage's transient textures and queries
+  // (they are freed); imported targets carry over. For a pass whose results the CPU needs before
+  // the next passes can be declared (a readback).
+  void flush(FrameGraphBackend& backend, bool profile = false, const DrawCounts* counts = nullptr);
   // After execute() and before report(): did `query` see samples? nullopt if the query was culled
   // or (without `wait`) its answer is not ready.
   std::optional<bool> answer(Handle query, FrameGraphBackend& backend, bool wait) const;
@@ -178,6 +190,8 @@ class FrameGraph {
 
   std::uint32_t push_pass(std::string name, std::unique_ptr<PassNode> node);
   std::uint32_t new_node(std::uint32_t resource, int writer, int previous = -1);
+  // h's node for `pass` to `action` (read, write, ...); fails on a stale, foreign or invalid
+  // handle, or a transient of a flushed stage.
   const Node& checked(Handle h, std::uint32_t pass, const char* action) const;
   bool declares(std::uint32_t pass, std::uint32_t node) const;
 
@@ -191,8 +205,12 @@ class FrameGraph {
   std::vector<double> pass_ms_;         // per pass, when profiled
   std::vector<DrawCounts> pass_counts_;  // per pass, when profiled with counts
   std::vector<std::pair<std::uint32_t, unsigned>> pass_query_;  // conditional pass -> query name
-  bool compiled_ = false;
-  bool executed_ = false;
+  bool compiled_ = false;  // the current stage's
+  bool executed_ = false;  // the current stage's
+  std::uint32_t executed_passes_ = 0;  // passes [0, this) belong to executed stages
+  // The current stage's first pass and first resource; earlier ones belong to flushed stages.
+  std::uint32_t stage_pass_ = 0, stage_resource_ = 0;
+  std::vector<std::uint32_t> stage_starts_{0};  // each stage's first pass (Graphviz clusters)
 };
 
 }  // namespace dtlab::render

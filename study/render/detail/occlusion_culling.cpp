@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
+#include "study/render/detail/boundary.h"
 #include "study/render/detail/occlusion_culling.h"
 
 namespace dtlab::render::detail {
@@ -19,94 +21,7 @@ OcclusionCuller::OcclusionCuller(const scene::Scene& scene, const std::vector<Ob
     : scene_(scene), objects_(objects), hierarchy_(build_hierarchy(objects)) {}
 
 OcclusionCuller::~OcclusionCuller() {
-  for (unsigned* f : {&depth_fbo_, &map_fbo_})
-    if (*f != 0) glDeleteFramebuffers(1, f);
-  for (unsigned* t : {&depth_tex_, &map_tex_})
-    if (*t != 0) glDeleteTextures(1, t);
   if (reduce_.id != 0) glDeleteProgram(reduce_.id);
-}
-
-void OcclusionCuller::ensure_targets(int width, int height) {
-  if (depth_fbo_ != 0 && width_ == width && height_ == height) return;
-  for (unsigned* f : {&depth_fbo_, &map_fbo_})
-    if (*f != 0) glDeleteFramebuffers(1, f);
-  for (unsigned* t : {&depth_tex_, &map_tex_})
-    if (*t != 0) glDeleteTextures(1, t);
-  width_ = width;
-  height_ = height;
-  block_ = std::max(1, (std::max(width, height) + kMapSide - 1) / kMapSide);
-  map_w_ = (width + block_ - 1) / block_;
-  map_h_ = (height + block_ - 1) / block_;
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  auto texture = [](unsigned& tex, GLint internal, int w, int h, GLenum format, GLenum type) {
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, type, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  };
-  texture(depth_tex_, GL_DEPTH_COMPONENT24, width, height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT);
-  texture(map_tex_, GL_R32F, map_w_, map_h_, GL_RED, GL_FLOAT);
-  glGenFramebuffers(1, &depth_fbo_);
-  glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo_);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_tex_, 0);
-  glDrawBuffer(GL_NONE);
-  glReadBuffer(GL_NONE);
-  glGenFramebuffers(1, &map_fbo_);
-  glBindFramebuffer(GL_FRAMEBUFFER, map_fbo_);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, map_tex_, 0);
-}
-
-std::vector<float> OcclusionCuller::occluder_map(const FrameView& view, const FrameContext& fc, CullingReport& report) {
-  const int W = view.width, H = view.height;
-  ensure_targets(W, H);
-  // Step 2: the grid point's occluders in view, depth only, no lighting.
-  glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo_);
-  glViewport(0, 0, W, H);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glClearDepth(1.0);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glBindVertexArray(fc.gpu.vao());
-  fc.use_alpha(view.view_proj, 1.0f, false);
-  for (auto i : database_->nearest(view.camera.eye))
-    if (!view.rects[i].empty()) {
-      fc.draw_alpha(i);
-      ++report.occluders;
-    }
-  // The small map: farthest depth per block (one pixel of border), then read back.
-  glBindFramebuffer(GL_FRAMEBUFFER, map_fbo_);
-  glViewport(0, 0, map_w_, map_h_);
-  glDisable(GL_DEPTH_TEST);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  fc.use_program(reduce_);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, depth_tex_);
-  glUniform1i(reduce_.loc("u_depth"), 0);
-  glUniform1i(reduce_.loc("u_block"), block_);
-  glUniform2i(reduce_.loc("u_size"), W, H);
-  glUniform4f(reduce_.loc("u_rect"), -1.0f, -1.0f, 1.0f, 1.0f);
-  glUniform1f(reduce_.loc("u_z"), 0.0f);
-  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-  std::vector<float> depth(static_cast<std::size_t>(map_w_) * map_h_);
-  const auto t = Clock::now();
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-  glPixelStorei(GL_PACK_SKIP_ROWS, 0);
-  glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, map_fbo_);
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glReadPixels(0, 0, map_w_, map_h_, GL_RED, GL_FLOAT, depth.data());
-  report.readback_ms = ms_since(t);
-  return depth;
 }
 
 namespace {
@@ -137,9 +52,22 @@ double OcclusionCuller::prepare() {
   return ms_since(t);
 }
 
-Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& fc, const PixelRect* footprint) {
-  CullingReport report;
-  if (!scene_.plan) return report;
+namespace {
+struct OccluderDepthData {
+  Handle depth;
+};
+struct OccluderMapData {
+  Handle depth, map;
+};
+struct CullTestData {
+  Handle map;
+};
+}  // namespace
+
+bool OcclusionCuller::add_passes(FrameGraph& fg, FrameView& view, const FrameContext& fc,
+                                 std::optional<PixelRect> footprint, CullingReport& report) {
+  report = {};
+  if (!scene_.plan) return false;
   report.ran = true;
   for (std::uint32_t i = 0; i < objects_.size(); ++i)
     if (!view.rects[i].empty()) {
@@ -148,26 +76,101 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
     }
   // A method under which no wall hides anything by itself (vdt: every inner wall is see-through)
   // culls nothing: no occluder database, no GPU work.
-  if (!technique::of(fc.settings.method).cullable) return report;
+  if (!technique::of(fc.settings.method).cullable) return false;
   report.preprocess_ms = prepare();
   if (reduce_.id == 0) {
     auto p = link_program("fullscreen.vert", "depth_reduce.frag");
-    if (!p) return p.error();
+    if (!p) throw GlFailure("occlusion culling: " + p.error().to_string());
     reduce_ = std::move(p.value());
   }
-  const auto t0 = Clock::now();
-  const auto& occluders = database_->nearest(view.camera.eye);
-  if (std::none_of(occluders.begin(), occluders.end(), [&](std::uint32_t i) { return !view.rects[i].empty(); })) {
-    report.ms = ms_since(t0);  // no occluder in view: nothing can be hidden, no GPU work
-    return report;
-  }
-  // Steps 2-3: the occluders' map, the opacity and sparse depth maps.
-  // (occluder_map sizes the map: call it before reading map_w_, map_h_, block_.)
-  std::vector<float> depth = occluder_map(view, fc, report);
-  const OcclusionMap map =
-      make_occlusion_map(std::move(depth), map_w_, map_h_, block_, holes(view, fc.settings.method, footprint));
+  const std::vector<std::uint32_t>& occluders = database_->nearest(view.camera.eye);
+  if (std::none_of(occluders.begin(), occluders.end(), [&](std::uint32_t i) { return !view.rects[i].empty(); }))
+    return false;  // no occluder in view: nothing can be hidden, no GPU work
+  const int W = view.width, H = view.height;
+  const int block = std::max(1, (std::max(W, H) + kMapSide - 1) / kMapSide);
+  const int map_w = (W + block - 1) / block, map_h = (H + block - 1) / block;
+  auto started = std::make_shared<Clock::time_point>();  // the culling's wall time, from its first pass
+
+  // Step 2: the grid point's occluders in view, depth only, no lighting.
+  const auto& depth = fg.add_pass<OccluderDepthData>(
+      "cull-occluders",
+      [&](FrameGraph::Builder& b, OccluderDepthData& d) {
+        d.depth = b.write(b.create("occluder depth", {W, H, TextureFormat::depth24_stencil8, false}));
+      },
+      [&view, &fc, &occluders, &report, started, W, H](const OccluderDepthData& d, PassResources& r) {
+        *started = Clock::now();
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.depth));
+        glViewport(0, 0, W, H);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_STENCIL_TEST);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glBindVertexArray(fc.gpu.vao());
+        fc.use_alpha(view.view_proj, 1.0f, false);
+        for (auto i : occluders)
+          if (!view.rects[i].empty()) {
+            fc.draw_alpha(i);
+            ++report.occluders;
+          }
+      });
+  // Step 3 on the GPU: the farthest depth per block of the map (one pixel of border).
+  const auto& map = fg.add_pass<OccluderMapData>(
+      "cull-map",
+      [&](FrameGraph::Builder& b, OccluderMapData& d) {
+        d.depth = b.read(depth.depth);
+        d.map = b.write(b.create("occluder map", {map_w, map_h, TextureFormat::r32f, false}));
+      },
+      [this, &fc, W, H, block, map_w, map_h](const OccluderMapData& d, PassResources& r) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.map}));
+        glViewport(0, 0, map_w, map_h);
+        glDisable(GL_DEPTH_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        fc.use_program(reduce_);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, r.texture(d.depth));
+        glUniform1i(reduce_.loc("u_depth"), 0);
+        glUniform1i(reduce_.loc("u_block"), block);
+        glUniform2i(reduce_.loc("u_size"), W, H);
+        glUniform4f(reduce_.loc("u_rect"), -1.0f, -1.0f, 1.0f, 1.0f);
+        glUniform1f(reduce_.loc("u_z"), 0.0f);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+      });
+  // Steps 3-5 on the CPU: the map read back, the opacity and sparse depth maps, the hierarchy,
+  // and the hidden objects out of the frame's lists.
+  fg.add_pass<CullTestData>(
+      "cull-test",
+      [&](FrameGraph::Builder& b, CullTestData& d) {
+        d.map = b.read(map.map);
+        b.side_effect();  // its output is the view's lists, read on the CPU
+      },
+      [this, &view, &fc, footprint, &report, started, map_w, map_h, block](const CullTestData& d, PassResources& r) {
+        std::vector<float> depths(static_cast<std::size_t>(map_w) * map_h);
+        const auto t = Clock::now();
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+        glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+        glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, r.framebuffer({d.map}));
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glReadPixels(0, 0, map_w, map_h, GL_RED, GL_FLOAT, depths.data());
+        report.readback_ms = ms_since(t);
+        const OcclusionMap occlusion = make_occlusion_map(std::move(depths), map_w, map_h, block,
+                                                          holes(view, fc.settings.method, footprint ? &*footprint : nullptr));
+        cull(view, occlusion, uses_transparency(fc.settings.method), report);
+        report.ms = ms_since(*started);
+      });
+  return true;
+}
+
+void OcclusionCuller::cull(FrameView& view, const OcclusionMap& map, bool transparency, CullingReport& report) const {
   // Step 4: the hierarchy; targets stay under a transparency method (a mask may reveal them).
-  const bool transparency = uses_transparency(fc.settings.method);
   std::vector<bool> keep(objects_.size(), false);
   for (std::uint32_t i = 0; i < objects_.size(); ++i) keep[i] = view.rects[i].empty() || (transparency && objects_[i].target);
   std::vector<bool> culled;
@@ -186,8 +189,6 @@ Result<CullingReport> OcclusionCuller::run(FrameView& view, const FrameContext& 
   };
   drop(view.impenetrable);
   drop(view.sorted);
-  report.ms = ms_since(t0);
-  return report;
 }
 
 }  // namespace dtlab::render::detail

@@ -1,8 +1,10 @@
 // Internal: Poon's occlusion culling at run time (thesis 3.1 steps 1-5) for
-// a walkthrough scene: the occluder list of the grid point nearest the eye,
-// those occluders drawn depth-only, reduced on the GPU to a small map read
-// back, the opacity and sparse depth maps, and the hierarchy test; hidden
-// objects are taken out of the frame's object lists before any pass is built.
+// a walkthrough scene, as the first stage of the frame graph: the occluder
+// list of the grid point nearest the eye drawn depth-only ("cull-occluders"),
+// reduced to a small map ("cull-map"), read back, made the opacity and sparse
+// depth maps and tested against the hierarchy ("cull-test"); the renderer
+// flushes that stage, and hidden objects leave the frame's object lists
+// before the method's passes are declared over them.
 // Guarantees: conservative for every method: a culled object has no fragment
 // that could reach the image (under standard, each pixel of its rectangle is
 // covered by a drawn occluder nearer than it; under a transparency method or
@@ -11,6 +13,7 @@
 // frame's GlStateGuard does not restore.
 #pragma once
 #include <memory>
+#include <optional>
 
 #include "study/render/detail/frame_view.h"
 #include "study/render/detail/occluder_sets.h"
@@ -25,7 +28,7 @@ class OcclusionCuller {
   // The hierarchy now; the occluder database on prepare() or else on the first frame (timed in
   // that frame's report).
   OcclusionCuller(const scene::Scene& scene, const std::vector<ObjectRecord>& objects);
-  ~OcclusionCuller();  // needs the renderer's context current
+  ~OcclusionCuller();  // needs the renderer's context current (deletes its program)
   OcclusionCuller(const OcclusionCuller&) = delete;
   OcclusionCuller& operator=(const OcclusionCuller&) = delete;
 
@@ -33,22 +36,25 @@ class OcclusionCuller {
   // it was built before). CPU only.
   double prepare();
 
-  // Culls `view` in place (its rects and draw lists) for a frame drawn with `fc` (built on `view`).
-  // `footprint`: pixels the method may change beyond the targets' masks (a lens's; detail/method.h),
-  // nullptr for none.
-  Result<CullingReport> run(FrameView& view, const FrameContext& fc, const PixelRect* footprint);
+  // Declares the culling of `view` for a frame drawn with `fc` (built on `view`) as passes of
+  // `fg`; `report` (which must outlive the graph's execution) gets the counts at once and the
+  // rest as the passes run, and `view`'s rects and draw lists lose the hidden objects when the
+  // caller flush()es the stage. Returns whether it declared any pass: none when the method culls
+  // nothing or no occluder is in view. `footprint`: pixels the method may change beyond the
+  // targets' masks (a lens's; detail/method.h), nullopt for none. A shader that does not link
+  // throws GlFailure (an environment Error at render.h).
+  bool add_passes(FrameGraph& fg, FrameView& view, const FrameContext& fc, std::optional<PixelRect> footprint,
+                  CullingReport& report);
 
  private:
-  void ensure_targets(int width, int height);
-  // Steps 2-3 on the GPU: the occluders' depth, reduced to the map's texels, read back.
-  std::vector<float> occluder_map(const FrameView& view, const FrameContext& fc, CullingReport& report);
   const scene::Scene& scene_;
   const std::vector<ObjectRecord>& objects_;
   Hierarchy hierarchy_;
   std::unique_ptr<OccluderDatabase> database_;
   Program reduce_;
-  unsigned depth_fbo_ = 0, depth_tex_ = 0, map_fbo_ = 0, map_tex_ = 0;
-  int width_ = 0, height_ = 0, map_w_ = 0, map_h_ = 0, block_ = 1;
+
+  // Steps 4-5: the hierarchy tested against `map`; hidden objects leave `view`'s rects and lists.
+  void cull(FrameView& view, const OcclusionMap& map, bool transparency, CullingReport& report) const;
 };
 
 }  // namespace dtlab::render::detail

@@ -102,16 +102,23 @@ FrameReport Renderer::draw_frame(const Camera& camera, const FrameSettings& sett
   detail::GlStateGuard guard;
   detail::FrameView view = detail::make_frame_view(impl_->gpu->objects(), impl_->scene, camera, target.width,
                                                    target.height, settings.dt, *impl_->sorter);
-  // The frame's method, from the registry (detail/method.h): its passes and its state.
   const detail::MethodPasses& method = detail::passes_of(settings.method);
   detail::MethodSlot& slot = impl_->slots[static_cast<std::size_t>(settings.method)];
   std::optional<detail::PixelRect> footprint;
   if (method.footprint != nullptr) footprint = method.footprint(slot, settings, camera, target.width, target.height);
-  const CullingReport culling = impl_->cull(view, settings, footprint ? &*footprint : nullptr);
   const detail::FrameContext fc{*impl_->gpu, impl_->programs, view, settings, impl_->scene,
                                 settings.float_color ? TextureFormat::rgba16f : TextureFormat::rgba8, {}};
   FrameGraph fg;
   const Handle output = fg.import_target("output", target);
+  // Stage 1, occlusion culling (when on): its passes read the occluders' map back and drop the
+  // hidden objects from the view's lists, which the method's passes are then declared over.
+  CullingReport culling;
+  if (detail::OcclusionCuller* culler = impl_->culler_for(settings);
+      culler != nullptr && culler->add_passes(fg, view, fc, footprint, culling)) {
+    detail::set_frame_baseline(impl_->gpu->vao());
+    fg.flush(impl_->backend, settings.profile_passes, &impl_->gpu->counts());
+  }
+  // Stage 2: the method's passes, from the registry (detail/method.h), then present.
   const bool targets = !view.targets.empty();
   const detail::MethodFrame frame = method.add(fg, fc, slot);
   const Handle color = frame.color;

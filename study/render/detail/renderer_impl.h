@@ -62,18 +62,6 @@ struct Renderer::Impl {
     return culler.get();
   }
 
-  // Occlusion culling of `view` (in place) when `settings` ask for it; a shader error throws
-  // GlFailure (an environment Error at render.h: the driver refused a shader that compiles elsewhere).
-  // `footprint`: pixels the method may change beyond the targets' masks (nullptr: none).
-  CullingReport cull(detail::FrameView& view, const FrameSettings& settings, const detail::PixelRect* footprint) {
-    detail::OcclusionCuller* c = culler_for(settings);
-    if (c == nullptr) return {};
-    const detail::FrameContext fc{*gpu, programs, view, settings, scene, TextureFormat::rgba8, {}};
-    auto r = c->run(view, fc, footprint);
-    if (!r) throw detail::GlFailure("occlusion culling: " + r.error().to_string());
-    return r.value();
-  }
-
   // The offscreen output of render_offscreen() at w x h; GlFailure if the driver cannot make it.
   void ensure_offscreen(int w, int h, bool fp) {
     if (out_fbo != 0 && out_w == w && out_h == h && out_float == fp) return;
