@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "study/common/random.h"
 #include "study/render/detail/pixel_masks.h"
 
 namespace dtlab::render::detail {
@@ -178,54 +180,58 @@ TEST(PixelMasks, SeededMasksArePinned) {
 // 5.1.2, Figures 19-20: random alphas and depths, random order, 16 objects on 16 x 16 masks and
 // 32 on 32 x 32; faulty pixels per level. The thesis reports at most 1 to 2 faulty pixels for
 // the tabular masks with neighbourhood compensation, about 7 (16 x 16) and 27 (32 x 32) in the
-// worst case for white noise and for tabular masks without the compensation.
+// worst case for white noise and for tabular masks without the compensation. The data come from
+// the one generator (study/common/random.h), 100 trials per stream.
 struct RandomRun {
-  double worst = 0.0, mean = 0.0;
+  double worst = 0.0, mean = 0.0, p99 = 0.0;  // faulty pixels per level: max, mean, 99th percentile
 };
-RandomRun random_run(int side, MaskTable::Options o, int trials) {
-  RandomRun r;
-  std::uint64_t state = 12345;
-  auto uniform = [&] {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<float>((state >> 40) & 0xffffff) / 16777216.0f;
-  };
+RandomRun random_run(int side, MaskTable::Options o, int trials, std::uint64_t stream_seed) {
+  dtlab::Stream stream(stream_seed);
   const int n = side * side, m = side;
-  long count = 0;
+  std::vector<double> faulty;
   for (int t = 0; t < trials; ++t) {
     std::vector<float> alpha, depth;
     for (int i = 0; i < m; ++i) {
-      alpha.push_back(uniform());
-      depth.push_back(uniform());
+      alpha.push_back(static_cast<float>(stream.uniform()));
+      depth.push_back(static_cast<float>(stream.uniform()));
     }
     o.seed = static_cast<std::uint64_t>(t) + 1;
     const StackResult s = stack_masks(generate_masks(n, o, alpha, depth), alpha, depth);
-    for (double f : s.faulty) {
-      r.worst = std::max(r.worst, f);
-      r.mean += f;
-      ++count;
-    }
+    faulty.insert(faulty.end(), s.faulty.begin(), s.faulty.end());
   }
-  r.mean /= static_cast<double>(count);
+  std::sort(faulty.begin(), faulty.end());
+  RandomRun r;
+  r.worst = faulty.back();
+  for (double f : faulty) r.mean += f;
+  r.mean /= static_cast<double>(faulty.size());
+  r.p99 = faulty[faulty.size() * 99 / 100];
   return r;
 }
 
+// The thesis's "only 1 to 2 faulty pixels" holds for 99 levels in 100, not for every level: on
+// eight streams of 100 trials the compensated masks' 99th percentile was 1.10-1.34 (16 x 16) and
+// 1.27-1.59 (32 x 32), their worst level 1.82-3.13 and 3.47-6.13; white noise's 99th percentile
+// 6.1-6.2 and 9.6-10.3, plain tabular's 3.8-4.4 and 6.9-7.6. (An earlier version of this test
+// asserted the worst level <= 2.0 at 16 x 16 on one hand-rolled LCG's data; other streams break
+// that, so it was a property of that data, not of the masks.)
 TEST(PixelMasks, RandomDataNeighbourhoodCompensationBeatsWhiteNoise) {
-  for (int side : {16, 32}) {
-    const RandomRun noise = random_run(side, opts(MaskGeneration::white_noise), 100);
-    const RandomRun plain = random_run(side, opts(MaskGeneration::tabular, false), 100);
-    const RandomRun comp = random_run(side, opts(MaskGeneration::tabular, true), 100);
-    std::printf("side %d: white noise worst %.2f mean %.3f; tabular worst %.2f mean %.3f; "
-                "tabular + neighbourhood worst %.2f mean %.3f\n",
-                side, noise.worst, noise.mean, plain.worst, plain.mean, comp.worst, comp.mean);
-    EXPECT_LT(comp.mean, noise.mean);
-    EXPECT_LT(comp.mean, plain.mean);
-    EXPECT_LT(comp.worst, noise.worst);
-    EXPECT_LT(comp.worst, plain.worst);
-    // The thesis: "only 1 to 2 faulty pixels". Measured here (100 trials): 1.80 at 16 x 16, 3.46
-    // at 32 x 32 (white noise 11.1 and 20.9; tabular without the compensation 8.7 and 86.3).
-    EXPECT_LE(comp.worst, side == 16 ? 2.0 : 4.0);
-    EXPECT_GT(noise.worst, 5.0);
-  }
+  for (int side : {16, 32})
+    for (std::uint64_t stream_seed : {1u, 2u, 3u}) {
+      SCOPED_TRACE("side " + std::to_string(side) + ", stream " + std::to_string(stream_seed));
+      const RandomRun noise = random_run(side, opts(MaskGeneration::white_noise), 100, stream_seed);
+      const RandomRun plain = random_run(side, opts(MaskGeneration::tabular, false), 100, stream_seed);
+      const RandomRun comp = random_run(side, opts(MaskGeneration::tabular, true), 100, stream_seed);
+      EXPECT_LT(comp.mean, noise.mean);
+      EXPECT_LT(comp.mean, plain.mean);
+      EXPECT_LT(comp.p99, plain.p99);
+      EXPECT_LT(comp.p99, noise.p99);
+      EXPECT_LT(comp.worst, noise.worst);
+      EXPECT_LT(comp.worst, plain.worst);
+      EXPECT_LE(comp.p99, 2.0) << "the thesis's 1 to 2 faulty pixels, for 99 levels in 100";
+      EXPECT_LE(comp.worst, side == 16 ? 4.0 : 8.0);
+      EXPECT_GT(noise.worst, 5.0);
+      EXPECT_GT(noise.p99, 4.0);
+    }
 }
 
 }  // namespace
