@@ -25,25 +25,26 @@ std::string trimmed(const std::string& s) {
 // The participant's ledger row id; with a position, checks that their session plans it.
 Result<std::int64_t> participant_row(Store::Impl& m, const std::string& participant, std::optional<int> position) {
   const char* what = "finding the participant";
-  auto q = Stmt::prepare(m.db, "SELECT id FROM participants WHERE participant = ?", what);
+  auto q = Stmt::prepare(m.db, "SELECT id AS id FROM participants WHERE participant = :participant", what);
   if (!q) return q.error();
-  q->bind(1, participant);
+  q->bind("participant", participant);
   auto row = q->step(what);
   if (!row) return row.error();
   if (!*row) return m.invalid("participant", "unknown participant \"" + participant + "\"", ErrorKind::not_found);
-  const std::int64_t id = q->int64(0);
+  const std::int64_t id = q->int64("id");
   if (!position) return id;
   auto t = Stmt::prepare(m.db,
-                         "SELECT count(*), (SELECT count(*) FROM planned_trials p2 JOIN sessions s2 ON s2.id = "
-                         "p2.session_id WHERE s2.participant_id = ?1) FROM planned_trials p JOIN sessions s ON s.id = "
-                         "p.session_id WHERE s.participant_id = ?1 AND p.position = ?2",
+                         "SELECT count(*) AS found, (SELECT count(*) FROM planned_trials p2 JOIN sessions s2 "
+                         "ON s2.id = p2.session_id WHERE s2.participant_id = :id) AS planned "
+                         "FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
+                         "WHERE s.participant_id = :id AND p.position = :position",
                          what);
   if (!t) return t.error();
-  t->bind(1, id).bind(2, *position);
+  t->bind("id", id).bind("position", *position);
   if (auto r = t->step(what); !r) return r.error();
-  if (t->int64(0) == 0)
+  if (t->int64("found") == 0)
     return m.invalid("trial", "participant \"" + participant + "\" has no planned trial " + std::to_string(*position) +
-                                  " (their session plans " + std::to_string(t->int64(1)) +
+                                  " (their session plans " + std::to_string(t->int64("planned")) +
                                   " trials, numbered from 1 as in `dtlab plan` and the export's position column)",
                      ErrorKind::not_found);
   return id;

@@ -16,6 +16,7 @@
 #include <random>
 #include <sstream>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/store_impl.h"
 #include "study/store/detail/time.h"
 
@@ -114,18 +115,19 @@ Claimant make_claimant() {
 Status Store::Impl::take_claim(std::int64_t session_id, const std::string& who, bool take_over, bool* took_over) {
   const char* what = "claiming the session";
   auto q = Stmt::prepare(db,
-                         "SELECT owner, host, pid, claimed_at, heartbeat_at, expires_at FROM session_claims "
-                         "WHERE session_id = ?",
+                         "SELECT " + detail::select_list(*detail::find_table("session_claims"), "", kSchemaVersion) +
+                             " FROM session_claims WHERE session_id = :session_id",
                          what);
   if (!q) return q.error();
-  q->bind(1, session_id);
+  q->bind("session_id", session_id);
   auto row = q->step(what);
   if (!row) return row.error();
   auto clock = db.conn().now();  // the server's clock on PostgreSQL: every station judges a claim by one clock
   if (!clock) return clock.error();
   const std::string now = detail::iso8601_utc(*clock);
   if (*row) {
-    Holder h{q->text(0), q->text(1), q->text(3), q->text(4), q->text(5), q->int64(2)};
+    Holder h{q->text("owner"),        q->text("host"),       q->text("claimed_at"),
+             q->text("heartbeat_at"), q->text("expires_at"), q->int64("pid")};
     if (h.owner != me.owner && !take_over && !gone(me, h, now))
       return invalid(kClaimField,
                      "the session of \"" + who + "\" is being run by process " + std::to_string(h.pid) + " on host " +
@@ -137,14 +139,16 @@ Status Store::Impl::take_claim(std::int64_t session_id, const std::string& who, 
   }
   auto up = Stmt::prepare(db,
                           "INSERT INTO session_claims (session_id, owner, host, pid, claimed_at, heartbeat_at, "
-                          "expires_at) VALUES (?, ?, ?, ?, ?, ?, ?) ON CONFLICT (session_id) DO UPDATE SET "
+                          "expires_at) VALUES (:session_id, :owner, :host, :pid, :claimed_at, :heartbeat_at, "
+                          ":expires_at) "
+                          "ON CONFLICT (session_id) DO UPDATE SET "
                           "owner = excluded.owner, host = excluded.host, pid = excluded.pid, "
                           "claimed_at = excluded.claimed_at, heartbeat_at = excluded.heartbeat_at, "
                           "expires_at = excluded.expires_at",
                           what);
   if (!up) return up.error();
-  up->bind(1, session_id).bind(2, me.owner).bind(3, me.host).bind(4, me.pid).bind(5, now).bind(6, now);
-  up->bind(7, in_future(*clock, options.claim_ttl_s));
+  up->bind("session_id", session_id).bind("owner", me.owner).bind("host", me.host).bind("pid", me.pid);
+  up->bind("claimed_at", now).bind("heartbeat_at", now).bind("expires_at", in_future(*clock, options.claim_ttl_s));
   if (auto s = up->run(what); !s) return s;
   claimed.insert(session_id);
   return {};
@@ -155,12 +159,13 @@ Status Store::Impl::renew_claim(std::int64_t session_id, const std::string& who)
   auto clock = db.conn().now();
   if (!clock) return clock.error();
   auto up = Stmt::prepare(db,
-                          "UPDATE session_claims SET heartbeat_at = ?, expires_at = ? WHERE session_id = ? AND owner = ? "
+                          "UPDATE session_claims SET heartbeat_at = :heartbeat_at, expires_at = :expires_at "
+                          "WHERE session_id = :session_id AND owner = :owner "
                           "RETURNING session_id",
                           what);
   if (!up) return up.error();
-  up->bind(1, detail::iso8601_utc(*clock)).bind(2, in_future(*clock, options.claim_ttl_s)).bind(3, session_id);
-  up->bind(4, me.owner);
+  up->bind("heartbeat_at", detail::iso8601_utc(*clock)).bind("expires_at", in_future(*clock, options.claim_ttl_s));
+  up->bind("session_id", session_id).bind("owner", me.owner);
   auto renewed = up->step(what);
   if (!renewed) return renewed.error();
   const bool ours = *renewed;
@@ -174,9 +179,10 @@ Status Store::Impl::renew_claim(std::int64_t session_id, const std::string& who)
 }
 
 Status Store::Impl::drop_claim(std::int64_t session_id) {
-  auto del = Stmt::prepare(db, "DELETE FROM session_claims WHERE session_id = ? AND owner = ?", "releasing the claim");
+  auto del = Stmt::prepare(db, "DELETE FROM session_claims WHERE session_id = :session_id AND owner = :owner",
+                           "releasing the claim");
   if (!del) return del.error();
-  del->bind(1, session_id).bind(2, me.owner);
+  del->bind("session_id", session_id).bind("owner", me.owner);
   if (auto s = del->run("releasing the claim"); !s) return s;
   claimed.erase(session_id);
   return {};

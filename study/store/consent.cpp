@@ -38,25 +38,28 @@ bool lower_hex_64(const std::string& s) {
 Result<std::optional<std::pair<bool, std::string>>> stored_consent(detail::Db& db, const std::string& participant_id) {
   const char* what = "reading the consent";
   auto st = Stmt::prepare(db,
-                          "SELECT c.agreed, c.answered_at FROM consents c JOIN participants p ON p.id = c.participant_id "
-                          "WHERE p.participant = ?",
+                          "SELECT c.agreed AS agreed, c.answered_at AS answered_at FROM consents c "
+                          "JOIN participants p ON p.id = c.participant_id "
+                          "WHERE p.participant = :participant",
                           what);
   if (!st) return st.error();
-  st->bind(1, participant_id);
+  st->bind("participant", participant_id);
   auto row = st->step(what);
   if (!row) return row.error();
   if (!*row) return std::optional<std::pair<bool, std::string>>{};
-  return std::optional<std::pair<bool, std::string>>{std::make_pair(st->int64(0) != 0, st->text(1))};
+  return std::optional<std::pair<bool, std::string>>{std::make_pair(st->int64("agreed") != 0, st->text("answered_at"))};
 }
 
 Status insert_consent(detail::Db& db, const std::string& participant_id, bool agreed, const std::string& sha,
                       const std::string& now) {
   auto ins = Stmt::prepare(db,
                            "INSERT INTO consents (participant_id, agreed, text_sha256, answered_at) "
-                           "SELECT id, ?, ?, ? FROM participants WHERE participant = ?",
+                           "SELECT id, :agreed, :text_sha256, :answered_at FROM participants "
+                           "WHERE participant = :participant",
                            "storing the consent");
   if (!ins) return ins.error();
-  ins->bind(1, agreed ? 1 : 0).bind(2, sha).bind(3, now).bind(4, participant_id);
+  ins->bind("agreed", agreed ? 1 : 0).bind("text_sha256", sha).bind("answered_at", now);
+  ins->bind("participant", participant_id);
   return ins->run("storing the consent");
 }
 
@@ -71,39 +74,43 @@ Status Store::Impl::withdraw_in(const std::string& participant_id, const std::st
   if (e->withdrawn) return {};  // the first withdrawal stays
   const char* what = "withdrawing the participant";
   auto q = Stmt::prepare(db,
-                         "SELECT s.id, s.status FROM sessions s JOIN participants p ON p.id = s.participant_id "
-                         "WHERE p.participant = ?",
+                         "SELECT s.id AS id, s.status AS status FROM sessions s "
+                         "JOIN participants p ON p.id = s.participant_id "
+                         "WHERE p.participant = :participant",
                          what);
   if (!q) return q.error();
-  q->bind(1, participant_id);
+  q->bind("participant", participant_id);
   auto has = q->step(what);
   if (!has) return has.error();
-  if (*has && q->text(1) == "running") {
-    const std::int64_t session_id = q->int64(0);
+  if (*has && q->text("status") == "running") {
+    const std::int64_t session_id = q->int64("id");
     q->reset();
     // A session another live process runs is not ended under it (busy); a dead one's claim is taken.
     if (auto c = take_claim(session_id, participant_id, /*take_over=*/false, nullptr); !c) return c;
     if (auto c = drop_claim(session_id); !c) return c;
-    auto up = Stmt::prepare(db, "UPDATE sessions SET status = 'abandoned', ended_at = ? WHERE id = ?",
+    auto up = Stmt::prepare(db, "UPDATE sessions SET status = 'abandoned', ended_at = :ended_at WHERE id = :id",
                             "ending the session");
     if (!up) return up.error();
-    up->bind(1, now).bind(2, session_id);
+    up->bind("ended_at", now).bind("id", session_id);
     if (auto s = up->run("ending the session"); !s) return s;
   }
   if (!e->released) {
-    auto rel = Stmt::prepare(db, "UPDATE participants SET released_at = ? WHERE participant = ?", "freeing the order row");
+    auto rel = Stmt::prepare(db, "UPDATE participants SET released_at = :released_at WHERE participant = :participant",
+                            "freeing the order row");
     if (!rel) return rel.error();
-    rel->bind(1, now).bind(2, participant_id);
+    rel->bind("released_at", now).bind("participant", participant_id);
     if (auto s = rel->run("freeing the order row"); !s) return s;
   }
   auto id = detail::next_id(db, "withdrawals");
   if (!id) return id.error();
   auto ins = Stmt::prepare(db,
                            "INSERT INTO withdrawals (id, participant_id, withdrawn_at, reason, decided_by) "
-                           "SELECT ?, id, ?, ?, ? FROM participants WHERE participant = ?",
+                           "SELECT :id, id, :withdrawn_at, :reason, :decided_by FROM participants "
+                           "WHERE participant = :participant",
                            "recording the withdrawal");
   if (!ins) return ins.error();
-  ins->bind(1, *id).bind(2, now).bind(3, reason).bind(4, by).bind(5, participant_id);
+  ins->bind("id", *id).bind("withdrawn_at", now).bind("reason", reason).bind("decided_by", by);
+  ins->bind("participant", participant_id);
   return ins->run("recording the withdrawal");
 }
 
@@ -176,20 +183,21 @@ Status Store::record_screen(const Session& session, const ScreenRecord& r) {
   if (r.ended_at < r.shown_at) return m.invalid("screen.ended_at", "the screen \"" + r.screen + "\" ended before it was shown");
   const std::string who = "session " + std::to_string(session.id) + " (" + session.participant_id + ")";
   return m.write("recording a screen of " + who, [&]() -> Status {
-    auto exists = m.db.query_int("SELECT count(*) FROM sessions WHERE id = " + std::to_string(session.id),
-                                 "reading the session");
+    auto exists = m.db.query_int("SELECT count(*) AS n FROM sessions WHERE id = :id", "reading the session",
+                                 {{"id", session.id}});
     if (!exists) return exists.error();
     if (exists->value_or(0) == 0)
       return m.invalid("session", who + " does not exist in this database", ErrorKind::not_found);
     auto ins = Stmt::prepare(m.db,
                              "INSERT INTO screens (session_id, seq, screen, shown, shown_at, ended_at, duration_s, "
-                             "answer) SELECT ?1, coalesce(max(seq), 0) + 1, ?2, ?3, ?4, ?5, ?6, ?7 FROM screens "
-                             "WHERE session_id = ?1",
+                             "answer) SELECT :session_id, coalesce(max(seq), 0) + 1, :screen, :shown, :shown_at, "
+                             ":ended_at, :duration_s, :answer FROM screens WHERE session_id = :session_id",
                              "recording the screen");
     if (!ins) return ins.error();
     const double seconds = std::chrono::duration<double>(r.ended_at - r.shown_at).count();
-    ins->bind(1, session.id).bind(2, r.screen).bind(3, r.shown).bind(4, detail::iso8601_utc(r.shown_at));
-    ins->bind(5, detail::iso8601_utc(r.ended_at)).bind(6, seconds).bind(7, r.answer);
+    ins->bind("session_id", session.id).bind("screen", r.screen).bind("shown", r.shown);
+    ins->bind("shown_at", detail::iso8601_utc(r.shown_at)).bind("ended_at", detail::iso8601_utc(r.ended_at));
+    ins->bind("duration_s", seconds).bind("answer", r.answer);
     return ins->run("recording the screen");
   });
 }

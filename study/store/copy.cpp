@@ -7,11 +7,14 @@
 #include "study/store/copy.h"
 
 #include <algorithm>
+#include <cassert>
 #include <charconv>
 #include <filesystem>
 #include <map>
+#include <mutex>
 
 #include "study/common/version.h"
+#include "study/store/detail/columns.h"
 #include "study/store/detail/copy_rows.h"
 #include "study/store/detail/file_check.h"
 #include "study/store/detail/schema.h"
@@ -22,72 +25,149 @@ namespace detail {
 
 const std::vector<TableSpec>& copied_tables() {
   static const std::vector<TableSpec> t = {
-      {"studies", {"id", "protocol_id", "protocol_text", "protocol_sha256", "software_version", "order_rows", "created_at"},
-       "id", 1},
-      {"study_factors", {"study_id", "position", "name"}, "study_id, position", 1},
-      {"study_designs", {"study_id", "design_sha256"}, "study_id", 2},
-      {"participants",
-       {"id", "participant", "enrollment_index", "order_row", "study_id", "demographics", "enrolled_at", "released_at"},
-       "id", 1},
-      {"sessions", {"id", "participant_id", "study_id", "software_version", "status", "started_at", "ended_at"}, "id", 1},
-      {"session_resumes", {"session_id", "resumed_at", "software_version", "next_position"},
-       "session_id, resumed_at, next_position IS NULL, next_position", 1},
-      {"planned_trials", {"id", "session_id", "position", "block", "task", "trial", "seed", "method", "practice"}, "id", 1},
-      {"planned_levels", {"planned_trial_id", "factor_position", "factor", "level"}, "planned_trial_id, factor_position", 1},
+      {"studies", "id"},
+      {"study_factors", "study_id, position"},
+      {"study_designs", "study_id"},
+      {"participants", "id"},
+      {"sessions", "id"},
+      {"session_resumes", "session_id, resumed_at, next_position IS NULL, next_position"},
+      {"planned_trials", "id"},
+      {"planned_levels", "planned_trial_id, factor_position"},
+      // plan order within each session (trigger trial_results_in_plan_order)
       {"trial_results",
-       {"planned_trial_id", "scene_hash", "answer_kind", "answered", "answer_count", "answer_letter", "answer_x",
-        "answer_z", "truth_count", "truth_letter", "truth_x", "truth_z", "rel_error", "signed_error", "correct",
-        "distance", "completion_s", "started_at", "ended_at", "frame_count", "frame_ms_mean", "frame_ms_sd",
-        "frame_ms_p95", "frame_ms_max", "event_count", "recorded_at", "frame_first_ms", "frame_ms_median",
-        "late_frames", "refresh_hz"},
-       // plan order within each session (trigger trial_results_in_plan_order)
        "(SELECT p.session_id FROM planned_trials p WHERE p.id = trial_results.planned_trial_id), "
-       "(SELECT p.position FROM planned_trials p WHERE p.id = trial_results.planned_trial_id)",
-       1,
-       {{"frame_first_ms", 3}, {"frame_ms_median", 3}, {"late_frames", 3}, {"refresh_hz", 3}}},
-      {"input_events", {"trial_id", "seq", "t_s", "kind", "detail", "x", "y"}, "trial_id, seq", 1},
-      {"camera_poses", {"trial_id", "frame", "t_s", "x", "y", "z", "yaw", "pitch"}, "trial_id, frame", 1},
-      {"questionnaire_answers", {"session_id", "item", "scope", "value_number", "value_text", "answered_at"},
-       "session_id, item, scope", 1},
-      {"exclusions", {"id", "participant_id", "position", "action", "reason", "decided_by", "decided_at"}, "id", 2},
-      {"notes", {"id", "participant_id", "position", "author", "text", "written_at"}, "id", 2},
-      {"session_pauses", {"session_id", "position", "paused_at", "resumed_at", "duration_s"},
-       "session_id, paused_at, resumed_at", 2},
-      {"trial_attempts", {"session_id", "position", "attempt", "started_at", "owner"}, "session_id, position, attempt", 2},
-      {"session_displays", {"session_id", "recorded_at", "kind", "width", "height", "refresh_hz", "renderer", "monitor"},
-       kDisplayOrder, 3},
-      {"consents", {"participant_id", "agreed", "text_sha256", "answered_at"}, "participant_id", 4},
-      {"screens", {"session_id", "seq", "screen", "shown", "shown_at", "ended_at", "duration_s", "answer"},
-       "session_id, seq", 4},
+       "(SELECT p.position FROM planned_trials p WHERE p.id = trial_results.planned_trial_id)"},
+      {"input_events", "trial_id, seq"},
+      {"camera_poses", "trial_id, frame"},
+      {"questionnaire_answers", "session_id, item, scope"},
+      {"exclusions", "id"},
+      {"notes", "id"},
+      {"session_pauses", "session_id, paused_at, resumed_at"},
+      {"trial_attempts", "session_id, position, attempt"},
+      {"session_displays", kDisplayOrder},
+      {"consents", "participant_id"},
+      {"screens", "session_id, seq"},
       // after sessions: a withdrawal refuses the participant's session (trigger sessions_not_after_withdrawal)
-      {"withdrawals", {"id", "participant_id", "withdrawn_at", "reason", "decided_by"}, "id", 4},
+      {"withdrawals", "id"},
   };
   return t;
 }
 
-std::string TableSpec::select_list(int version, const std::string& alias) const {
-  std::string s;
-  for (const std::string& c : columns) {
-    auto later = std::find_if(added_later.begin(), added_later.end(), [&](const auto& a) { return a.first == c; });
-    s += s.empty() ? "" : ", ";
-    s += later != added_later.end() && later->second > version ? "NULL" : (alias.empty() ? c : alias + "." + c);
-  }
-  return s;
+const TableSpec& copied_table(std::string_view name) {
+  for (const TableSpec& t : copied_tables())
+    if (t.name == name) return t;
+  assert(false && "not a copied table: add it to copied_tables()");
+  return copied_tables().front();
 }
 
-Status each_row(Db& db, const std::string& sql, const Row& binds, const std::function<Status(Row&)>& row) {
+const Table& TableSpec::table() const {
+  const Table* t = find_table(name);
+  assert(t && "a copied table must be described in schema_tables.cpp");
+  return *t;
+}
+
+const std::vector<std::string>& TableSpec::columns() const {
+  static std::map<std::string, std::vector<std::string>, std::less<>> cache;  // filled once, at the first copy
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (const TableSpec& s : copied_tables())
+      for (const Column& c : s.table().columns) cache[s.name].push_back(c.name);
+  });
+  return cache.find(name)->second;
+}
+
+std::string TableSpec::select_list(int version, const std::string& alias) const {
+  return detail::select_list(table(), alias.empty() ? alias : alias + ".", version);
+}
+
+int Row::index(std::string_view column) const {
+  if (!names_) return -1;
+  for (std::size_t c = 0; c < names_->size(); ++c)
+    if ((*names_)[c] == column) return static_cast<int>(c);
+  return -1;
+}
+
+const Value& Row::operator[](std::string_view column) const {
+  const int c = index(column);
+  assert(c >= 0 && "the row has no such column: select it by that name");
+  return c < 0 ? scratch_ : cells_[static_cast<std::size_t>(c)];
+}
+
+Value& Row::operator[](std::string_view column) {
+  const int c = index(column);
+  assert(c >= 0 && "the row has no such column: select it by that name");
+  return c < 0 ? scratch_ : cells_[static_cast<std::size_t>(c)];
+}
+
+Row Row::without(std::string_view column) const {
+  auto names = std::make_shared<std::vector<std::string>>();
+  std::vector<Value> cells;
+  for (std::size_t c = 0; c < cells_.size(); ++c)
+    if ((*names_)[c] != column) {
+      names->push_back((*names_)[c]);
+      cells.push_back(cells_[c]);
+    }
+  return Row(std::move(names), std::move(cells));
+}
+
+const std::vector<std::string>& Row::names() const {
+  static const std::vector<std::string> none;
+  return names_ ? *names_ : none;
+}
+
+bool same_except(const Row& a, const Row& b, std::initializer_list<std::string_view> ignored) {
+  if (a.names() != b.names()) return false;
+  for (std::size_t c = 0; c < a.cells().size(); ++c)
+    if (std::find(ignored.begin(), ignored.end(), a.names()[c]) == ignored.end() && a.cells()[c] != b.cells()[c])
+      return false;
+  return true;
+}
+
+Status each_row(Db& db, const std::string& sql, const Binds& binds, const std::function<Status(Row&)>& row) {
   auto st = Stmt::prepare(db, sql, "reading the study");
   if (!st) return st.error();
-  for (std::size_t i = 0; i < binds.size(); ++i) st->bind(static_cast<int>(i + 1), binds[i]);
+  for (const auto& [name, value] : binds) st->bind(name, value);
+  std::shared_ptr<const std::vector<std::string>> names;
   for (;;) {
     auto r = st->step("reading the study");
     if (!r) return r.error();
     if (!*r) return {};
-    Row values;
-    values.reserve(static_cast<std::size_t>(st->columns()));
-    for (int c = 0; c < st->columns(); ++c) values.push_back(st->value(c));
+    if (!names) names = std::make_shared<const std::vector<std::string>>(st->column_names());
+    Row values(names, st->cells());
     if (auto s = row(values); !s) return s;
   }
+}
+
+Status insert_named(Db& db, const std::string& table, const std::vector<Row>& rows, std::string_view what) {
+  if (rows.empty()) return {};
+  const Table* t = find_table(table);
+  if (!t)
+    return Error{db.path(), 0, 0, table, std::string(what) + ": the schema has no table " + table, ErrorKind::internal};
+  std::vector<std::string> columns;
+  for (const Column& c : t->columns) columns.push_back(c.name);
+  std::vector<std::vector<Value>> cells;
+  cells.reserve(rows.size());
+  const std::vector<std::string>* names = nullptr;
+  std::vector<int> at;  // the row's cell of each described column, found once per query's names
+  for (const Row& r : rows) {
+    if (&r.names() != names) {
+      names = &r.names();
+      at.clear();
+      for (const std::string& c : columns) {
+        const auto it = std::find(names->begin(), names->end(), c);
+        at.push_back(it == names->end() ? -1 : static_cast<int>(it - names->begin()));
+      }
+      for (const std::string& n : *names)
+        if (std::find(columns.begin(), columns.end(), n) == columns.end())
+          return Error{db.path(), 0, 0, table + "." + n,
+                       std::string(what) + ": the schema has no column " + n + " in " + table, ErrorKind::internal};
+    }
+    std::vector<Value> row;
+    row.reserve(columns.size());
+    for (int c : at) row.push_back(c < 0 ? Value{} : r.cells()[static_cast<std::size_t>(c)]);
+    cells.push_back(std::move(row));
+  }
+  return db.conn().insert_rows(table, columns, cells, what);
 }
 
 Status RowSink::add(Row row) {
@@ -97,7 +177,7 @@ Status RowSink::add(Row row) {
 }
 
 Status RowSink::finish() {
-  Status s = db_.conn().insert_rows(table_, columns_, rows_, "copying " + table_);
+  Status s = insert_named(db_, table_, rows_, "copying " + table_);
   rows_.clear();
   return s;
 }
@@ -115,7 +195,7 @@ std::string canonical(const Value& v) {
 
 std::string canonical(const Row& row) {
   std::string out;
-  for (const Value& v : row) out += canonical(v) + "|";
+  for (const Value& v : row.cells()) out += canonical(v) + "|";
   return out;
 }
 
@@ -124,13 +204,13 @@ namespace {
 // Copies one table verbatim; events and poses page by trial so memory stays bounded.
 Status copy_table(Db& src, int src_version, Db& dst, const TableSpec& t, std::vector<Row>* finals,
                   std::int64_t& written) {
-  RowSink sink(dst, t.name, t.columns);
+  RowSink sink(dst, t.name);
   const bool sessions = std::string(t.name) == "sessions";
   auto add = [&](Row& r) -> Status {
-    if (sessions && std::get_if<std::string>(&r[4]) && std::get<std::string>(r[4]) != "running") {
-      finals->push_back({r[0], r[4], r[6]});  // id, status, ended_at: set once the results are in
-      r[4] = std::string("running");
-      r[6] = std::monostate{};
+    if (sessions && std::get_if<std::string>(&r["status"]) && std::get<std::string>(r["status"]) != "running") {
+      finals->push_back(r);  // its status and ended_at are set once the results are in
+      r["status"] = std::string("running");
+      r["ended_at"] = std::monostate{};
     }
     return sink.add(std::move(r));
   };
@@ -139,12 +219,12 @@ Status copy_table(Db& src, int src_version, Db& dst, const TableSpec& t, std::ve
   if (!paged) {
     if (auto s = each_row(src, select + " ORDER BY " + t.order_by, {}, add); !s) return s;
   } else {
-    auto last = src.query_int(std::string("SELECT max(trial_id) FROM ") + t.name, "reading the study");
+    auto last = src.query_int(std::string("SELECT max(trial_id) AS n FROM ") + t.name, "reading the study");
     if (!last) return last.error();
     constexpr std::int64_t kStep = 200;  // trials per page
     for (std::int64_t from = 0; from <= last->value_or(-1); from += kStep)
-      if (auto s = each_row(src, select + " WHERE trial_id >= ? AND trial_id < ? ORDER BY " + t.order_by,
-                            {from, from + kStep}, add);
+      if (auto s = each_row(src, select + " WHERE trial_id >= :from AND trial_id < :to ORDER BY " + t.order_by,
+                            {{"from", from}, {"to", from + kStep}}, add);
           !s)
         return s;
   }
@@ -155,18 +235,21 @@ Status copy_table(Db& src, int src_version, Db& dst, const TableSpec& t, std::ve
 
 Status full_copy(Db& src, int src_version, Db& dst, CopySummary& summary) {
   std::map<int, AppliedMigration> history;  // SRC's migration rows are DST's history
-  Status st = each_row(src, "SELECT version, description, applied_at, software_version FROM schema_migrations", {},
-                       [&](Row& r) -> Status {
-                         history[static_cast<int>(std::get<std::int64_t>(r[0]))] =
-                             AppliedMigration{std::get<std::string>(r[1]), std::get<std::string>(r[2]),
-                                              std::get<std::string>(r[3])};
+  Status st = each_row(src,
+                       "SELECT " + select_list(*find_table("schema_migrations"), "", src_version) +
+                           " FROM schema_migrations",
+                       {}, [&](Row& r) -> Status {
+                         history[static_cast<int>(std::get<std::int64_t>(r["version"]))] =
+                             AppliedMigration{std::get<std::string>(r["description"]),
+                                              std::get<std::string>(r["applied_at"]),
+                                              std::get<std::string>(r["software_version"])};
                          return {};
                        });
   if (!st) return st;
   if (auto s = migrate(dst, 0, std::string(version_string()), history); !s) return s;
   std::vector<Row> finals;
   for (const TableSpec& t : copied_tables()) {
-    if (t.since_version > src_version) continue;
+    if (t.table().since > src_version) continue;
     std::int64_t n = 0;
     if (auto s = copy_table(src, src_version, dst, t, &finals, n); !s) return s;
     summary.rows.emplace_back(t.name, n);
@@ -180,10 +263,11 @@ Status full_copy(Db& src, int src_version, Db& dst, CopySummary& summary) {
     if (std::string(t.name) == "withdrawals") summary.withdrawals = static_cast<int>(n);
     if (std::string(t.name) == "screens") summary.screens = static_cast<int>(n);
   }
-  auto fin = Stmt::prepare(dst, "UPDATE sessions SET status = ?, ended_at = ? WHERE id = ?", "finishing the sessions");
+  auto fin = Stmt::prepare(dst, "UPDATE sessions SET status = :status, ended_at = :ended_at WHERE id = :id",
+                           "finishing the sessions");
   if (!fin) return fin.error();
   for (const Row& f : finals) {
-    fin->bind(1, f[1]).bind(2, f[2]).bind(3, f[0]);
+    fin->bind("status", f["status"]).bind("ended_at", f["ended_at"]).bind("id", f["id"]);
     if (auto s = fin->run("finishing the sessions"); !s) return s;
   }
   return create_trial_table_view(dst);
@@ -196,16 +280,18 @@ Status refuse_running_sessions(Db& src, int src_version) {
   if (!now) return now.error();
   Status refused;
   Status st = each_row(src,
-                       "SELECT p.participant, c.pid, c.host, c.expires_at FROM session_claims c "
-                       "JOIN sessions s ON s.id = c.session_id JOIN participants p ON p.id = s.participant_id "
-                       "WHERE c.expires_at > ? ORDER BY p.enrollment_index",
-                       {*now}, [&](Row& r) -> Status {
+                       "SELECT p.participant AS participant, c.pid AS pid, c.host AS host, c.expires_at AS expires_at "
+                       "FROM session_claims c JOIN sessions s ON s.id = c.session_id "
+                       "JOIN participants p ON p.id = s.participant_id WHERE c.expires_at > :now "
+                       "ORDER BY p.enrollment_index",
+                       {{"now", *now}}, [&](Row& r) -> Status {
                          if (refused)
                            refused = Error{src.path(), 0, 0, "session_claims",
-                                           "the session of \"" + std::get<std::string>(r[0]) + "\" is being run now by process " +
-                                               std::to_string(std::get<std::int64_t>(r[1])) + " on host " +
-                                               std::get<std::string>(r[2]) + " (its claim expires at " +
-                                               std::get<std::string>(r[3]) +
+                                           "the session of \"" + std::get<std::string>(r["participant"]) +
+                                               "\" is being run now by process " +
+                                               std::to_string(std::get<std::int64_t>(r["pid"])) + " on host " +
+                                               std::get<std::string>(r["host"]) + " (its claim expires at " +
+                                               std::get<std::string>(r["expires_at"]) +
                                                "); finish or stop it, then copy (a crashed run's claim expires by itself)",
                                            ErrorKind::conflict};
                          return {};

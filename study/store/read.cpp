@@ -352,7 +352,7 @@ Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& particip
   return impl_->call([&]() -> Result<std::vector<PlannedRow>> {
     Db& db = *impl_->db;
     std::map<std::int64_t, std::vector<std::pair<std::string, std::string>>> levels;
-    const std::string filter = participant.empty() ? "" : " AND pa.participant = ?1";
+    const std::string filter = participant.empty() ? "" : " AND pa.participant = :participant";
     Status st = each_row(db,
                          "SELECT l.planned_trial_id AS planned_trial_id, l.factor AS factor, l.level AS level "
                          "FROM planned_levels l "
@@ -360,7 +360,7 @@ Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& particip
                          "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                              " ORDER BY l.planned_trial_id, l.factor_position",
                          "reading the planned levels",
-                         [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+                         bind_participant(participant),
                          by_name([&](const NamedColumns& c, const Stmt& q) {
                            levels[c.int64(q, "planned_trial_id")].emplace_back(c.text(q, "factor"), c.text(q, "level"));
                          }));
@@ -371,7 +371,7 @@ Result<std::vector<PlannedRow>> StudyReader::planned(const std::string& particip
                       ", pa.participant AS participant FROM planned_trials p JOIN sessions s ON s.id = p.session_id "
                       "JOIN participants pa ON pa.id = s.participant_id WHERE TRUE" + filter +
                       " ORDER BY pa.enrollment_index, p.position",
-                  "reading the planned trials", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+                  "reading the planned trials", bind_participant(participant),
                   by_name([&](const NamedColumns& c, const Stmt& q) {
                     PlannedRow r;
                     r.session_id = c.int64(q, "session_id");
@@ -433,7 +433,7 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
     };
 
     std::vector<TrialRow> out;
-    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
+    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = :participant";
     Status st = each_row(
         *impl_->db,
         "SELECT pa.participant AS participant, pa.enrollment_index AS enrollment_index, pa.order_row AS order_row, "
@@ -443,7 +443,7 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
         " FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id "
         "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
         "JOIN studies st ON st.id = s.study_id" + filter + " ORDER BY pa.enrollment_index, p.position",
-        "reading the trial results", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+        "reading the trial results", bind_participant(participant),
         by_name([&](const NamedColumns& col, const Stmt& q) {
           TrialRow t = read_trial_row(col, q);
           const int position = static_cast<int>(col.int64(q, "position"));
@@ -460,7 +460,7 @@ Result<std::vector<TrialRow>> StudyReader::trials(const std::string& participant
 Result<std::vector<QuestionnaireRecord>> StudyReader::questionnaire(const std::string& participant) {
   return impl_->call([&]() -> Result<std::vector<QuestionnaireRecord>> {
     std::vector<QuestionnaireRecord> out;
-    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
+    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = :participant";
     Status st = each_row(*impl_->db,
                          "SELECT pa.participant AS participant, " +
                              select_list(*find_table("questionnaire_answers"), "q.", impl_->schema_version) +
@@ -468,7 +468,7 @@ Result<std::vector<QuestionnaireRecord>> StudyReader::questionnaire(const std::s
                              "JOIN participants pa ON pa.id = s.participant_id" + filter +
                              " ORDER BY pa.enrollment_index, q.item, q.scope",
                          "reading the questionnaire answers",
-                         [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+                         bind_participant(participant),
                          by_name([&](const NamedColumns& c, const Stmt& q) {
                            QuestionnaireRecord r;
                            r.participant = c.text(q, "participant");
@@ -504,19 +504,19 @@ Result<std::vector<Note>> StudyReader::notes() {
 
 Result<std::int64_t> StudyReader::Impl::result_id(const std::string& participant, int position) {
   auto st = Stmt::prepare(*db,
-                          "SELECT p.id FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
+                          "SELECT p.id AS id FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
                           "JOIN sessions s ON s.id = p.session_id JOIN participants pa ON pa.id = s.participant_id "
-                          "WHERE pa.participant = ?1 AND p.position = ?2",
+                          "WHERE pa.participant = :participant AND p.position = :position",
                           "finding the trial");
   if (!st) return st.error();
-  st->bind(1, participant).bind(2, position);
+  st->bind("participant", participant).bind("position", position);
   auto row = st->step("finding the trial");
   if (!row) return row.error();
   if (!*row)
     return Error{db->path(), 0, 0, "trial",
                  "participant \"" + participant + "\" has no recorded trial at position " + std::to_string(position),
                  ErrorKind::not_found};
-  return st->int64(0);
+  return st->int64("id");
 }
 
 Result<std::vector<CameraPose>> StudyReader::poses(const std::string& participant, int position) {
@@ -526,8 +526,8 @@ Result<std::vector<CameraPose>> StudyReader::poses(const std::string& participan
     std::vector<CameraPose> out;
     Status st = each_row(*impl_->db,
                          "SELECT " + select_list(*find_table("camera_poses"), "", impl_->schema_version) +
-                             " FROM camera_poses WHERE trial_id = ? ORDER BY frame",
-                         "reading the camera poses", [&](Stmt& s) { s.bind(1, *id); },
+                             " FROM camera_poses WHERE trial_id = :trial_id ORDER BY frame",
+                         "reading the camera poses", [&](Stmt& s) { s.bind("trial_id", *id); },
                          by_name([&](const NamedColumns& c, const Stmt& q) {
                            out.push_back(CameraPose{c.real(q, "t_s"), c.real(q, "x"), c.real(q, "y"), c.real(q, "z"),
                                                     c.real(q, "yaw"), c.real(q, "pitch")});
@@ -544,8 +544,8 @@ Result<std::vector<InputEvent>> StudyReader::events(const std::string& participa
     std::vector<InputEvent> out;
     Status st = each_row(*impl_->db,
                          "SELECT " + select_list(*find_table("input_events"), "", impl_->schema_version) +
-                             " FROM input_events WHERE trial_id = ? ORDER BY seq",
-                         "reading the input events", [&](Stmt& s) { s.bind(1, *id); },
+                             " FROM input_events WHERE trial_id = :trial_id ORDER BY seq",
+                         "reading the input events", [&](Stmt& s) { s.bind("trial_id", *id); },
                          by_name([&](const NamedColumns& c, const Stmt& q) {
                            out.push_back(InputEvent{c.real(q, "t_s"), parse_kind(c.text(q, "kind")), c.text(q, "detail"),
                                                     c.real(q, "x"), c.real(q, "y")});

@@ -55,14 +55,14 @@ Result<std::vector<ScreenRow>> StudyReader::screens(const std::string& participa
   return impl_->call([&]() -> Result<std::vector<ScreenRow>> {
     std::vector<ScreenRow> out;
     if (impl_->schema_version < 4) return out;
-    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = ?1";
+    const std::string filter = participant.empty() ? "" : " WHERE pa.participant = :participant";
     Status st = each_row(*impl_->db,
                          "SELECT pa.participant AS participant, " +
                              select_list(*find_table("screens"), "x.", impl_->schema_version) +
                              " FROM screens x JOIN sessions s ON s.id = x.session_id "
                              "JOIN participants pa ON pa.id = s.participant_id" + filter +
                              " ORDER BY pa.enrollment_index, x.seq",
-                         "reading the screens", [&](Stmt& s) { if (!participant.empty()) s.bind(1, participant); },
+                         "reading the screens", bind_participant(participant),
                          by_name([&](const NamedColumns& c, const Stmt& q) {
                            out.push_back(ScreenRow{c.text(q, "participant"), static_cast<int>(c.int64(q, "seq")),
                                                    c.text(q, "screen"), c.text(q, "shown"), c.text(q, "shown_at"),

@@ -107,7 +107,7 @@ Status hash_legacy_designs(Db& db, const OpenOptions& options) {
   if (!options.design_hash_of) return {};
   const char* what = "recording design hashes";
   auto st = Stmt::prepare(db,
-                          "SELECT s.id, s.protocol_text FROM studies s WHERE NOT EXISTS "
+                          "SELECT s.id AS id, s.protocol_text AS protocol_text FROM studies s WHERE NOT EXISTS "
                           "(SELECT 1 FROM study_designs d WHERE d.study_id = s.id) ORDER BY s.id",
                           what);
   if (!st) return st.error();
@@ -116,7 +116,8 @@ Status hash_legacy_designs(Db& db, const OpenOptions& options) {
     auto row = st->step(what);
     if (!row) return row.error();
     if (!*row) break;
-    if (auto h = options.design_hash_of(st->text(1)); h && is_lower_hex(*h, 64)) missing.emplace_back(st->int64(0), *h);
+    if (auto h = options.design_hash_of(st->text("protocol_text")); h && is_lower_hex(*h, 64))
+      missing.emplace_back(st->int64("id"), *h);
   }
   if (missing.empty()) return {};
   for (const auto& [id, hash] : missing) {
@@ -133,16 +134,18 @@ Status hash_legacy_designs(Db& db, const OpenOptions& options) {
 Result<std::int64_t> check_study(Db& db, const StudyInfo& s, const OpenOptions& options) {
   const char* what = "reading the protocol record";
   auto st = Stmt::prepare(db,
-                          "SELECT s.id, s.protocol_id, s.protocol_sha256, s.order_rows, coalesce(d.design_sha256, '') "
-                          "FROM studies s LEFT JOIN study_designs d ON d.study_id = s.id ORDER BY s.id DESC LIMIT 1",
+                          "SELECT s.id AS id, s.protocol_id AS protocol_id, s.protocol_sha256 AS protocol_sha256, "
+                          "s.order_rows AS order_rows, coalesce(d.design_sha256, '') AS design_sha256 FROM studies s "
+                          "LEFT JOIN study_designs d ON d.study_id = s.id ORDER BY s.id DESC LIMIT 1",
                           what);
   if (!st) return st.error();
   auto row = st->step(what);
   if (!row) return row.error();
   if (!*row) return insert_study(db, s);
-  const std::int64_t id = st->int64(0);
-  const std::string old_id = st->text(1), old_hash = st->text(2), old_design = st->text(4);
-  const auto old_rows = st->int64(3);
+  const std::int64_t id = st->int64("id");
+  const std::string old_id = st->text("protocol_id"), old_hash = st->text("protocol_sha256");
+  const std::string old_design = st->text("design_sha256");
+  const auto old_rows = st->int64("order_rows");
   const bool same_text = old_hash == s.protocol_sha256;
   const bool same_design = same_text || (!s.design_sha256.empty() && s.design_sha256 == old_design);
   if (same_design && old_rows != s.order_rows)
@@ -169,8 +172,10 @@ Result<std::int64_t> check_study(Db& db, const StudyInfo& s, const OpenOptions& 
 Result<std::pair<std::int64_t, StudyInfo>> current_study(Db& db) {
   const char* what = "reading the protocol record";
   auto st = Stmt::prepare(db,
-                          "SELECT s.id, s.protocol_id, s.protocol_text, s.protocol_sha256, s.order_rows, "
-                          "coalesce(d.design_sha256, '') FROM studies s LEFT JOIN study_designs d ON d.study_id = s.id "
+                          "SELECT s.id AS id, s.protocol_id AS protocol_id, s.protocol_text AS protocol_text, "
+                          "s.protocol_sha256 AS protocol_sha256, s.order_rows AS order_rows, "
+                          "coalesce(d.design_sha256, '') AS design_sha256 FROM studies s "
+                          "LEFT JOIN study_designs d ON d.study_id = s.id "
                           "ORDER BY s.id DESC LIMIT 1",
                           what);
   if (!st) return st.error();
@@ -180,21 +185,22 @@ Result<std::pair<std::int64_t, StudyInfo>> current_study(Db& db) {
     return Error{db.path(), 0, 0, "studies", "the database records no protocol (no study was ever started)",
                  ErrorKind::not_found};
   StudyInfo info;
-  const std::int64_t id = st->int64(0);
-  info.protocol_id = st->text(1);
-  info.protocol_text = st->text(2);
-  info.protocol_sha256 = st->text(3);
-  info.order_rows = static_cast<int>(st->int64(4));
-  info.design_sha256 = st->text(5);
+  const std::int64_t id = st->int64("id");
+  info.protocol_id = st->text("protocol_id");
+  info.protocol_text = st->text("protocol_text");
+  info.protocol_sha256 = st->text("protocol_sha256");
+  info.order_rows = static_cast<int>(st->int64("order_rows"));
+  info.design_sha256 = st->text("design_sha256");
   info.software_version = std::string(version_string());
-  auto f = Stmt::prepare(db, "SELECT name FROM study_factors WHERE study_id = ? ORDER BY position", what);
+  auto f = Stmt::prepare(db, "SELECT name AS name FROM study_factors WHERE study_id = :study_id ORDER BY position",
+                         what);
   if (!f) return f.error();
-  f->bind(1, id);
+  f->bind("study_id", id);
   for (;;) {
     auto r = f->step(what);
     if (!r) return r.error();
     if (!*r) break;
-    info.factors.push_back(f->text(0));
+    info.factors.push_back(f->text("name"));
   }
   return std::make_pair(id, std::move(info));
 }
@@ -204,34 +210,36 @@ Result<std::pair<std::int64_t, StudyInfo>> current_study(Db& db) {
 Result<Enrollment> read_enrollment(Db& db, const std::string& participant_id) {
   const char* what = "reading the participant ledger";
   auto st = Stmt::prepare(db,
-                          "SELECT p.enrollment_index, p.order_row, CASE WHEN p.released_at IS NULL THEN 0 ELSE 1 END, "
+                          "SELECT p.enrollment_index AS enrollment_index, p.order_row AS order_row, "
+                          "CASE WHEN p.released_at IS NULL THEN 0 ELSE 1 END AS released, "
                           "CASE WHEN EXISTS (SELECT 1 FROM withdrawals w WHERE w.participant_id = p.id) THEN 1 ELSE 0 END "
-                          "FROM participants p WHERE p.participant = ?",
+                          "AS withdrawn FROM participants p WHERE p.participant = :participant",
                           what);
   if (!st) return st.error();
-  st->bind(1, participant_id);
+  st->bind("participant", participant_id);
   auto row = st->step(what);
   if (!row) return row.error();
   if (!*row)
     return Error{db.path(), 0, 0, "participant", "unknown participant \"" + participant_id + "\"", ErrorKind::not_found};
   Enrollment e;
   e.participant_id = participant_id;
-  e.index = static_cast<int>(st->int64(0));
-  e.order_row = static_cast<int>(st->int64(1));
-  e.released = st->int64(2) != 0;
-  e.withdrawn = st->int64(3) != 0;
+  e.index = static_cast<int>(st->int64("enrollment_index"));
+  e.order_row = static_cast<int>(st->int64("order_row"));
+  e.released = st->int64("released") != 0;
+  e.withdrawn = st->int64("withdrawn") != 0;
   return e;
 }
 
 Error withdrawn_error(Db& db, const std::string& participant_id) {
   std::string when;
   auto st = Stmt::prepare(db,
-                          "SELECT w.withdrawn_at, w.reason FROM withdrawals w JOIN participants p ON "
-                          "p.id = w.participant_id WHERE p.participant = ?",
+                          "SELECT w.withdrawn_at AS withdrawn_at, w.reason AS reason FROM withdrawals w "
+                          "JOIN participants p ON p.id = w.participant_id WHERE p.participant = :participant",
                           "reading the withdrawal");
   if (st) {
-    st->bind(1, participant_id);
-    if (auto row = st->step("reading the withdrawal"); row && *row) when = " at " + st->text(0) + " (" + st->text(1) + ")";
+    st->bind("participant", participant_id);
+    if (auto row = st->step("reading the withdrawal"); row && *row)
+      when = " at " + st->text("withdrawn_at") + " (" + st->text("reason") + ")";
   }
   return Error{db.path(), 0, 0, "participant",
                "participant \"" + participant_id + "\" withdrew their consent" + when +
@@ -343,19 +351,20 @@ Result<Enrollment> Store::Impl::insert_enrollment(const std::string& participant
   const char* what = "assigning an order row";
   auto id = detail::next_id(db, "participants");
   if (!id) return id.error();
-  auto next = db.query_int("SELECT coalesce(max(enrollment_index) + 1, 0) FROM participants", what);
+  auto next = db.query_int("SELECT coalesce(max(enrollment_index) + 1, 0) AS n FROM participants", what);
   if (!next) return next.error();
   // Rule (docs/store.md, invariant 4): fewest active participants, ties to the lowest row.
   std::vector<std::int64_t> fill(static_cast<std::size_t>(study.order_rows), 0);
-  auto f = Stmt::prepare(db, "SELECT order_row, count(*) FROM participants WHERE released_at IS NULL GROUP BY order_row",
+  auto f = Stmt::prepare(db, "SELECT order_row AS order_row, count(*) AS n FROM participants WHERE released_at IS NULL "
+                         "GROUP BY order_row",
                          what);
   if (!f) return f.error();
   for (;;) {
     auto row = f->step(what);
     if (!row) return row.error();
     if (!*row) break;
-    const auto r = f->int64(0);
-    if (r >= 0 && r < study.order_rows) fill[static_cast<std::size_t>(r)] = f->int64(1);
+    const auto r = f->int64("order_row");
+    if (r >= 0 && r < study.order_rows) fill[static_cast<std::size_t>(r)] = f->int64("n");
   }
   const auto row = std::min_element(fill.begin(), fill.end()) - fill.begin();
   // A demographic field nobody had before is a new column of trial_table (and of the export).
@@ -422,15 +431,15 @@ Status Store::release(const std::string& participant_id) {
     if (!e) return e.error();
     if (e->released) return {};  // releasing twice is harmless
     auto q = Stmt::prepare(m.db,
-                           "SELECT s.status, s.id FROM sessions s JOIN participants p ON p.id = s.participant_id "
-                           "WHERE p.participant = ?",
+                           "SELECT s.status AS status, s.id AS id FROM sessions s JOIN participants p "
+                           "ON p.id = s.participant_id WHERE p.participant = :participant",
                            "reading the session");
     if (!q) return q.error();
-    q->bind(1, participant_id);
+    q->bind("participant", participant_id);
     auto has = q->step("reading the session");
     if (!has) return has.error();
-    const std::string status = *has ? q->text(0) : std::string();
-    const std::int64_t session_id = *has ? q->int64(1) : 0;
+    const std::string status = *has ? q->text("status") : std::string();
+    const std::int64_t session_id = *has ? q->int64("id") : 0;
     if (status == "finished")
       return m.invalid("participant",
                        "participant \"" + participant_id + "\" finished their session; a finished session cannot be released",
@@ -444,16 +453,16 @@ Status Store::release(const std::string& participant_id) {
     if (!clock) return clock.error();
     const std::string now = *clock;
     auto up = Stmt::prepare(m.db,
-                            "UPDATE sessions SET status = 'abandoned', ended_at = ?1 WHERE status = 'running' AND "
-                            "participant_id = (SELECT id FROM participants WHERE participant = ?2)",
+                            "UPDATE sessions SET status = 'abandoned', ended_at = :ended_at WHERE status = 'running' "
+                            "AND participant_id = (SELECT id FROM participants WHERE participant = :participant)",
                             "abandoning the session");
     if (!up) return up.error();
-    up->bind(1, now).bind(2, participant_id);
+    up->bind("ended_at", now).bind("participant", participant_id);
     if (auto s = up->run("abandoning the session"); !s) return s;
-    auto rel = Stmt::prepare(m.db, "UPDATE participants SET released_at = ?1 WHERE participant = ?2",
+    auto rel = Stmt::prepare(m.db, "UPDATE participants SET released_at = :released_at WHERE participant = :participant",
                              "releasing the order row");
     if (!rel) return rel.error();
-    rel->bind(1, now).bind(2, participant_id);
+    rel->bind("released_at", now).bind("participant", participant_id);
     return rel->run("releasing the order row");
   });
 }

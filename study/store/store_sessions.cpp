@@ -30,36 +30,37 @@ std::string describe(const Session& s) { return "session " + std::to_string(s.id
 Result<std::optional<Session>> read_session(Db& db, const std::string& participant_id) {
   const char* what = "reading the session";
   auto st = Stmt::prepare(db,
-                          "SELECT s.id, s.status, "
-                          " (SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id), "
+                          "SELECT s.id AS id, s.status AS status, "
+                          " (SELECT count(*) FROM planned_trials p WHERE p.session_id = s.id) AS planned, "
                           " (SELECT count(*) FROM planned_trials p JOIN trial_results r ON r.planned_trial_id = p.id "
-                          "  WHERE p.session_id = s.id) "
-                          "FROM sessions s JOIN participants pa ON pa.id = s.participant_id WHERE pa.participant = ?",
+                          "  WHERE p.session_id = s.id) AS recorded "
+                          "FROM sessions s JOIN participants pa ON pa.id = s.participant_id "
+                          "WHERE pa.participant = :participant",
                           what);
   if (!st) return st.error();
-  st->bind(1, participant_id);
+  st->bind("participant", participant_id);
   auto row = st->step(what);
   if (!row) return row.error();
   if (!*row) return std::optional<Session>{};
   Session s;
-  s.id = st->int64(0);
+  s.id = st->int64("id");
   s.participant_id = participant_id;
-  s.status = parse_status(st->text(1));
-  s.planned = static_cast<int>(st->int64(2));
-  s.recorded = static_cast<int>(st->int64(3));
+  s.status = parse_status(st->text("status"));
+  s.planned = static_cast<int>(st->int64("planned"));
+  s.recorded = static_cast<int>(st->int64("recorded"));
   return std::optional<Session>{s};
 }
 
 // Status of the session with this id; Error if there is none.
 Result<SessionStatus> read_status(Db& db, const Session& s) {
-  auto st = Stmt::prepare(db, "SELECT status FROM sessions WHERE id = ?", "reading the session");
+  auto st = Stmt::prepare(db, "SELECT status AS status FROM sessions WHERE id = :id", "reading the session");
   if (!st) return st.error();
-  st->bind(1, s.id);
+  st->bind("id", s.id);
   auto row = st->step("reading the session");
   if (!row) return row.error();
   if (!*row)
     return Error{db.path(), 0, 0, "session", describe(s) + " does not exist in this database", ErrorKind::not_found};
-  return parse_status(st->text(0));
+  return parse_status(st->text("status"));
 }
 
 // Planned trials of a session in position order; `only_next` limits the
@@ -68,38 +69,40 @@ Result<std::vector<std::pair<std::int64_t, design::PlannedTrial>>> read_planned(
                                                                                 bool only_next) {
   const char* what = "reading the planned trials";
   std::string sql =
-      "SELECT id, position, block, task, trial, seed, method, practice FROM planned_trials p WHERE session_id = ?";
+      "SELECT " + detail::select_list(*detail::find_table("planned_trials"), "p.", kSchemaVersion) +
+      " FROM planned_trials p WHERE p.session_id = :session_id";
   if (only_next) sql += " AND NOT EXISTS (SELECT 1 FROM trial_results r WHERE r.planned_trial_id = p.id)";
-  sql += " ORDER BY position";
+  sql += " ORDER BY p.position";
   if (only_next) sql += " LIMIT 1";
   auto st = Stmt::prepare(db, sql, what);
   if (!st) return st.error();
-  auto lv = Stmt::prepare(db, "SELECT factor, level FROM planned_levels WHERE planned_trial_id = ? ORDER BY factor_position",
+  auto lv = Stmt::prepare(db, "SELECT factor AS factor, level AS level FROM planned_levels "
+                          "WHERE planned_trial_id = :planned_trial_id ORDER BY factor_position",
                           what);
   if (!lv) return lv.error();
-  st->bind(1, session_id);
+  st->bind("session_id", session_id);
   std::vector<std::pair<std::int64_t, design::PlannedTrial>> out;
   for (;;) {
     auto row = st->step(what);
     if (!row) return row.error();
     if (!*row) break;
     design::PlannedTrial t;
-    t.position = static_cast<int>(st->int64(1));
-    t.block = static_cast<int>(st->int64(2));
-    t.task = st->text(3);
-    t.trial = static_cast<int>(st->int64(4));
-    t.seed = parse_seed(st->text(5));
-    t.method = st->text(6);
-    t.practice = st->int64(7) != 0;
-    lv->bind(1, st->int64(0));
+    t.position = static_cast<int>(st->int64("position"));
+    t.block = static_cast<int>(st->int64("block"));
+    t.task = st->text("task");
+    t.trial = static_cast<int>(st->int64("trial"));
+    t.seed = parse_seed(st->text("seed"));
+    t.method = st->text("method");
+    t.practice = st->int64("practice") != 0;
+    lv->bind("planned_trial_id", st->int64("id"));
     for (;;) {
       auto l = lv->step(what);
       if (!l) return l.error();
       if (!*l) break;
-      t.levels.emplace_back(lv->text(0), lv->text(1));
+      t.levels.emplace_back(lv->text("factor"), lv->text("level"));
     }
     lv->reset();
-    out.emplace_back(st->int64(0), std::move(t));
+    out.emplace_back(st->int64("id"), std::move(t));
   }
   return out;
 }
@@ -304,10 +307,12 @@ Result<Session> Store::begin_session(const std::string& participant_id, const de
       if (!now) return now.error();
       auto ins = Stmt::prepare(m.db,
                                "INSERT INTO sessions (id, participant_id, study_id, software_version, status, started_at) "
-                               "SELECT ?, id, ?, ?, 'running', ? FROM participants WHERE participant = ?",
+                               "SELECT :id, id, :study_id, :software_version, 'running', :started_at FROM participants "
+                               "WHERE participant = :participant",
                                "creating the session");
       if (!ins) return ins.error();
-      ins->bind(1, id).bind(2, m.study_id).bind(3, m.study.software_version).bind(4, *now).bind(5, participant_id);
+      ins->bind("id", id).bind("study_id", m.study_id).bind("software_version", m.study.software_version);
+      ins->bind("started_at", *now).bind("participant", participant_id);
       if (auto s = ins->run("creating the session"); !s) return s;
       if (auto s = insert_plan(m.db, id, plan); !s) return s;
       out = Session{id, participant_id, SessionStatus::running, static_cast<int>(plan.trials.size()), 0, false, false};
@@ -384,13 +389,13 @@ Status Store::begin_trial(const Session& session, int position) {
     if (!id) return id.error();
     auto ins = Stmt::prepare(m.db,
                              "INSERT INTO trial_attempts (session_id, position, attempt, started_at, owner) "
-                             "SELECT ?1, ?2, coalesce(max(attempt), 0) + 1, ?3, ?4 FROM trial_attempts "
-                             "WHERE session_id = ?1 AND position = ?2",
+                             "SELECT :session_id, :position, coalesce(max(attempt), 0) + 1, :started_at, :owner "
+                             "FROM trial_attempts WHERE session_id = :session_id AND position = :position",
                              "recording the trial attempt");
     if (!ins) return ins.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
-    ins->bind(1, session.id).bind(2, position).bind(3, *now).bind(4, m.me.owner);
+    ins->bind("session_id", session.id).bind("position", position).bind("started_at", *now).bind("owner", m.me.owner);
     return ins->run("recording the trial attempt");
   });
 }
@@ -438,9 +443,8 @@ Status Store::record_display(const Session& session, const DisplayInfo& d) {
     // Rows are read in recorded_at order (detail::kDisplayOrder): a display recorded in the same
     // millisecond as the session's last one is stamped a millisecond later, so the order read is
     // the order recorded on both engines.
-    auto last = m.db.query_text(
-        "SELECT max(recorded_at) FROM session_displays WHERE session_id = " + std::to_string(session.id),
-        "reading the session's displays");
+    auto last = m.db.query_text("SELECT max(recorded_at) AS n FROM session_displays WHERE session_id = :session_id",
+                                "reading the session's displays", {{"session_id", session.id}});
     if (!last) return last.error();
     if (last->has_value() && **last >= *now)
       if (const auto t = detail::parse_iso8601_utc(**last)) now = detail::iso8601_utc(*t + std::chrono::milliseconds(1));
@@ -460,26 +464,28 @@ Status Store::finish_session(const Session& session) {
       return m.invalid("session", describe(session) + " is " + to_string(*status) + "; only a running session finishes",
                        ErrorKind::conflict);
     auto left = Stmt::prepare(m.db,
-                              "SELECT count(*) FROM planned_trials p WHERE session_id = ? AND NOT EXISTS "
+                              "SELECT count(*) AS n FROM planned_trials p WHERE session_id = :session_id AND NOT EXISTS "
                               "(SELECT 1 FROM trial_results r WHERE r.planned_trial_id = p.id)",
                               "counting the remaining trials");
     if (!left) return left.error();
-    left->bind(1, session.id);
+    left->bind("session_id", session.id);
     if (auto r = left->step("counting the remaining trials"); !r) return r.error();
-    if (const auto n = left->int64(0); n > 0)
+    if (const auto n = left->int64("n"); n > 0)
       return m.invalid("session", describe(session) + " still has " + std::to_string(n) +
                                       " planned trials without a result; record them or release the participant",
                        ErrorKind::conflict);
     left->reset();
-    auto up = Stmt::prepare(m.db, "UPDATE sessions SET status = 'finished', ended_at = ? WHERE id = ?", "finishing");
+    auto up = Stmt::prepare(m.db, "UPDATE sessions SET status = 'finished', ended_at = :ended_at WHERE id = :id",
+                            "finishing");
     if (!up) return up.error();
     auto now = m.db.now_iso();
     if (!now) return now.error();
-    up->bind(1, *now).bind(2, session.id);
+    up->bind("ended_at", *now).bind("id", session.id);
     if (auto s = up->run("finishing"); !s) return s;
-    auto del = Stmt::prepare(m.db, "DELETE FROM session_claims WHERE session_id = ?", "releasing the claim");
+    auto del = Stmt::prepare(m.db, "DELETE FROM session_claims WHERE session_id = :session_id",
+                             "releasing the claim");
     if (!del) return del.error();
-    del->bind(1, session.id);
+    del->bind("session_id", session.id);
     if (auto s = del->run("releasing the claim"); !s) return s;
     m.claimed.erase(session.id);
     return {};
@@ -499,16 +505,17 @@ Status Store::record_questionnaire(const Session& session, const std::vector<Que
     if (*status == SessionStatus::abandoned)
       return m.invalid("session", describe(session) + " is abandoned; it takes no questionnaire answers",
                        ErrorKind::conflict);
-    auto seen = Stmt::prepare(m.db, "SELECT count(*) FROM questionnaire_answers WHERE session_id = ? AND item = ? AND scope = ?",
+    auto seen = Stmt::prepare(m.db, "SELECT count(*) AS n FROM questionnaire_answers WHERE session_id = :session_id AND "
+                              "item = :item AND scope = :scope",
                               "checking the questionnaire");
     if (!seen) return seen.error();
     auto clock = m.db.now_iso();
     if (!clock) return clock.error();
     const std::string now = *clock;
     for (const auto& a : answers) {
-      seen->bind(1, session.id).bind(2, a.item).bind(3, a.scope);
+      seen->bind("session_id", session.id).bind("item", a.item).bind("scope", a.scope);
       if (auto r = seen->step("checking the questionnaire"); !r) return r.error();
-      const auto n = seen->int64(0);
+      const auto n = seen->int64("n");
       seen->reset();
       if (n > 0)
         return m.invalid("questionnaire." + a.item,

@@ -6,7 +6,8 @@
 // view) as the queries of schema_pg.sql read it. Both for a new database and
 // for a schema v1 database upgraded by Store::open, whose v1 rows stay. And
 // the rows bound and read by column name (detail/columns.h) land in and come
-// from the columns they name, read back with the engine's own API.
+// from the columns they name, read back with the engine's own API; and
+// parameters bound by name (detail/db.h) on both engines.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -158,6 +159,49 @@ TEST_P(Schema, RowsAreBoundAndReadByColumnName) {
   EXPECT_NE(v2.find("NULL AS frame_first_ms"), std::string::npos);
   EXPECT_EQ(v2.find("r.frame_first_ms"), std::string::npos);
   EXPECT_NE(v3.find("r.frame_first_ms AS frame_first_ms"), std::string::npos);
+}
+
+// Parameters are bound by name on both engines (PostgreSQL numbers them only; the store names
+// them): in any order, one name used twice gets one value, a `:word` inside a quoted literal stays
+// text, and a name the SQL lacks is an internal Error that runs nothing. query_int reads the
+// column named n, and a query without one is an internal Error, never a wrong column's value.
+TEST_P(Schema, ParametersAreBoundByName) {
+  const auto path = study();
+  { Store s = open_ok(path); }
+  auto conn = detail::open_connection(path, detail::Access::write, 1000);
+  ASSERT_TRUE(conn) << conn.error().to_string();
+  detail::Db db(std::move(*conn));
+  const std::string at = "2024-05-01T12:34:56.789Z";
+  auto ins = detail::Stmt::prepare(db,
+                                   "INSERT INTO notes (id, author, text, written_at) "
+                                   "VALUES (:id, :who, :who || ' said :id', :at)",
+                                   "test");
+  ASSERT_TRUE(ins) << ins.error().to_string();
+  ins->bind("at", at).bind("who", "RA").bind("id", 7);
+  ASSERT_TRUE(ins->run("test"));
+  RawDb raw(path);
+  EXPECT_EQ(raw.rows("SELECT id, author, text, written_at FROM notes"),
+            (std::vector<std::vector<std::string>>{{"7", "RA", "RA said :id", at}}));
+
+  ins->bind("at", at).bind("who", "RA").bind("id", 8).bind("txet", "typo");
+  auto bad = ins->run("test");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().kind, ErrorKind::internal);
+  EXPECT_EQ(bad.error().field, "txet");
+  EXPECT_EQ(raw.count("SELECT count(*) FROM notes"), 1);
+
+  auto n = db.query_int("SELECT count(*) AS n FROM notes WHERE author = :author AND id >= :id", "test",
+                        {{"id", detail::Value{std::int64_t{7}}}, {"author", detail::Value{std::string("RA")}}});
+  ASSERT_TRUE(n) << n.error().to_string();
+  EXPECT_EQ(*n, std::optional<std::int64_t>(1));
+  auto unnamed = db.query_int("SELECT count(*) FROM notes", "test");
+  ASSERT_FALSE(unnamed);
+  EXPECT_EQ(unnamed.error().kind, ErrorKind::internal);
+  if (pg()) {  // a cast's :: is no parameter
+    auto cast = db.query_text("SELECT (:v)::text || '::x' AS n", "test", {{"v", detail::Value{std::int64_t{5}}}});
+    ASSERT_TRUE(cast) << cast.error().to_string();
+    EXPECT_EQ(*cast, std::optional<std::string>("5::x"));
+  }
 }
 
 }  // namespace

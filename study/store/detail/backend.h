@@ -3,8 +3,10 @@
 // A Connection runs SQL, transactions and the few things the engines do
 // differently (looking at a database before touching it, marking it as a
 // dtlab study, bulk inserts, the clock claims are judged by); a Statement
-// binds parameters and reads rows. The store's SQL is written once, with `?`
-// or `?N` placeholders, in the dialect both engines accept. Every failure is
+// binds parameters and reads rows. The store's SQL is written once, with
+// named `:name` parameters, in the dialect both engines accept; the store's
+// code binds and reads only by name (db.h's Stmt), the numbered calls below
+// being the engines' own API that Stmt maps names onto. Every failure is
 // a dtlab::Error naming the database (a file, or a URI without its password)
 // and its kind; nothing here aborts or leaves a transaction open.
 #pragma once
@@ -43,7 +45,16 @@ enum class Access { create, write, read };
 class Statement {
  public:
   virtual ~Statement() = default;
-  // Parameters are 1-based; columns 0-based. Binds stay until reset().
+  // The engines' numbered API (parameters 1-based, columns 0-based), reached by name through
+  // parameter_index() and column_index(). Binds stay until reset().
+  // The number of the parameter written `:name` in the SQL (`name` without the colon); 0 if none.
+  virtual int parameter_index(std::string_view name) const = 0;
+  // The number of the result column named `name` (the first of that name); -1 if none.
+  int column_index(std::string_view name) const {
+    for (int c = 0; c < columns(); ++c)
+      if (column_name(c) == name) return c;
+    return -1;
+  }
   virtual void bind_int(int i, std::int64_t v) = 0;
   virtual void bind_real(int i, double v) = 0;
   virtual void bind_text(int i, std::string_view v) = 0;
@@ -98,8 +109,9 @@ class Connection {
   // The clock timestamps are written with: the machine's for SQLite, the server's for PostgreSQL
   // (stations' clocks differ; a session claim must be judged by one clock).
   virtual Result<std::chrono::system_clock::time_point> now() = 0;
-  // Inserts rows into `table` (SQLite: one prepared INSERT; PostgreSQL: one COPY). Each row has
-  // one Value per column, in `columns` order. Constraints and triggers apply as to any INSERT.
+  // Inserts rows into `table` (SQLite: one prepared INSERT, its parameters named after the
+  // columns; PostgreSQL: one COPY, whose text format is by column order, the list given with it).
+  // Each row has one Value per column, in `columns` order. Constraints and triggers apply as to any INSERT.
   virtual Status insert_rows(const std::string& table, const std::vector<std::string>& columns,
                              const std::vector<std::vector<Value>>& rows, std::string_view what) = 0;
 

@@ -1,6 +1,7 @@
-// RowInsert and NamedColumns (columns.h): the INSERT text and the column
-// index both come from names -- the table's description, the statement's
-// column names -- so no placeholder or column number is written by hand.
+// RowInsert and NamedColumns (columns.h): the INSERT's column list and its
+// `:column` parameters come from the table's description, and a result row
+// is read through Stmt's names, so no placeholder or column number is
+// written by hand.
 // Never binds a cell to a column it was not set for.
 #include "study/store/detail/columns.h"
 
@@ -50,11 +51,11 @@ Status RowInsert::run(Db& db, std::string_view what) const {
   std::string columns, values;
   for (std::size_t c = 0; c < table_->columns.size(); ++c) {
     columns += (c ? ", " : "") + table_->columns[c].name;
-    values += (c ? ", ?" : "?") + std::to_string(c + 1);
+    values += (c ? ", :" : ":") + table_->columns[c].name;
   }
   auto st = Stmt::prepare(db, "INSERT INTO " + name_ + " (" + columns + ") VALUES (" + values + ")", what);
   if (!st) return st.error();
-  for (std::size_t c = 0; c < cells_.size(); ++c) st->bind(static_cast<int>(c + 1), cells_[c]);
+  for (std::size_t c = 0; c < cells_.size(); ++c) st->bind(table_->columns[c].name, cells_[c]);
   return st->run(what);
 }
 
@@ -74,34 +75,10 @@ Status insert_all(Db& db, const std::vector<RowInsert>& rows, std::string_view w
   return db.conn().insert_rows(rows.front().table()->name, names, cells, what);
 }
 
-NamedColumns::NamedColumns(const Stmt& st) {
-  for (int c = 0; c < st.columns(); ++c) index_.emplace(st.column_name(c), c);
-}
-
-int NamedColumns::at(std::string_view name) const {
-  const auto it = index_.find(name);
-  return it == index_.end() ? -1 : it->second;
-}
-
-bool NamedColumns::is_null(const Stmt& st, std::string_view name) const {
-  const int c = at(name);
-  return c < 0 || st.is_null(c);
-}
-
-std::int64_t NamedColumns::int64(const Stmt& st, std::string_view name) const {
-  const int c = at(name);
-  return c < 0 ? 0 : st.int64(c);
-}
-
-double NamedColumns::real(const Stmt& st, std::string_view name) const {
-  const int c = at(name);
-  return c < 0 ? 0.0 : st.real(c);
-}
-
-std::string NamedColumns::text(const Stmt& st, std::string_view name) const {
-  const int c = at(name);
-  return c < 0 ? std::string() : st.text(c);
-}
+bool NamedColumns::is_null(const Stmt& st, std::string_view name) const { return st.is_null(name); }
+std::int64_t NamedColumns::int64(const Stmt& st, std::string_view name) const { return st.int64(name); }
+double NamedColumns::real(const Stmt& st, std::string_view name) const { return st.real(name); }
+std::string NamedColumns::text(const Stmt& st, std::string_view name) const { return st.text(name); }
 
 std::optional<std::int64_t> NamedColumns::opt_int(const Stmt& st, std::string_view name) const {
   if (is_null(st, name)) return std::nullopt;

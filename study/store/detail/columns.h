@@ -1,13 +1,12 @@
 // Rows bound and read by column name, against the one column list of each
 // table (schema_tables.h): a RowInsert names its cells, and its INSERT lists
-// the described table's columns with generated placeholders; NamedColumns
+// the described table's columns with `:column` parameters; NamedColumns
 // reads a result row by the names its SELECT gave. No parameter or column
 // number is written by hand. A name the description lacks is an Error (kind
 // internal) when the row is written, never a cell bound to the wrong column;
 // a name the query lacks reads as NULL (never a crash).
 #pragma once
 #include <cstdint>
-#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -63,11 +62,11 @@ class RowInsert {
 // Error (internal) if a row names a column the table lacks, or rows of two tables are mixed.
 Status insert_all(Db& db, const std::vector<RowInsert>& rows, std::string_view what);
 
-// The columns of a result row by name (built once per query from the statement's column names).
+// The columns of a result row by name (Stmt's own names, kept for the callers of by_name).
 class NamedColumns {
  public:
-  explicit NamedColumns(const Stmt& st);
-  bool has(std::string_view name) const { return index_.find(name) != index_.end(); }
+  explicit NamedColumns(const Stmt& st) : st_(&st) {}
+  bool has(std::string_view name) const { return st_->has(name); }
   bool is_null(const Stmt& st, std::string_view name) const;  // true too for a name the query lacks
   std::int64_t int64(const Stmt& st, std::string_view name) const;
   double real(const Stmt& st, std::string_view name) const;
@@ -78,8 +77,7 @@ class NamedColumns {
   std::optional<int> opt_int32(const Stmt& st, std::string_view name) const;  // a position, a count
 
  private:
-  int at(std::string_view name) const;  // -1 if the query has no such column
-  std::map<std::string, int, std::less<>> index_;
+  const Stmt* st_;
 };
 
 // A row callback for each_row (reader_impl.h) that reads by name: calls f(columns, statement), the

@@ -36,25 +36,30 @@ Result<std::unique_ptr<Connection>> open_connection(const std::string& where, Ac
 
 namespace {
 
-// The first column of the first row, read by `get`; nullopt if there is no row or it is NULL.
+// The column `n` of the first row, read by `get`; nullopt if there is no row or it is NULL; an
+// internal Error if the query names no column `n`.
 template <class T, class Get>
-Result<std::optional<T>> query_one(const Db& db, const std::string& sql, std::string_view what, Get get) {
+Result<std::optional<T>> query_one(const Db& db, const std::string& sql, std::string_view what, const Db::Binds& binds,
+                                   Get get) {
   auto st = Stmt::prepare(db, sql, what);
   if (!st) return st.error();
+  for (const auto& [name, value] : binds) st->bind(name, value);
   auto row = st->step(what);
   if (!row) return row.error();
-  if (!*row || st->is_null(0)) return std::optional<T>{};
+  if (*row && !st->has("n"))
+    return Error{db.path(), 0, 0, "", std::string(what) + ": the query names no column n: " + sql, ErrorKind::internal};
+  if (!*row || st->is_null("n")) return std::optional<T>{};
   return std::optional<T>{get(*st)};
 }
 
 }  // namespace
 
-Result<std::optional<std::int64_t>> Db::query_int(const std::string& sql, std::string_view what) {
-  return query_one<std::int64_t>(*this, sql, what, [](const Stmt& st) { return st.int64(0); });
+Result<std::optional<std::int64_t>> Db::query_int(const std::string& sql, std::string_view what, const Binds& binds) {
+  return query_one<std::int64_t>(*this, sql, what, binds, [](const Stmt& st) { return st.int64("n"); });
 }
 
-Result<std::optional<std::string>> Db::query_text(const std::string& sql, std::string_view what) {
-  return query_one<std::string>(*this, sql, what, [](const Stmt& st) { return st.text(0); });
+Result<std::optional<std::string>> Db::query_text(const std::string& sql, std::string_view what, const Binds& binds) {
+  return query_one<std::string>(*this, sql, what, binds, [](const Stmt& st) { return st.text("n"); });
 }
 
 Result<std::string> Db::now_iso() {
@@ -64,7 +69,7 @@ Result<std::string> Db::now_iso() {
 }
 
 Result<std::int64_t> next_id(Db& db, const char* table) {
-  auto id = db.query_int(std::string("SELECT coalesce(max(id), 0) + 1 FROM ") + table, "assigning an id");
+  auto id = db.query_int(std::string("SELECT coalesce(max(id), 0) + 1 AS n FROM ") + table, "assigning an id");
   if (!id) return id.error();
   return id->value_or(1);
 }
@@ -72,14 +77,47 @@ Result<std::int64_t> next_id(Db& db, const char* table) {
 Result<Stmt> Stmt::prepare(const Db& db, std::string_view sql, std::string_view what) {
   auto st = db.conn().prepare(sql, what);
   if (!st) return st.error();
-  return Stmt(std::move(*st));
+  return Stmt(std::move(*st), db.path());
 }
 
-Stmt& Stmt::bind(int i, const Value& v) {
-  if (const auto* n = std::get_if<std::int64_t>(&v)) return bind(i, *n);
-  if (const auto* d = std::get_if<double>(&v)) return bind(i, *d);
-  if (const auto* s = std::get_if<std::string>(&v)) return bind(i, *s);
-  return bind_null(i);
+int Stmt::parameter(std::string_view name) {
+  const int i = st_->parameter_index(name);
+  if (i == 0 && unbound_.empty()) unbound_ = std::string(name);
+  return i;
+}
+
+Stmt& Stmt::bind(std::string_view name, std::int64_t v) {
+  if (const int i = parameter(name)) st_->bind_int(i, v);
+  return *this;
+}
+
+Stmt& Stmt::bind(std::string_view name, double v) {
+  if (const int i = parameter(name)) st_->bind_real(i, v);
+  return *this;
+}
+
+Stmt& Stmt::bind(std::string_view name, std::string_view v) {
+  if (const int i = parameter(name)) st_->bind_text(i, v);
+  return *this;
+}
+
+Stmt& Stmt::bind_null(std::string_view name) {
+  if (const int i = parameter(name)) st_->bind_null(i);
+  return *this;
+}
+
+Stmt& Stmt::bind(std::string_view name, const Value& v) {
+  if (const auto* n = std::get_if<std::int64_t>(&v)) return bind(name, *n);
+  if (const auto* d = std::get_if<double>(&v)) return bind(name, *d);
+  if (const auto* s = std::get_if<std::string>(&v)) return bind(name, *s);
+  return bind_null(name);
+}
+
+Result<bool> Stmt::step(std::string_view what) {
+  if (!unbound_.empty())
+    return Error{db_, 0, 0, unbound_, std::string(what) + ": the statement has no parameter :" + unbound_,
+                 ErrorKind::internal};
+  return st_->step(what);
 }
 
 Status Stmt::run(std::string_view what) {
@@ -93,6 +131,56 @@ Status Stmt::run(std::string_view what) {
   }
   reset();
   return {};
+}
+
+void Stmt::reset() {
+  st_->reset();
+  unbound_.clear();
+}
+
+int Stmt::at(std::string_view column) const {
+  if (columns_.empty())
+    for (int c = 0; c < st_->columns(); ++c) columns_.emplace(st_->column_name(c), c);
+  const auto it = columns_.find(column);
+  return it == columns_.end() ? -1 : it->second;
+}
+
+bool Stmt::is_null(std::string_view column) const {
+  const int c = at(column);
+  return c < 0 || st_->is_null(c);
+}
+
+std::int64_t Stmt::int64(std::string_view column) const {
+  const int c = at(column);
+  return c < 0 ? 0 : st_->int64(c);
+}
+
+double Stmt::real(std::string_view column) const {
+  const int c = at(column);
+  return c < 0 ? 0.0 : st_->real(c);
+}
+
+std::string Stmt::text(std::string_view column) const {
+  const int c = at(column);
+  return c < 0 ? std::string() : st_->text(c);
+}
+
+Value Stmt::value(std::string_view column) const {
+  const int c = at(column);
+  return c < 0 ? Value{} : st_->value(c);
+}
+
+std::vector<std::string> Stmt::column_names() const {
+  std::vector<std::string> out;
+  for (int c = 0; c < st_->columns(); ++c) out.push_back(st_->column_name(c));
+  return out;
+}
+
+std::vector<Value> Stmt::cells() const {
+  std::vector<Value> out;
+  out.reserve(static_cast<std::size_t>(st_->columns()));
+  for (int c = 0; c < st_->columns(); ++c) out.push_back(st_->value(c));
+  return out;
 }
 
 Status Transaction::begin(std::string_view what) {

@@ -17,6 +17,7 @@
 #include <map>
 #include <tuple>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/merge.h"
 #include "study/store/detail/schema.h"
 
@@ -31,28 +32,27 @@ namespace {
 
 Result<std::vector<StudyRow>> read_studies(Db& db, bool v2, const CopyOptions& options) {
   std::vector<StudyRow> out;
-  Status st = each_row(db, "SELECT id, protocol_id, protocol_text, protocol_sha256, software_version, order_rows, "
-                           "created_at FROM studies ORDER BY id",
-                       {}, [&](Row& r) -> Status {
+  Status st = each_row(db, "SELECT " + columns_of("studies", "") + " FROM studies ORDER BY id", {},
+                       [&](Row& r) -> Status {
                          out.push_back(StudyRow{std::move(r), {}, ""});
                          return {};
                        });
   if (!st) return st.error();
   for (StudyRow& s : out) {
-    st = each_row(db, "SELECT name FROM study_factors WHERE study_id = ? ORDER BY position", {s.id()}, [&](Row& r) -> Status {
-      s.factors.push_back(text(r[0]));
-      return {};
-    });
+    st = each_row(db, "SELECT name AS name FROM study_factors WHERE study_id = :study_id ORDER BY position",
+                  {{"study_id", s.id()}}, [&](Row& r) -> Status {
+                    s.factors.push_back(text(r["name"]));
+                    return {};
+                  });
     if (!st) return st.error();
     if (v2) {
-      auto d = Stmt::prepare(db, "SELECT design_sha256 FROM study_designs WHERE study_id = ?", "reading the designs");
+      auto d = db.query_text("SELECT design_sha256 AS n FROM study_designs WHERE study_id = :study_id",
+                             "reading the designs", {{"study_id", s.id()}});
       if (!d) return d.error();
-      d->bind(1, s.id());
-      auto has = d->step("reading the designs");
-      if (!has) return has.error();
-      if (*has) s.design = d->text(0);
+      if (*d) s.design = **d;
     }
-    if (s.design.empty() && options.design_hash_of) s.design = options.design_hash_of(text(s.row[2])).value_or("");
+    if (s.design.empty() && options.design_hash_of)
+      s.design = options.design_hash_of(text(s.row["protocol_text"])).value_or("");
   }
   return out;
 }
@@ -60,14 +60,14 @@ Result<std::vector<StudyRow>> read_studies(Db& db, bool v2, const CopyOptions& o
 Result<std::vector<Person>> read_ledger(Db& db) {
   std::vector<Person> out;
   Status st = each_row(db,
-                       "SELECT p.id, p.participant, p.enrollment_index, p.order_row, p.study_id, p.demographics, "
-                       "p.enrolled_at, p.released_at, s.id FROM participants p LEFT JOIN sessions s ON "
-                       "s.participant_id = p.id ORDER BY p.enrollment_index",
+                       "SELECT " + columns_of("participants", "p") + ", s.id AS session_of_participant "
+                       "FROM participants p LEFT JOIN sessions s ON s.participant_id = p.id "
+                       "ORDER BY p.enrollment_index",
                        {}, [&](Row& r) -> Status {
                          Person p;
-                         if (!std::holds_alternative<std::monostate>(r[8])) p.session = num(r[8]);
-                         r.pop_back();
-                         p.row = std::move(r);
+                         if (!std::holds_alternative<std::monostate>(r["session_of_participant"]))
+                           p.session = num(r["session_of_participant"]);
+                         p.row = r.without("session_of_participant");
                          out.push_back(std::move(p));
                          return {};
                        });
@@ -78,15 +78,7 @@ Result<std::vector<Person>> read_ledger(Db& db) {
 }  // namespace
 
 std::string columns_of(const char* table, const std::string& alias, int version) {
-  for (const TableSpec& t : copied_tables())
-    if (std::string(t.name) == table) return t.select_list(version, alias);
-  return "";
-}
-const std::vector<std::string>& spec_columns(const char* table) {
-  for (const TableSpec& t : copied_tables())
-    if (std::string(t.name) == table) return t.columns;
-  static const std::vector<std::string> none;
-  return none;
+  return copied_table(table).select_list(version, alias);
 }
 
 namespace {
@@ -98,30 +90,34 @@ struct SessionQueries {
 };
 SessionQueries session_queries(int version) {
   return {
-      "SELECT " + columns_of("sessions", "s") + " FROM sessions s WHERE s.id = ?",
-      "SELECT " + columns_of("planned_trials", "p") + " FROM planned_trials p WHERE p.session_id = ? ORDER BY p.position",
+      "SELECT " + columns_of("sessions", "s") + " FROM sessions s WHERE s.id = :session",
+      "SELECT " + columns_of("planned_trials", "p") +
+          " FROM planned_trials p WHERE p.session_id = :session ORDER BY p.position",
       "SELECT " + columns_of("planned_levels", "l") +
-          " FROM planned_levels l JOIN planned_trials p ON p.id = l.planned_trial_id WHERE p.session_id = ? "
+          " FROM planned_levels l JOIN planned_trials p ON p.id = l.planned_trial_id WHERE p.session_id = :session "
           "ORDER BY p.position, l.factor_position",
       "SELECT " + columns_of("trial_results", "r", version) +
-          " FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id WHERE p.session_id = ? "
+          " FROM trial_results r JOIN planned_trials p ON p.id = r.planned_trial_id WHERE p.session_id = :session "
           "ORDER BY p.position",
       "SELECT " + columns_of("input_events", "e") +
-          " FROM input_events e JOIN planned_trials p ON p.id = e.trial_id WHERE p.session_id = ? ORDER BY p.position, e.seq",
+          " FROM input_events e JOIN planned_trials p ON p.id = e.trial_id WHERE p.session_id = :session "
+          "ORDER BY p.position, e.seq",
       "SELECT " + columns_of("camera_poses", "c") +
-          " FROM camera_poses c JOIN planned_trials p ON p.id = c.trial_id WHERE p.session_id = ? "
+          " FROM camera_poses c JOIN planned_trials p ON p.id = c.trial_id WHERE p.session_id = :session "
           "ORDER BY p.position, c.frame",
       "SELECT " + columns_of("session_resumes", "x") +
-          " FROM session_resumes x WHERE x.session_id = ? ORDER BY x.resumed_at, x.next_position IS NULL, x.next_position",
+          " FROM session_resumes x WHERE x.session_id = :session "
+          "ORDER BY x.resumed_at, x.next_position IS NULL, x.next_position",
       "SELECT " + columns_of("questionnaire_answers", "q") +
-          " FROM questionnaire_answers q WHERE q.session_id = ? ORDER BY q.item, q.scope",
+          " FROM questionnaire_answers q WHERE q.session_id = :session ORDER BY q.item, q.scope",
       "SELECT " + columns_of("session_pauses", "x") +
-          " FROM session_pauses x WHERE x.session_id = ? ORDER BY x.paused_at, x.resumed_at",
+          " FROM session_pauses x WHERE x.session_id = :session ORDER BY x.paused_at, x.resumed_at",
       "SELECT " + columns_of("trial_attempts", "a") +
-          " FROM trial_attempts a WHERE a.session_id = ? ORDER BY a.position, a.attempt",
-      "SELECT " + columns_of("session_displays", "x") + " FROM session_displays x WHERE x.session_id = ? ORDER BY " +
+          " FROM trial_attempts a WHERE a.session_id = :session ORDER BY a.position, a.attempt",
+      "SELECT " + columns_of("session_displays", "x") +
+          " FROM session_displays x WHERE x.session_id = :session ORDER BY " +
           kDisplayOrder,
-      "SELECT " + columns_of("screens", "x") + " FROM screens x WHERE x.session_id = ? ORDER BY x.seq",
+      "SELECT " + columns_of("screens", "x") + " FROM screens x WHERE x.session_id = :session ORDER BY x.seq",
   };
 }
 
@@ -137,47 +133,50 @@ Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, in
   std::vector<std::string> out;
   std::map<std::int64_t, std::int64_t> position;  // planned trial id -> position
   const SessionQueries q = session_queries(version);
-  auto add = [&](const std::string& sql, const char* tag, int id_column, bool by_trial) -> Status {
-    return each_row(db, sql, {session}, [&](Row& r) -> Status {
-      if (by_trial) r[static_cast<std::size_t>(id_column)] = position[num(r[static_cast<std::size_t>(id_column)])];
-      else if (id_column >= 0) r[static_cast<std::size_t>(id_column)] = std::int64_t{0};
+  // A row of a trial's table (`id_column` its planned trial) or of the session's (its session).
+  auto add = [&](const std::string& sql, const char* tag, const char* id_column, bool by_trial) -> Status {
+    return each_row(db, sql, {{"session", session}}, [&](Row& r) -> Status {
+      if (by_trial) r[id_column] = position[num(r[id_column])];
+      else r[id_column] = std::int64_t{0};
       out.push_back(tag + canonical(r));
       return {};
     });
   };
-  Status st = each_row(db, q.session, {session}, [&](Row& r) -> Status {
-    r[0] = r[1] = std::int64_t{0};
-    if (!withdrawn_at.empty() && text(r[4]) == "abandoned" && text(r[6]) == withdrawn_at) {
-      r[4] = std::string("running");
-      r[6] = std::monostate{};
+  Status st = each_row(db, q.session, {{"session", session}}, [&](Row& r) -> Status {
+    r["id"] = r["participant_id"] = std::int64_t{0};
+    if (!withdrawn_at.empty() && text(r["status"]) == "abandoned" && text(r["ended_at"]) == withdrawn_at) {
+      r["status"] = std::string("running");
+      r["ended_at"] = std::monostate{};
     }
-    r[2] = sha.count(num(r[2])) ? sha.at(num(r[2])) : std::string("?");
+    const std::int64_t study = num(r["study_id"]);
+    r["study_id"] = sha.count(study) ? sha.at(study) : std::string("?");
     out.push_back("S" + canonical(r));
     return {};
   });
   if (!st) return st.error();
-  st = each_row(db, q.planned, {session}, [&](Row& r) -> Status {
-    position[num(r[0])] = num(r[2]);
-    r[0] = r[1] = std::int64_t{0};
+  st = each_row(db, q.planned, {{"session", session}}, [&](Row& r) -> Status {
+    position[num(r["id"])] = num(r["position"]);
+    r["id"] = r["session_id"] = std::int64_t{0};
     out.push_back("P" + canonical(r));
     return {};
   });
   if (!st) return st.error();
   const std::size_t before = out.size();
   for (const auto& [sql, tag, column, by_trial] :
-       std::vector<std::tuple<std::string, const char*, int, bool>>{{q.levels, "L", 0, true},
-                                                                    {q.results, "R", 0, true},
-                                                                    {q.events, "E", 0, true},
-                                                                    {q.poses, "C", 0, true},
-                                                                    {q.resumes, "X", 0, false},
-                                                                    {q.answers, "Q", 0, false}}) {
+       std::vector<std::tuple<std::string, const char*, const char*, bool>>{
+           {q.levels, "L", "planned_trial_id", true},
+           {q.results, "R", "planned_trial_id", true},
+           {q.events, "E", "trial_id", true},
+           {q.poses, "C", "trial_id", true},
+           {q.resumes, "X", "session_id", false},
+           {q.answers, "Q", "session_id", false}}) {
     if (auto s = add(sql, tag, column, by_trial); !s) return s.error();
   }
   if (version >= 2)
     for (const auto& [sql, tag] : std::vector<std::pair<std::string, const char*>>{{q.pauses, "U"}, {q.attempts, "A"}})
-      if (auto s = add(sql, tag, 0, false); !s) return s.error();
+      if (auto s = add(sql, tag, "session_id", false); !s) return s.error();
   if (version >= 3)
-    if (auto s = add(q.displays, "D", 0, false); !s) return s.error();
+    if (auto s = add(q.displays, "D", "session_id", false); !s) return s.error();
   *recorded = static_cast<int>(std::count_if(out.begin() + static_cast<std::ptrdiff_t>(before), out.end(),
                                              [](const std::string& s) { return s[0] == 'R'; }));
   return out;
@@ -186,10 +185,10 @@ Result<std::vector<std::string>> session_record(Db& db, std::int64_t session, in
 // The decisions (or notes) about one participant (nullopt: about the study), without ids.
 Result<std::vector<Row>> decisions_about(Db& db, const char* table, std::optional<std::int64_t> participant) {
   std::vector<Row> out;
-  const std::string where = participant ? "participant_id = ?" : "participant_id IS NULL";
+  const std::string where = participant ? "participant_id = :participant_id" : "participant_id IS NULL";
   const std::string sql = "SELECT " + columns_of(table, std::string(table)) + " FROM " + table + " WHERE " + where +
                           " ORDER BY id";
-  Status st = each_row(db, sql, participant ? Row{*participant} : Row{}, [&](Row& r) -> Status {
+  Status st = each_row(db, sql, participant ? Binds{{"participant_id", *participant}} : Binds{}, [&](Row& r) -> Status {
     out.push_back(std::move(r));
     return {};
   });
@@ -301,18 +300,18 @@ Status Merger::plan_present(const Person& p, const Person& q) {
   // withdrawal on one side only is a decision that side adds, not another enrollment.
   const std::string src_withdrawn = plan.src.withdrawn_at(), dst_withdrawn = plan.dst.withdrawn_at();
   Row a = p.row, b = q.row;
-  if (!src_withdrawn.empty() && text(a[7]) == src_withdrawn) a[7] = std::monostate{};
-  if (!dst_withdrawn.empty() && text(b[7]) == dst_withdrawn) b[7] = std::monostate{};
-  a[0] = b[0] = std::int64_t{0};
-  a[4] = src_sha_[num(a[4])];
-  b[4] = dst_sha_[num(b[4])];
-  if (!p.session) a[2] = b[2] = a[3] = b[3] = std::int64_t{0};
+  if (!src_withdrawn.empty() && text(a["released_at"]) == src_withdrawn) a["released_at"] = std::monostate{};
+  if (!dst_withdrawn.empty() && text(b["released_at"]) == dst_withdrawn) b["released_at"] = std::monostate{};
+  a["id"] = b["id"] = std::int64_t{0};
+  a["study_id"] = src_sha_[num(a["study_id"])];
+  b["study_id"] = dst_sha_[num(b["study_id"])];
+  if (!p.session) a["enrollment_index"] = b["enrollment_index"] = a["order_row"] = b["order_row"] = std::int64_t{0};
   if (a != b)
     return refuse(dst_, "participants",
                   who + " is in both with different enrollments (SRC: slot " + std::to_string(p.index()) + ", row " +
-                      std::to_string(p.order_row()) + ", enrolled " + text(p.row[6]) +
+                      std::to_string(p.order_row()) + ", enrolled " + text(p.row["enrolled_at"]) +
                       (p.released() ? ", released" : "") + "; DST: slot " + std::to_string(q.index()) + ", row " +
-                      std::to_string(q.order_row()) + ", enrolled " + text(q.row[6]) +
+                      std::to_string(q.order_row()) + ", enrolled " + text(q.row["enrolled_at"]) +
                       (q.released() ? ", released" : "") + ")");
   if (p.session && q.session) {
     int in_src = 0, in_dst = 0;
@@ -383,13 +382,19 @@ Status Merger::append_revisions() {
     auto id = next("studies");
     if (!id) return id.error();
     Row row = r.row;
-    row[0] = *id;
-    std::vector<Row> factors;
+    row["id"] = *id;
+    if (auto s = insert_named(dst_, "studies", {row}, "adding a protocol revision"); !s) return s;
+    std::vector<RowInsert> factors;
     for (std::size_t i = 0; i < r.factors.size(); ++i)
-      factors.push_back({*id, static_cast<std::int64_t>(i + 1), r.factors[i]});
-    for (const auto& [table, rows] : std::vector<std::pair<const char*, std::vector<Row>>>{
-             {"studies", {row}}, {"study_factors", factors}, {"study_designs", {{*id, r.design}}}})
-      if (auto s = dst_.conn().insert_rows(table, spec_columns(table), rows, "adding a protocol revision"); !s) return s;
+      factors.push_back(std::move(RowInsert("study_factors")
+                                      .set("study_id", *id)
+                                      .set("position", static_cast<std::int64_t>(i + 1))
+                                      .set("name", r.factors[i])));
+    if (auto s = insert_all(dst_, factors, "adding a protocol revision"); !s) return s;
+    if (auto s = insert_all(dst_, {RowInsert("study_designs").set("study_id", *id).set("design_sha256", r.design)},
+                            "adding a protocol revision");
+        !s)
+      return s;
     study_[r.id()] = *id;
     ++sum_.revisions;
     sum_.changes.push_back("protocol text " + r.sha().substr(0, 12) + " added as a revision of DST's design (DST's "
@@ -406,12 +411,11 @@ Status Merger::write_participants() {
       auto id = next("participants");
       if (!id) return id.error();
       Row row = p.person->row;
-      row[0] = *id;
-      row[2] = p.index;
-      row[3] = p.order_row;
-      row[4] = study_.at(num(row[4]));
-      if (auto s = dst_.conn().insert_rows("participants", spec_columns("participants"), {row}, "adding a participant"); !s)
-        return s;
+      row["id"] = *id;
+      row["enrollment_index"] = p.index;
+      row["order_row"] = p.order_row;
+      row["study_id"] = study_.at(num(row["study_id"]));
+      if (auto s = insert_named(dst_, "participants", {row}, "adding a participant"); !s) return s;
       dst_pid = *id;
       ++sum_.participants;
     }
@@ -430,11 +434,11 @@ Status Merger::import_session(std::int64_t src_session, std::int64_t dst_partici
   const SessionQueries q = session_queries(src_version_);
   auto session = next("sessions");
   if (!session) return session.error();
-  std::optional<Row> final_state;
+  std::optional<Row> final_state;  // the session's status and ended_at, set after its results
   std::map<std::int64_t, std::int64_t> trial;  // SRC planned trial id -> DST
   auto copy = [&](const std::string& sql, const char* table, auto&& map) -> Status {
-    RowSink sink(dst_, table, spec_columns(table));
-    Status st = each_row(src_, sql, {src_session}, [&](Row& r) -> Status {
+    RowSink sink(dst_, table);
+    Status st = each_row(src_, sql, {{"session", src_session}}, [&](Row& r) -> Status {
       if (auto s = map(r); !s) return s;
       return sink.add(std::move(r));
     });
@@ -445,21 +449,23 @@ Status Merger::import_session(std::int64_t src_session, std::int64_t dst_partici
     return {};
   };
   auto by_session = [&](Row& r) -> Status {
-    r[0] = *session;
+    r["session_id"] = *session;
     return {};
   };
-  auto by_trial = [&](Row& r) -> Status {
-    r[0] = trial.at(num(r[0]));
-    return {};
+  auto by_trial = [&](const char* column) {
+    return [&trial, column](Row& r) -> Status {
+      r[column] = trial.at(num(r[column]));
+      return {};
+    };
   };
   Status st = copy(q.session, "sessions", [&](Row& r) -> Status {
-    r[0] = *session;
-    r[1] = dst_participant;
-    r[2] = study_.at(num(r[2]));
-    if (text(r[4]) != "running") {
-      final_state = Row{r[4], r[6]};
-      r[4] = std::string("running");
-      r[6] = std::monostate{};
+    r["id"] = *session;
+    r["participant_id"] = dst_participant;
+    r["study_id"] = study_.at(num(r["study_id"]));
+    if (text(r["status"]) != "running") {
+      final_state = r;
+      r["status"] = std::string("running");
+      r["ended_at"] = std::monostate{};
     }
     return {};
   });
@@ -467,15 +473,18 @@ Status Merger::import_session(std::int64_t src_session, std::int64_t dst_partici
   st = copy(q.planned, "planned_trials", [&](Row& r) -> Status {
     auto id = next("planned_trials");
     if (!id) return id.error();
-    trial[num(r[0])] = *id;
-    r[0] = *id;
-    r[1] = *session;
+    trial[num(r["id"])] = *id;
+    r["id"] = *id;
+    r["session_id"] = *session;
     return {};
   });
   if (!st) return st;
-  for (const auto& [sql, table] : std::vector<std::pair<std::string, const char*>>{
-           {q.levels, "planned_levels"}, {q.results, "trial_results"}, {q.events, "input_events"}, {q.poses, "camera_poses"}})
-    if (auto s = copy(sql, table, by_trial); !s) return s;
+  for (const auto& [sql, table, column] : std::vector<std::tuple<std::string, const char*, const char*>>{
+           {q.levels, "planned_levels", "planned_trial_id"},
+           {q.results, "trial_results", "planned_trial_id"},
+           {q.events, "input_events", "trial_id"},
+           {q.poses, "camera_poses", "trial_id"}})
+    if (auto s = copy(sql, table, by_trial(column)); !s) return s;
   for (const auto& [sql, table] : std::vector<std::pair<std::string, const char*>>{
            {q.resumes, "session_resumes"}, {q.answers, "questionnaire_answers"}})
     if (auto s = copy(sql, table, by_session); !s) return s;
@@ -489,9 +498,10 @@ Status Merger::import_session(std::int64_t src_session, std::int64_t dst_partici
     if (auto s = copy(q.screens, "screens", by_session); !s) return s;
   ++sum_.sessions;
   if (!final_state) return {};
-  auto fin = Stmt::prepare(dst_, "UPDATE sessions SET status = ?, ended_at = ? WHERE id = ?", "finishing the session");
+  auto fin = Stmt::prepare(dst_, "UPDATE sessions SET status = :status, ended_at = :ended_at WHERE id = :id",
+                           "finishing the session");
   if (!fin) return fin.error();
-  fin->bind(1, (*final_state)[0]).bind(2, (*final_state)[1]).bind(3, *session);
+  fin->bind("status", (*final_state)["status"]).bind("ended_at", (*final_state)["ended_at"]).bind("id", *session);
   return fin->run("finishing the session");
 }
 
@@ -510,7 +520,7 @@ Status Merger::merge_decisions(const char* table, std::optional<std::int64_t> sr
     std::vector<bool> matched(have.size(), false);
     for (const Row& r : *from) {
       auto it = std::find_if(have.begin(), have.end(), [&](const Row& h) {
-        return !matched[static_cast<std::size_t>(&h - have.data())] && same_content(h, r);
+        return !matched[static_cast<std::size_t>(&h - have.data())] && same_except(h, r, {"id", "participant_id"});
       });
       if (it != have.end()) matched[static_cast<std::size_t>(it - have.begin())] = true;
       else add.push_back(r);
@@ -518,7 +528,7 @@ Status Merger::merge_decisions(const char* table, std::optional<std::int64_t> sr
   } else {
     const std::size_t common = std::min(from->size(), have.size());
     for (std::size_t i = 0; i < common; ++i)
-      if (!same_content((*from)[i], have[i]))
+      if (!same_except((*from)[i], have[i], {"id", "participant_id"}))
         return refuse(dst_, "exclusions",
                       "the exclusion decisions about participant \"" + src_name(src_pid) +
                           "\" differ in SRC and DST (each has decisions the other lacks), so which one holds would depend "
@@ -529,12 +539,12 @@ Status Merger::merge_decisions(const char* table, std::optional<std::int64_t> sr
   for (Row r : add) {
     auto id = next(table);
     if (!id) return id.error();
-    r[0] = *id;
-    r[1] = dst_pid ? Value{*dst_pid} : Value{};
+    r["id"] = *id;
+    r["participant_id"] = dst_pid ? Value{*dst_pid} : Value{};
     rows.push_back(std::move(r));
   }
   (notes ? sum_.notes : sum_.decisions) += static_cast<int>(rows.size());
-  return dst_.conn().insert_rows(table, spec_columns(table), rows, std::string("adding ") + table);
+  return insert_named(dst_, table, rows, std::string("adding ") + table);
 }
 
 }  // namespace merging

@@ -31,40 +31,33 @@ inline std::int64_t num(const Value& v) {
 Error refuse(const Db& dst, const std::string& field, const std::string& why);
 
 struct StudyRow {
-  Row row;  // as copied_tables() lists the columns of `studies`
+  Row row;  // the described columns of `studies`
   std::vector<std::string> factors;
   std::string design;
-  std::int64_t id() const { return num(row[0]); }
-  std::string sha() const { return text(row[3]); }
-  std::int64_t order_rows() const { return num(row[5]); }
+  std::int64_t id() const { return num(row["id"]); }
+  std::string sha() const { return text(row["protocol_sha256"]); }
+  std::int64_t order_rows() const { return num(row["order_rows"]); }
 };
 
 struct Person {
-  Row row;  // as copied_tables() lists the columns of `participants`
+  Row row;  // the described columns of `participants`
   std::optional<std::int64_t> session;
-  std::int64_t id() const { return num(row[0]); }
-  std::string name() const { return text(row[1]); }
-  std::int64_t index() const { return num(row[2]); }
-  std::int64_t order_row() const { return num(row[3]); }
-  bool released() const { return !std::holds_alternative<std::monostate>(row[7]); }
+  std::int64_t id() const { return num(row["id"]); }
+  std::string name() const { return text(row["participant"]); }
+  std::int64_t index() const { return num(row["enrollment_index"]); }
+  std::int64_t order_row() const { return num(row["order_row"]); }
+  bool released() const { return !std::holds_alternative<std::monostate>(row["released_at"]); }
 };
 
-// The select list of `table`'s copied columns in a database of schema `version`, each prefixed
-// with `alias` (a column that version lacks reads as NULL); and the columns themselves.
+// The select list of `table`'s described columns in a database of schema `version`, each
+// prefixed with `alias` and named AS itself (a column that version lacks reads as NULL).
 std::string columns_of(const char* table, const std::string& alias, int version = kSchemaVersion);
-const std::vector<std::string>& spec_columns(const char* table);
 
-// Two rows of one table hold the same content: equal but for their first two columns (id and
-// participant_id of decisions and notes, ...).
-inline bool same_content(const Row& a, const Row& b) {
-  return std::equal(a.begin() + 2, a.end(), b.begin() + 2, b.end());
-}
-
-// A participant's schema v4 rows in one database, as copied_tables() lists their columns.
+// A participant's schema v4 rows in one database (the described columns of each table).
 struct Answers {
-  std::optional<Row> consent;     // participant_id, agreed, text_sha256, answered_at
-  std::optional<Row> withdrawal;  // id, participant_id, withdrawn_at, reason, decided_by
-  std::string withdrawn_at() const { return withdrawal ? text((*withdrawal)[2]) : std::string(); }
+  std::optional<Row> consent;
+  std::optional<Row> withdrawal;
+  std::string withdrawn_at() const { return withdrawal ? text((*withdrawal)["withdrawn_at"]) : std::string(); }
 };
 
 // The merge itself: plan (every check, nothing written), then write. One object per merge.

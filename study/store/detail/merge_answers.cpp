@@ -16,9 +16,9 @@
 namespace dtlab::store::detail::merging {
 namespace {
 
-Result<std::optional<Row>> one_row(Db& db, const std::string& sql, std::int64_t key) {
+Result<std::optional<Row>> one_row(Db& db, const std::string& sql, std::int64_t participant) {
   std::optional<Row> out;
-  Status st = each_row(db, sql, {key}, [&](Row& r) -> Status {
+  Status st = each_row(db, sql, {{"participant_id", participant}}, [&](Row& r) -> Status {
     out = std::move(r);
     return {};
   });
@@ -29,9 +29,12 @@ Result<std::optional<Row>> one_row(Db& db, const std::string& sql, std::int64_t 
 // The consent and withdrawal of the participant with row id `participant` (schema v4).
 Result<Answers> read_answers(Db& db, std::int64_t participant) {
   Answers a;
-  auto c = one_row(db, "SELECT " + columns_of("consents", "") + " FROM consents WHERE participant_id = ?", participant);
+  auto c = one_row(db, "SELECT " + columns_of("consents", "") + " FROM consents WHERE participant_id = :participant_id",
+                   participant);
   if (!c) return c.error();
-  auto w = one_row(db, "SELECT " + columns_of("withdrawals", "") + " FROM withdrawals WHERE participant_id = ?",
+  auto w = one_row(db,
+                   "SELECT " + columns_of("withdrawals", "") +
+                       " FROM withdrawals WHERE participant_id = :participant_id",
                    participant);
   if (!w) return w.error();
   a.consent = std::move(*c);
@@ -41,18 +44,15 @@ Result<Answers> read_answers(Db& db, std::int64_t participant) {
 
 Result<std::vector<Row>> screens_of(Db& db, std::int64_t session) {
   std::vector<Row> out;
-  Status st = each_row(db, "SELECT " + columns_of("screens", "") + " FROM screens WHERE session_id = ? ORDER BY seq",
-                       {session}, [&](Row& r) -> Status {
+  Status st = each_row(db,
+                       "SELECT " + columns_of("screens", "") +
+                           " FROM screens WHERE session_id = :session_id ORDER BY seq",
+                       {{"session_id", session}}, [&](Row& r) -> Status {
                          out.push_back(std::move(r));
                          return {};
                        });
   if (!st) return st.error();
   return out;
-}
-
-bool same_from(const Row& a, const Row& b, std::size_t first) {  // equal from column `first` on
-  return a.size() == b.size() && std::equal(a.begin() + static_cast<std::ptrdiff_t>(first), a.end(),
-                                            b.begin() + static_cast<std::ptrdiff_t>(first));
 }
 
 }  // namespace
@@ -73,11 +73,12 @@ Status Merger::plan_answers(Plan& plan, const Person& p, const Person* q) {
   plan.dst = std::move(*d);
   plan.dst_session = q->session;
   const std::string who = "participant \"" + p.name() + "\"";
-  if (plan.src.consent && plan.dst.consent && !same_from(*plan.src.consent, *plan.dst.consent, 1))
+  if (plan.src.consent && plan.dst.consent && !same_except(*plan.src.consent, *plan.dst.consent, {"participant_id"}))
     return refuse(dst_, "consents",
                   who + " answered the consent page differently in SRC and DST (the first answer stays, so which "
                         "one holds would depend on the merge)");
-  if (plan.src.withdrawal && plan.dst.withdrawal && !same_from(*plan.src.withdrawal, *plan.dst.withdrawal, 2))
+  if (plan.src.withdrawal && plan.dst.withdrawal &&
+      !same_except(*plan.src.withdrawal, *plan.dst.withdrawal, {"id", "participant_id"}))
     return refuse(dst_, "withdrawals",
                   who + " withdrew in SRC (at " + plan.src.withdrawn_at() + ") and in DST (at " +
                       plan.dst.withdrawn_at() + "); one withdrawal per participant");
@@ -85,10 +86,9 @@ Status Merger::plan_answers(Plan& plan, const Person& p, const Person* q) {
   // SRC's withdrawal will end DST's session if it runs: not while someone runs it there.
   auto now = dst_.now_iso();
   if (!now) return now.error();
-  auto live = dst_.query_int("SELECT count(*) FROM session_claims c JOIN sessions s ON s.id = c.session_id WHERE "
-                             "s.status = 'running' AND c.session_id = " + std::to_string(*q->session) +
-                                 " AND c.expires_at > '" + *now + "'",
-                             "reading the session claims");
+  auto live = dst_.query_int("SELECT count(*) AS n FROM session_claims c JOIN sessions s ON s.id = c.session_id WHERE "
+                             "s.status = 'running' AND c.session_id = :session_id AND c.expires_at > :now",
+                             "reading the session claims", {{"session_id", *q->session}, {"now", *now}});
   if (!live) return live.error();
   if (live->value_or(0) > 0)
     return refuse(dst_, "session_claims",
@@ -104,7 +104,7 @@ Status Merger::plan_screens(Plan& plan, std::int64_t src_session, std::int64_t d
   if (!have) return have.error();
   const std::size_t common = std::min(from->size(), have->size());
   for (std::size_t i = 0; i < common; ++i)
-    if (!same_from((*from)[i], (*have)[i], 1))
+    if (!same_except((*from)[i], (*have)[i], {"session_id"}))
       return refuse(dst_, "screens",
                     "the screen logs of participant \"" + plan.person->name() + "\"'s session differ at screen " +
                         std::to_string(i + 1) + " (each has screens the other lacks)");
@@ -113,36 +113,37 @@ Status Merger::plan_screens(Plan& plan, std::int64_t src_session, std::int64_t d
 }
 
 Status Merger::apply_withdrawal(const Plan& plan, std::int64_t dst_participant) {
-  const Value at = (*plan.src.withdrawal)[2];
-  auto rel = Stmt::prepare(dst_, "UPDATE participants SET released_at = ? WHERE id = ? AND released_at IS NULL",
+  const Value at = (*plan.src.withdrawal)["withdrawn_at"];
+  auto rel = Stmt::prepare(dst_, "UPDATE participants SET released_at = :at WHERE id = :id AND released_at IS NULL",
                            "freeing the order row");
   if (!rel) return rel.error();
-  rel->bind(1, at).bind(2, dst_participant);
+  rel->bind("at", at).bind("id", dst_participant);
   if (auto s = rel->run("freeing the order row"); !s) return s;
   if (!plan.dst_session) return {};
-  auto del = Stmt::prepare(dst_, "DELETE FROM session_claims WHERE session_id = ?", "dropping the session claim");
+  auto del = Stmt::prepare(dst_, "DELETE FROM session_claims WHERE session_id = :session_id",
+                           "dropping the session claim");
   if (!del) return del.error();
-  del->bind(1, *plan.dst_session);
+  del->bind("session_id", *plan.dst_session);
   if (auto s = del->run("dropping the session claim"); !s) return s;
-  auto end = Stmt::prepare(dst_, "UPDATE sessions SET status = 'abandoned', ended_at = ? WHERE id = ? AND status = "
-                                 "'running'",
+  auto end = Stmt::prepare(dst_, "UPDATE sessions SET status = 'abandoned', ended_at = :at WHERE id = :id AND "
+                                 "status = 'running'",
                            "ending the session");
   if (!end) return end.error();
-  end->bind(1, at).bind(2, *plan.dst_session);
+  end->bind("at", at).bind("id", *plan.dst_session);
   return end->run("ending the session");
 }
 
 Status Merger::write_answers(const Plan& plan, std::int64_t dst_participant) {
   if (plan.src.consent && !plan.dst.consent) {
     Row row = *plan.src.consent;
-    row[0] = dst_participant;
-    if (auto s = dst_.conn().insert_rows("consents", spec_columns("consents"), {row}, "adding a consent"); !s) return s;
+    row["participant_id"] = dst_participant;
+    if (auto s = insert_named(dst_, "consents", {row}, "adding a consent"); !s) return s;
     ++sum_.consents;
   }
   if (!plan.screens.empty()) {
     std::vector<Row> rows = plan.screens;
-    for (Row& r : rows) r[0] = *plan.dst_session;
-    if (auto s = dst_.conn().insert_rows("screens", spec_columns("screens"), rows, "adding screens"); !s) return s;
+    for (Row& r : rows) r["session_id"] = *plan.dst_session;
+    if (auto s = insert_named(dst_, "screens", rows, "adding screens"); !s) return s;
     sum_.screens += static_cast<int>(rows.size());
   }
   if (!plan.src.withdrawal || plan.dst.withdrawal) return {};
@@ -151,10 +152,9 @@ Status Merger::write_answers(const Plan& plan, std::int64_t dst_participant) {
   auto id = next("withdrawals");
   if (!id) return id.error();
   Row row = *plan.src.withdrawal;
-  row[0] = *id;
-  row[1] = dst_participant;
-  if (auto s = dst_.conn().insert_rows("withdrawals", spec_columns("withdrawals"), {row}, "adding a withdrawal"); !s)
-    return s;
+  row["id"] = *id;
+  row["participant_id"] = dst_participant;
+  if (auto s = insert_named(dst_, "withdrawals", {row}, "adding a withdrawal"); !s) return s;
   ++sum_.withdrawals;
   return {};
 }

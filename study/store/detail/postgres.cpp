@@ -74,13 +74,16 @@ Error pg_error(PGconn* conn, const PGresult* res, const std::string& name, std::
   return Error{name, 0, 0, "postgresql", std::move(msg), kind};
 }
 
-// `?N` -> `$N` and `?` -> `$k` (k counting), outside quoted literals and identifiers; `count`
-// receives the highest parameter number.
-std::string numbered_placeholders(std::string_view sql, int& count) {
+// `:name` -> `$k`, the k-th distinct name in order of first use (`names` receives them), outside
+// quoted literals and identifiers; a cast's `::` is left alone. PostgreSQL numbers its parameters
+// only; the store's SQL names them (backend.h).
+std::string numbered_placeholders(std::string_view sql, std::vector<std::string>& names) {
+  auto ident = [](char c, bool first) {
+    return c == '_' || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (!first && c >= '0' && c <= '9');
+  };
   std::string out;
-  count = 0;
+  names.clear();
   out.reserve(sql.size() + 16);
-  int next = 0;
   char quote = 0;
   for (std::size_t i = 0; i < sql.size(); ++i) {
     const char c = sql[i];
@@ -94,15 +97,21 @@ std::string numbered_placeholders(std::string_view sql, int& count) {
       out += c;
       continue;
     }
-    if (c != '?') {
+    if (c == ':' && i + 1 < sql.size() && sql[i + 1] == ':') {  // a cast
+      out += "::";
+      ++i;
+      continue;
+    }
+    if (c != ':' || i + 1 >= sql.size() || !ident(sql[i + 1], true)) {
       out += c;
       continue;
     }
     std::size_t j = i + 1;
-    while (j < sql.size() && sql[j] >= '0' && sql[j] <= '9') ++j;
-    const std::string n = j > i + 1 ? std::string(sql.substr(i + 1, j - i - 1)) : std::to_string(++next);
-    count = std::max(count, std::stoi(n));
-    out += '$' + n;
+    while (j < sql.size() && ident(sql[j], false)) ++j;
+    const std::string name(sql.substr(i + 1, j - i - 1));
+    auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end()) it = names.insert(names.end(), name);
+    out += '$' + std::to_string(it - names.begin() + 1);
     i = j - 1;
   }
   return out;
@@ -143,9 +152,13 @@ class PgConnection;
 
 class PgStatement final : public Statement {
  public:
-  PgStatement(PgConnection& c, std::string_view sql) : c_(c) { sql_ = numbered_placeholders(sql, params_); }
+  PgStatement(PgConnection& c, std::string_view sql) : c_(c) { sql_ = numbered_placeholders(sql, names_); }
   ~PgStatement() override { PQclear(res_); }
 
+  int parameter_index(std::string_view name) const override {
+    const auto it = std::find(names_.begin(), names_.end(), name);
+    return it == names_.end() ? 0 : static_cast<int>(it - names_.begin() + 1);
+  }
   void bind_int(int i, std::int64_t v) override { set(i, std::to_string(v), kInt8); }
   void bind_real(int i, double v) override { set(i, shortest(v), kFloat8); }
   void bind_text(int i, std::string_view v) override { set(i, std::string(v), kText); }
@@ -207,7 +220,8 @@ class PgStatement final : public Statement {
 
   PgConnection& c_;
   std::string sql_;
-  int params_ = 0;  // the highest $N in sql_: an unbound one is sent as NULL, as SQLite reads it
+  // The parameters' names, $1's first; an unbound one is sent as NULL, as SQLite reads it.
+  std::vector<std::string> names_;
   std::vector<std::optional<std::string>> values_;
   std::vector<Oid> types_;
   PGresult* res_ = nullptr;
@@ -243,13 +257,14 @@ class PgConnection final : public Connection {
     // by the server when the client dies), and the server's clock once the lock is held.
     const std::string sql = "BEGIN ISOLATION LEVEL READ COMMITTED; SELECT pg_advisory_xact_lock(" +
                             std::to_string(kApplicationId) + ", " + std::to_string(address_.lock_key) +
-                            "), extract(epoch FROM clock_timestamp())::float8";
+                            ") AS locked, extract(epoch FROM clock_timestamp())::float8 AS now";
     PGresult* res = PQexec(conn_, sql.c_str());
     Status out;
     if (PQresultStatus(res) != PGRES_TUPLES_OK) {
       out = pg_error(conn_, res, name_, what);
     } else {
-      clock_offset_ = from_epoch(std::strtod(PQgetvalue(res, 0, 1), nullptr)) - std::chrono::system_clock::now();
+      clock_offset_ = from_epoch(std::strtod(PQgetvalue(res, 0, PQfnumber(res, "now")), nullptr)) -
+                      std::chrono::system_clock::now();
       in_write_ = true;
     }
     PQclear(res);
@@ -314,9 +329,9 @@ class PgConnection final : public Connection {
   }
 
   Result<bool> has_table(const std::string& table) override {
-    auto n = count("SELECT count(*) FROM pg_class c JOIN pg_namespace n ON n.oid = c.relnamespace "
-                   "WHERE n.nspname = $1 AND c.relname = $2 AND c.relkind IN ('r', 'p')",
-                   {address_.schema, table}, "reading the schema");
+    auto n = count("SELECT count(*) AS n FROM pg_class c JOIN pg_namespace n ON n.oid = c.relnamespace "
+                   "WHERE n.nspname = :schema AND c.relname = :table AND c.relkind IN ('r', 'p')",
+                   {{"schema", address_.schema}, {"table", table}}, "reading the schema");
     if (!n) return n.error();
     return *n > 0;
   }
@@ -326,22 +341,23 @@ class PgConnection final : public Connection {
     std::string report;
     auto add = [&](const std::string& sql, const std::string& what) -> Status {
       auto st = prepare(sql, what);
-      (*st)->bind_text(1, address_.schema);
+      (*st)->bind_text((*st)->parameter_index("schema"), address_.schema);
       for (;;) {
         auto r = (*st)->step(what);
         if (!r) return r.error();
         if (!*r) return {};
-        report += (report.empty() ? "" : "; ") + (*st)->text(0);
+        report += (report.empty() ? "" : "; ") + (*st)->text((*st)->column_index("problem"));
       }
     };
-    if (auto s = add("SELECT 'constraint ' || c.conname || ' is not validated' FROM pg_constraint c "
-                     "JOIN pg_namespace n ON n.oid = c.connamespace WHERE n.nspname = ?1 AND NOT c.convalidated",
+    if (auto s = add("SELECT 'constraint ' || c.conname || ' is not validated' AS problem FROM pg_constraint c "
+                     "JOIN pg_namespace n ON n.oid = c.connamespace WHERE n.nspname = :schema AND NOT c.convalidated",
                      "checking constraints");
         !s)
       return s.error();
-    if (auto s = add("SELECT 'trigger ' || t.tgname || ' on ' || r.relname || ' is disabled' FROM pg_trigger t "
+    if (auto s = add("SELECT 'trigger ' || t.tgname || ' on ' || r.relname || ' is disabled' AS problem "
+                     "FROM pg_trigger t "
                      "JOIN pg_class r ON r.oid = t.tgrelid JOIN pg_namespace n ON n.oid = r.relnamespace "
-                     "WHERE n.nspname = ?1 AND NOT t.tgisinternal AND t.tgenabled = 'D'",
+                     "WHERE n.nspname = :schema AND NOT t.tgisinternal AND t.tgenabled = 'D'",
                      "checking triggers");
         !s)
       return s.error();
@@ -352,10 +368,10 @@ class PgConnection final : public Connection {
   // machine's clock while the transaction runs (milliseconds); outside one, read from the server.
   Result<std::chrono::system_clock::time_point> now() override {
     if (in_write_) return std::chrono::system_clock::now() + clock_offset_;
-    auto st = prepare("SELECT extract(epoch FROM clock_timestamp())::float8", "reading the server's clock");
+    auto st = prepare("SELECT extract(epoch FROM clock_timestamp())::float8 AS now", "reading the server's clock");
     auto row = (*st)->step("reading the server's clock");
     if (!row) return row.error();
-    return from_epoch((*st)->real(0));
+    return from_epoch((*st)->real((*st)->column_index("now")));
   }
 
   Status insert_rows(const std::string& table, const std::vector<std::string>& columns,
@@ -394,37 +410,37 @@ class PgConnection final : public Connection {
     return out;
   }
 
-  // Runs a query with text parameters that returns one count.
-  Result<std::int64_t> count(const char* sql, std::vector<std::string> params, std::string_view what) {
-    std::vector<const char*> values;
-    for (const auto& p : params) values.push_back(p.c_str());
-    PGresult* res = PQexecParams(conn_, sql, static_cast<int>(values.size()), nullptr, values.data(), nullptr, nullptr, 0);
-    Result<std::int64_t> out = std::int64_t{0};
-    if (PQresultStatus(res) != PGRES_TUPLES_OK) out = pg_error(conn_, res, name_, what);
-    else if (PQntuples(res) > 0 && !PQgetisnull(res, 0, 0)) out = std::strtoll(PQgetvalue(res, 0, 0), nullptr, 10);
-    PQclear(res);
-    return out;
+  // Runs a query that returns one count, named `n`, with its `:name` parameters bound to texts.
+  Result<std::int64_t> count(const char* sql, const std::vector<std::pair<std::string, std::string>>& params,
+                             std::string_view what) {
+    PgStatement st(*this, sql);
+    for (const auto& [name, value] : params) st.bind_text(st.parameter_index(name), value);
+    auto row = st.step(what);
+    if (!row) return row.error();
+    if (!*row || st.is_null(st.column_index("n"))) return std::int64_t{0};
+    return st.int64(st.column_index("n"));
   }
 
  private:
   Result<FileState> read_state() {
     FileState s;
     const char* what = "reading the schema";
-    auto exists = count("SELECT count(*) FROM pg_namespace WHERE nspname = $1", {address_.schema}, what);
+    auto exists =
+        count("SELECT count(*) AS n FROM pg_namespace WHERE nspname = :schema", {{"schema", address_.schema}}, what);
     if (!exists) return exists.error();
     s.exists = *exists > 0;
     auto objects = count("SELECT (SELECT count(*) FROM pg_class c JOIN pg_namespace n ON n.oid = c.relnamespace "
-                         "WHERE n.nspname = $1) + (SELECT count(*) FROM pg_proc p JOIN pg_namespace n ON "
-                         "n.oid = p.pronamespace WHERE n.nspname = $1)",
-                         {address_.schema}, what);
+                         "WHERE n.nspname = :schema) + (SELECT count(*) FROM pg_proc p JOIN pg_namespace n ON "
+                         "n.oid = p.pronamespace WHERE n.nspname = :schema) AS n",
+                         {{"schema", address_.schema}}, what);
     if (!objects) return objects.error();
     s.empty = *objects == 0;
     auto header = has_table("dtlab_header");
     if (!header) return header.error();
     if (*header) {
-      auto app = count("SELECT application_id FROM dtlab_header", {}, "reading the dtlab header");
+      auto app = count("SELECT application_id AS n FROM dtlab_header", {}, "reading the dtlab header");
       if (!app) return app.error();
-      auto version = count("SELECT user_version FROM dtlab_header", {}, "reading the dtlab header");
+      auto version = count("SELECT user_version AS n FROM dtlab_header", {}, "reading the dtlab header");
       if (!version) return version.error();
       s.application_id = *app;
       s.user_version = static_cast<int>(*version);
@@ -432,7 +448,7 @@ class PgConnection final : public Connection {
     auto migrations = has_table("schema_migrations");
     if (!migrations) return migrations.error();
     if (*migrations) {
-      auto m = count("SELECT coalesce(max(version), 0) FROM schema_migrations", {}, "reading the schema version");
+      auto m = count("SELECT coalesce(max(version), 0) AS n FROM schema_migrations", {}, "reading the schema version");
       if (!m) return m.error();
       s.migrations = static_cast<int>(*m);
     }
@@ -452,9 +468,9 @@ class PgConnection final : public Connection {
 
 Result<bool> PgStatement::step(std::string_view what) {
   if (!res_) {
-    if (static_cast<int>(values_.size()) < params_) {
-      values_.resize(static_cast<std::size_t>(params_));
-      types_.resize(static_cast<std::size_t>(params_), 0);
+    if (values_.size() < names_.size()) {
+      values_.resize(names_.size());
+      types_.resize(names_.size(), 0);
     }
     std::vector<const char*> values;
     values.reserve(values_.size());

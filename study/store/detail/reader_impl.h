@@ -29,6 +29,13 @@ Status each_row(Db& db, const std::string& sql, const char* what, Bind&& bind, R
 }
 
 inline constexpr auto no_bind = [](Stmt&) {};
+// Binds :participant to `participant` where a query filters by one ("" = every participant: the
+// query has no filter and nothing is bound).
+inline auto bind_participant(const std::string& participant) {
+  return [&participant](Stmt& s) {
+    if (!participant.empty()) s.bind("participant", participant);
+  };
+}
 
 // The SQL of a 0/1 column that says whether the participant with row id `participant_id` (an
 // SQL expression) withdrew; a constant 0 below schema v4.

@@ -14,6 +14,7 @@
 #include <cctype>
 #include <string_view>
 
+#include "study/store/detail/columns.h"
 #include "study/store/detail/schema_sql.h"
 #include "study/store/detail/schema_tables.h"
 #include "study/store/detail/time.h"
@@ -84,7 +85,7 @@ Result<int> applied_schema_version(Db& db) {
   auto has = db.conn().has_table("schema_migrations");
   if (!has) return has.error();
   if (!*has) return 0;
-  auto v = db.query_int("SELECT max(version) FROM schema_migrations", "reading the schema version");
+  auto v = db.query_int("SELECT max(version) AS n FROM schema_migrations", "reading the schema version");
   if (!v) return v.error();
   return static_cast<int>(v->value_or(0));
 }
@@ -113,11 +114,6 @@ Status migrate(Db& db, int from, const std::string& software_version, const std:
   for (int version = from + 1; version <= kSchemaVersion; ++version) {
     const std::string what = "applying schema migration " + std::to_string(version);
     if (auto s = db.exec(migration_sql(db.backend(), version), what); !s) return s;
-    auto st = Stmt::prepare(db,
-                            "INSERT INTO schema_migrations (version, description, applied_at, software_version) "
-                            "VALUES (?, ?, ?, ?)",
-                            what);
-    if (!st) return st.error();
     AppliedMigration row{kDescriptions[version - 1], "", software_version};
     if (auto h = history.find(version); h != history.end()) {
       row = h->second;
@@ -126,8 +122,10 @@ Status migrate(Db& db, int from, const std::string& software_version, const std:
       if (!now) return now.error();
       row.applied_at = *now;
     }
-    st->bind(1, version).bind(2, row.description).bind(3, row.applied_at).bind(4, row.software_version);
-    if (auto s = st->run(what); !s) return s;
+    RowInsert ins("schema_migrations");
+    ins.set("version", version).set("description", row.description).set("applied_at", row.applied_at);
+    ins.set("software_version", row.software_version);
+    if (auto s = ins.run(db, what); !s) return s;
   }
   if (from >= 1)  // an older view lacks the newer columns; a new database gets its view with the first study
     if (auto s = create_trial_table_view(db); !s) return s;
@@ -136,14 +134,14 @@ Status migrate(Db& db, int from, const std::string& software_version, const std:
 
 Result<std::vector<std::string>> demographic_fields(Db& db) {
   const char* what = "reading the demographic fields";
-  auto st = Stmt::prepare(db, "SELECT demographics FROM participants ORDER BY enrollment_index", what);
+  auto st = Stmt::prepare(db, "SELECT demographics AS demographics FROM participants ORDER BY enrollment_index", what);
   if (!st) return st.error();
   std::vector<std::string> fields;
   for (;;) {
     auto row = st->step(what);
     if (!row) return row.error();
     if (!*row) break;
-    const auto j = nlohmann::ordered_json::parse(st->text(0), nullptr, false);
+    const auto j = nlohmann::ordered_json::parse(st->text("demographics"), nullptr, false);
     if (!j.is_object()) continue;  // the schema's CHECK makes it an object
     for (const auto& [k, v] : j.items())
       if (std::find(fields.begin(), fields.end(), k) == fields.end()) fields.push_back(k);
@@ -153,14 +151,15 @@ Result<std::vector<std::string>> demographic_fields(Db& db) {
 
 Status create_trial_table_view(Db& db) {
   const std::string what = "creating the trial_table view";
-  auto st = Stmt::prepare(db, "SELECT name FROM study_factors GROUP BY name ORDER BY min(study_id), min(position)", what);
+  auto st = Stmt::prepare(
+      db, "SELECT name AS name FROM study_factors GROUP BY name ORDER BY min(study_id), min(position)", what);
   if (!st) return st.error();
   std::vector<std::string> factors;
   for (;;) {
     auto row = st->step(what);
     if (!row) return row.error();
     if (!*row) break;
-    factors.push_back(st->text(0));
+    factors.push_back(st->text("name"));
   }
   auto fields = demographic_fields(db);
   if (!fields) return fields.error();

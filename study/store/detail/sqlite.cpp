@@ -57,6 +57,9 @@ class SqliteStatement final : public Statement {
   SqliteStatement(sqlite3_stmt* st, sqlite3* db, const std::string& path) : st_(st), db_(db), path_(path) {}
   ~SqliteStatement() override { sqlite3_finalize(st_); }
 
+  int parameter_index(std::string_view name) const override {
+    return sqlite3_bind_parameter_index(st_, (":" + std::string(name)).c_str());
+  }
   void bind_int(int i, std::int64_t v) override { sqlite3_bind_int64(st_, i, v); }
   void bind_real(int i, double v) override { sqlite3_bind_double(st_, i, v); }
   void bind_text(int i, std::string_view v) override {
@@ -162,22 +165,27 @@ class SqliteConnection final : public Connection {
                 "marking the file as a dtlab database");
   }
   Result<bool> has_table(const std::string& name) override {
-    auto st = prepare("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = ?", "reading the schema");
+    auto st = prepare("SELECT count(*) AS n FROM sqlite_schema WHERE type = 'table' AND name = :name",
+                      "reading the schema");
     if (!st) return st.error();
-    (*st)->bind_text(1, name);
+    (*st)->bind_text((*st)->parameter_index("name"), name);
     auto row = (*st)->step("reading the schema");
     if (!row) return row.error();
-    return *row && (*st)->int64(0) > 0;
+    return *row && (*st)->int64((*st)->column_index("n")) > 0;
   }
   Result<std::string> integrity_check() override {
     std::string report, fk;
     if (auto s = each("PRAGMA integrity_check", "checking integrity",
-                      [&](Statement& q) { report += (report.empty() ? "" : "; ") + q.text(0); });
+                      [&](Statement& q) {
+                        report += (report.empty() ? "" : "; ") + q.text(q.column_index("integrity_check"));
+                      });
         !s)
       return s.error();
     if (auto s = each("PRAGMA foreign_key_check", "checking foreign keys",
                       [&](Statement& q) {
-                        fk += (fk.empty() ? "" : "; ") + q.text(0) + " row " + q.text(1) + " points to a missing " + q.text(2);
+                        fk += (fk.empty() ? "" : "; ") + q.text(q.column_index("table")) + " row " +
+                              q.text(q.column_index("rowid")) + " points to a missing " +
+                              q.text(q.column_index("parent"));
                       });
         !s)
       return s.error();
@@ -192,14 +200,16 @@ class SqliteConnection final : public Connection {
     std::string sql = "INSERT INTO " + table + " (";
     for (std::size_t c = 0; c < columns.size(); ++c) sql += (c ? ", " : "") + columns[c];
     sql += ") VALUES (";
-    for (std::size_t c = 0; c < columns.size(); ++c) sql += c ? ", ?" : "?";
+    for (std::size_t c = 0; c < columns.size(); ++c) sql += (c ? ", :" : ":") + columns[c];
     sql += ")";
     auto st = prepare(sql, what);
     if (!st) return st.error();
     Statement& s = **st;
+    std::vector<int> index;  // each column's parameter, found once by its name
+    for (const std::string& c : columns) index.push_back(s.parameter_index(c));
     for (const auto& row : rows) {
       for (std::size_t c = 0; c < row.size(); ++c) {
-        const int i = static_cast<int>(c + 1);
+        const int i = index[c];
         if (const auto* n = std::get_if<std::int64_t>(&row[c])) s.bind_int(i, *n);
         else if (const auto* d = std::get_if<double>(&row[c])) s.bind_real(i, *d);
         else if (const auto* t = std::get_if<std::string>(&row[c])) s.bind_text(i, *t);
@@ -227,33 +237,35 @@ class SqliteConnection final : public Connection {
     }
   }
 
-  Result<std::int64_t> query_int(const char* sql, std::string_view what) {
+  // The column `column` of the first row of `sql` (0 without a row).
+  Result<std::int64_t> query_int(const char* sql, std::string_view column, std::string_view what) {
     auto st = prepare(sql, what);
     if (!st) return st.error();
     auto row = (*st)->step(what);
     if (!row) return row.error();
-    return *row ? (*st)->int64(0) : 0;
+    return *row ? (*st)->int64((*st)->column_index(column)) : 0;
   }
 
   Result<FileState> read_state() {
     FileState s;
-    auto app_id = query_int("PRAGMA application_id", "reading the file header");
+    auto app_id = query_int("PRAGMA application_id", "application_id", "reading the file header");
     if (!app_id) {
       if (sqlite3_extended_errcode(db_) == SQLITE_NOTADB)
         return Error{name_, 0, 0, "", "not an SQLite database; expected a dtlab study database"};
       return app_id.error();
     }
     s.application_id = *app_id;
-    auto objects = query_int("SELECT count(*) FROM sqlite_schema", "reading the schema");
+    auto objects = query_int("SELECT count(*) AS n FROM sqlite_schema", "n", "reading the schema");
     if (!objects) return objects.error();
     s.empty = *objects == 0;
-    auto version = query_int("PRAGMA user_version", "reading the schema version");
+    auto version = query_int("PRAGMA user_version", "user_version", "reading the schema version");
     if (!version) return version.error();
     s.user_version = static_cast<int>(*version);
     auto has = has_table("schema_migrations");
     if (!has) return has.error();
     if (*has) {
-      auto m = query_int("SELECT coalesce(max(version), 0) FROM schema_migrations", "reading the schema version");
+      auto m =
+          query_int("SELECT coalesce(max(version), 0) AS n FROM schema_migrations", "n", "reading the schema version");
       if (!m) return m.error();
       s.migrations = static_cast<int>(*m);
     }
@@ -270,7 +282,7 @@ class SqliteConnection final : public Connection {
       auto st = prepare("PRAGMA journal_mode = WAL", "switching to WAL mode");
       if (st) {
         auto row = (*st)->step("switching to WAL mode");
-        if (row) return *row ? (*st)->text(0) : std::string();
+        if (row) return *row ? (*st)->text((*st)->column_index("journal_mode")) : std::string();
         st = row.error();
       }
       const int code = sqlite3_errcode(db_);
