@@ -41,11 +41,11 @@ void run_count_targets(TrialRun& run) {
   std::map<std::uint32_t, float> counted;  // object index -> yaw at which it was last seen
   long count = 0;
   int idle = 0;
-  for (int k = 0; k < run.m.max_views && !run.out_of_time(); ++k) {
+  for (int k = 0; k < run.model.max_views && !run.out_of_time(); ++k) {
     if (k > 0) {
-      const float pitch = (k % 2) ? static_cast<float>(run.m.orbit_pitch_high) : static_cast<float>(run.m.orbit_pitch_low);
-      run.drag(run.m.orbit_yaw_step, pitch - o.pitch);
-      o.yaw += static_cast<float>(run.m.orbit_yaw_step);
+      const float pitch = (k % 2) ? static_cast<float>(run.model.orbit_pitch_high) : static_cast<float>(run.model.orbit_pitch_low);
+      run.drag(run.model.orbit_yaw_step, pitch - o.pitch);
+      o.yaw += static_cast<float>(run.model.orbit_yaw_step);
       o.pitch = pitch;
     }
     const View v = run.look(o.camera(run), o.yaw, o.pitch, red);
@@ -60,24 +60,24 @@ void run_count_targets(TrialRun& run) {
       if (it != counted.end()) {
         const double turned = std::abs(o.yaw - it->second);
         const double p_fail =
-            (1.0 - run.traits.memory) * std::min(1.0, turned / 3.14159265358979) * (1.0 + run.m.fragment_memory * fragment);
+            (1.0 - run.traits.memory) * std::min(1.0, turned / 3.14159265358979) * (1.0 + run.model.fragment_memory * fragment);
         it->second = o.yaw;
-        effort += run.m.check_known_s * (1.0 + run.m.fragment_effort * fragment);
+        effort += run.model.check_known_s * (1.0 + run.model.fragment_effort * fragment);
         if (!run.rng.chance(p_fail)) continue;
       } else {
         counted.emplace(s.index, o.yaw);
       }
       ++count;
       ++fresh;
-      effort += run.m.count_new_s * (1.0 + run.m.fragment_effort * fragment);
-      if (s.clear_px * 2 < s.visible_px) effort += run.m.see_through_s;  // counted while mostly seen through something
+      effort += run.model.count_new_s * (1.0 + run.model.fragment_effort * fragment);
+      if (s.clear_px * 2 < s.visible_px) effort += run.model.see_through_s;  // counted while mostly seen through something
     }
     run.trace.noticed.push_back(noticed);
-    run.spend(run.scaled(run.m.scan_base_s + effort));
+    run.spend(run.scaled(run.model.scan_base_s + effort));
     idle = fresh == 0 ? idle + 1 : 0;
     if (idle >= run.traits.patience) break;
   }
-  run.finish(store::Count{count}, std::to_string(count), run.m.answer_count_s);
+  run.finish(store::Count{count}, std::to_string(count), run.model.answer_count_s);
 }
 
 // T2: name the letter of the red cones. A view is legible to the share of the letter's cones
@@ -95,10 +95,10 @@ void run_identify_letter(TrialRun& run) {
   Orbit o{sc.camera.yaw, sc.camera.pitch};
   std::optional<char> read;
   double legibility = 0;
-  for (int k = 0; k < run.m.max_views && !run.out_of_time(); ++k) {
+  for (int k = 0; k < run.model.max_views && !run.out_of_time(); ++k) {
     if (k > 0) {
       // Steep views from alternating sides, turning 60 degrees about the vertical each time.
-      const float pitch = static_cast<float>(k % 2 ? run.m.letter_pitch : -run.m.letter_pitch);
+      const float pitch = static_cast<float>(k % 2 ? run.model.letter_pitch : -run.model.letter_pitch);
       run.drag(1.047198, pitch - o.pitch);
       o.yaw += 1.047198f;
       o.pitch = pitch;
@@ -109,11 +109,11 @@ void run_identify_letter(TrialRun& run) {
     for (const Seen& s : v.seen) {
       if (!run.notice(s.visible_px)) continue;
       ++noticed;
-      effort += run.m.letter_cone_s * (1.0 + run.m.fragment_effort * (1.0 - completeness(s)));
-      if (s.clear_px * 2 < s.visible_px) effort += run.m.see_through_s;
+      effort += run.model.letter_cone_s * (1.0 + run.model.fragment_effort * (1.0 - completeness(s)));
+      if (s.clear_px * 2 < s.visible_px) effort += run.model.see_through_s;
     }
     run.trace.noticed.push_back(noticed);
-    run.spend(run.scaled(run.m.scan_base_s + effort));
+    run.spend(run.scaled(run.model.scan_base_s + effort));
     const double share = cones.empty() ? 0.0 : static_cast<double>(noticed) / static_cast<double>(cones.size());
     legibility = share * std::min(1.0, std::abs(std::sin(static_cast<double>(o.pitch))) / std::sin(0.785398));
     if (legibility >= run.traits.legibility) {
@@ -131,7 +131,7 @@ void run_identify_letter(TrialRun& run) {
     }
   }
   if (!read) read = letters[run.rng.below(letters.size())];  // out of views or time: a guess
-  run.finish(store::Letter{std::string(1, *read)}, std::string(1, *read), run.m.answer_letter_s);
+  run.finish(store::Letter{std::string(1, *read)}, std::string(1, *read), run.model.answer_letter_s);
 }
 
 }  // namespace dtlab::sim::detail

@@ -12,9 +12,9 @@ constexpr double kRadPerPixel = 0.005;
 constexpr double kReferencePixels = 800.0 * 600.0;  // the article's screen (VII: 800 x 600 and up)
 }  // namespace
 
-TrialRun::TrialRun(const session::TrialSpec& s, const ModelParams& model, const Traits& tr, std::uint64_t seed,
+TrialRun::TrialRun(const session::TrialSpec& s, const ModelParams& params, const Traits& tr, std::uint64_t seed,
                    render::Renderer& r, int w, int h)
-    : spec(s), m(model), traits(tr), rng(seed), renderer(r), width(w), height(h), bounds(object_bounds(*s.scene)) {
+    : spec(s), model(params), traits(tr), rng(seed), renderer(r), width(w), height(h), bounds(object_bounds(*s.scene)) {
   out.started_at = std::chrono::system_clock::now();
 }
 
@@ -28,7 +28,7 @@ View TrialRun::look(const render::Camera& camera, float yaw, float pitch, std::s
   View best;
   for (std::size_t k = 0; k < std::max<std::size_t>(1, spots.size()); ++k) {
     if (!spots.empty()) {
-      if (k > 0) spend(scaled(m.aid_spot_s));
+      if (k > 0) spend(scaled(model.aid_spot_s));
       frame.dt.searchlight_center = frame.lens.center = spots[k];
       out.events.push_back({t_, store::InputEvent::Kind::cursor, "", spots[k].x, spots[k].y});
     }
@@ -65,12 +65,12 @@ View TrialRun::look(const render::Camera& camera, float yaw, float pitch, std::s
 
 double TrialRun::notice_probability(long visible_px) const {
   const double a = static_cast<double>(visible_px) * kReferencePixels / (static_cast<double>(width) * height);
-  return traits.attention * (1.0 - std::exp(-a / m.notice_px));
+  return traits.attention * (1.0 - std::exp(-a / model.notice_px));
 }
 
 void TrialRun::drag(double dyaw, double dpitch) {
   const double angle = std::hypot(dyaw, dpitch);
-  const double d = scaled(m.drag_base_s + m.drag_s_per_rad * angle);
+  const double d = scaled(model.drag_base_s + model.drag_s_per_rad * angle);
   const double cx = 0.5 * width, cy = 0.5 * height;
   const double dx = dyaw / kRadPerPixel, dy = -dpitch / kRadPerPixel;
   out.events.push_back({t_, store::InputEvent::Kind::button_down, "left", cx, cy});
@@ -81,7 +81,7 @@ void TrialRun::drag(double dyaw, double dpitch) {
 }
 
 void TrialRun::turn(double dyaw) {
-  const double d = scaled(m.turn_base_s + m.turn_s_per_rad * std::abs(dyaw));
+  const double d = scaled(model.turn_base_s + model.turn_s_per_rad * std::abs(dyaw));
   const double cx = 0.5 * width, cy = 0.5 * height;
   for (int k = 1; k <= 4; ++k)
     out.events.push_back({t_ + d * k / 4.0, store::InputEvent::Kind::cursor, "", cx - dyaw / kRadPerPixel * k / 4.0, cy});
@@ -90,7 +90,7 @@ void TrialRun::turn(double dyaw) {
 
 void TrialRun::walk(double distance) {
   if (distance <= 0) return;
-  const double d = scaled(distance / m.walk_speed);
+  const double d = scaled(distance / model.walk_speed);
   out.events.push_back({t_, store::InputEvent::Kind::key_down, "Up", 0, 0});
   out.events.push_back({t_ + d, store::InputEvent::Kind::key_up, "Up", 0, 0});
   spend(d);

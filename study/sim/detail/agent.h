@@ -23,11 +23,11 @@ using dtlab::Stream;
 
 class TrialRun {
  public:
-  TrialRun(const session::TrialSpec& spec, const ModelParams& model, const Traits& traits, std::uint64_t seed,
+  TrialRun(const session::TrialSpec& spec, const ModelParams& params, const Traits& traits, std::uint64_t seed,
            render::Renderer& renderer, int width, int height);
 
   const session::TrialSpec& spec;
-  const ModelParams& m;
+  const ModelParams& model;  // the agent model's constants (docs/sim.md, "Parameters")
   const Traits& traits;
   Stream rng;
   render::Renderer& renderer;

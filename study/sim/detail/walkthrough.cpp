@@ -32,7 +32,7 @@ glm::vec2 floor_position(const scene::Object& o) { return {o.transform[3].x, o.t
 int views_per_stop(const TrialRun& run) {
   const double aspect = static_cast<double>(run.width) / static_cast<double>(run.height);
   const double fov_x = 2 * std::atan(std::tan(0.5 * static_cast<double>(run.spec.scene->camera.fov_y)) * aspect);
-  const double need = std::max(2 * kPi / run.m.turn_step, 2 * kPi / fov_x);
+  const double need = std::max(2 * kPi / run.model.turn_step, 2 * kPi / fov_x);
   return std::max(1, static_cast<int>(std::ceil(need - 1e-9)));
 }
 
@@ -155,17 +155,17 @@ void run_find_unique(TrialRun& run) {
         const glm::vec2 at = floor_position(sc.objects[s.index]);
         const double dist = glm::length(at - w.eye());
         const int walls = w.building.walls_between(w.eye(), at);
-        const double sd = (run.m.map_base + run.m.map_per_unit * dist + run.m.map_per_wall * walls) * run.traits.map_error +
-                          run.m.map_per_walked * std::sqrt(w.walked);
+        const double sd = (run.model.map_base + run.model.map_per_unit * dist + run.model.map_per_wall * walls) * run.traits.map_error +
+                          run.model.map_per_walked * std::sqrt(w.walked);
         const float side = static_cast<float>(sc.plan->width) * sc.plan->cell_size;
         const float depth = static_cast<float>(sc.plan->height) * sc.plan->cell_size;
         mark = glm::vec2(std::clamp(static_cast<float>(at.x + run.rng.normal(0.0, sd)), 0.0f, side),
                          std::clamp(static_cast<float>(at.y + run.rng.normal(0.0, sd)), 0.0f, depth));
-        run.spend(run.scaled(run.m.notice_find_s));
+        run.spend(run.scaled(run.model.notice_find_s));
         break;
       }
       run.trace.noticed.push_back(noticed);
-      run.spend(run.scaled(run.m.walk_scan_s));
+      run.spend(run.scaled(run.model.walk_scan_s));
       return !mark;
     });
     if (mark || run.out_of_time()) break;
@@ -181,7 +181,7 @@ void run_find_unique(TrialRun& run) {
   }
   std::ostringstream text;
   text << mark->x << "," << mark->y;
-  run.finish(store::Position{mark->x, mark->y}, text.str(), run.m.mark_map_s);
+  run.finish(store::Position{mark->x, mark->y}, text.str(), run.model.mark_map_s);
 }
 
 // T4: walk and count the objects of the shown kind; a noticed object seen before is recognised
@@ -207,19 +207,19 @@ void run_count_kind(TrialRun& run) {
         if (it != counted.end()) {
           const bool moved = it->second != w.room;
           it->second = w.room;
-          effort += run.m.check_known_s * (1.0 + run.m.fragment_effort * fragment);
-          const double p_fail = (1.0 - run.traits.memory) * (1.0 + run.m.fragment_memory * fragment);
+          effort += run.model.check_known_s * (1.0 + run.model.fragment_effort * fragment);
+          const double p_fail = (1.0 - run.traits.memory) * (1.0 + run.model.fragment_memory * fragment);
           if (!moved || !run.rng.chance(p_fail)) continue;
         } else {
           counted.emplace(s.index, w.room);
         }
         ++count;
         ++fresh;
-        effort += run.m.count_kind_s * (1.0 + run.m.fragment_effort * fragment);
-        if (s.clear_px * 2 < s.visible_px) effort += run.m.see_through_s;  // counted while mostly seen through walls
+        effort += run.model.count_kind_s * (1.0 + run.model.fragment_effort * fragment);
+        if (s.clear_px * 2 < s.visible_px) effort += run.model.see_through_s;  // counted while mostly seen through walls
       }
       run.trace.noticed.push_back(noticed);
-      run.spend(run.scaled(run.m.walk_scan_s + effort));
+      run.spend(run.scaled(run.model.walk_scan_s + effort));
       found = found || fresh > 0;
       return true;
     });
@@ -228,7 +228,7 @@ void run_count_kind(TrialRun& run) {
     if (run.out_of_time() || idle_rooms >= run.traits.patience_rooms) break;
     if (!w.go_on(false)) break;
   }
-  run.finish(store::Count{count}, std::to_string(count), run.m.answer_count_s);
+  run.finish(store::Count{count}, std::to_string(count), run.model.answer_count_s);
 }
 
 }  // namespace dtlab::sim::detail
