@@ -167,9 +167,9 @@ Status WindowResponder::show_instructions(const session::TaskSetSpec& set) {
 Status WindowResponder::show_training(const session::TaskSetSpec& set) {
   if (set.time_limit_s <= 0) return {};
   // A practice scene of the set's task and condition, never one of the recorded trials.
-  int task_index = 0;
-  for (std::size_t i = 0; i < set.setup->scenario->tasks.size(); ++i)
-    if (set.setup->scenario->tasks[i].id == set.task) task_index = static_cast<int>(i);
+  const auto& tasks = set.setup->scenario->tasks;
+  const protocol::Task* task = protocol::find_task(*set.setup->scenario, set.task);
+  const auto task_index = task ? task - tasks.data() : 0;  // its place in the scenario: the training seed's domain
   const std::uint64_t seed =
       design::training_seed(protocol_.master_seed, static_cast<std::uint64_t>(set.enrollment_index),
                             static_cast<std::uint64_t>(set.block), static_cast<std::uint64_t>(task_index));

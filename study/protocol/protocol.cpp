@@ -345,6 +345,12 @@ const std::string& level_label(const Factor& f, int level) {
 const Scenario* find_scenario(const Protocol& p, std::string_view name) { return by_name(p.scenarios, name); }
 const Rendering* find_rendering(const Protocol& p, std::string_view name) { return by_name(p.renderings, name); }
 
+const Task* find_task(const Scenario& s, std::string_view id) {
+  for (const Task& t : s.tasks)
+    if (t.id == id) return &t;
+  return nullptr;
+}
+
 const Factor* factor_with_role(const Protocol& p, FactorRole role) {
   for (const Factor& f : p.factors)
     if (f.role == role) return &f;

@@ -299,6 +299,8 @@ int condition_index(const Protocol& p, const std::vector<int>& levels);
 const Factor* find_factor(const Protocol& p, std::string_view name);
 const Scenario* find_scenario(const Protocol& p, std::string_view name);
 const Rendering* find_rendering(const Protocol& p, std::string_view name);
+// The task of scenario `s` with this id (ids are unique within a scenario); nullptr if none. Valid while s is.
+const Task* find_task(const Scenario& s, std::string_view id);
 // The factor with this role (at most one per role); nullptr if none.
 const Factor* factor_with_role(const Protocol& p, FactorRole role);
 

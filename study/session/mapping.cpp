@@ -189,8 +189,7 @@ Result<TrialSetup> trial_setup(const protocol::Protocol& p, const design::Planne
   const protocol::Condition& c = p.conditions[static_cast<std::size_t>(s.condition)];
   s.scenario = &p.scenarios[static_cast<std::size_t>(c.scenario)];
   s.rendering = &p.renderings[static_cast<std::size_t>(c.rendering)];
-  for (const protocol::Task& t : s.scenario->tasks)
-    if (t.id == trial.task) s.task = &t;
+  s.task = protocol::find_task(*s.scenario, trial.task);
   if (!s.task) return plan_error(p, where + ".task", "scenario '" + s.scenario->name + "' has no task '" + trial.task + "'");
   s.kind = scene_kind(s.task->scene.kind);
   s.scene_task = scene_task(s.task->type);

@@ -395,6 +395,18 @@ TEST(Mapping, TrialSetupFollowsThePlan) {
   EXPECT_EQ(r.error().field, "plan.trials[1].task");
 }
 
+// A task is found by its id within its own scenario only (protocol::find_task).
+TEST(Mapping, FindTaskLooksInItsScenario) {
+  const protocol::Protocol p = reference();
+  const protocol::Scenario* abstract = protocol::find_scenario(p, "abstract");
+  ASSERT_NE(abstract, nullptr);
+  ASSERT_EQ(abstract->tasks.size(), 2u);
+  EXPECT_EQ(protocol::find_task(*abstract, "T1"), &abstract->tasks[0]);
+  EXPECT_EQ(protocol::find_task(*abstract, "T2"), &abstract->tasks[1]);
+  EXPECT_EQ(protocol::find_task(*abstract, "T3"), nullptr);  // a walkthrough task
+  EXPECT_EQ(protocol::find_task(*abstract, "t1"), nullptr);  // ids are case-sensitive
+}
+
 TEST(Mapping, AnswerKeysAndStudyInfo) {
   scene::Answer a;
   a.task = scene::Task::T1;
