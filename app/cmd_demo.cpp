@@ -27,6 +27,7 @@
 #include "app/report_paths.h"
 #include "study/session/mapping.h"
 #include "study/session/runnable.h"
+#include "study/sim/simulate.h"
 #include "study/sim/summary.h"
 #include "study/store/export.h"
 #include "study/store/read.h"
@@ -44,7 +45,7 @@ constexpr const char* kProtocolFile = "elmqvist2008.toml";
 struct DemoArgs {
   std::string out = "dtlab-demo";
   std::string db;  // "" = DIR/elmqvist2008.sqlite
-  SimulationRun run;
+  sim::StudyRun run;
 };
 
 // Writes `text` to `path` unless the file already holds exactly it; refuses to replace other content.
@@ -83,8 +84,8 @@ void run_demo(DemoArgs a) {
             << "dtlab demo: " << a.run.participants << " simulated participants x " << p->conditions.size()
             << " conditions, headless at " << a.run.width << "x" << a.run.height << ", " << a.run.jobs
             << " worker process(es), into " << store::display_name(a.run.db) << "\n";
-  SimulationResult r;
-  const int rc = run_simulation(p.value(), a.run, "dtlab demo", r);
+  sim::StudyResult r;
+  const int rc = simulate_with_progress(p.value(), a.run, "dtlab demo", r);
   if (rc != kExitOk) throw CLI::RuntimeError(rc);
 
   // One snapshot of the database serves the table, the report and the summary.

@@ -5,7 +5,8 @@
 // resume, finished ones are skipped, ids up to sim-N are added. Ctrl-C stops
 // after the trials in progress (a second Ctrl-C at once); SIGKILL loses at
 // most the trials in progress. The protocol is checked first as `dtlab
-// validate` does (session::validate_runnable). Exit 0 all finished, 1 bad
+// validate` does (sim::simulate_study: the check, enrollment and the run are
+// the library's; signals, stderr and the exit code are this file's). Exit 0 all finished, 1 bad
 // protocol/database, 2 bad command line, 3 environment (GL, database, fork),
 // 130 interrupted.
 #include <CLI/CLI.hpp>
@@ -16,6 +17,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <thread>
 #include <unistd.h>
 
@@ -23,10 +25,10 @@
 #include "app/database_arg.h"
 #include "app/platform/gl_context.h"
 #include "study/common/text.h"
-#include "study/design/design.h"
 #include "study/protocol/protocol.h"
 #include "study/session/runnable.h"
 #include "study/sim/driver.h"
+#include "study/sim/simulate.h"
 #include "study/sim/summary.h"
 #include "study/session/mapping.h"
 #include "study/store/read.h"
@@ -96,7 +98,7 @@ class ProgressPrinter {
 
 struct SimulateArgs {
   std::string protocol, db;
-  SimulationRun run;
+  sim::StudyRun run;
   bool json = false;
 };
 
@@ -106,10 +108,10 @@ void run_simulate(const SimulateArgs& a) {
     std::cerr << "dtlab simulate: " << p.error().to_string() << "\n";
     throw CLI::RuntimeError(kExitInvalid);
   }
-  SimulationResult r;
-  SimulationRun run = a.run;
+  sim::StudyResult r;
+  sim::StudyRun run = a.run;
   run.db = a.db;
-  const int rc = run_simulation(p.value(), run, "dtlab simulate", r);
+  const int rc = simulate_with_progress(p.value(), run, "dtlab simulate", r);
   if (rc != kExitOk && rc != kExitInterrupted && rc != kExitFailure) throw CLI::RuntimeError(rc);
   auto reader = store::StudyReader::open(a.db, session::read_options());
   const protocol::Factor* rendering = protocol::factor_with_role(*p, protocol::FactorRole::rendering);
@@ -143,32 +145,9 @@ void run_simulate(const SimulateArgs& a) {
 
 }  // namespace
 
-int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const std::string& prefix,
-                   SimulationResult& result) {
-  const auto start = std::chrono::steady_clock::now();
-  // What the sessions will hand the generator and the renderer, checked before anything runs.
-  const auto problems = session::validate_runnable(p, {session::Viewport{run.width, run.height}});
-  for (const auto& d : problems) std::cerr << prefix << ": " << d.to_string() << "\n";
-  if (protocol::has_errors(problems)) return kExitInvalid;
-  const store::OpenOptions open = session::open_options(run.allow_protocol_change);
-  auto roster = sim::enroll_simulated(run.db, p, run.participants, open);
-  if (!roster) {
-    std::cerr << prefix << ": " << roster.error().to_string() << "\n";
-    return exit_code(roster.error());
-  }
-  result.already_finished = roster->finished;
-  result.resumed = roster->resumable;
-
-  sim::RunOptions o;
-  o.db_path = run.db;
-  o.protocol = &p;
-  o.open = open;
-  o.participants = roster->to_run;
-  o.jobs = run.jobs;
-  o.sim.width = run.width;
-  o.sim.height = run.height;
-  o.sim.seed = run.seed;
-  o.make_context = [](int w, int h) -> Result<std::shared_ptr<void>> {
+int simulate_with_progress(const protocol::Protocol& p, sim::StudyRun run, const std::string& prefix,
+                           sim::StudyResult& result) {
+  run.make_context = [](int w, int h) -> Result<std::shared_ptr<void>> {
     // Agents look at small frames (160 x 120): llvmpipe's rasterizer threads cost more in hand-offs
     // than they save there (2 participants in one process: 19.1 -> 10.2 s, the same pixels), and
     // the worker processes (--jobs) use the cores.
@@ -176,45 +155,36 @@ int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const 
     if (!ctx) return ctx.error();
     return std::shared_ptr<void>(std::move(ctx.value()));
   };
-  const long long per = static_cast<long long>(design::make_plan(p, 0).trials.size());
-  ProgressPrinter printer(prefix, per * static_cast<long long>(roster->to_run.size()));
-  o.on_progress = [&](const sim::Progress& pr) { printer(pr); };
+  run.on_checked = [&](const std::vector<Diagnostic>& problems) {
+    for (const auto& d : problems) std::cerr << prefix << ": " << d.to_string() << "\n";
+  };
+  std::optional<ProgressPrinter> printer;
+  run.on_roster = [&](const sim::Roster&, long long planned_trials) { printer.emplace(prefix, planned_trials); };
+  run.on_progress = [&](const sim::Progress& pr) { (*printer)(pr); };
   g_stop = 0;
-  o.stop = &g_stop;
+  run.stop = &g_stop;
   auto old_int = std::signal(SIGINT, on_interrupt);
   auto old_term = std::signal(SIGTERM, on_interrupt);
-  auto ran = sim::run_simulated(o);
+  result = sim::simulate_study(p, run);
   std::signal(SIGINT, old_int);
   std::signal(SIGTERM, old_term);
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!ran) {
-    std::cerr << prefix << ": " << ran.error().to_string() << "\n";
+  if (result.protocol_invalid) return kExitInvalid;
+  if (result.enroll_error) {
+    std::cerr << prefix << ": " << result.enroll_error->to_string() << "\n";
+    return exit_code(*result.enroll_error);
+  }
+  if (result.run_error) {
+    std::cerr << prefix << ": " << result.run_error->to_string() << "\n";
     return kExitFailure;
   }
-  result.trials_run = ran->trials_run;
-  result.elsewhere = ran->elsewhere;
-  result.finished_total = roster->finished + ran->finished;
-  if (ran->elsewhere > 0) {  // other processes ran some: count what the file says now
-    auto reader = store::StudyReader::open(run.db, session::read_options());
-    auto sessions = reader ? reader->sessions() : Result<std::vector<store::SessionRecord>>(reader.error());
-    if (sessions) {
-      result.finished_total = 0;
-      for (int k = 1; k <= run.participants; ++k)
-        for (const auto& s : *sessions)
-          if (s.participant == sim::participant_id(k) && s.status == store::SessionStatus::finished)
-            ++result.finished_total;
-    }
-  }
-  result.errors = ran->errors;
-  result.stopped = ran->stopped;
-  for (const std::string& e : ran->errors) std::cerr << prefix << ": " << e << "\n";
-  if (ran->stopped) {
+  for (const std::string& e : result.errors) std::cerr << prefix << ": " << e << "\n";
+  if (result.stopped) {
     std::cerr << prefix << ": interrupted; every recorded trial is saved in " << store::display_name(run.db)
               << ". Run the same command again to resume.\n";
     return kExitInterrupted;
   }
-  if (ran->failed == 0) return kExitOk;
-  return ran->failed == ran->invalid ? kExitInvalid : kExitFailure;
+  if (result.failed == 0) return kExitOk;
+  return result.failed == result.invalid ? kExitInvalid : kExitFailure;
 }
 
 void add_simulate_command(CLI::App& root) {

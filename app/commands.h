@@ -17,6 +17,10 @@ class Validator;
 namespace dtlab::protocol {
 struct Protocol;
 }
+namespace dtlab::sim {
+struct StudyRun;
+struct StudyResult;
+}
 
 namespace dtlab::app {
 
@@ -78,21 +82,10 @@ void add_replay_command(CLI::App& root);  // `dtlab replay DB --participant ID -
 // itself turns "-1" into 2^64 - 1. Used by `render --seed` and `bench --seed`.
 CLI::Validator unsigned_integer();
 
-// Shared by `dtlab simulate` and `dtlab demo` (cmd_simulate.cpp): enrolls sim-001 .. sim-N into
-// run.db and runs their sessions with progress on stderr (lines start with `prefix`); returns an exit code.
-struct SimulationRun {
-  std::string db;
-  int participants = 16, jobs = 1, width = 160, height = 120;
-  std::uint64_t seed = 0;
-  bool allow_protocol_change = false;  // continue a database recorded under another protocol hash
-};
-struct SimulationResult {
-  int finished_total = 0, already_finished = 0, resumed = 0, trials_run = 0;
-  int elsewhere = 0;  // participants another process was running (claimed): skipped here
-  bool stopped = false;
-  double wall_s = 0;
-  std::vector<std::string> errors;
-};
-int run_simulation(const protocol::Protocol& p, const SimulationRun& run, const std::string& prefix,
-                   SimulationResult& result);
+// The process's side of a simulated study, shared by `dtlab simulate` and `dtlab demo`
+// (cmd_simulate.cpp): runs sim::simulate_study (study/sim/simulate.h) on `run` with headless GL
+// contexts, Ctrl-C as its stop flag and progress on stderr (lines start with `prefix`), prints the
+// protocol's diagnostics and any error there; returns the exit code.
+int simulate_with_progress(const protocol::Protocol& p, sim::StudyRun run, const std::string& prefix,
+                           sim::StudyResult& result);
 }  // namespace dtlab::app
