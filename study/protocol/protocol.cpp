@@ -11,7 +11,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 
 #include "study/common/hash.h"
 #include "study/protocol/detail/parser.h"
@@ -277,54 +276,6 @@ std::string_view to_string(TaskType type) {
     case TaskType::count_targets: break;
   }
   return "count-targets";
-}
-
-std::int64_t scheme_rows(Scheme scheme, int n, int random_rows) {
-  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
-  switch (scheme) {
-    case Scheme::latin_square: return n;
-    case Scheme::williams: return n % 2 == 0 ? n : 2 * static_cast<std::int64_t>(n);
-    case Scheme::full_permutation: {
-      std::int64_t f = 1;
-      for (int i = 2; i <= n; ++i) {
-        if (f > kMax / i) return kMax;
-        f *= i;
-      }
-      return f;
-    }
-    case Scheme::random: return random_rows;
-    case Scheme::fixed: break;
-  }
-  return 1;
-}
-
-std::int64_t declared_order_rows(const Protocol& p) {
-  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
-  const Ordering& o = p.order;
-  if (o.unit == OrderUnit::conditions) {
-    int n = 1;
-    for (const auto& f : p.factors) n *= static_cast<int>(f.levels.size());
-    return scheme_rows(o.scheme, n, o.rows);
-  }
-  if (o.block_factor < 0 || o.block_factor >= static_cast<int>(p.factors.size())) return 0;
-  int nested = 1;
-  for (int f = 0; f < static_cast<int>(p.factors.size()); ++f)
-    if (f != o.block_factor) nested *= static_cast<int>(p.factors[f].levels.size());
-  const std::int64_t outer = scheme_rows(o.scheme, static_cast<int>(p.factors[o.block_factor].levels.size()), o.rows);
-  const std::int64_t inner = scheme_rows(o.nested_scheme, nested, o.nested_rows);
-  if (outer > 0 && inner > kMax / outer) return kMax;
-  return outer * inner;
-}
-
-int condition_index(const Protocol& p, const std::vector<int>& levels) {
-  if (levels.size() != p.factors.size()) return -1;
-  int index = 0;
-  for (std::size_t f = 0; f < levels.size(); ++f) {
-    const int k = static_cast<int>(p.factors[f].levels.size());
-    if (levels[f] < 0 || levels[f] >= k) return -1;
-    index = index * k + levels[f];
-  }
-  return index;
 }
 
 namespace {
