@@ -1,5 +1,6 @@
-// Object fragment shader: forward shading with a headlight (the light sits at
-// the eye), two-sided, colour = vertex colour x tint x (ambient + diffuse).
+// Object fragment shader: forward shading with a headlight (lighting.glsl,
+// which programs.cpp puts before this file's code: the light sits at the eye),
+// two-sided, colour = vertex colour x tint x (ambient + diffuse).
 // Flat mode (u_flat.a > 0.5) outputs u_flat.rgb unlit: the weight renders
 // that count visible pixels. Alpha is always 1; blending decides what it does.
 // Compiled twice: with SEARCHLIGHT defined (only for the R1 guard's repair in active
@@ -106,13 +107,7 @@ void main() {
 #endif
     return;
   }
-  vec3 to_eye = u_eye - v_world;
-  float le = length(to_eye);
-  vec3 l = le > 1e-12 ? to_eye / le : vec3(0.0, 0.0, 1.0);
-  float ln = length(v_normal);
-  float diffuse = ln > 1e-12 ? abs(dot(v_normal / ln, l)) : 1.0;
-  vec3 c = clamp(v_color * u_tint, 0.0, 1.0) * (0.3 + 0.7 * clamp(diffuse, 0.0, 1.0));
-  frag_color = with_alpha(vec4(c, 1.0));
+  frag_color = with_alpha(vec4(headlight(v_world, v_normal, v_color, u_tint, u_eye), 1.0));
 #ifdef LENS
   frag_color = lens_tinted(frag_color);
 #endif

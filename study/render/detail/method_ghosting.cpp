@@ -14,7 +14,6 @@
 #include <cmath>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -35,7 +34,7 @@ const glm::vec3 kEdgeColor{0.08f, 0.08f, 0.1f};
 class GhostState final : public MethodState {
  public:
   ~GhostState() override {
-    if (program.id != 0) glDeleteProgram(program.id);
+    delete_program(program);
     if (vao != 0) glDeleteVertexArrays(1, &vao);
     if (vbo != 0) glDeleteBuffers(1, &vbo);
   }
@@ -192,9 +191,7 @@ Handle add_ghost_passes(FrameGraph& fg, const FrameContext& fc, GhostState& s) {
 MethodFrame add_ghosting(FrameGraph& fg, const FrameContext& fc, MethodSlot& slot) {
   if (!slot.state) {
     auto state = std::make_unique<GhostState>();
-    auto p = link_program("object.vert", "ghost.frag");
-    if (!p) throw std::runtime_error("ghosting: " + p.error().to_string());
-    state->program = std::move(p.value());
+    state->program = link_method_program("ghosting", "object.vert", "ghost.frag", "", "lighting.glsl");
     slot.state = std::move(state);
   }
   auto& s = static_cast<GhostState&>(*slot.state);

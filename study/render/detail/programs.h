@@ -1,7 +1,11 @@
 // Internal: the renderer's GLSL programs, compiled from the embedded files in
-// shaders/ (GLSL 330 core). Guarantees: a compile or link failure is an Error
-// naming the shader file and carrying the driver's log; uniform locations are
-// looked up once per name. Never: reads shader files at run time.
+// shaders/ (GLSL 330 core): the shared table (what several methods draw with)
+// and the link step a method's own programs go through (method.h: a method
+// compiles its variants in its MethodState on its first frame). Guarantees: a
+// compile or link failure is an environment Error naming the shader file and
+// carrying the driver's log; shared GLSL (lighting.glsl) is written once and
+// put before the code that names it; uniform locations are looked up once per
+// name. Never: reads shader files at run time.
 #pragma once
 #include <map>
 #include <string>
@@ -19,9 +23,26 @@ class Program {
 };
 
 // Compiles and links the embedded `vertex_file` and `fragment_file`; `defines` (e.g. "SEARCHLIGHT")
-// are #defined in both shaders, after their #version lines.
-Result<Program> link_program(const char* vertex_file, const char* fragment_file, const char* defines = "");
+// are #defined in both shaders, after their #version lines; `fragment_chunks` (e.g.
+// "lighting.glsl": embedded files of shared GLSL) follow them in the fragment shader, before its
+// own code. #line keeps the driver's log pointing at file and line: a line of the shader's own
+// file has its own number, line i of the k-th chunk 10000 k + i (the Error's message says so).
+Result<Program> link_program(const char* vertex_file, const char* fragment_file, const char* defines = "",
+                             const char* fragment_chunks = "");
+// A method's own program, linked on its first frame (from a method's add(), inside the renderer's
+// guarded public function): link_program's program, or throws PassedError with its Error (the
+// message led by `method`), which Renderer::render then returns as it is.
+Program link_method_program(const char* method, const char* vertex_file, const char* fragment_file,
+                            const char* defines = "", const char* fragment_chunks = "");
+// The text link_program hands the driver for the embedded `file`: up to its #version line,
+// `defines`, the `chunks` (the k-th after `#line 10000 k + 1 k`), `#line n 0` and the rest of the
+// file from its line n.
+Result<std::string> shader_source(const char* file, const char* defines = "", const char* chunks = "");
+// Deletes `p`'s GL program, if any, and zeroes its id (needs the context current).
+void delete_program(Program& p);
 
+// The programs several methods draw with, and (until they move into their methods) the lens's,
+// vdt's and screen-door's variants.
 // Variants with SEARCHLIGHT may discard; the others never do (a shader that may discard makes
 // llvmpipe test depth after shading).
 struct Programs {
@@ -46,6 +67,7 @@ struct Programs {
   void destroy();       // deletes every program (needs the context current)
 };
 
+// Links every program of the table (Renderer::create); the first failure's Error.
 Result<Programs> compile_programs();
 
 }  // namespace dtlab::render::detail
