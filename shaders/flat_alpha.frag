@@ -3,15 +3,10 @@
 // (line 11), and depth/stencil-only passes (colour writes off). Compiled with
 // SEARCHLIGHT defined for active mode: fragments outside the searchlight
 // circle are discarded, or with u_outside_one written as alpha 1 (so stencil
-// operations still happen there); without it, it never discards. With PEEL
-// (vdt's second pass, docs/render.md "vdt") it discards every fragment at or in
-// front of the depth in u_peel at its own pixel: one layer peeled off (Everitt's
-// depth peeling; the paper's z - z_shift test).
+// operations still happen there); without it, it never discards. (vdt's
+// depth peeling is vdt_peel.frag, the vdt method's own.)
 #version 330 core
 uniform float u_alpha;
-#ifdef PEEL
-uniform sampler2D u_peel;  // depth of the nearest layer, aligned with the view
-#endif
 #ifdef SEARCHLIGHT
 uniform vec3 u_searchlight;  // centre x, y in window pixels (origin bottom-left), radius; radius < 0: off
 uniform int u_outside_one;   // 1: outside the searchlight write alpha 1 (a no-op multiply) instead of discarding
@@ -20,9 +15,6 @@ uniform int u_outside_one;   // 1: outside the searchlight write alpha 1 (a no-o
 out vec4 frag_color;
 
 void main() {
-#ifdef PEEL
-  if (gl_FragCoord.z <= texelFetch(u_peel, ivec2(gl_FragCoord.xy), 0).r) discard;
-#endif
 #ifdef SEARCHLIGHT
   bool outside = u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z;
   if (outside && u_outside_one == 0) discard;

@@ -5,6 +5,7 @@
 // Guarantees: a method's GL state between frames lives in its MethodSlot,
 // destroyed with the renderer. Never: a method's passes read another's slot.
 #pragma once
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -47,17 +48,18 @@ struct MethodPasses {
 // The passes of every method, by technique::Method.
 const MethodPasses& passes_of(Method m);
 
-// An effect after the standard frame: its passes, conditional on `query` (passes.h).
-using Effect = MainTargets (*)(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
+// An effect after the standard frame: its passes, conditional on `query` (passes.h). A function or a
+// lambda that captures the method's state (its programs), called before add_standard_first returns.
+using Effect = std::function<MainTargets(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query)>;
 // The standard-first plan: `opaque` (with the targets' codes in the stencil when an effect
 // follows), the target query when a target is in view (culled if nothing reads it), then
 // `effect` when given and a target is in view.
-MethodFrame add_standard_first(FrameGraph& fg, const FrameContext& fc, Effect effect);
+MethodFrame add_standard_first(FrameGraph& fg, const FrameContext& fc, const Effect& effect);
 
 // A frame-coherent method's frame (dt-seed, dt-fast): `direct` (effect-first) when the last frame
 // needed the effect and it can serve this one (effect_first_possible), else the standard-first
 // plan with `effect`.
 MethodFrame add_coherent(FrameGraph& fg, const FrameContext& fc, const MethodSlot& slot,
-                         EffectFirst (*direct)(FrameGraph& fg, const FrameContext& fc), Effect effect);
+                         EffectFirst (*direct)(FrameGraph& fg, const FrameContext& fc), const Effect& effect);
 
 }  // namespace dtlab::render::detail

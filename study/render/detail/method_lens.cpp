@@ -9,7 +9,9 @@
 // more than `standard` whatever the lens's shape.
 // Guarantees: outside the lens footprint and wherever the lens holds no
 // geometry the frame equals `standard`'s (same shader maths, same depths);
-// targets and impenetrable surfaces are never erased. Never: draws the lens itself into the colour.
+// targets and impenetrable surfaces are never erased. The second depth test
+// is the method's own program (shaders/lens.frag), linked in its LensState
+// on the first lens frame. Never: draws the lens itself into the colour.
 #include <glad/gl.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -23,6 +25,16 @@ namespace dtlab::render::detail {
 namespace {
 
 enum class Class { behind = 0, inside = 1, in_front = 2 };
+
+// The lens volume uploaded for this frame (world-space triangles, attribute 0 of `vao`) and the
+// program of the three scene passes.
+struct LensGpu {
+  unsigned vao = 0;
+  int vertices = 0;
+  bool eye_inside = false;  // no entry surface: the front map is 0 over the whole view
+  PixelRect footprint;      // pixels the lens can cover (conservative); passes 2 and 3 change nothing outside
+  const Program* program = nullptr;  // object.vert + lens.frag: the second depth test (discards)
+};
 
 // One of the two lens depth maps: the farthest (`back`) or nearest surface of the volume per pixel.
 // Depth clamping keeps a lens crossing the near (far) plane closed: its surfaces nearer than the
@@ -55,7 +67,7 @@ void draw_lens_depth(const FrameContext& fc, const LensGpu& lens, bool back) {
 // objects whose screen rectangles miss it (the paper's section 5: bounding volumes spare the
 // second pass most of the scene).
 void draw_scene_class(const FrameContext& fc, const LensGpu& gpu_lens, Class c, unsigned back, unsigned front) {
-  const Program& p = fc.programs.object_lens;
+  const Program& p = *gpu_lens.program;
   fc.use_program(p);
   fc.bound.lit = &p;
   glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(fc.view.view_proj));
@@ -112,8 +124,10 @@ void begin_pass(const FrameContext& fc, unsigned framebuffer) {
   glDisable(GL_SCISSOR_TEST);
 }
 
-}  // namespace
-
+// Two lens-only depth passes (`lens-back`, `lens-front`: the volume's farthest and nearest
+// surface per pixel) and the paper's three scene passes in its order, each keeping one class of
+// fragments by the second depth test: `lens-behind` (normal), `lens-inside` (the lens style),
+// `lens-in-front` (normal). Returns the final colour.
 Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& lens) {
   struct LensDepthPassData {
     Handle depth;
@@ -170,13 +184,12 @@ Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& le
   return scene_pass("lens-in-front", Class::in_front, inside_color, inside_depth).first;
 }
 
-namespace {
-
-// The lens's GL buffer, re-filled every lens frame (a few hundred triangles), and this frame's
-// volume on the GPU (the passes read it when they run).
+// The lens's program and GL buffer, re-filled every lens frame (a few hundred triangles), and this
+// frame's volume on the GPU (the passes read it when they run).
 class LensState final : public MethodState {
  public:
   ~LensState() override {
+    delete_program(program);
     if (vao_ != 0) glDeleteVertexArrays(1, &vao_);
     if (vbo_ != 0) glDeleteBuffers(1, &vbo_);
   }
@@ -193,8 +206,9 @@ class LensState final : public MethodState {
     glBindBuffer(GL_ARRAY_BUFFER, vbo_);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.triangles.size() * sizeof(glm::vec3)), v.triangles.data(),
                  GL_STREAM_DRAW);
-    gpu = LensGpu{vao_, static_cast<int>(v.triangles.size()), v.eye_inside, footprint};
+    gpu = LensGpu{vao_, static_cast<int>(v.triangles.size()), v.eye_inside, footprint, &program};
   }
+  Program program;     // object.vert + lens.frag, linked on the first lens frame
   LensVolume volume;   // this frame's, from footprint()
   PixelRect footprint;
   LensGpu gpu;
@@ -218,6 +232,7 @@ std::optional<PixelRect> lens_footprint_of(MethodSlot& slot, const FrameSettings
 
 MethodFrame add_lens(FrameGraph& fg, const FrameContext& fc, MethodSlot& slot) {
   LensState& l = lens_state(slot);
+  if (l.program.id == 0) l.program = link_method_program("lens", "object.vert", "lens.frag", "", "lighting.glsl");
   l.upload(l.volume);
   return {add_lens_passes(fg, fc, l.gpu), {}};
 }

@@ -15,6 +15,9 @@
 //                   elsewhere every alpha is 1 and the frame is the opaque one):
 //                   masks generated and uploaded, every object in the chunk drawn
 //                   on the s-times enlarged buffer, resolved into the colour.
+// The masked draw and the resolve are the method's own programs
+// (shaders/screen_door.frag, shaders/sd_resolve.frag), linked in its
+// MethodState on its first frame.
 // Never: blends (order independence is the z-buffer's); a layer limit or the R1
 // guard (not part of the thesis's model; docs/render.md says so).
 #include <glad/gl.h>
@@ -38,9 +41,21 @@ namespace {
 constexpr int kEnlargedSide = 2048;  // enlarged chunk side in sub-pixels (chunk: 2048 / s output pixels)
 constexpr int kMaskTextureWidth = 8192;
 
+// The method's own programs, linked on its first frame, deleted with the renderer.
+class ScreenDoorPrograms final : public MethodState {
+ public:
+  ~ScreenDoorPrograms() override {
+    delete_program(masked);
+    delete_program(resolve);
+  }
+  Program masked;   // object.vert + screen_door.frag: keeps the sub-pixels of its mask (discards)
+  Program resolve;  // fullscreen.vert + sd_resolve.frag: the enlarged buffer box-filtered to output pixels
+};
+
 // CPU results of sd-silhouettes, read by the sd-region passes (their declared read of the
-// silhouette texture orders them after it).
+// silhouette texture orders them after it), and the programs they draw with.
 struct ScreenDoorState {
+  const ScreenDoorPrograms* programs = nullptr;
   bool active = false;          // the target query saw an occluded target
   std::vector<MaskField> fields;  // per target slot
   std::unique_ptr<MaskCache> cache;
@@ -192,7 +207,8 @@ std::vector<std::uint32_t> chunk_masks(const FrameContext& fc, ScreenDoorState& 
 }
 
 // The chunk's objects on the enlarged buffer (bound), through a projection cropped to the chunk.
-void draw_enlarged(const FrameContext& fc, const Chunk& ch, int side, unsigned mask_texture) {
+void draw_enlarged(const FrameContext& fc, const ScreenDoorPrograms& programs, const Chunk& ch, int side,
+                   unsigned mask_texture) {
   const int words = side * side / 32;
   const float W = static_cast<float>(fc.width()), H = static_cast<float>(fc.height());
   const PixelRect& r = ch.rect;
@@ -207,7 +223,7 @@ void draw_enlarged(const FrameContext& fc, const Chunk& ch, int side, unsigned m
   fc.use_lit(vp);
   for (const Entry& e : ch.sequence)
     if (e.drawn && e.layer < 0) fc.draw_lit(e.object);
-  const Program& p = fc.programs.object_sd;
+  const Program& p = programs.masked;
   fc.use_program(p);
   glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform3fv(p.loc("u_eye"), 1, glm::value_ptr(fc.view.camera.eye));
@@ -257,14 +273,14 @@ void sd_region(const FrameContext& fc, ScreenDoorState& st, const Chunk& ch, int
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   clear_to_background(fc);
-  draw_enlarged(fc, ch, side, r.texture(d.masks));
+  draw_enlarged(fc, *st.programs, ch, side, r.texture(d.masks));
   // Resolve: the box filter into the chunk's output pixels.
   glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.color}));
   glViewport(0, 0, fc.width(), fc.height());
   scissor(ch.rect);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
-  const Program& p = fc.programs.sd_resolve;
+  const Program& p = st.programs->resolve;
   fc.use_program(p);
   glUniform1i(p.loc("u_enlarged"), 0);
   glUniform1i(p.loc("u_side"), side);
@@ -276,11 +292,16 @@ void sd_region(const FrameContext& fc, ScreenDoorState& st, const Chunk& ch, int
   glDepthMask(GL_TRUE);
 }
 
-}  // namespace
-
-MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query) {
+// The effect's passes, conditional on `query` like dt-seed's: `sd-silhouettes` reads the targets'
+// silhouettes back for their exact masks; then one `sd-region` pass per chunk of the targets'
+// supports renders every object in the chunk on an enlarged buffer (s x s sub-pixels per pixel),
+// each keeping the sub-pixels of its mask, and box-filters the chunk back into the colour.
+// Returns the final colour and depth.
+MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, const ScreenDoorPrograms& programs,
+                                   MainTargets main, Handle query) {
   const int side = fc.settings.screen_door.mask_side;
   auto state = std::make_shared<ScreenDoorState>();
+  state->programs = &programs;
   MaskTable::Options options;
   options.generation = generation(fc.settings.screen_door.masks);
   state->cache = std::make_unique<MaskCache>(side * side, options);
@@ -325,10 +346,19 @@ MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainT
   return {color, main.depth};
 }
 
-namespace {
-MethodFrame add_screen_door(FrameGraph& fg, const FrameContext& fc, MethodSlot&) {
-  return add_standard_first(fg, fc, add_screen_door_passes);
+MethodFrame add_screen_door(FrameGraph& fg, const FrameContext& fc, MethodSlot& slot) {
+  if (!slot.state) {
+    auto programs = std::make_unique<ScreenDoorPrograms>();
+    programs->masked = link_method_program("screen-door", "object.vert", "screen_door.frag", "", "lighting.glsl");
+    programs->resolve = link_method_program("screen-door", "fullscreen.vert", "sd_resolve.frag");
+    slot.state = std::move(programs);
+  }
+  const auto& programs = static_cast<const ScreenDoorPrograms&>(*slot.state);
+  return add_standard_first(fg, fc, [&programs](FrameGraph& g, const FrameContext& c, MainTargets main, Handle query) {
+    return add_screen_door_passes(g, c, programs, main, query);
+  });
 }
+
 }  // namespace
 
 extern const MethodPasses k_passes_screen_door{nullptr, add_screen_door};

@@ -8,7 +8,7 @@
 
 namespace dtlab::render::detail {
 
-MethodFrame add_standard_first(FrameGraph& fg, const FrameContext& fc, Effect effect) {
+MethodFrame add_standard_first(FrameGraph& fg, const FrameContext& fc, const Effect& effect) {
   const bool targets = !fc.view.targets.empty();
   MainTargets main = add_opaque_pass(fg, fc, effect != nullptr && targets);
   MethodFrame out;
@@ -22,7 +22,7 @@ MethodFrame add_standard_first(FrameGraph& fg, const FrameContext& fc, Effect ef
 }
 
 MethodFrame add_coherent(FrameGraph& fg, const FrameContext& fc, const MethodSlot& slot,
-                         EffectFirst (*direct)(FrameGraph& fg, const FrameContext& fc), Effect effect) {
+                         EffectFirst (*direct)(FrameGraph& fg, const FrameContext& fc), const Effect& effect) {
   if (slot.effect_hint && !fc.view.targets.empty() && effect_first_possible(fc)) {
     const EffectFirst d = direct(fg, fc);
     return {d.color, d.occluded};

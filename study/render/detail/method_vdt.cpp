@@ -8,7 +8,9 @@
 // first map's depth with GL_SRC_ALPHA, GL_DST_ALPHA (the paper's blend), and
 // the opaque foreground drawn again. Guarantees: every pass sets the GL state
 // it relies on, and attribute 3 of the scene's VAO is disabled again when the
-// blend pass ends. Never: reads anything back to the CPU.
+// blend pass ends. The peeling and blend programs are the method's own
+// (shaders/vdt_peel.frag, shaders/vdt.frag), linked on its first frame with
+// a transparent object in view. Never: reads anything back to the CPU.
 #include <glad/gl.h>
 
 #include <algorithm>
@@ -26,7 +28,7 @@ namespace dtlab::render::detail {
 
 namespace {
 
-constexpr GLuint kAlphaAttribute = 3;  // object.vert's a_alpha (VDT)
+constexpr GLuint kAlphaAttribute = 3;  // object.vert's a_alpha (VERTEX_ALPHA)
 
 bool transparent(const ObjectRecord& o) { return !o.target && !o.impenetrable; }
 
@@ -55,8 +57,8 @@ void draw_transparent_depth(const FrameContext& fc, const VdtFrame& frame, unsig
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
-  const Program& p = peel != 0 ? fc.programs.object_alpha_peel : fc.programs.object_alpha;
   if (peel != 0) {
+    const Program& p = frame.programs->peel;
     fc.use_program(p);
     fc.bound.alpha = &p;
     glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(fc.view.view_proj));
@@ -101,7 +103,7 @@ void draw_opaque(const FrameContext& fc, const VdtFrame& frame) {
 void draw_blend(const FrameContext& fc, const VdtFrame& frame) {
   blended_colour_state(GL_EQUAL, GL_FALSE);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_DST_ALPHA, GL_ZERO, GL_ONE);  // the destination alpha stays
-  const Program& p = fc.programs.object_vdt;
+  const Program& p = frame.programs->blend;
   fc.use_program(p);
   fc.bound.lit = &p;
   glUniformMatrix4fv(p.loc("u_view_proj"), 1, GL_FALSE, glm::value_ptr(fc.view.view_proj));
@@ -131,6 +133,10 @@ bool VdtState::prepare(const FrameContext& fc, VdtFrame& frame) {
     (transparent(objects[i]) ? frame.transparent : frame.opaque).push_back(i);
   }
   if (frame.transparent.empty()) return false;
+  if (programs_.peel.id == 0) programs_.peel = link_method_program("vdt", "object.vert", "vdt_peel.frag");
+  if (programs_.blend.id == 0)
+    programs_.blend = link_method_program("vdt", "object.vert", "vdt.frag", "VERTEX_ALPHA", "lighting.glsl");
+  frame.programs = &programs_;
   // Attribute 3 is read at (index + base vertex), like the mesh's own attributes, so an object's
   // block of alphas starts at least at its base vertex: the pointer offset (start - base vertex)
   // is then never negative. Objects are laid out in base-vertex order; the gaps stay unused.
@@ -160,6 +166,8 @@ bool VdtState::prepare(const FrameContext& fc, VdtFrame& frame) {
 }
 
 void VdtState::destroy() {
+  delete_program(programs_.peel);
+  delete_program(programs_.blend);
   if (buffer_ != 0) glDeleteBuffers(1, &buffer_);
   buffer_ = 0;
 }

@@ -62,8 +62,8 @@ struct FrameContext {
   };
   struct Bound {
     unsigned program = 0;
-    const Program* lit = nullptr;    // the lit program in use (object or object_sl, or their FLAT variants)
-    const Program* alpha = nullptr;  // the alpha program in use
+    const Program* lit = nullptr;    // the lit program in use (object, object_sl, their FLAT variants, or a method's own)
+    const Program* alpha = nullptr;  // the alpha program in use (object_alpha, object_alpha_sl, or a method's own)
     Uniforms uniforms[4];            // object or object_flat, their _sl, object_alpha, object_alpha_sl
   };
   mutable Bound bound;
@@ -111,27 +111,6 @@ EffectFirst add_effect_first_tail(FrameGraph& fg, const FrameContext& fc, MainTa
                                   std::shared_ptr<const std::vector<PixelRect>> regions);
 // reference: per-object layers rendered on the GPU, composited exactly on the CPU.
 Handle add_reference_pass(FrameGraph& fg, const FrameContext& fc);
-
-// lens (Ropinski & Hinrichs 2004): the lens volume uploaded for this frame (world-space
-// triangles, attribute 0 of `vao`).
-struct LensGpu {
-  unsigned vao = 0;
-  int vertices = 0;
-  bool eye_inside = false;  // no entry surface: the front map is 0 over the whole view
-  PixelRect footprint;      // pixels the lens can cover (conservative); passes 2 and 3 change nothing outside
-};
-// Two lens-only depth passes (`lens-back`, `lens-front`: the volume's farthest and nearest
-// surface per pixel) and the paper's three scene passes in its order, each keeping one class of
-// fragments by the second depth test: `lens-behind` (normal), `lens-inside` (the lens style),
-// `lens-in-front` (normal). Returns the final colour.
-Handle add_lens_passes(FrameGraph& fg, const FrameContext& fc, const LensGpu& lens);
-
-// screen-door (Poon 2000, chapter 4; docs/render.md "screen-door"), conditional on `query` like dt-seed:
-// `sd-silhouettes` reads the targets' silhouettes back for their exact masks; then one `sd-region`
-// pass per chunk of the targets' supports renders every object in the chunk on an enlarged
-// buffer (s x s sub-pixels per pixel), each keeping the sub-pixels of its mask, and box-filters
-// the chunk back into the colour. Returns the final colour and depth.
-MainTargets add_screen_door_passes(FrameGraph& fg, const FrameContext& fc, MainTargets main, Handle query);
 
 // Shared GL sequences of the two GPU methods.
 //

@@ -164,9 +164,8 @@ void delete_program(Program& p) {
 }
 
 void Programs::destroy() {
-  for (Program* p : {&object, &object_sl, &object_flat, &object_flat_sl, &object_lens, &object_vdt, &object_alpha,
-                     &object_alpha_peel, &object_alpha_sl, &quad_alpha, &border, &shape, &cheb_rows, &cheb_cols,
-                     &fast_apply, &fast_apply_counter, &object_sd, &sd_resolve})
+  for (Program* p : {&object, &object_sl, &object_flat, &object_flat_sl, &object_alpha, &object_alpha_sl, &quad_alpha,
+                     &border, &shape, &cheb_rows, &cheb_cols, &fast_apply, &fast_apply_counter})
     delete_program(*p);
 }
 
@@ -184,10 +183,7 @@ Result<Programs> compile_programs() {
       {&ps.object_sl, "object.vert", "object.frag", "SEARCHLIGHT", "lighting.glsl"},
       {&ps.object_flat, "object.vert", "object.frag", "FLAT", "lighting.glsl"},
       {&ps.object_flat_sl, "object.vert", "object.frag", "FLAT SEARCHLIGHT", "lighting.glsl"},
-      {&ps.object_lens, "object.vert", "object.frag", "LENS", "lighting.glsl"},
-      {&ps.object_vdt, "object.vert", "object.frag", "VDT", "lighting.glsl"},
       {&ps.object_alpha, "object.vert", "flat_alpha.frag", "", ""},
-      {&ps.object_alpha_peel, "object.vert", "flat_alpha.frag", "PEEL", ""},
       {&ps.object_alpha_sl, "object.vert", "flat_alpha.frag", "SEARCHLIGHT", ""},
       {&ps.quad_alpha, "fullscreen.vert", "flat_alpha.frag", "SEARCHLIGHT", ""},
       {&ps.border, "fullscreen.vert", "border.frag", "TILES", ""},
@@ -196,8 +192,6 @@ Result<Programs> compile_programs() {
       {&ps.cheb_cols, "fullscreen.vert", "cheb_cols.frag", "TILES", ""},
       {&ps.fast_apply, "fullscreen.vert", "fast_apply.frag", "", ""},
       {&ps.fast_apply_counter, "fullscreen.vert", "fast_apply.frag", "COUNTER", ""},
-      {&ps.object_sd, "object.vert", "object.frag", "SCREEN_DOOR", "lighting.glsl"},
-      {&ps.sd_resolve, "fullscreen.vert", "sd_resolve.frag", "", ""},
   };
   for (const Entry& e : entries) {
     auto p = link_program(e.vs, e.fs, e.defines, e.chunks);

@@ -41,8 +41,7 @@ Result<std::string> shader_source(const char* file, const char* defines = "", co
 // Deletes `p`'s GL program, if any, and zeroes its id (needs the context current).
 void delete_program(Program& p);
 
-// The programs several methods draw with, and (until they move into their methods) the lens's,
-// vdt's and screen-door's variants.
+// The programs several methods draw with (a method's own variants live in its MethodState).
 // Variants with SEARCHLIGHT may discard; the others never do (a shader that may discard makes
 // llvmpipe test depth after shading).
 struct Programs {
@@ -50,10 +49,7 @@ struct Programs {
   Program object_sl;    // the same, cut to the searchlight (the R1 guard's repair in active mode)
   Program object_flat;  // the same with FLAT: u_flat.rgb only (weight frames; no attribute interpolated)
   Program object_flat_sl;  // FLAT and SEARCHLIGHT
-  Program object_lens;  // the same with LENS: the lens method's second depth test (discards)
-  Program object_vdt;   // the same with VDT: alpha = the per-vertex view-dependent alpha (attribute 3)
   Program object_alpha; // object.vert + flat_alpha.frag: depth-only, queries, silhouettes
-  Program object_alpha_peel;  // the same with PEEL: vdt's second-layer depth pass (discards)
   Program object_alpha_sl;  // the same, cut to the searchlight (or alpha 1 outside it)
   Program quad_alpha;   // fullscreen.vert + flat_alpha.frag (SEARCHLIGHT)
   Program border;       // fullscreen.vert (TILES) + border.frag (Algorithm 3), one rectangle per mask tile
@@ -62,8 +58,6 @@ struct Programs {
   Program cheb_cols;    // fullscreen.vert (TILES) + cheb_cols.frag
   Program fast_apply;   // fullscreen.vert + fast_apply.frag (Algorithm 2, line 10, from an atlas tile)
   Program fast_apply_counter;  // the same with COUNTER (layer limit: discards where the mask is 1)
-  Program object_sd;    // object.vert + object.frag with SCREEN_DOOR: keeps the sub-pixels of its mask (discards)
-  Program sd_resolve;   // fullscreen.vert + sd_resolve.frag: the enlarged buffer box-filtered to output pixels
   void destroy();       // deletes every program (needs the context current)
 };
 

@@ -14,31 +14,43 @@
 #include <vector>
 
 #include "study/render/detail/frame_graph.h"
+#include "study/render/detail/programs.h"
 #include "study/render/detail/vdt_alpha.h"
 
 namespace dtlab::render::detail {
 
 struct FrameContext;
 
-// What one vdt frame draws: the objects in view by class, and where each transparent object's
-// alphas start in the alpha buffer (attribute 3 is pointed there before its draw).
+// The vdt method's own programs (shaders/vdt_peel.frag, shaders/vdt.frag).
+struct VdtPrograms {
+  Program peel;   // object.vert + vdt_peel.frag: vdt-second, discarding at or in front of D1
+  Program blend;  // object.vert with VERTEX_ALPHA + vdt.frag: vdt-blend, alpha from attribute 3
+};
+
+// What one vdt frame draws: the objects in view by class, where each transparent object's alphas
+// start in the alpha buffer (attribute 3 is pointed there before its draw), the programs.
 struct VdtFrame {
   std::vector<std::uint32_t> transparent, opaque;  // scene object indices, in view
   unsigned alpha_buffer = 0;
   std::vector<std::ptrdiff_t> alpha_offset;        // per transparent entry: bytes (see VdtState::prepare)
+  const VdtPrograms* programs = nullptr;
 };
 
-// The renderer's vdt state: one GL buffer of per-vertex alphas, re-filled every vdt frame, and the
-// meshes' edge lists. Lives in Renderer::Impl; destroy() needs the context current.
+// The vdt method's state between frames: its programs, one GL buffer of per-vertex alphas, re-filled
+// every vdt frame, and the meshes' edge lists. Lives in the method's MethodSlot (method_vdt.cpp);
+// destroy() needs the context current.
 class VdtState {
  public:
   // Sorts the objects in view into `frame` and, if some are transparent, computes their alphas
-  // (eq. 2 for this eye) and uploads them. False when nothing in view is transparent (the frame is
-  // then standard's). Inside the frame's GlStateGuard (binds the array buffer).
+  // (eq. 2 for this eye) and uploads them, linking the programs on the first such frame (throws
+  // PassedError if the driver refuses one: programs.h). False when nothing in view is
+  // transparent (the frame is then standard's). Inside the frame's GlStateGuard (binds the array
+  // buffer).
   bool prepare(const FrameContext& fc, VdtFrame& frame);
   void destroy();
 
  private:
+  VdtPrograms programs_;
   unsigned buffer_ = 0;
   std::vector<std::optional<VdtTopology>> topology_;  // per mesh
   std::vector<float> alphas_;                         // staging, kept to avoid reallocation
