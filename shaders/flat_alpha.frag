@@ -2,7 +2,7 @@
 // (Algorithm 2, line 2), the alpha multiply of a re-rendered target region
 // (line 11), and depth/stencil-only passes (colour writes off). Compiled with
 // SEARCHLIGHT defined for active mode: fragments outside the searchlight
-// circle are discarded, or with u_outside_one written as alpha 1 (so stencil
+// circle (searchlight.glsl) are discarded, or with u_outside_one written as alpha 1 (so stencil
 // operations still happen there); without it, it never discards. (vdt's
 // depth peeling is vdt_peel.frag, the vdt method's own.)
 #version 330 core
@@ -16,7 +16,7 @@ out vec4 frag_color;
 
 void main() {
 #ifdef SEARCHLIGHT
-  bool outside = u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z;
+  bool outside = outside_searchlight(u_searchlight);
   if (outside && u_outside_one == 0) discard;
   frag_color = vec4(outside ? 1.0 : u_alpha);
 #else

@@ -34,7 +34,7 @@ vec4 with_alpha(vec4 c) {
 
 void main() {
 #ifdef SEARCHLIGHT
-  if (u_searchlight.z >= 0.0 && distance(gl_FragCoord.xy, u_searchlight.xy) > u_searchlight.z) discard;
+  if (outside_searchlight(u_searchlight)) discard;
 #endif
 #ifdef FLAT
   frag_color = vec4(u_flat.rgb, 1.0);

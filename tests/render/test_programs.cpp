@@ -1,11 +1,11 @@
-// Shader programs (study/render/detail/programs.h): the shared GLSL chunk
-// (lighting.glsl) is written once and put before the code that names it; the
-// driver's log points at the right file and line through the #line
-// directives (the file's own line numbers; line i of chunk k as 10000 k + i,
-// whatever the driver does with #line's source number); a missing
-// shader or chunk is an environment Error naming the file; a method's own
-// program that fails to link throws PassedError carrying that Error, led by
-// the method's name.
+// Shader programs (study/render/detail/programs.h): the shared GLSL chunks
+// (lighting.glsl, searchlight.glsl) are written once and put before the code
+// that names them; the driver's log points at the right file and line
+// through the #line directives (the file's own line numbers; line i of chunk
+// k as 10000 k + i, whatever the driver does with #line's source number); a
+// missing shader or chunk is an environment Error naming the file; a method's
+// own program that fails to link throws PassedError carrying that Error, led
+// by the method's name.
 #include <glad/gl.h>
 #include <gtest/gtest.h>
 
@@ -68,6 +68,22 @@ TEST(ShaderPrograms, TheLightingIsWrittenOnceInItsChunk) {
     callers += contains(text, "headlight(") ? 1 : 0;
   }
   EXPECT_EQ(callers, 5);  // object, ghost, lens, screen_door, vdt
+}
+
+// The searchlight cut has one home too: the chunk defines outside_searchlight(), and the shared
+// shaders with a searchlight variant call it.
+TEST(ShaderPrograms, TheSearchlightCutIsWrittenOnceInItsChunk) {
+  const std::string_view chunk = embedded::shaders("searchlight.glsl");
+  ASSERT_FALSE(chunk.empty()) << "searchlight.glsl is not embedded";
+  EXPECT_TRUE(contains(chunk, "bool outside_searchlight(vec3 s)"));
+  EXPECT_TRUE(contains(chunk, "distance(gl_FragCoord.xy, s.xy) > s.z"));
+  for (const char* name : {"object.frag", "flat_alpha.frag", "shape.frag"}) {
+    SCOPED_TRACE(name);
+    const std::string_view text = embedded::shaders(name);
+    EXPECT_TRUE(contains(text, "outside_searchlight(u_searchlight)"));
+    EXPECT_FALSE(contains(text, "bool outside_searchlight("));
+    EXPECT_FALSE(contains(text, "distance(gl_FragCoord.xy, u_searchlight.xy)"));
+  }
 }
 
 // The assembled text: the file's #version line, the defines, the chunk after `#line 10001 1`,

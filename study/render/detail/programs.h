@@ -3,8 +3,8 @@
 // and the link step a method's own programs go through (method.h: a method
 // compiles its variants in its MethodState on its first frame). Guarantees: a
 // compile or link failure is an environment Error naming the shader file and
-// carrying the driver's log; shared GLSL (lighting.glsl) is written once and
-// put before the code that names it; uniform locations are looked up once per
+// carrying the driver's log; shared GLSL (lighting.glsl, searchlight.glsl) is
+// written once and put before the code that names it; uniform locations are looked up once per
 // name. Never: reads shader files at run time.
 #pragma once
 #include <map>
