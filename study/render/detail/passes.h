@@ -62,7 +62,7 @@ struct FrameContext {
   };
   struct Bound {
     unsigned program = 0;
-    const Program* lit = nullptr;    // the lit program in use (object, object_sl, their FLAT variants, or a method's own)
+    const Program* lit = nullptr;    // the lit program in use (object, object_sl, their FLAT variants, a method's)
     const Program* alpha = nullptr;  // the alpha program in use (object_alpha, object_alpha_sl, or a method's own)
     Uniforms uniforms[4];            // object or object_flat, their _sl, object_alpha, object_alpha_sl
   };
