@@ -4,17 +4,20 @@
 // through the #line directives (the file's own line numbers; line i of chunk
 // k as 10000 k + i, whatever the driver does with #line's source number); a
 // missing shader or chunk is an environment Error naming the file; a method's
-// own program that fails to link throws PassedError carrying that Error, led
-// by the method's name.
+// own program that fails to link fails the frame with an environment Error
+// naming the method, the shader file and the driver's log.
 #include <glad/gl.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "study/render/detail/boundary.h"
 #include "study/render/detail/programs.h"
+#include "study/render/render.h"
+#include "tests/common/must.h"
 #include "tests/render/scenes.h"
 
 namespace dtlab::embedded {
@@ -150,9 +153,9 @@ TEST(ShaderPrograms, AMissingShaderOrChunkIsAnEnvironmentErrorNamingTheFile) {
   EXPECT_EQ(shader.error().file, "shaders/no_such.frag");
 }
 
-// A method's program: linked, or a PassedError (the renderer's public function returns its Error
-// unchanged) whose message starts with the method's name.
-TEST(ShaderPrograms, AMethodsProgramThatFailsThrowsItsErrorLedByTheMethod) {
+// A method's program: linked, or a GlFailure (the renderer's public function returns it as an
+// environment Error) whose text starts with the method's name and the shader file.
+TEST(ShaderPrograms, AMethodsProgramThatFailsThrowsAGlFailureLedByTheMethod) {
   testing::headless_context();
   Program p = link_method_program("ghosting", "object.vert", "ghost.frag", "", "lighting.glsl");
   EXPECT_NE(p.id, 0u);
@@ -161,12 +164,11 @@ TEST(ShaderPrograms, AMethodsProgramThatFailsThrowsItsErrorLedByTheMethod) {
   EXPECT_EQ(p.id, 0u);
   try {
     link_method_program("ghosting", "object.vert", "ghost.frag");  // headlight() undeclared without its chunk
-    FAIL() << "no PassedError";
-  } catch (const PassedError& e) {
-    EXPECT_EQ(e.error.kind, ErrorKind::environment);
-    EXPECT_EQ(e.error.file, "shaders/ghost.frag");
-    EXPECT_EQ(e.error.message.rfind("ghosting: does not compile: ", 0), 0u) << e.error.message;
-    EXPECT_TRUE(contains(e.error.message, "headlight")) << e.error.message;
+    FAIL() << "no GlFailure";
+  } catch (const GlFailure& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("ghosting: shaders/ghost.frag: does not compile: ", 0), 0u) << what;
+    EXPECT_TRUE(contains(what, "headlight")) << what;
   }
   // An error inside the chunk (a define that empties the function's name): the message says how
   // its lines are numbered, and the log gives the chunk's line 7 as 10007.
@@ -174,12 +176,71 @@ TEST(ShaderPrograms, AMethodsProgramThatFailsThrowsItsErrorLedByTheMethod) {
   ASSERT_GT(name_line, 0);
   try {
     link_method_program("ghosting", "object.vert", "ghost.frag", "headlight", "lighting.glsl");
-    FAIL() << "no PassedError";
-  } catch (const PassedError& e) {
-    EXPECT_EQ(e.error.file, "shaders/ghost.frag");
-    EXPECT_TRUE(contains(e.error.message, "(line 10000 + i: line i of lighting.glsl)")) << e.error.message;
-    EXPECT_TRUE(contains(e.error.message, ":" + std::to_string(10000 + name_line) + "(")) << e.error.message;
+    FAIL() << "no GlFailure";
+  } catch (const GlFailure& e) {
+    const std::string what = e.what();
+    EXPECT_TRUE(contains(what, "shaders/ghost.frag: does not compile (line 10000 + i: line i of lighting.glsl)"))
+        << what;
+    EXPECT_TRUE(contains(what, ":" + std::to_string(10000 + name_line) + "(")) << what;
   }
+}
+
+// A target behind a distractor quad, in front of a far wall: every method's own programs are
+// needed (the lens always, vdt's for the distractors, screen-door's and ghosting's for the
+// occluded target).
+scene::Scene occluded_target() {
+  scene::Scene s;
+  testing::add_object(s, testing::quad_mesh(-30, -30, 30, 30, -25), {0.2f, 0.8f, 0.3f});
+  testing::add_object(s, testing::box_mesh({-1, -1, -14}, {1, 1, -12}), {1, 0, 0}, true);
+  testing::add_object(s, testing::quad_mesh(-3, -3, 3, 3, -8), {0.1f, 0.3f, 0.9f});
+  return s;
+}
+
+// End to end, with the test builds' hook that makes the driver refuse one shader: a method's own
+// program that does not compile fails the frame that first needs it with an environment Error
+// (field render) naming the method and the shader and carrying the driver's log; it links on a
+// later frame, whose image equals a fresh renderer's. A shared program's failure fails
+// Renderer::create the same way.
+TEST(ShaderPrograms, AMethodsShaderThatTheDriverRefusesIsAnEnvironmentErrorOfTheFrame) {
+  testing::headless_context();
+  constexpr int kW = 64, kH = 48;
+  const Camera cam = testing::front_camera(kW, kH);
+  struct Case {
+    Method method;
+    const char* file;
+  };
+  for (const Case c : {Case{Method::lens, "lens.frag"}, Case{Method::vdt, "vdt_peel.frag"},
+                       Case{Method::vdt, "vdt.frag"}, Case{Method::screen_door, "screen_door.frag"},
+                       Case{Method::screen_door, "sd_resolve.frag"}, Case{Method::ghosting, "ghost.frag"}}) {
+    SCOPED_TRACE(c.file);
+    FrameSettings f;
+    f.method = c.method;
+    auto r = Renderer::create(occluded_target());
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    ::setenv("DTLAB_TEST_SHADER_FAIL", c.file, 1);
+    const auto failed = (*r)->render_offscreen(cam, f, kW, kH);
+    ::unsetenv("DTLAB_TEST_SHADER_FAIL");
+    ASSERT_FALSE(failed.ok()) << "the frame rendered without " << c.file;
+    EXPECT_EQ(failed.error().kind, ErrorKind::environment) << failed.error().to_string();
+    EXPECT_EQ(failed.error().field, "render");
+    const std::string lead = "Renderer::render: " + std::string(technique::of(c.method).name) + ": shaders/" +
+                             c.file + ": does not compile";
+    EXPECT_EQ(failed.error().message.rfind(lead, 0), 0u) << failed.error().message;
+    EXPECT_TRUE(contains(failed.error().message, "injected: $DTLAB_TEST_SHADER_FAIL")) << failed.error().message;
+
+    test::must((*r)->render_offscreen(cam, f, kW, kH));
+    const Image after = test::must((*r)->read_color());
+    auto fresh = Renderer::create(occluded_target());
+    ASSERT_TRUE(fresh.ok());
+    test::must((*fresh)->render_offscreen(cam, f, kW, kH));
+    EXPECT_EQ(after.rgba, test::must((*fresh)->read_color()).rgba) << "the frame after the failure differs";
+  }
+  ::setenv("DTLAB_TEST_SHADER_FAIL", "object.frag", 1);
+  const auto shared = Renderer::create(occluded_target());
+  ::unsetenv("DTLAB_TEST_SHADER_FAIL");
+  ASSERT_FALSE(shared.ok());
+  EXPECT_EQ(shared.error().kind, ErrorKind::environment);
+  EXPECT_TRUE(contains(shared.error().to_string(), "shaders/object.frag")) << shared.error().to_string();
 }
 
 }  // namespace

@@ -32,4 +32,14 @@ std::optional<std::string> injected_gl_error() {
   return std::nullopt;
 }
 
+bool injected_shader_failure(std::string_view file) {
+#ifdef DTLAB_TEST_HOOKS
+  const char* name = std::getenv("DTLAB_TEST_SHADER_FAIL");
+  return name != nullptr && file == name;
+#else
+  (void)file;
+  return false;
+#endif
+}
+
 }  // namespace dtlab::render::detail

@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -49,6 +50,10 @@ std::optional<Error> fatal_gl_error(const char* where, const std::vector<std::st
 // exists, every frame reports GL_OUT_OF_MEMORY, so tests can fail a running session's frame on
 // cue. The GL error it names, or nullopt (always nullopt without DTLAB_TEST_HOOKS).
 std::optional<std::string> injected_gl_error();
+// Test builds only (DTLAB_TEST_HOOKS): while $DTLAB_TEST_SHADER_FAIL names `file` (e.g.
+// "lens.frag"), programs.cpp ends that shader's source with an #error line, so the driver itself
+// refuses it and writes the log. Always false without DTLAB_TEST_HOOKS.
+bool injected_shader_failure(std::string_view file);
 
 // Runs `body` (returning Result<T> or Status) and turns an exception into an Error (see above).
 template <class R, class F>

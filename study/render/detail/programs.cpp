@@ -58,6 +58,7 @@ std::string sources(const char* chunks) {
 Result<GLuint> compile(GLenum type, const char* file, const char* defines, const char* chunks) {
   auto src = shader_source(file, defines, chunks);
   if (!src) return src.error();
+  if (injected_shader_failure(file)) *src += "\n#error injected: $DTLAB_TEST_SHADER_FAIL names this shader\n";
   GLuint s = glCreateShader(type);
   const char* text = src->data();
   const GLint len = static_cast<GLint>(src->size());
@@ -150,11 +151,7 @@ Result<Program> link_program(const char* vertex_file, const char* fragment_file,
 Program link_method_program(const char* method, const char* vertex_file, const char* fragment_file,
                             const char* defines, const char* fragment_chunks) {
   auto p = link_program(vertex_file, fragment_file, defines, fragment_chunks);
-  if (!p) {
-    Error e = p.error();
-    e.message = std::string(method) + ": " + e.message;
-    throw PassedError(std::move(e));
-  }
+  if (!p) throw GlFailure(std::string(method) + ": " + p.error().to_string());
   return std::move(p).value();
 }
 

@@ -30,8 +30,9 @@ class Program {
 Result<Program> link_program(const char* vertex_file, const char* fragment_file, const char* defines = "",
                              const char* fragment_chunks = "");
 // A method's own program, linked on its first frame (from a method's add(), inside the renderer's
-// guarded public function): link_program's program, or throws PassedError with its Error (the
-// message led by `method`), which Renderer::render then returns as it is.
+// guarded public function): link_program's program, or throws GlFailure ("<method>: " and the
+// Error's text: shader file, driver's log), which Renderer::render returns as an environment
+// Error (boundary.h), as it does a culling shader the driver refuses.
 Program link_method_program(const char* method, const char* vertex_file, const char* fragment_file,
                             const char* defines = "", const char* fragment_chunks = "");
 // The text link_program hands the driver for the embedded `file`: up to its #version line,

@@ -43,7 +43,7 @@ class VdtState {
  public:
   // Sorts the objects in view into `frame` and, if some are transparent, computes their alphas
   // (eq. 2 for this eye) and uploads them, linking the programs on the first such frame (throws
-  // PassedError if the driver refuses one: programs.h). False when nothing in view is
+  // GlFailure if the driver refuses one: programs.h). False when nothing in view is
   // transparent (the frame is then standard's). Inside the frame's GlStateGuard (binds the array
   // buffer).
   bool prepare(const FrameContext& fc, VdtFrame& frame);
