@@ -92,7 +92,7 @@ Result<DrawnPaths> draw_paths(store::StudyReader& reader, const Context& ctx) {
     for (const auto& [task, marks] : walk_tasks) {
       std::vector<int> positions;
       for (const auto& t : ctx.data.trials)
-        if (t.participant == p.id && t.task == task && ctx.analysed(t)) positions.push_back(t.position);
+        if (t.participant == p.id && t.planned.task == task && ctx.analysed(t)) positions.push_back(t.planned.position);
       if (positions.empty()) continue;
       auto drawn = ctx.options.path_figure(reader, p.id, positions, p.id + ", task " + task + ": walked paths" +
                                                              (marks ? " (o target, x marked answer)" : ""));

@@ -163,8 +163,8 @@ Reducer mean_of_task_means(std::function<std::optional<double>(const TrialRow&)>
     std::map<std::string, std::pair<double, int>> per_task;
     for (const TrialRow* t : ts)
       if (auto v = field(*t)) {
-        per_task[t->task].first += *v;
-        ++per_task[t->task].second;
+        per_task[t->planned.task].first += *v;
+        ++per_task[t->planned.task].second;
       }
     if (per_task.empty()) return kNaN;
     double sum = 0;
@@ -177,12 +177,14 @@ Reducer aggregated_relative_error() {
   return [](const std::vector<const TrialRow*>& ts) {
     double truths = 0, answers = 0;
     int n = 0;
-    for (const TrialRow* t : ts)
-      if (t->answer_count && t->truth_count) {
-        truths += static_cast<double>(*t->truth_count);
-        answers += static_cast<double>(*t->answer_count);
+    for (const TrialRow* t : ts) {
+      const auto truth = count_of(t->truth), answer = count_of(t->answer);
+      if (answer && truth) {
+        truths += static_cast<double>(*truth);
+        answers += static_cast<double>(*answer);
         ++n;
       }
+    }
     if (n == 0 || truths <= 0) return kNaN;
     return std::fabs(truths - answers) / truths;
   };
@@ -192,8 +194,8 @@ Reducer proportion_correct() {
   return [](const std::vector<const TrialRow*>& ts) {
     int right = 0, n = 0;
     for (const TrialRow* t : ts)
-      if (t->correct) {
-        right += *t->correct ? 1 : 0;
+      if (t->scores.correct) {
+        right += *t->scores.correct ? 1 : 0;
         ++n;
       }
     return n ? static_cast<double>(right) / n : kNaN;

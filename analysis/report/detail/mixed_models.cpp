@@ -34,13 +34,13 @@ stats::LmmData trial_data(const Context& ctx, const ModelSpec& spec) {
   if (spec.task_factor) data.within.push_back({"task", {}});
   std::vector<double> values;
   for (const auto& t : ctx.data.trials) {
-    if (!ctx.analysed(t) || (!spec.task_factor && t.task != spec.scope)) continue;
+    if (!ctx.analysed(t) || (!spec.task_factor && t.planned.task != spec.scope)) continue;
     const std::optional<double> v = spec.field(t);
     values.push_back(v ? *v : std::nan(""));
     data.subject.push_back(t.participant);
     for (size_t i = 0; i < spec.factors.size(); ++i)
       data.within[i].level.push_back(t.levels[static_cast<size_t>(spec.factors[i])]);
-    if (spec.task_factor) data.within.back().level.push_back(t.task);
+    if (spec.task_factor) data.within.back().level.push_back(t.planned.task);
   }
   data.dv = stats::Measurements::from_doubles(values);
   return {std::move(data), "participant", "", {}};
@@ -97,7 +97,7 @@ std::vector<MixedModelResult> compute_mixed_models(const Context& ctx, const Tim
                                                    const AccuracyResult& accuracy) {
   const Design& d = ctx.design;
   std::vector<ModelSpec> specs;
-  const Field time_s = [](const TrialRow& t) { return std::optional<double>(t.time_s); };
+  const Field time_s = [](const TrialRow& t) { return std::optional<double>(t.completion_s); };
   for (const auto& task : d.tasks)
     specs.push_back({"time", task.id, task.id, "log completion time", "completion_time_s", task.factors, false, time_s,
                      stats::Family::gaussian, stats::Transform::log, time.of(task.id)});
@@ -114,18 +114,18 @@ std::vector<MixedModelResult> compute_mixed_models(const Context& ctx, const Tim
     if (task.type == protocol::TaskType::count_targets || task.type == protocol::TaskType::count_kind) {
       s.measure = "relative error";
       s.column = "rel_error";
-      s.field = [](const TrialRow& t) { return t.rel_error; };
+      s.field = [](const TrialRow& t) { return t.scores.rel_error; };
     } else if (task.type == protocol::TaskType::identify_letter) {
       s.measure = "correct (0/1)";
       s.column = "correct";
       s.family = stats::Family::binomial;
       s.field = [](const TrialRow& t) {
-        return t.correct ? std::optional<double>(*t.correct ? 1.0 : 0.0) : std::nullopt;
+        return t.scores.correct ? std::optional<double>(*t.scores.correct ? 1.0 : 0.0) : std::nullopt;
       };
     } else if (task.type == protocol::TaskType::find_unique) {
       s.measure = "distance";
       s.column = "distance";
-      s.field = [](const TrialRow& t) { return t.distance; };
+      s.field = [](const TrialRow& t) { return t.scores.distance; };
     } else {
       continue;
     }

@@ -23,7 +23,7 @@ q::Table table_of(const Context& ctx) {
     q::ParticipantPlan pp{id, {}};
     for (const TrialRow& t : ctx.data.trials) {
       if (t.participant != id) continue;
-      q::PlanPoint p{t.position, t.block, t.task, {}};
+      q::PlanPoint p{t.planned.position, t.planned.block, t.planned.task, {}};
       for (int f : d.all_factors) p.levels.emplace_back(d.factor(f).name, t.levels[static_cast<size_t>(f)]);
       pp.plan.push_back(std::move(p));
     }

@@ -16,7 +16,7 @@
 namespace dtlab::report::detail {
 
 bool Context::analysed(const TrialRow& t) const {
-  if (t.practice) return false;
+  if (t.planned.practice) return false;
   for (int l : t.level_index)
     if (l < 0) return false;
   return true;

@@ -67,11 +67,11 @@ struct AccuracyTests {
 void answer_notes(const Context& ctx, const TaskInfo& task, std::vector<std::string>& notes) {
   int unanswered = 0, zero_truth = 0, n = 0;
   for (const auto& t : ctx.data.trials)
-    if (t.task == task.id && ctx.analysed(t)) {
+    if (t.planned.task == task.id && ctx.analysed(t)) {
       ++n;
-      const bool answered = t.answer_count || t.answer_letter || t.answer_x;
-      unanswered += answered ? 0 : 1;
-      zero_truth += (t.truth_count && *t.truth_count == 0) ? 1 : 0;
+      unanswered += t.answer ? 0 : 1;
+      const auto truth = count_of(t.truth);
+      zero_truth += (truth && *truth == 0) ? 1 : 0;
     }
   if (unanswered)
     notes.push_back(task.id + ": " + std::to_string(unanswered) + " of " + dtlab::count(n, "trial") +
@@ -84,13 +84,13 @@ void answer_notes(const Context& ctx, const TaskInfo& task, std::vector<std::str
 // The tests of one task by its type: relative errors (counting), proportion correct (letter), distance (find-unique).
 void task_tests(Context& ctx, const TaskInfo& task, AccuracyTests& out, AccuracyResult& result) {
   const Design& d = ctx.design;
-  auto in_task = [id = task.id](const TrialRow& t) { return t.task == id; };
+  auto in_task = [id = task.id](const TrialRow& t) { return t.planned.task == id; };
   if (is_count(task.type)) {
     out.count_tasks.push_back(&task);
     for (int f : task.factors)
       if (std::find(out.count_factors.begin(), out.count_factors.end(), f) == out.count_factors.end())
         out.count_factors.push_back(f);
-    const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.rel_error; }));
+    const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.scores.rel_error; }));
     const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
     result.by_task[task.id] = &r1;
     out.add(result, d, {task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
@@ -98,8 +98,8 @@ void task_tests(Context& ctx, const TaskInfo& task, AccuracyTests& out, Accuracy
     const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
     out.add(result, d, {task.id, "rel. error, aggregated", "", &r2, task.id, 3}, m2, "rel_error_aggregated");
     const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
-                                 return t.signed_error ? std::optional<double>(static_cast<double>(*t.signed_error))
-                                                       : std::nullopt;
+                                 const auto& e = t.scores.signed_error;
+                                 return e ? std::optional<double>(static_cast<double>(*e)) : std::nullopt;
                                }));
     out.csv += matrix_csv_rows(m3, d, "signed_error_mean", task.id);
   } else if (task.type == TaskType::identify_letter) {
@@ -108,7 +108,7 @@ void task_tests(Context& ctx, const TaskInfo& task, AccuracyTests& out, Accuracy
     result.by_task[task.id] = &r;
     out.add(result, d, {task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
   } else if (task.type == TaskType::find_unique) {
-    const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.distance; }));
+    const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.scores.distance; }));
     const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
     result.by_task[task.id] = &r;
     out.add(result, d, {task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
@@ -122,11 +122,12 @@ void pooled_count_tests(Context& ctx, AccuracyTests& out, AccuracyResult& result
   for (const auto* t : out.count_tasks) ids += (ids.empty() ? "" : "+") + t->id;
   auto in_count = [&out](const TrialRow& t) {
     for (const auto* c : out.count_tasks)
-      if (c->id == t.task) return true;
+      if (c->id == t.planned.task) return true;
     return false;
   };
   std::sort(out.count_factors.begin(), out.count_factors.end());
-  const auto& m1 = ctx.cells(out.count_factors, in_count, mean_of([](const TrialRow& t) { return t.rel_error; }));
+  const auto& m1 =
+      ctx.cells(out.count_factors, in_count, mean_of([](const TrialRow& t) { return t.scores.rel_error; }));
   out.add(result, d, {ids, "rel. error, mean of trials", "",
           &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), "", 3},
           m1, "rel_error_mean");

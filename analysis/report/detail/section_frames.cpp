@@ -79,20 +79,20 @@ Gathered gather(const Context& ctx, double threshold) {
       for (size_t f = 0; f < tr.level_index.size(); ++f) same = same && tr.level_index[f] == cond.levels[f];
       if (!same) continue;
       ++c.trials;
-      c.method = tr.method;
-      if (tr.frame_count <= 0 || !tr.frame_mean) continue;
-      c.frames += tr.frame_count;
-      c.rate_ms.push_back(tr.frame_median.value_or(*tr.frame_mean));
-      if (tr.frame_first) c.first.push_back(*tr.frame_first);
-      if (tr.frame_p95) {
-        c.p95.push_back(*tr.frame_p95);
-        c.slow += *tr.frame_p95 > threshold ? 1 : 0;
+      c.method = tr.planned.method;
+      if (tr.frames.frames <= 0 || !tr.frames.mean_ms) continue;
+      c.frames += tr.frames.frames;
+      c.rate_ms.push_back(tr.frames.steady_median_ms.value_or(*tr.frames.mean_ms));
+      if (tr.frames.first_ms) c.first.push_back(*tr.frames.first_ms);
+      if (tr.frames.p95_ms) {
+        c.p95.push_back(*tr.frames.p95_ms);
+        c.slow += *tr.frames.p95_ms > threshold ? 1 : 0;
       }
-      if (tr.late_frames) {
-        c.late += *tr.late_frames;
-        c.steady_frames += tr.frame_count - 1;
+      if (tr.frames.late) {
+        c.late += *tr.frames.late;
+        c.steady_frames += tr.frames.frames - 1;
       }
-      c.hz.push_back(tr.refresh_hz.value_or(kAssumedHz));
+      c.hz.push_back(tr.frames.refresh_hz.value_or(kAssumedHz));
       if (!tr.display_kind.empty()) c.displays.insert(display_text(tr));
       if (!tr.renderer.empty()) g.renderers.insert(tr.renderer);
       if (std::find(ctx.simulated.begin(), ctx.simulated.end(), tr.participant) != ctx.simulated.end()) {
@@ -144,7 +144,7 @@ FramesTable frames_table(const Context& ctx, const Gathered& g, double threshold
                       "median_fps", "late_frames", "late_share", "median_first_ms", "median_p95_ms",
                       "slow_trials", "slow_share"});
   const bool known_hz = std::any_of(ctx.data.trials.begin(), ctx.data.trials.end(),
-                                    [](const TrialRow& tr) { return tr.refresh_hz.has_value(); });
+                                    [](const TrialRow& tr) { return tr.frames.refresh_hz.has_value(); });
   const ConditionFrames* fastest = nullptr;
   const ConditionFrames* slowest = nullptr;
   for (const auto& c : g.conds) {

@@ -196,8 +196,8 @@ void section_overview(Context& ctx) {
   }
   long long practice = 0, unknown = 0;
   for (const auto& t : data.trials) {
-    practice += t.practice ? 1 : 0;
-    if (!t.practice && !ctx.analysed(t)) ++unknown;
+    practice += t.planned.practice ? 1 : 0;
+    if (!t.planned.practice && !ctx.analysed(t)) ++unknown;
   }
   simulated_callout(ctx, s);
   s.text(dtlab::count(static_cast<long long>(data.participants.size()), "participant") + " enrolled under protocol `" + p.id + "`; sessions: " +

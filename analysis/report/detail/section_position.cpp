@@ -44,9 +44,9 @@ struct RelativeTimes {
   int blocks = 0, reps = 0;                                  // the largest block and repetition seen
   const Design* design = nullptr;
   std::optional<double> of(const TrialRow& t) const {
-    const auto& cm = cell_mean.at(t.task + "|" + condition_of(*design, t));
+    const auto& cm = cell_mean.at(t.planned.task + "|" + condition_of(*design, t));
     const double mean = cm.first / cm.second;
-    return mean > 0 ? std::optional<double>(t.time_s / mean) : std::nullopt;
+    return mean > 0 ? std::optional<double>(t.completion_s / mean) : std::nullopt;
   }
 };
 
@@ -55,11 +55,11 @@ RelativeTimes relative_times(const Context& ctx) {
   rt.design = &ctx.design;
   for (const auto& t : ctx.data.trials) {
     if (!ctx.analysed(t)) continue;
-    auto& cm = rt.cell_mean[t.task + "|" + condition_of(ctx.design, t)];
-    cm.first += t.time_s;
+    auto& cm = rt.cell_mean[t.planned.task + "|" + condition_of(ctx.design, t)];
+    cm.first += t.completion_s;
     ++cm.second;
-    rt.blocks = std::max(rt.blocks, t.block);
-    rt.reps = std::max(rt.reps, t.trial);
+    rt.blocks = std::max(rt.blocks, t.planned.block);
+    rt.reps = std::max(rt.reps, t.planned.trial);
   }
   return rt;
 }
@@ -72,10 +72,10 @@ Table balance_table(const Context& ctx, int blocks, nlohmann::json& jb, bool& ba
   for (const auto& t : ctx.data.trials) {
     if (!ctx.analysed(t)) continue;
     const std::string c = condition_of(d, t);
-    if (!seen.insert({t.participant + "|" + c, t.block}).second) continue;
+    if (!seen.insert({t.participant + "|" + c, t.planned.block}).second) continue;
     auto& row = balance[c];
     row.resize(static_cast<size_t>(blocks), 0);
-    ++row[static_cast<size_t>(t.block - 1)];
+    ++row[static_cast<size_t>(t.planned.block - 1)];
   }
   Table bt;
   bt.id = "table-balance";
@@ -127,11 +127,11 @@ PositionMatrices position_matrices(const Context& ctx, const RelativeTimes& rt, 
     if (!ctx.analysed(t)) continue;
     const size_t si = static_cast<size_t>(std::find(ctx.subjects.begin(), ctx.subjects.end(), t.participant) -
                                           ctx.subjects.begin());
-    const int pos = (by_block ? t.block : t.trial) - 1;
+    const int pos = (by_block ? t.planned.block : t.planned.trial) - 1;
     const auto rel = rt.of(t);
     if (si >= ctx.subjects.size() || pos < 0 || pos >= levels || !rel) continue;
     sum[si][static_cast<size_t>(pos)] += *rel;
-    rsum[si][static_cast<size_t>(pos)] += t.time_s;
+    rsum[si][static_cast<size_t>(pos)] += t.completion_s;
     ++m.trials[si][static_cast<size_t>(pos)];
     ++raw.trials[si][static_cast<size_t>(pos)];
   }

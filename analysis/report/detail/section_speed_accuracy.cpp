@@ -19,9 +19,10 @@ using protocol::TaskType;
 
 // The per-trial error of a task, lower = better; nullopt when not answered.
 std::optional<double> trial_error(const TrialRow& t, TaskType type) {
-  if (type == TaskType::identify_letter) return t.correct ? std::optional<double>(*t.correct ? 0.0 : 1.0) : std::nullopt;
-  if (type == TaskType::find_unique) return t.distance;
-  return t.rel_error;
+  const auto& correct = t.scores.correct;
+  if (type == TaskType::identify_letter) return correct ? std::optional<double>(*correct ? 0.0 : 1.0) : std::nullopt;
+  if (type == TaskType::find_unique) return t.scores.distance;
+  return t.scores.rel_error;
 }
 
 std::string error_name(TaskType type) {
@@ -82,12 +83,12 @@ RmCorr trial_rmcorr(const Context& ctx, const TaskInfo& task) {
   std::vector<std::string> group;
   std::vector<double> x, y;
   for (const auto& tri : ctx.data.trials) {
-    if (tri.task != task.id || !ctx.analysed(tri)) continue;
+    if (tri.planned.task != task.id || !ctx.analysed(tri)) continue;
     const auto e = trial_error(tri, task.type);
     std::string cell;
     for (int f : task.factors) cell += "/" + tri.levels[static_cast<size_t>(f)];
     group.push_back(tri.participant + cell);
-    x.push_back(tri.time_s);
+    x.push_back(tri.completion_s);
     y.push_back(e ? *e : NAN);
   }
   return rm_corr(group, x, y);

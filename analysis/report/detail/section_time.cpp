@@ -15,7 +15,7 @@
 namespace dtlab::report::detail {
 namespace {
 
-std::optional<double> time_of(const TrialRow& t) { return t.time_s; }
+std::optional<double> time_of(const TrialRow& t) { return t.completion_s; }
 
 }  // namespace
 
@@ -23,7 +23,7 @@ Reducer overall_time(const Design& d, const std::function<std::optional<double>(
   return [&d, field](const std::vector<const TrialRow*>& ts) {
     const double v = mean_of_task_means(field)(ts);
     std::set<std::string> tasks;
-    for (const TrialRow* t : ts) tasks.insert(t->task);
+    for (const TrialRow* t : ts) tasks.insert(t->planned.task);
     if (ts.empty() || static_cast<int>(tasks.size()) < d.tasks_in(d.scenario_of(*ts.front())))
       return std::nan("");
     return v;
@@ -152,7 +152,7 @@ TimeTests run_time_tests(Context& ctx, TimeResult& result) {
   TimeTests out;
   out.means_csv = matrix_csv_header(d);
   for (const auto& task : d.tasks) {
-    const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.task == task.id; }, mean_of(time_of));
+    const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.planned.task == task.id; }, mean_of(time_of));
     const auto& r = ctx.add_test("time", run_rm_anova(m, d, "completion time", "s", task.id));
     result.by_scope[task.id] = &r;
     result.tests.push_back(&r);

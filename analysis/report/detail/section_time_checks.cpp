@@ -138,13 +138,13 @@ void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stor
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
   auto log_time = [](const TrialRow& t) -> std::optional<double> {
-    if (!(t.time_s > 0)) return std::nullopt;  // NaN (no time) or not positive
-    return std::log(t.time_s);
+    if (!(t.completion_s > 0)) return std::nullopt;  // NaN (no time) or not positive
+    return std::log(t.completion_s);
   };
   std::vector<std::pair<std::string, const TestReport*>> rows;
   nlohmann::json jtests = nlohmann::json::array();
   for (const auto& task : d.tasks) {
-    const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.task == task.id; }, mean_of(log_time));
+    const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.planned.task == task.id; }, mean_of(log_time));
     rows.push_back({task.id, &ctx.add_test("time", run_rm_anova(m, d, "log completion time", "log s", task.id))});
     stored.push_back(rows.back().second);
   }

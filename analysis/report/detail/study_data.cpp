@@ -12,52 +12,24 @@
 namespace dtlab::report::detail {
 namespace {
 
-void split_answer(const std::optional<store::Answer>& a, std::optional<std::int64_t>& count,
-                  std::optional<std::string>& letter, std::optional<double>& x, std::optional<double>& z) {
-  if (!a) return;
-  if (const auto* c = std::get_if<store::Count>(&*a)) count = c->n;
-  if (const auto* l = std::get_if<store::Letter>(&*a)) letter = l->letter;
-  if (const auto* p = std::get_if<store::Position>(&*a)) {
-    x = p->x;
-    z = p->z;
-  }
-}
-
 TrialRow to_report_row(const store::TrialRow& t, const protocol::Protocol& p) {
   TrialRow r;
   static_cast<store::TrialRow&>(r) = t;
-  r.position = t.planned.position;
-  r.block = t.planned.block;
   for (const protocol::Factor& f : p.factors) {
     r.levels.push_back(t.level(f.name));
     const auto it = std::find(f.levels.begin(), f.levels.end(), r.levels.back());
     r.level_index.push_back(it == f.levels.end() ? -1 : static_cast<int>(it - f.levels.begin()));
   }
-  r.task = t.planned.task;
-  r.trial = t.planned.trial;
-  r.practice = t.planned.practice;
-  r.method = t.planned.method;
-  split_answer(t.answer, r.answer_count, r.answer_letter, r.answer_x, r.answer_z);
-  split_answer(std::optional<store::Answer>(t.truth), r.truth_count, r.truth_letter, r.truth_x,
-                              r.truth_z);
-  r.rel_error = t.scores.rel_error;
-  r.signed_error = t.scores.signed_error;
-  r.correct = t.scores.correct;
-  r.distance = t.scores.distance;
-  r.time_s = t.completion_s;
-  r.frame_count = t.frames.frames;
-  r.frame_mean = t.frames.mean_ms;
-  r.frame_sd = t.frames.sd_ms;
-  r.frame_p95 = t.frames.p95_ms;
-  r.frame_max = t.frames.max_ms;
-  r.frame_median = t.frames.steady_median_ms;
-  r.late_frames = t.frames.late;
-  r.refresh_hz = t.frames.refresh_hz;
-  r.frame_first = t.frames.first_ms;
   return r;
 }
 
 }  // namespace
+
+std::optional<std::int64_t> count_of(const std::optional<store::Answer>& a) {
+  if (!a) return std::nullopt;
+  if (const auto* c = std::get_if<store::Count>(&*a)) return c->n;
+  return std::nullopt;
+}
 
 Result<std::vector<store::Revision>> design_revisions(store::StudyReader& reader) {
   auto revs = reader.revisions();

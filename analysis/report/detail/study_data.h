@@ -18,32 +18,20 @@
 namespace dtlab::report::detail {
 
 // A recorded trial as the report reads it: the store's row itself (participant, enrollment index,
-// order row, session status, plan, result, scores, frames, protocol hash, exclusion), and the
-// columns the sections read, derived from it once by read_study.
+// order row, session status, the plan in `planned`, the result -- answer, truth, completion_s,
+// frames --, scores, protocol hash, exclusion), which the sections read directly, and what
+// read_study derives from the protocol and the sessions: the levels in protocol factor order and
+// the display the trial ran on. Never a second copy of a field the store's row holds.
 struct TrialRow : store::TrialRow {
-  int position = 0, block = 0;
   std::vector<std::string> levels;  // per protocol factor, in protocol order ("" if absent)
   std::vector<int> level_index;     // index into the factor's levels; -1 if unknown
-  std::string task;
-  int trial = 0;
-  bool practice = false;
-  std::string method;
-  std::optional<std::int64_t> answer_count, truth_count, signed_error;
-  std::optional<std::string> answer_letter, truth_letter;
-  std::optional<double> answer_x, answer_z, truth_x, truth_z;
-  std::optional<double> rel_error, distance;
-  std::optional<bool> correct;
-  double time_s = 0;
-  std::int64_t frame_count = 0;
-  std::optional<double> frame_mean, frame_sd, frame_p95, frame_max;
-  std::optional<double> frame_median;       // steady frames (2..n), schema v3; nullopt in older files
-  std::optional<std::int64_t> late_frames;  // steady frames later than 1.5 display intervals
-  std::optional<double> refresh_hz;         // the display's rate; nullopt: unknown (headless)
-  std::optional<double> frame_first;        // the first frame (warm-up: scene upload, first present), schema v3
   std::string display_kind;                 // the session's display at the trial: "window", "headless"; "" unknown
   int display_width = 0, display_height = 0;  // its framebuffer pixels (0 = not recorded)
   std::string renderer;                     // "GL_VERSION / GL_RENDERER" of that display
 };
+
+// The number of a count answer or truth (T1, T4); nullopt for none or another kind of answer.
+std::optional<std::int64_t> count_of(const std::optional<store::Answer>& a);
 
 struct ParticipantRow {
   std::string id;

@@ -146,16 +146,16 @@ TEST(Reducers, AggregatedRelativeErrorIsTheArticles) {
   const int truth[] = {25, 30, 35, 40};
   const int answer[] = {26, 30, 34, 0};
   for (int i = 0; i < 4; ++i) {
-    rows[static_cast<size_t>(i)].truth_count = truth[i];
-    if (i < 3) rows[static_cast<size_t>(i)].answer_count = answer[i];
+    rows[static_cast<size_t>(i)].truth = store::Count{truth[i]};
+    if (i < 3) rows[static_cast<size_t>(i)].answer = store::Count{answer[i]};
   }
   std::vector<const TrialRow*> ptr;
   for (const auto& r : rows) ptr.push_back(&r);
   EXPECT_EQ(aggregated_relative_error()(ptr), 0.0);
-  rows[2].answer_count = 40;  // 96 for 90
+  rows[2].answer = store::Count{40};  // 96 for 90
   EXPECT_DOUBLE_EQ(aggregated_relative_error()(ptr), 6.0 / 90.0);
-  rows[0].correct = true;
-  rows[1].correct = false;
+  rows[0].scores.correct = true;
+  rows[1].scores.correct = false;
   EXPECT_DOUBLE_EQ(proportion_correct()(ptr), 0.5);
 }
 
