@@ -1,15 +1,13 @@
 // write_report: read, analyse, draw, write (report.h). The database is read
 // through one StudyReader snapshot: the tidy table (byte for byte what
-// `dtlab export` writes) and each design revision's data come from it.
+// `dtlab export` writes) and each design revision's data come from it. The
+// sections compute; the Document's three renderers, render_json and
+// render_csv lay their results out; this file writes what they return.
 // Output files are written whole or not at all (write_file_atomically).
 #include "analysis/report/report.h"
 
-#include <nlohmann/json.hpp>
-
-#include <chrono>
 #include <cctype>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -17,10 +15,10 @@
 #include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/document.h"
 #include "analysis/report/detail/plots.h"
+#include "analysis/report/detail/render_data.h"
 #include "analysis/report/detail/sections.h"
 #include "analysis/report/detail/study_data.h"
 #include "study/common/file.h"
-#include "study/common/version.h"
 #include "study/store/export.h"
 
 namespace dtlab::report {
@@ -38,32 +36,6 @@ Status write_whole(const fs::path& p, const std::string& text) {
     out << text;
     return {};
   });
-}
-
-std::string utc_now() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-nlohmann::json design_json(const Design& d) {
-  nlohmann::json f = nlohmann::json::array();
-  for (int i : d.all_factors)
-    f.push_back({{"name", d.factor(i).name}, {"role", std::string(protocol::to_string(d.factor(i).role))},
-                 {"levels", d.factor(i).levels}});
-  nlohmann::json t = nlohmann::json::array();
-  for (const auto& task : d.tasks) {
-    nlohmann::json varying = nlohmann::json::array();
-    for (int i : task.factors) varying.push_back(d.factor(i).name);
-    t.push_back({{"id", task.id}, {"type", std::string(protocol::to_string(task.type))}, {"scenario", task.scenario},
-                 {"trials", task.trials}, {"factors", varying}});
-  }
-  return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.article_names},
-          {"published_results", d.reference ? nlohmann::json(d.protocol->reference_results->source)
-                                            : nlohmann::json(nullptr)}};
 }
 
 // A participant ID or task ID as part of a file name: letters, digits, '-' and '_' kept, the rest '_'.
@@ -109,84 +81,43 @@ Result<DrawnPaths> draw_paths(store::StudyReader& reader, const Context& ctx) {
   return out;
 }
 
-// Every section in a paper's order, each handed the declared results it builds on, then the walked paths.
-Result<DrawnPaths> run_sections(store::StudyReader& reader, Context& ctx, const ProgressFn& say) {
+// Every section in a paper's order, each handed the declared results it builds on, then the walked paths
+// (their SVG texts to `paths`).
+Result<SectionResults> run_sections(store::StudyReader& reader, Context& ctx, const ProgressFn& say,
+                                    DrawnPaths& paths) {
+  SectionResults r;
   say("participants and design (" + std::to_string(ctx.subjects.size()) + " participants, " +
       std::to_string(ctx.analysed_trials) + " trials)");
   section_overview(ctx);
-  section_participants(ctx);
+  r.sample = section_participants(ctx);
   say("completion time");
   const TimeResult time = section_time(ctx);
   say("accuracy");
   const AccuracyResult accuracy = section_errors(ctx);
   say("mixed models");
-  section_mixed_models(ctx, time, accuracy);
+  r.mixed = section_mixed_models(ctx, time, accuracy);
   say("speed and accuracy");
   section_speed_accuracy(ctx, time, accuracy);
   say("questionnaire");
   section_questionnaire(ctx);
   say("instruments and questions per condition");
-  section_instruments(ctx);
+  r.instruments = section_instruments(ctx);
   say("position effects");
   section_position(ctx, time);
   say("frame-time audit");
-  const FramesResult frames = section_frames(ctx);
-  warn_at_top(ctx.doc, frames);
+  r.frames = section_frames(ctx);
+  warn_at_top(ctx.doc, r.frames);
   say("planning the next study");
-  section_planning(ctx, time, accuracy);
+  r.planning = section_planning(ctx, time, accuracy);
   if (ctx.options.path_figure) say("walked paths");
-  auto paths = draw_paths(reader, ctx);
-  if (!paths) return paths.error();
-  std::vector<PathFigure> path_figures;
-  for (const auto& [f, svg] : paths->figures) path_figures.push_back(f);
-  const bool with_paths = section_paths(ctx, path_figures, paths->left_out);
-  section_notes(ctx, with_paths);
-  return paths;
-}
-
-// report.json's list of every enrolled participant: analysed, simulated, excluded.
-nlohmann::json participants_json(const StudyData& data, const Context& ctx) {
-  nlohmann::json parts = nlohmann::json::array();
-  for (const auto& p : data.participants) {
-    const bool analysed = std::find(ctx.subjects.begin(), ctx.subjects.end(), p.id) != ctx.subjects.end();
-    const bool sim = std::find(ctx.simulated.begin(), ctx.simulated.end(), p.id) != ctx.simulated.end();
-    const bool excluded = std::find(data.excluded_participants.begin(), data.excluded_participants.end(), p.id) !=
-                          data.excluded_participants.end();
-    parts.push_back({{"id", p.id}, {"index", p.index}, {"order_row", p.order_row},
-                     {"session", p.session_status ? nlohmann::json(store::to_string(*p.session_status)) : nlohmann::json(nullptr)},
-                     {"planned", p.planned}, {"recorded", p.recorded}, {"analysed", analysed}, {"simulated", sim},
-                     {"excluded", excluded}});
-  }
-  return parts;
-}
-
-// report.json's entries about the study as a whole, beside the sections' own.
-void study_json(nlohmann::json& j, const StudyData& data, const Design& design, const Context& ctx,
-                const ReportSummary& sum) {
-  j["report_format"] = 1;
-  j["generated_by"] = std::string(dtlab::version_string());
-  j["generated_at"] = utc_now();
-  j["database"] = data.path;
-  j["protocol"] = {{"id", data.protocol.id}, {"title", data.protocol.title}, {"sha256", data.protocol.sha256},
-                   {"design_sha256", protocol::design_sha256(data.protocol)},
-                   {"design_revision", data.design_revision}, {"design_revisions", data.design_revisions},
-                   {"protocol_texts", data.protocol_texts}, {"software_version", data.software_version}};
-  j["design"] = design_json(design);
-  j["participants"] = participants_json(data, ctx);
-  nlohmann::json excl = nlohmann::json::array();
-  for (const auto& x : data.exclusions)
-    excl.push_back({{"participant", x.participant},
-                    {"trial", x.position ? nlohmann::json(*x.position) : nlohmann::json(nullptr)},
-                    {"decision", x.exclude ? "exclude" : "include"}, {"reason", x.reason}, {"by", x.by}, {"at", x.at}});
-  j["exclusions"] = excl;
-  j["summary"] = {{"participants", sum.participants}, {"trials", sum.trials}, {"tests", sum.tests},
-                  {"excluded_trials", data.excluded_trials}, {"with_excluded", data.with_excluded},
-                  {"simulated", sum.simulated}, {"simulated_participants", ctx.simulated}};
-  j["warnings"] = ctx.warnings;
-  std::vector<std::string> figure_files;
-  for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
-  j["figures"] = figure_files;
-  j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
+  auto drawn = draw_paths(reader, ctx);
+  if (!drawn) return drawn.error();
+  paths = std::move(*drawn);
+  for (const auto& [f, svg] : paths.figures) r.path_figures.push_back(f);
+  r.paths_left_out = paths.left_out;
+  r.with_paths = section_paths(ctx, r.path_figures, r.paths_left_out);
+  section_notes(ctx, r.with_paths);
+  return r;
 }
 
 // The report of one design revision into `out`.
@@ -212,8 +143,9 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   if (ec || !fs::is_directory(figures))
     return output_error(out, "cannot create the output directory: " + (ec ? ec.message() : "not a directory"));
 
-  auto paths = run_sections(reader, ctx, say);
-  if (!paths) return paths.error();
+  DrawnPaths paths;
+  auto results = run_sections(reader, ctx, say, paths);
+  if (!results) return results.error();
   say("drawing " + std::to_string(ctx.plots.size()) + " figures with " + gnuplot);
   auto svg = render_plots(ctx.plots, figures.string(), gnuplot);
   if (!svg) return svg.error();
@@ -227,23 +159,23 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   sum.simulated = !ctx.simulated.empty() && ctx.simulated.size() == ctx.subjects.size();
   sum.revisions = {data.design_revision};
   sum.warnings = ctx.warnings;
-  study_json(ctx.json, data, design, ctx, sum);
 
   say("writing " + out.string());
+  std::map<std::string, std::string> csv = render_csv(ctx, *results);
   std::vector<std::pair<std::string, std::string>> files = {
       {"trials.csv", tidy},
-      {"tests.csv", tests_csv(ctx)},
-      {"report.json", ctx.json.dump(2) + "\n"},
+      {"tests.csv", csv.extract("tests.csv").mapped()},
+      {"report.json", render_json(ctx, *results, sum).dump(2) + "\n"},
       {"report.md", render_markdown(ctx.doc)},
       {"index.html", render_html(ctx.doc, *svg)},
       {"report.tex", render_latex(ctx.doc)},
   };
-  for (const auto& [name, content] : ctx.csv) files.push_back({name, content});
-  if (!paths->figures.empty()) {
+  for (auto& [name, content] : csv) files.push_back({name, std::move(content)});
+  if (!paths.figures.empty()) {
     fs::create_directories(out / "paths", ec);
     if (ec) return output_error(out / "paths", "cannot create the directory: " + ec.message());
   }
-  for (const auto& [f, svg] : paths->figures) files.push_back({f.file, svg});
+  for (const auto& [f, svg] : paths.figures) files.push_back({f.file, svg});
   for (const auto& [name, content] : files) {
     if (auto s = write_whole(out / name, content); !s) return s.error();
     sum.files.push_back(name);

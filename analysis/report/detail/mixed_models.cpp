@@ -136,4 +136,11 @@ std::vector<MixedModelResult> compute_mixed_models(const Context& ctx, const Tim
   return out;
 }
 
+std::string r_call(const MixedModelResult& m) {
+  const std::string data = m.subset.empty() ? "d" : "subset(d, " + m.subset + ")";
+  if (m.fit->family == stats::Family::binomial)
+    return "glmer(" + m.fit->formula + ", data = " + data + ", family = binomial, control = ctl)";
+  return "lmer(" + m.fit->formula + ", data = " + data + ")";
+}
+
 }  // namespace dtlab::report::detail

@@ -50,6 +50,9 @@ struct MixedModelResult {
   long long trials = 0;    // trials with a value that entered the model
 };
 
+// The lme4 call of a fitted model, on the data frame `d` of the report's trials.csv.
+std::string r_call(const MixedModelResult& m);
+
 // Every mixed model the report shows, in section order (time, then accuracy); each beside the test of
 // the same scope in `time` or `accuracy`.
 std::vector<MixedModelResult> compute_mixed_models(const Context& ctx, const TimeResult& time,

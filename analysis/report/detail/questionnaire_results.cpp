@@ -145,14 +145,13 @@ QuestionnaireResults questionnaire_results(Context& ctx) {
     return rows;
   };
 
-  out.scores_csv = csv_line({"participant", "instrument", "scale", "occasion", "occasion_scope", "condition", "value"});
   for (const q::InstrumentUse& use : p.instruments) {
     for (const q::Scale& scale : use.instrument->scales(use.keys)) {
       const std::string id = use.id + ":" + scale.id;
       const auto rows = rows_of(id);
       for (const q::TableRow* r : rows)
-        out.scores_csv += csv_line({r->participant, use.instrument->name, id, r->occasion, r->occasion_scope,
-                                    condition_text(d, *r), csv_number(*r->number)});
+        out.scores.push_back({r->participant, use.instrument->name, id, r->occasion, r->occasion_scope,
+                              condition_text(d, *r), *r->number});
       ConditionMeasure cm{id, use.instrument->title + ": " + scale.label, use.instrument->name, q::to_string(use.when),
                           scale.min, scale.max, nullptr, {}};
       out.measures.push_back(measure_of(ctx, std::move(cm), use.when, /*ordinal=*/false, rows));

@@ -11,6 +11,7 @@
 // Context's data alone; section_instruments.cpp lays it out. No I/O.
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,14 +42,24 @@ struct FreeText {
   std::string text;
 };
 
+// A participant's score on an instrument's scale at one occasion (a row of instrument_scores.csv).
+struct InstrumentScore {
+  std::string participant, instrument, scale, occasion, occasion_scope, condition;
+  double value = 0;
+};
+
 struct QuestionnaireResults {
   std::vector<ConditionMeasure> measures;  // instruments' scales (protocol order), then items
   std::vector<ConditionCounts> counts;
   std::vector<FreeText> texts;             // non-empty answers, participant order then protocol order
-  std::string scores_csv;                  // participant x occasion x scale (instrument_scores.csv)
+  std::vector<InstrumentScore> scores;     // participant x occasion x scale
 };
 
 // Computes everything above; tests are stored in ctx (ctx.add_test, section "instruments").
 QuestionnaireResults questionnaire_results(Context& ctx);
+
+// The section "Instruments and questions per condition" (section_instruments.cpp): lays out
+// questionnaire_results() and returns it; nullopt (no section) when the protocol has nothing of it.
+std::optional<QuestionnaireResults> section_instruments(Context& ctx);
 
 }  // namespace dtlab::report::detail

@@ -121,68 +121,57 @@ std::string simulated_text(const Gathered& g) {
          "would show; they say nothing about fluency in a real session.";
 }
 
-// The per-condition table with its report.json and frames.csv rows, and the warnings the numbers give.
-struct FramesTable {
-  Table t;
-  nlohmann::json json = nlohmann::json::array();
-  std::string csv;
-  long long with_frames = 0;           // trials with frame times
-  std::vector<std::string> warnings;   // render cost may confound completion time
-  std::vector<std::string> below;      // conditions below the display's rate
-};
+// One condition's row of the audit, from its frames gathered (`known_hz`: some trial recorded its display's rate).
+FramesResult::Condition condition_row(const ConditionFrames& c, bool known_hz) {
+  FramesResult::Condition r;
+  r.condition = c.name;
+  r.method = c.method;
+  for (const auto& x : c.displays) r.display += (r.display.empty() ? "" : "; ") + x;
+  r.trials = c.trials;
+  r.trials_with_frames = static_cast<long long>(c.rate_ms.size());
+  r.frames = c.frames;
+  r.display_hz = median(c.hz);
+  r.display_hz_known = known_hz;
+  r.median_fps = c.fps();
+  r.median_steady_ms = median(c.rate_ms);
+  r.below_display = known_hz && r.median_steady_ms > (1 + kBelowDisplayTolerance) * 1000 / r.display_hz;
+  r.late_frames = c.late;
+  r.steady_frames = c.steady_frames;
+  r.late_share = c.steady_frames > 0 ? static_cast<double>(c.late) / c.steady_frames : NAN;
+  r.median_first_ms = median(c.first);
+  r.median_p95_ms = median(c.p95);
+  r.slow_trials = c.slow;
+  r.p95_trials = static_cast<long long>(c.p95.size());
+  r.slow_share = c.p95.empty() ? NAN : static_cast<double>(c.slow) / static_cast<double>(c.p95.size());
+  return r;
+}
 
-FramesTable frames_table(const Context& ctx, const Gathered& g, double threshold) {
-  const double min_fps = 1000 / threshold;
-  FramesTable out;
-  Table& t = out.t;
-  t.id = "table-frames";
-  t.caption = "Frame times per condition: median frame rate, late frames, the warm-up frame and the 95th percentile.";
-  t.header = {"Condition", "Method", "Display", "Trials", "Frames", "Display Hz", "Median fps", "Late frames",
-              "First frame (ms)", "p95 (ms)", "Slow trials"};
-  t.text_columns = 3;
-  out.csv = csv_line({"condition", "method", "display", "trials", "trials_with_frames", "frames", "display_hz",
-                      "median_fps", "late_frames", "late_share", "median_first_ms", "median_p95_ms",
-                      "slow_trials", "slow_share"});
+// The audit per condition and the warnings its numbers give.
+FramesResult frames_result(const Context& ctx, const Gathered& g, double threshold) {
+  FramesResult out;
+  out.threshold_ms = threshold;
+  out.min_fps = 1000 / threshold;
+  out.rate_spread = kRateSpread;
   const bool known_hz = std::any_of(ctx.data.trials.begin(), ctx.data.trials.end(),
                                     [](const TrialRow& tr) { return tr.frames.refresh_hz.has_value(); });
   const ConditionFrames* fastest = nullptr;
   const ConditionFrames* slowest = nullptr;
   for (const auto& c : g.conds) {
-    out.with_frames += static_cast<long long>(c.rate_ms.size());
-    const double fps = c.fps(), hz = median(c.hz), first = median(c.first), p95 = median(c.p95);
-    const double late_share = c.steady_frames > 0 ? static_cast<double>(c.late) / c.steady_frames : NAN;
-    const double slow_share = c.p95.empty() ? NAN : static_cast<double>(c.slow) / static_cast<double>(c.p95.size());
-    const double steady_ms = median(c.rate_ms);
-    const bool is_below = known_hz && steady_ms > (1 + kBelowDisplayTolerance) * 1000 / hz;
-    if (is_below) out.below.push_back(c.name);
-    std::string display;
-    for (const auto& x : c.displays) display += (display.empty() ? "" : "; ") + x;
+    out.conditions.push_back(condition_row(c, known_hz));
+    const FramesResult::Condition& r = out.conditions.back();
+    out.trials_with_frames += r.trials_with_frames;
+    if (r.below_display) out.below.push_back(c.name);
     // The confound warnings look at people's frames only: a simulated participant's offscreen frames
     // are no screen anyone watched (simulated_text says what they are).
     if (const double people = c.people_fps(); std::isfinite(people)) {
-      if (people < min_fps)
+      if (people < out.min_fps)
         out.warnings.push_back(c.name + (c.method == c.name ? "" : " (" + c.method + ")") + " rendered at a median " +
-                               fixed(people, 1) + " fps, below " + fixed(min_fps, 0) + " fps" +
-                               (c.p95.empty() ? "" : "; " + percent(slow_share, 0) + " of its trials were slow") + ".");
+                               fixed(people, 1) + " fps, below " + fixed(out.min_fps, 0) + " fps" +
+                               (c.p95.empty() ? "" : "; " + percent(r.slow_share, 0) + " of its trials were slow") +
+                               ".");
       if (!fastest || people > fastest->people_fps()) fastest = &c;
       if (!slowest || people < slowest->people_fps()) slowest = &c;
     }
-    t.rows.push_back({c.name, c.method, display.empty() ? kDash : display, integer(c.trials), integer(c.frames),
-                      c.hz.empty() ? kDash : fixed(hz, 0) + (known_hz ? "" : " (assumed)"),
-                      fixed(fps, 1) + (is_below ? " (below display)" : ""),
-                      c.steady_frames > 0 ? integer(c.late) + " (" + percent(late_share) + ")" : kDash,
-                      fixed(first, 1), fixed(p95, 1),
-                      c.p95.empty() ? kDash : integer(c.slow) + " (" + percent(slow_share) + ")"});
-    out.json.push_back({{"condition", c.name}, {"method", c.method}, {"display", display}, {"trials", c.trials},
-                        {"trials_with_frames", c.rate_ms.size()}, {"frames", c.frames}, {"display_hz", num(hz)},
-                        {"display_hz_known", known_hz}, {"median_fps", num(fps)}, {"median_steady_ms", num(steady_ms)},
-                        {"below_display", is_below}, {"late_frames", c.late},
-                        {"late_share", num(late_share)}, {"median_first_ms", num(first)}, {"median_p95_ms", num(p95)},
-                        {"slow_trials", c.slow}, {"slow_share", num(slow_share)}});
-    out.csv += csv_line({c.name, c.method, display, std::to_string(c.trials), std::to_string(c.rate_ms.size()),
-                         std::to_string(c.frames), csv_number(hz), csv_number(fps), std::to_string(c.late),
-                         csv_number(late_share), csv_number(first), csv_number(p95), std::to_string(c.slow),
-                         csv_number(slow_share)});
   }
   if (fastest && slowest && fastest->people_fps() > kRateSpread * slowest->people_fps())
     out.warnings.push_back("Median frame rates differ by more than " + fixed(100 * (kRateSpread - 1), 0) +
@@ -192,10 +181,30 @@ FramesTable frames_table(const Context& ctx, const Gathered& g, double threshold
   return out;
 }
 
+// The per-condition table of the audit (without its notes).
+Table frames_table(const FramesResult& fr) {
+  Table t;
+  t.id = "table-frames";
+  t.caption = "Frame times per condition: median frame rate, late frames, the warm-up frame and the 95th percentile.";
+  t.header = {"Condition", "Method", "Display", "Trials", "Frames", "Display Hz", "Median fps", "Late frames",
+              "First frame (ms)", "p95 (ms)", "Slow trials"};
+  t.text_columns = 3;
+  for (const auto& c : fr.conditions)
+    t.rows.push_back({c.condition, c.method, c.display.empty() ? kDash : c.display, integer(c.trials),
+                      integer(c.frames),
+                      c.trials_with_frames == 0 ? kDash   // no trial with frames: no rate
+                                                : fixed(c.display_hz, 0) + (c.display_hz_known ? "" : " (assumed)"),
+                      fixed(c.median_fps, 1) + (c.below_display ? " (below display)" : ""),
+                      c.steady_frames > 0 ? integer(c.late_frames) + " (" + percent(c.late_share) + ")" : kDash,
+                      fixed(c.median_first_ms, 1), fixed(c.median_p95_ms, 1),
+                      c.p95_trials == 0 ? kDash : integer(c.slow_trials) + " (" + percent(c.slow_share) + ")"});
+  return t;
+}
+
 // The table with its notes, then what the numbers say (simulated frames, no confound, or the warnings).
-void frames_layout(Section& s, FramesTable ft, const Gathered& g, double threshold) {
+void frames_layout(Section& s, const FramesResult& fr, const Gathered& g, double threshold) {
   const double min_fps = 1000 / threshold;
-  Table& t = ft.t;
+  Table t = frames_table(fr);
   t.notes.push_back("Display: the kind and framebuffer size the session recorded (window: a participant's screen; "
                     "headless: offscreen, simulated). Median fps: 1000 / the median over trials of each trial's "
                     "median frame time after its first frame (its mean in databases written before frame timing "
@@ -217,11 +226,11 @@ void frames_layout(Section& s, FramesTable ft, const Gathered& g, double thresho
   if (!people)
     s.text("Every trial with frames was a simulated participant's: there is no participant's screen to check for a "
            "render-cost confound.");
-  else if (ft.warnings.empty())
+  else if (fr.warnings.empty())
     s.text("Every condition rendered at a median of at least " + fixed(min_fps, 0) + " fps and the conditions' "
            "median frame rates are within " + fixed(100 * (kRateSpread - 1), 0) + "% of each other.");
   else
-    s.add(Callout{"warning", "Render cost may confound completion time", ft.warnings});
+    s.add(Callout{"warning", "Render cost may confound completion time", fr.warnings});
 }
 
 }  // namespace
@@ -238,19 +247,13 @@ FramesResult section_frames(Context& ctx) {
          fixed(min_fps, 0) + " fps). If conditions render at different speeds, completion time may measure "
          "render cost as well as the condition's effect on the participant.");
   const Gathered g = gather(ctx, threshold);
-  FramesTable ft = frames_table(ctx, g, threshold);
-  const FramesResult result{ft.warnings};
-  for (const auto& w : ft.warnings) ctx.warnings.push_back("frame-time audit: " + w);
-  ctx.json["frames"] = {{"threshold_ms", threshold},     {"min_fps", min_fps},
-                        {"rate_spread", kRateSpread},     {"trials_with_frames", ft.with_frames},
-                        {"warnings", ft.warnings},        {"below_display", ft.below},
-                        {"conditions", ft.json}};
-  ctx.csv["frames.csv"] = ft.csv;
-  if (ft.with_frames == 0)
+  FramesResult result = frames_result(ctx, g, threshold);
+  for (const auto& w : result.warnings) ctx.warnings.push_back("frame-time audit: " + w);
+  if (result.trials_with_frames == 0)
     s.text("No trial in the database recorded frame times (frame_count = 0 everywhere): the trials were not "
            "rendered while they ran. The audit has nothing to check.");
   else
-    frames_layout(s, std::move(ft), g, threshold);
+    frames_layout(s, result, g, threshold);
   ctx.doc.sections.push_back(std::move(s));
   return result;
 }

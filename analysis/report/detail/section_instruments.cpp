@@ -3,9 +3,10 @@
 // asked after a block, task set or level) the mean (SD) per condition and
 // its test (RM-ANOVA effects, or Friedman's test), the measures asked only
 // at the end as descriptives, the options chosen per condition, and every
-// free-text answer with the condition it followed; report.json's
-// "instruments" and the CSV files instrument_scores.csv and free_text.csv.
-// No section at all when the protocol has none of these.
+// free-text answer with the condition it followed. report.json's
+// "instruments" and the CSV files instrument_scores.csv and free_text.csv
+// are laid out from the returned results (render_data.h). No section at all
+// when the protocol has none of these.
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
@@ -105,46 +106,26 @@ void count_table(Section& s, const QuestionnaireResults& res) {
   if (!t.rows.empty()) s.add(std::move(t));
 }
 
-void text_table(Context& ctx, Section& s, const QuestionnaireResults& res) {
+void text_table(Section& s, const QuestionnaireResults& res) {
   Table t;
   t.id = "table-free-text";
   t.caption = "Free-text answers, per condition they followed (\"end\": asked at the end of the session), as typed.";
   t.header = {"Condition", "Item", "Participant", "Answer"};
   t.text_columns = 4;
-  std::string csv = csv_line({"participant", "item", "condition", "text"});
   std::vector<const FreeText*> sorted;
   for (const FreeText& f : res.texts) sorted.push_back(&f);
   std::stable_sort(sorted.begin(), sorted.end(), [](const FreeText* a, const FreeText* b) { return a->condition < b->condition; });
   for (const FreeText* f : sorted) {
     t.rows.push_back({f->condition.empty() ? "end" : f->condition, f->item, f->participant, f->text});
-    csv += csv_line({f->participant, f->item, f->condition, f->text});
   }
-  ctx.csv["free_text.csv"] = csv;
   if (!t.rows.empty()) s.add(std::move(t));
-}
-
-nlohmann::json results_json(const QuestionnaireResults& res, const Design& d) {
-  nlohmann::json measures = nlohmann::json::array();
-  for (const ConditionMeasure& m : res.measures) {
-    nlohmann::json j{{"id", m.id}, {"label", m.label}, {"instrument", m.instrument}, {"occasion", m.occasion},
-                     {"min", m.min}, {"max", m.max}, {"overall", to_json(m.overall)}};
-    if (m.test) j["test"] = to_json(*m.test, d);
-    measures.push_back(j);
-  }
-  nlohmann::json counts = nlohmann::json::array();
-  for (const ConditionCounts& c : res.counts)
-    counts.push_back({{"item", c.item}, {"condition", c.condition}, {"chosen", c.chosen}, {"answers", c.answers}});
-  nlohmann::json texts = nlohmann::json::array();
-  for (const FreeText& f : res.texts)
-    texts.push_back({{"participant", f.participant}, {"item", f.item}, {"condition", f.condition}, {"text", f.text}});
-  return {{"measures", measures}, {"choices", counts}, {"free_text", texts}};
 }
 
 }  // namespace
 
-void section_instruments(Context& ctx) {
-  const QuestionnaireResults res = questionnaire_results(ctx);
-  if (res.measures.empty() && res.counts.empty() && res.texts.empty()) return;
+std::optional<QuestionnaireResults> section_instruments(Context& ctx) {
+  QuestionnaireResults res = questionnaire_results(ctx);
+  if (res.measures.empty() && res.counts.empty() && res.texts.empty()) return std::nullopt;
   Section s{"instruments", "Instruments and questions per condition", 2, {}};
   s.text("Instruments are scored from the raw answers by their published scoring (NASA-TLX: the raw TLX, the mean "
          "of the six subscales, and with the pairwise comparisons the weighted score, sum of weight x rating / 15; "
@@ -155,10 +136,9 @@ void section_instruments(Context& ctx) {
   mean_tables(ctx, s, res);
   end_table(s, res);
   count_table(s, res);
-  text_table(ctx, s, res);
-  ctx.json["instruments"] = results_json(res, ctx.design);
-  ctx.csv["instrument_scores.csv"] = res.scores_csv;
+  text_table(s, res);
   ctx.doc.sections.push_back(std::move(s));
+  return res;
 }
 
 }  // namespace dtlab::report::detail

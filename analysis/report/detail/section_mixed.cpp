@@ -4,14 +4,14 @@
 // with a 95% CI, the ANOVA's p beside and whether both decide alike at
 // alpha = .05), one APA sentence per model, the lme4 call of each model a
 // reader can paste into R, and a note listing every effect on which the two
-// analyses disagree. report.json gets every fit in full (lmm_json.h).
+// analyses disagree. report.json gets every fit in full from the returned
+// models (render_data.h, through lmm_json.h).
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/mixed_models.h"
 #include "analysis/report/detail/sections.h"
 #include "analysis/stats/apa.h"
-#include "analysis/stats/lmm_json.h"
 
 namespace dtlab::report::detail {
 namespace {
@@ -78,32 +78,6 @@ std::string sentence(const MixedModelResult& m, const std::string& primary) {
   return m.label + ": " + primary + " " + t + ", " + stats::apa_p(p) + ".";
 }
 
-// The lme4 call of one model, on the data frame `d` of the report's trials.csv.
-std::string r_call(const MixedModelResult& m) {
-  const std::string data = m.subset.empty() ? "d" : "subset(d, " + m.subset + ")";
-  if (m.fit->family == stats::Family::binomial)
-    return "glmer(" + m.fit->formula + ", data = " + data + ", family = binomial, control = ctl)";
-  return "lmer(" + m.fit->formula + ", data = " + data + ")";
-}
-
-nlohmann::json result_json(const MixedModelResult& m) {
-  nlohmann::json j{{"section", m.section}, {"scope", m.scope}, {"label", m.label}, {"measure", m.measure},
-                   {"column", m.column}, {"subset", m.subset}, {"trials", m.trials}};
-  if (!m.fit) {
-    j["not_fitted"] = m.not_fitted;
-    return j;
-  }
-  j["r_call"] = r_call(m);
-  j["fit"] = stats::lmm_fit_json<nlohmann::json>(*m.fit);
-  if (m.primary) j["primary"] = stats::emm_table_json<nlohmann::json>(*m.primary);
-  nlohmann::json dec = nlohmann::json::array();
-  for (const auto& x : m.decisions)
-    dec.push_back({{"effect", x.effect}, {"p_anova", num(x.p_anova)}, {"p_model", num(x.p_model)},
-                   {"disagree", x.disagree}});
-  j["decisions"] = dec;
-  return j;
-}
-
 void lay_out_group(Context& ctx, Section& s, const std::vector<MixedModelResult>& models, const std::string& section,
                    const std::string& title) {
   const Design& d = ctx.design;
@@ -166,7 +140,7 @@ void lay_out_group(Context& ctx, Section& s, const std::vector<MixedModelResult>
 
 }  // namespace
 
-void section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+std::vector<MixedModelResult> section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
   const std::vector<MixedModelResult> models = compute_mixed_models(ctx, time, accuracy);
   Section s{"mixed-models", "Mixed models on trial-level data", 2, {}};
   s.text("The ANOVAs above average each participant's trials per condition first. A mixed model uses the trials "
@@ -194,14 +168,12 @@ void section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyRe
            ", then " + calls + "; `summary()`, `anova()` and `emmeans::emmeans()` print what the tables show. "
            "report.json holds every fit in full, with the R code naming each factor's levels.");
   }
-  nlohmann::json all = nlohmann::json::array();
   for (const auto& m : models) {
-    all.push_back(result_json(m));
     if (m.fit) ctx.tests += static_cast<int>(m.fit->family == stats::Family::binomial ? m.fit->lrt.size()
                                                                                        : m.fit->anova.size());
   }
-  ctx.json["mixed_models"] = all;
   ctx.doc.sections.push_back(std::move(s));
+  return models;
 }
 
 }  // namespace dtlab::report::detail

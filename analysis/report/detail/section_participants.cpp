@@ -4,8 +4,9 @@
 // fields: n, mean, SD, range; choice fields: a count per option; text fields:
 // how many answered), and what happened around the sessions: the
 // experimenter's pauses and notes per participant and about the study.
-// Computed first into a plain result (participants_result), then laid out.
-// Never reads the database (StudyData holds what it needs).
+// Computed first into a plain result (participants_result), then laid out;
+// report.json's "sample" and sessions_notes.csv are laid out from the result
+// by render_data.h. Never reads the database (StudyData holds what it needs).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -18,36 +19,10 @@
 namespace dtlab::report::detail {
 namespace {
 
-struct NumericField {
-  std::string id, prompt;
-  stats::Descriptives d;
-};
-struct ChoiceField {
-  std::string id, prompt;
-  std::vector<std::pair<std::string, int>> counts;  // per option in the protocol's order, then other answers
-  int answered = 0;
-};
-struct TextField {
-  std::string id, prompt;
-  int answered = 0;
-};
-struct AroundSession {  // one participant with a pause or a note
-  std::string id;
-  int pauses = 0;
-  double paused_s = 0;
-  std::vector<std::string> notes;
-};
-struct ParticipantsResult {
-  int described = 0;  // participants the demographics describe (the analysed ones)
-  bool consent_asked = false;
-  int consented = 0, declined = 0;
-  std::vector<std::string> withdrawn;  // left out of every analysis
-  std::vector<NumericField> numeric;
-  std::vector<ChoiceField> choices;
-  std::vector<TextField> texts;
-  std::vector<AroundSession> around;
-  std::vector<std::string> study_notes;
-};
+using NumericField = ParticipantsResult::NumericField;
+using ChoiceField = ParticipantsResult::ChoiceField;
+using TextField = ParticipantsResult::TextField;
+using AroundSession = ParticipantsResult::AroundSession;
 
 ParticipantsResult participants_result(const Context& ctx) {
   const StudyData& data = ctx.data;
@@ -134,29 +109,10 @@ std::string consent_text(const ParticipantsResult& r) {
   return t;
 }
 
-nlohmann::json result_json(const ParticipantsResult& r) {
-  nlohmann::json j{{"described", r.described}, {"consent_asked", r.consent_asked}, {"consented", r.consented},
-                   {"declined", r.declined}, {"withdrawn", r.withdrawn}};
-  for (const NumericField& f : r.numeric)
-    j["demographics"][f.id] = {{"n", f.d.n}, {"mean", num(f.d.mean)}, {"sd", num(f.d.sd)}, {"min", num(f.d.min)},
-                               {"max", num(f.d.max)}};
-  for (const ChoiceField& c : r.choices) {
-    nlohmann::json counts = nlohmann::json::object();
-    for (const auto& [option, n] : c.counts) counts[option] = n;
-    j["demographics"][c.id] = {{"n", c.answered}, {"counts", counts}};
-  }
-  for (const TextField& f : r.texts) j["demographics"][f.id] = {{"n", f.answered}};
-  for (const AroundSession& a : r.around)
-    j["around_sessions"].push_back({{"participant", a.id}, {"pauses", a.pauses}, {"paused_s", num(a.paused_s)},
-                                    {"notes", a.notes}});
-  j["study_notes"] = r.study_notes;
-  return j;
-}
-
 }  // namespace
 
-void section_participants(Context& ctx) {
-  const ParticipantsResult r = participants_result(ctx);
+ParticipantsResult section_participants(Context& ctx) {
+  ParticipantsResult r = participants_result(ctx);
   Section s{"participants", "Participants", 2, {}};
   if (const std::string consent = consent_text(r); !consent.empty()) s.text(consent);
   if (!r.numeric.empty() || !r.choices.empty() || !r.texts.empty()) s.add(demographics_table(r));
@@ -168,25 +124,21 @@ void section_participants(Context& ctx) {
     t.header = {"Participant", "Pauses", "Paused (s)", "Notes"};
     t.text_columns = 1;
     t.last_is_text = true;
-    std::string csv = csv_line({"participant", "pauses", "paused_s", "note"});
     for (const AroundSession& a : r.around) {
       std::string notes;
       for (const std::string& n : a.notes) notes += (notes.empty() ? "" : "; ") + n;
       t.rows.push_back({a.id, std::to_string(a.pauses), fixed(a.paused_s, 1), notes.empty() ? kDash : notes});
-      if (a.notes.empty()) csv += csv_line({a.id, std::to_string(a.pauses), csv_number(a.paused_s), ""});
-      for (const std::string& n : a.notes) csv += csv_line({a.id, std::to_string(a.pauses), csv_number(a.paused_s), n});
     }
     t.notes.push_back("Paused time is not completion time: a trial's clock stops while the session is paused.");
     s.add(t);
-    ctx.csv["sessions_notes.csv"] = csv;
   }
   if (!r.study_notes.empty()) {
     std::string all;
     for (const std::string& n : r.study_notes) all += (all.empty() ? "" : " ") + n + ".";
     s.text("Notes about the study: " + all);
   }
-  ctx.json["sample"] = result_json(r);
   ctx.doc.sections.push_back(std::move(s));
+  return r;
 }
 
 }  // namespace dtlab::report::detail

@@ -2,7 +2,8 @@
 // recorded eye positions on its building's floor plan with the target and
 // the marked answer (drawn by the app's path-figure function, ReportOptions),
 // linked from a table. A reader sees how each person searched: straight to
-// the target, room by room, or lost. Listed only where poses were recorded.
+// the target, room by room, or lost. Listed only where poses were recorded;
+// report.json lists the same figures (render_data.h).
 #include "analysis/report/detail/sections.h"
 
 namespace dtlab::report::detail {
@@ -20,11 +21,9 @@ bool section_paths(Context& ctx, const std::vector<PathFigure>& figures, const s
   t.header = {"Participant", "Task", "Trials", "Figure"};
   t.text_columns = 2;
   t.last_is_text = true;
-  nlohmann::json list = nlohmann::json::array();
   for (const PathFigure& f : figures) {
     t.rows.push_back({f.participant, f.task, std::to_string(f.trials), f.file});
     t.links.push_back(f.file);
-    list.push_back({{"participant", f.participant}, {"task", f.task}, {"trials", f.trials}, {"file", f.file}});
   }
   if (!left_out.empty()) {
     // A scene generated differently by this build would put the path on the wrong building.
@@ -36,8 +35,6 @@ bool section_paths(Context& ctx, const std::vector<PathFigure>& figures, const s
   }
   if (!t.rows.empty()) s.add(std::move(t));
   else s.text(t.notes.front());
-  ctx.json["path_figures"] = std::move(list);
-  ctx.json["path_figures_left_out"] = left_out;
   ctx.doc.sections.push_back(std::move(s));
   return true;
 }

@@ -17,12 +17,13 @@ std::string n_text(double n) { return std::isfinite(n) ? integer(static_cast<lon
 
 }  // namespace
 
-void section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+PlanningResult section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
   PlanningOptions o;
   o.replications = 0;  // analytic only: `dtlab power` resamples
   o.alpha = 0.05;
-  std::vector<std::string> not_planned;
-  const std::vector<PlannedEffect> effects = plan_effects(planning_input(ctx.design, ctx.data.protocol, time, accuracy), o, not_planned);
+  PlanningResult result{o.sizes, o.alpha, {}, {}};
+  result.effects = plan_effects(planning_input(ctx.design, ctx.data.protocol, time, accuracy), o, result.not_planned);
+  const std::vector<PlannedEffect>& effects = result.effects;
 
   Section s{"planning", "Planning the next study", 2, {}};
   std::string sizes;
@@ -49,7 +50,6 @@ void section_planning(Context& ctx, const TimeResult& time, const AccuracyResult
   for (int n : o.sizes) t.header.push_back("n = " + std::to_string(n));
   t.header.insert(t.header.end(), {"n for 80%", "n for 90%"});
   t.text_columns = 2;
-  nlohmann::json jeffects = nlohmann::json::array();
   for (const auto& e : effects) {
     std::vector<std::string> row = {(e.scope == "overall" ? std::string("All tasks") : e.scope) + ", " + e.measure,
                                     e.effect, std::to_string(e.pilot_n), fixed(e.eta_p2, 3),
@@ -59,17 +59,15 @@ void section_planning(Context& ctx, const TimeResult& time, const AccuracyResult
     row.push_back(finite ? n_text(e.n80) : kDash);
     row.push_back(finite ? n_text(e.n90) : kDash);
     t.rows.push_back(std::move(row));
-    jeffects.push_back(to_json(e));
   }
   t.notes.push_back("N: participants in the test. Power: probability that the test (two-sided, α = .05; "
                     "Greenhouse-Geisser corrected for effects with more than one df) rejects the null hypothesis when "
                     "the true effect equals the observed one. —: no finite F (e.g. no error variance).");
   if (effects.empty()) s.text("No ANOVA effect could be planned.");
   else s.add(t);
-  for (const auto& why : not_planned) s.text("Not planned: " + why + ".");
-  ctx.json["planning"] = {{"method", "analytic"}, {"sizes", o.sizes}, {"alpha", o.alpha},
-                          {"effects", jeffects}, {"not_planned", not_planned}};
+  for (const auto& why : result.not_planned) s.text("Not planned: " + why + ".");
   ctx.doc.sections.push_back(std::move(s));
+  return result;
 }
 
 }  // namespace dtlab::report::detail

@@ -1,12 +1,15 @@
 // The sections of the report, each a function that reads the study through
-// the Context, runs its tests and adds to the Context: document sections,
-// report.json entries, plots and CSV files. A section that a later one builds
-// on returns a declared result (TimeResult, AccuracyResult) and the later one
-// takes it as an argument: no section reads another's output through the
-// Context, so the call order is written in the signatures. The order in report.cpp is the
-// order of a paper's results: data and method, completion time, accuracy,
-// mixed models of the trials, speed-accuracy, questionnaire, instruments, position effects,
-// frame-time audit, then planning the next study.
+// the Context, runs its tests and returns what it found as a plain result
+// struct (numbers, tables, warnings) beside its part of the Document. A
+// section that a later one builds on returns a declared result (TimeResult,
+// AccuracyResult) and the later one takes it as an argument: no section reads
+// another's output through the Context, so the call order is written in the
+// signatures. The order in report.cpp is the order of a paper's results: data
+// and method, completion time, accuracy, mixed models of the trials,
+// speed-accuracy, questionnaire, instruments, position effects, frame-time
+// audit, then planning the next study. report.json and the CSV files are laid
+// out from the results by one renderer each (render_data.h); the sections
+// that still add entries to ctx.json and ctx.csv are being moved there.
 // Sections never write files and never touch the database.
 #pragma once
 #include <nlohmann/json.hpp>
@@ -22,6 +25,8 @@
 #include "analysis/report/detail/plots.h"
 #include "analysis/report/detail/study_data.h"
 #include "analysis/report/detail/inference.h"
+#include "analysis/report/detail/mixed_models.h"
+#include "analysis/report/planning.h"
 #include "analysis/report/report.h"
 
 namespace dtlab::report::detail {
@@ -74,8 +79,40 @@ struct AccuracyResult {
   const TestReport* of(const std::string& id) const;
 };
 
+// What the participants section found: consent, withdrawals, the demographics, pauses and notes.
+struct ParticipantsResult {
+  struct NumericField {
+    std::string id, prompt;
+    stats::Descriptives d;
+  };
+  struct ChoiceField {
+    std::string id, prompt;
+    std::vector<std::pair<std::string, int>> counts;  // per option in the protocol's order, then other answers
+    int answered = 0;
+  };
+  struct TextField {
+    std::string id, prompt;
+    int answered = 0;
+  };
+  struct AroundSession {  // one participant with a pause or a note
+    std::string id;
+    int pauses = 0;
+    double paused_s = 0;
+    std::vector<std::string> notes;
+  };
+  int described = 0;  // participants the demographics describe (the analysed ones)
+  bool consent_asked = false;
+  int consented = 0, declined = 0;
+  std::vector<std::string> withdrawn;  // left out of every analysis
+  std::vector<NumericField> numeric;
+  std::vector<ChoiceField> choices;
+  std::vector<TextField> texts;
+  std::vector<AroundSession> around;
+  std::vector<std::string> study_notes;
+};
+
 void section_overview(Context& ctx);        // title, data summary, warnings, methods
-void section_participants(Context& ctx);    // demographics, pauses and notes per participant
+ParticipantsResult section_participants(Context& ctx);  // demographics, pauses and notes per participant
 TimeResult section_time(Context& ctx);      // completion time: Table III layout, full ANOVAs, Fig. 9, participants
 AccuracyResult section_errors(Context& ctx);  // accuracy: relative error, correctness, distance
 // The tests of section_time and section_errors alone, without their layout (no document section, no
@@ -83,24 +120,47 @@ AccuracyResult section_errors(Context& ctx);  // accuracy: relative error, corre
 // from time_tests holds the per-task and overall ANOVAs, not section_time's rank and log-time tests.
 TimeResult time_tests(Context& ctx);
 AccuracyResult accuracy_tests(Context& ctx);
-// Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp).
-void section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+// Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp); every model fitted.
+std::vector<MixedModelResult> section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
 // Time vs error per condition and participant, from the tests of `time` and `accuracy`.
 void section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
 void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test (asked at the end)
-void section_instruments(Context& ctx);     // instruments' scores and items asked per condition; free text
 // Position in the session, order rows of the counterbalancing; the overall completion time of `time`.
 void section_position(Context& ctx, const TimeResult& time);
-// What the frame-time audit found that the top of the report repeats.
+// What the frame-time audit found, per condition, and the warnings the top of the report repeats.
 struct FramesResult {
+  struct Condition {
+    std::string condition, method, display;  // display: "headless 160 × 120"; "; "-joined when several
+    long long trials = 0, trials_with_frames = 0, frames = 0;
+    double display_hz = 0;                 // median over the trials with frames (NaN: none)
+    bool display_hz_known = false;         // some analysed trial recorded its display's rate
+    double median_fps = 0, median_steady_ms = 0;
+    bool below_display = false;
+    long long late_frames = 0, steady_frames = 0;  // late ones of the frames after each trial's first
+    double late_share = 0;                 // NaN without steady frames
+    double median_first_ms = 0, median_p95_ms = 0;
+    long long slow_trials = 0, p95_trials = 0;  // trials whose p95 exceeds the threshold, of those with a p95
+    double slow_share = 0;                 // NaN without a p95
+  };
+  double threshold_ms = 0, min_fps = 0, rate_spread = 0;
+  long long trials_with_frames = 0;
+  std::vector<Condition> conditions;  // one per protocol condition, in order
   std::vector<std::string> warnings;  // why render cost may confound completion time; empty: no reason
+  std::vector<std::string> below;     // conditions below the display's rate
 };
 FramesResult section_frames(Context& ctx);  // frame-time audit per condition
 // The audit's warnings also at the top of the report, in the data section (section_overview's), where a
 // reader starts; the report's assembly calls it once both sections exist.
 void warn_at_top(Document& doc, const FramesResult& frames);
+// What planning the next study found: the analytic power of each effect at `sizes` participants.
+struct PlanningResult {
+  std::vector<int> sizes;
+  double alpha = 0.05;
+  std::vector<PlannedEffect> effects;
+  std::vector<std::string> not_planned;  // tests that could not be planned, with why
+};
 // Planning the next study: analytic power of every ANOVA effect of `time` and `accuracy`.
-void section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+PlanningResult section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
 // What the report does not say; files written (`path_figures`: section_paths added its section).
 void section_notes(Context& ctx, bool path_figures);
 

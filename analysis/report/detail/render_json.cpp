@@ -1,0 +1,192 @@
+// report.json, laid out from the sections' results and the study (render_data.h):
+// one function per entry, each a plain mapping of a result's fields to JSON
+// (NaN as null through num()). Key order is nlohmann::json's (sorted), so
+// the order the entries are added in never shows in the file.
+#include <chrono>
+#include <ctime>
+
+#include "analysis/report/detail/format.h"
+#include "analysis/report/detail/planning.h"
+#include "analysis/report/detail/render_data.h"
+#include "analysis/stats/lmm_json.h"
+#include "study/common/version.h"
+
+namespace dtlab::report::detail {
+namespace {
+
+using nlohmann::json;
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+json design_json(const Design& d) {
+  json f = json::array();
+  for (int i : d.all_factors)
+    f.push_back({{"name", d.factor(i).name}, {"role", std::string(protocol::to_string(d.factor(i).role))},
+                 {"levels", d.factor(i).levels}});
+  json t = json::array();
+  for (const auto& task : d.tasks) {
+    json varying = json::array();
+    for (int i : task.factors) varying.push_back(d.factor(i).name);
+    t.push_back({{"id", task.id}, {"type", std::string(protocol::to_string(task.type))}, {"scenario", task.scenario},
+                 {"trials", task.trials}, {"factors", varying}});
+  }
+  return {{"factors", f}, {"primary", d.factor(d.primary).name}, {"tasks", t}, {"reference_design", d.article_names},
+          {"published_results", d.reference ? json(d.protocol->reference_results->source) : json(nullptr)}};
+}
+
+// Every enrolled participant: analysed, simulated, excluded.
+json participants_json(const Context& ctx) {
+  const StudyData& data = ctx.data;
+  json parts = json::array();
+  for (const auto& p : data.participants) {
+    const bool analysed = std::find(ctx.subjects.begin(), ctx.subjects.end(), p.id) != ctx.subjects.end();
+    const bool sim = std::find(ctx.simulated.begin(), ctx.simulated.end(), p.id) != ctx.simulated.end();
+    const bool excluded = std::find(data.excluded_participants.begin(), data.excluded_participants.end(), p.id) !=
+                          data.excluded_participants.end();
+    parts.push_back({{"id", p.id}, {"index", p.index}, {"order_row", p.order_row},
+                     {"session", p.session_status ? json(store::to_string(*p.session_status)) : json(nullptr)},
+                     {"planned", p.planned}, {"recorded", p.recorded}, {"analysed", analysed}, {"simulated", sim},
+                     {"excluded", excluded}});
+  }
+  return parts;
+}
+
+// The entries about the study as a whole, beside the sections' own.
+void study_json(json& j, const Context& ctx, const ReportSummary& sum) {
+  const StudyData& data = ctx.data;
+  j["report_format"] = 1;
+  j["generated_by"] = std::string(dtlab::version_string());
+  j["generated_at"] = utc_now();
+  j["database"] = data.path;
+  j["protocol"] = {{"id", data.protocol.id}, {"title", data.protocol.title}, {"sha256", data.protocol.sha256},
+                   {"design_sha256", protocol::design_sha256(data.protocol)},
+                   {"design_revision", data.design_revision}, {"design_revisions", data.design_revisions},
+                   {"protocol_texts", data.protocol_texts}, {"software_version", data.software_version}};
+  j["design"] = design_json(ctx.design);
+  j["participants"] = participants_json(ctx);
+  json excl = json::array();
+  for (const auto& x : data.exclusions)
+    excl.push_back({{"participant", x.participant}, {"trial", x.position ? json(*x.position) : json(nullptr)},
+                    {"decision", x.exclude ? "exclude" : "include"}, {"reason", x.reason}, {"by", x.by}, {"at", x.at}});
+  j["exclusions"] = excl;
+  j["summary"] = {{"participants", sum.participants}, {"trials", sum.trials}, {"tests", sum.tests},
+                  {"excluded_trials", data.excluded_trials}, {"with_excluded", data.with_excluded},
+                  {"simulated", sum.simulated}, {"simulated_participants", ctx.simulated}};
+  j["warnings"] = ctx.warnings;
+  std::vector<std::string> figure_files;
+  for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
+  j["figures"] = figure_files;
+  j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
+}
+
+json sample_json(const ParticipantsResult& r) {
+  json j{{"described", r.described}, {"consent_asked", r.consent_asked}, {"consented", r.consented},
+         {"declined", r.declined}, {"withdrawn", r.withdrawn}};
+  for (const auto& f : r.numeric)
+    j["demographics"][f.id] = {{"n", f.d.n}, {"mean", num(f.d.mean)}, {"sd", num(f.d.sd)}, {"min", num(f.d.min)},
+                               {"max", num(f.d.max)}};
+  for (const auto& c : r.choices) {
+    json counts = json::object();
+    for (const auto& [option, n] : c.counts) counts[option] = n;
+    j["demographics"][c.id] = {{"n", c.answered}, {"counts", counts}};
+  }
+  for (const auto& f : r.texts) j["demographics"][f.id] = {{"n", f.answered}};
+  for (const auto& a : r.around)
+    j["around_sessions"].push_back({{"participant", a.id}, {"pauses", a.pauses}, {"paused_s", num(a.paused_s)},
+                                    {"notes", a.notes}});
+  j["study_notes"] = r.study_notes;
+  return j;
+}
+
+json mixed_json(const MixedModelResult& m) {
+  json j{{"section", m.section}, {"scope", m.scope}, {"label", m.label}, {"measure", m.measure},
+         {"column", m.column}, {"subset", m.subset}, {"trials", m.trials}};
+  if (!m.fit) {
+    j["not_fitted"] = m.not_fitted;
+    return j;
+  }
+  j["r_call"] = r_call(m);
+  j["fit"] = stats::lmm_fit_json<json>(*m.fit);
+  if (m.primary) j["primary"] = stats::emm_table_json<json>(*m.primary);
+  json dec = json::array();
+  for (const auto& x : m.decisions)
+    dec.push_back({{"effect", x.effect}, {"p_anova", num(x.p_anova)}, {"p_model", num(x.p_model)},
+                   {"disagree", x.disagree}});
+  j["decisions"] = dec;
+  return j;
+}
+
+json instruments_json(const QuestionnaireResults& res, const Design& d) {
+  json measures = json::array();
+  for (const ConditionMeasure& m : res.measures) {
+    json j{{"id", m.id}, {"label", m.label}, {"instrument", m.instrument}, {"occasion", m.occasion},
+           {"min", m.min}, {"max", m.max}, {"overall", to_json(m.overall)}};
+    if (m.test) j["test"] = to_json(*m.test, d);
+    measures.push_back(j);
+  }
+  json counts = json::array();
+  for (const ConditionCounts& c : res.counts)
+    counts.push_back({{"item", c.item}, {"condition", c.condition}, {"chosen", c.chosen}, {"answers", c.answers}});
+  json texts = json::array();
+  for (const FreeText& f : res.texts)
+    texts.push_back({{"participant", f.participant}, {"item", f.item}, {"condition", f.condition}, {"text", f.text}});
+  return {{"measures", measures}, {"choices", counts}, {"free_text", texts}};
+}
+
+json frames_json(const FramesResult& fr) {
+  json conditions = json::array();
+  for (const auto& c : fr.conditions)
+    conditions.push_back({{"condition", c.condition}, {"method", c.method}, {"display", c.display},
+                          {"trials", c.trials}, {"trials_with_frames", c.trials_with_frames}, {"frames", c.frames},
+                          {"display_hz", num(c.display_hz)}, {"display_hz_known", c.display_hz_known},
+                          {"median_fps", num(c.median_fps)}, {"median_steady_ms", num(c.median_steady_ms)},
+                          {"below_display", c.below_display}, {"late_frames", c.late_frames},
+                          {"late_share", num(c.late_share)}, {"median_first_ms", num(c.median_first_ms)},
+                          {"median_p95_ms", num(c.median_p95_ms)}, {"slow_trials", c.slow_trials},
+                          {"slow_share", num(c.slow_share)}});
+  return {{"threshold_ms", fr.threshold_ms}, {"min_fps", fr.min_fps}, {"rate_spread", fr.rate_spread},
+          {"trials_with_frames", fr.trials_with_frames}, {"warnings", fr.warnings},
+          {"below_display", fr.below}, {"conditions", conditions}};
+}
+
+json planning_json(const PlanningResult& p) {
+  json effects = json::array();
+  for (const auto& e : p.effects) effects.push_back(to_json(e));
+  return {{"method", "analytic"}, {"sizes", p.sizes}, {"alpha", p.alpha}, {"effects", effects},
+          {"not_planned", p.not_planned}};
+}
+
+json path_figures_json(const std::vector<PathFigure>& figures) {
+  json list = json::array();
+  for (const PathFigure& f : figures)
+    list.push_back({{"participant", f.participant}, {"task", f.task}, {"trials", f.trials}, {"file", f.file}});
+  return list;
+}
+
+}  // namespace
+
+json render_json(const Context& ctx, const SectionResults& results, const ReportSummary& summary) {
+  json j = ctx.json;
+  j["sample"] = sample_json(results.sample);
+  json mixed = json::array();
+  for (const auto& m : results.mixed) mixed.push_back(mixed_json(m));
+  j["mixed_models"] = mixed;
+  if (results.instruments) j["instruments"] = instruments_json(*results.instruments, ctx.design);
+  j["frames"] = frames_json(results.frames);
+  j["planning"] = planning_json(results.planning);
+  if (results.with_paths) {
+    j["path_figures"] = path_figures_json(results.path_figures);
+    j["path_figures_left_out"] = results.paths_left_out;
+  }
+  study_json(j, ctx, summary);
+  return j;
+}
+
+}  // namespace dtlab::report::detail
