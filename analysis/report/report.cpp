@@ -91,7 +91,8 @@ Result<SectionResults> run_sections(store::StudyReader& reader, Context& ctx, co
   section_overview(ctx);
   r.sample = section_participants(ctx);
   say("completion time");
-  const TimeResult time = section_time(ctx);
+  r.time = section_time(ctx);
+  const TimeResult& time = r.time;
   say("accuracy");
   const AccuracyResult accuracy = section_errors(ctx);
   say("mixed models");

@@ -11,6 +11,13 @@ namespace dtlab::report::detail {
 namespace {
 
 // One line per pause-or-note participant and note (a participant without notes: one line, note empty).
+// A long means file: the header, then each block's rows.
+std::string means_csv(const std::vector<MeansBlock>& blocks, const Design& d) {
+  std::string csv = matrix_csv_header(d);
+  for (const MeansBlock& b : blocks) csv += matrix_csv_rows(*b.m, d, b.measure, b.scope);
+  return csv;
+}
+
 std::string sessions_notes_csv(const ParticipantsResult& r) {
   std::string csv = csv_line({"participant", "pauses", "paused_s", "note"});
   for (const auto& a : r.around) {
@@ -57,6 +64,7 @@ std::string frames_csv(const FramesResult& fr) {
 std::map<std::string, std::string> render_csv(const Context& ctx, const SectionResults& results) {
   std::map<std::string, std::string> files = ctx.csv;
   files["tests.csv"] = tests_csv(ctx);
+  files["completion_time_means.csv"] = means_csv(results.time.means, ctx.design);
   if (!results.sample.around.empty()) files["sessions_notes.csv"] = sessions_notes_csv(results.sample);
   if (results.instruments) {
     files["instrument_scores.csv"] = instrument_scores_csv(*results.instruments);

@@ -21,6 +21,7 @@ namespace dtlab::report::detail {
 // Every section's result, as report.cpp collects them in a paper's order.
 struct SectionResults {
   ParticipantsResult sample;
+  TimeResult time;
   std::vector<MixedModelResult> mixed;
   std::optional<QuestionnaireResults> instruments;  // nullopt: no instruments section
   FramesResult frames;

@@ -86,6 +86,32 @@ void study_json(json& j, const Context& ctx, const ReportSummary& sum) {
   j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
 }
 
+json tests_json(const std::vector<const TestReport*>& tests, const Design& d) {
+  json list = json::array();
+  for (const TestReport* r : tests) list.push_back(to_json(*r, d));
+  return list;
+}
+
+json tests_json(const TestRows& rows, const Design& d) {
+  json list = json::array();
+  for (const auto& [label, r] : rows) list.push_back(to_json(*r, d));
+  return list;
+}
+
+// The completion-time table's rows (F of the primary factor, published values beside) and every test.
+json time_json(const TimeResult& t, const Design& d) {
+  const std::string& primary = d.factor(d.primary).name;
+  json rows = json::array();
+  for (const auto& [label, r] : t.rows) {
+    const TaskInfo* task = d.task(r->scope);
+    json row{{"scope", r->scope}, {"label", task ? task->id : label}, {"n", r->kept.size()}};
+    if (const stats::Effect* e = r->effect(primary)) row["effect"] = to_json(*e);
+    if (const auto* a = d.published("time", r->scope)) row["published"] = published_json(*a, d);
+    rows.push_back(row);
+  }
+  return {{"table", rows}, {"tests", tests_json(t.rows, d)}, {"rank_tests", tests_json(t.rank_tests, d)}};
+}
+
 json sample_json(const ParticipantsResult& r) {
   json j{{"described", r.described}, {"consent_asked", r.consent_asked}, {"consented", r.consented},
          {"declined", r.declined}, {"withdrawn", r.withdrawn}};
@@ -175,6 +201,8 @@ json path_figures_json(const std::vector<PathFigure>& figures) {
 json render_json(const Context& ctx, const SectionResults& results, const ReportSummary& summary) {
   json j = ctx.json;
   j["sample"] = sample_json(results.sample);
+  j["completion_time"] = time_json(results.time, ctx.design);
+  if (results.time.log_rows) j["completion_time_log"] = {{"tests", tests_json(*results.time.log_rows, ctx.design)}};
   json mixed = json::array();
   for (const auto& m : results.mixed) mixed.push_back(mixed_json(m));
   j["mixed_models"] = mixed;

@@ -137,43 +137,31 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
 
 namespace {
 
-using Rows = std::vector<std::pair<std::string, const TestReport*>>;
+using Rows = TestRows;
 
-// The completion-time ANOVAs (one per task, then one over all tasks), computed before any layout.
-struct TimeTests {
-  Rows rows;                        // label, test: the tasks, then "All tasks"
-  const TestReport* overall = nullptr;
-  nlohmann::json json = nlohmann::json::array();  // each test as report.json records it
-  std::string means_csv;            // completion_time_means.csv
-};
-
-TimeTests run_time_tests(Context& ctx, TimeResult& result) {
+// The completion-time ANOVAs (one per task, then one over all tasks, result.rows), computed before any
+// layout; returns the one over all tasks.
+const TestReport* run_time_tests(Context& ctx, TimeResult& result) {
   const Design& d = ctx.design;
-  TimeTests out;
-  out.means_csv = matrix_csv_header(d);
   for (const auto& task : d.tasks) {
     const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.planned.task == task.id; }, mean_of(time_of));
     const auto& r = ctx.add_test("time", run_rm_anova(m, d, "completion time", "s", task.id));
     result.by_scope[task.id] = &r;
     result.tests.push_back(&r);
-    out.rows.push_back({task.id, &r});
-    out.json.push_back(to_json(r, d));
-    out.means_csv += matrix_csv_rows(m, d, "completion_time_s", task.id);
+    result.rows.push_back({task.id, &r});
+    result.means.push_back({&m, "completion_time_s", task.id});
   }
   const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, time_of));
   const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "completion time", "s", "overall"));
   result.by_scope["overall"] = &overall;
   result.tests.push_back(&overall);
-  out.overall = &overall;
-  out.rows.push_back({"All tasks", &overall});
-  out.json.push_back(to_json(overall, d));
-  out.means_csv += matrix_csv_rows(mo, d, "completion_time_s", "overall");
-  return out;
+  result.rows.push_back({"All tasks", &overall});
+  result.means.push_back({&mo, "completion_time_s", "overall"});
+  return &overall;
 }
 
-// One row per task and one over all tasks, published values beside (when the protocol declares them);
-// each row's report.json record goes to `jrows`.
-Table time_table(const Design& d, const Rows& rows, nlohmann::json& jrows) {
+// One row per task and one over all tasks, published values beside (when the protocol declares them).
+Table time_table(const Design& d, const Rows& rows) {
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
   Table t3;
@@ -195,11 +183,7 @@ Table time_table(const Design& d, const Rows& rows, nlohmann::json& jrows) {
     const stats::Effect* e = r->effect(primary.name);
     for (auto& c : effect_cells(e)) row.push_back(std::move(c));
     if (two) row.push_back(difference_text(*r, 2));
-    nlohmann::json jr{{"scope", r->scope}, {"label", row[0]}, {"n", r->kept.size()}};
-    if (e) jr["effect"] = to_json(*e);
     for (const auto& c : d.published_cells("time", r->scope, 2)) row.push_back(c);
-    if (const auto* a = d.published("time", r->scope)) jr["published"] = published_json(*a, d);
-    jrows.push_back(jr);
     t3.rows.push_back(std::move(row));
   }
   if (d.reference)
@@ -241,15 +225,15 @@ void time_sentences(const Design& d, Section& s, const Rows& rows) {
 }
 
 // Full ANOVA tables (over all tasks always; per task when more than one factor varies in it), then post-hoc tests.
-void time_anovas(Context& ctx, Section& s, const TimeTests& tt) {
-  add_anova(ctx, s, *tt.overall, "table-time-anova-overall",
+void time_anovas(Context& ctx, Section& s, const Rows& rows, const TestReport& overall) {
+  add_anova(ctx, s, overall, "table-time-anova-overall",
                     "Repeated-measures ANOVA of completion time over all tasks (participant x condition means of the "
                     "per-task means, s).");
-  for (const auto& [label, r] : tt.rows) {
-    if (r == tt.overall || r->m->factors.size() < 2) continue;
+  for (const auto& [label, r] : rows) {
+    if (r == &overall || r->m->factors.size() < 2) continue;
     add_anova(ctx, s, *r, "table-time-anova-" + r->scope, "Repeated-measures ANOVA of completion time, " + label + ".");
   }
-  for (const auto& [label, r] : tt.rows)
+  for (const auto& [label, r] : rows)
     for (const auto& [factor, list] : r->posthoc)
       s.add(comparison_table(list, "table-time-posthoc-" + r->scope + "-" + factor,
                              "Post-hoc comparisons of completion time between the levels of " + factor + ", " + label +
@@ -294,28 +278,23 @@ TimeResult section_time(Context& ctx) {
          "condition. These participant x condition means enter a repeated-measures ANOVA over participants "
          "(with n participants and two levels, F has 1 and n − 1 degrees of freedom). Over all tasks, a participant's "
          "condition value is the mean of their per-task means.");
-  const TimeTests tt = run_time_tests(ctx, result);
-
-  nlohmann::json jrows = nlohmann::json::array();
-  s.add(time_table(d, tt.rows, jrows));
-  time_sentences(d, s, tt.rows);
-  ctx.add_figure(s, bar_plot(ctx, tt.rows, "fig-time", "Completion time (s)"),
+  const TestReport& overall = *run_time_tests(ctx, result);
+  const Rows& rows = result.rows;
+  s.add(time_table(d, rows));
+  time_sentences(d, s, rows);
+  ctx.add_figure(s, bar_plot(ctx, rows, "fig-time", "Completion time (s)"),
                  "Average completion time per task and over all tasks, by " + primary.name +
                      " (error bars: standard deviation over participants" + d.published_cf() + ").");
-  ctx.add_figure(s, participant_lines(ctx, tt.rows, "fig-time-participants", "Completion time (s)"),
+  ctx.add_figure(s, participant_lines(ctx, rows, "fig-time-participants", "Completion time (s)"),
                  "Each participant's mean completion time per level of " + primary.name +
                      " (grey lines, one per participant) and the mean over participants (black).");
-  time_anovas(ctx, s, tt);
+  time_anovas(ctx, s, rows, overall);
 
   // Robustness and assumptions (section_time_checks.cpp).
-  nlohmann::json jranks = nlohmann::json::array();
-  add_rank_tests(ctx, s, tt.rows, jranks, result.tests);
-  add_normality(ctx, s, tt.rows, "time", false);
-  if (ctx.options.log_time) add_log_time(ctx, s, result.tests);
-  s.add(time_cells_table(tt.rows));
-
-  ctx.json["completion_time"] = {{"table", jrows}, {"tests", tt.json}, {"rank_tests", jranks}};
-  ctx.csv["completion_time_means.csv"] = tt.means_csv;
+  add_rank_tests(ctx, s, rows, result.rank_tests, result.tests);
+  add_normality(ctx, s, rows, "time", false);
+  if (ctx.options.log_time) result.log_rows = add_log_time(ctx, s, result.tests);
+  s.add(time_cells_table(rows));
   ctx.doc.sections.push_back(std::move(s));
   return result;
 }

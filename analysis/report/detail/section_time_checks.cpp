@@ -4,7 +4,8 @@
 // into one), Shapiro-Wilk of each ANOVA's residuals with a Q-Q plot per row,
 // and, with --log-time, the ANOVAs of log completion times (reported beside
 // the seconds, never instead of them). Statistics come from analysis/stats;
-// this file only chooses the data and lays out tables and figures.
+// this file only chooses the data and lays out tables and figures (the tests
+// go to the section's TimeResult, from which render_data.h writes report.json).
 #include <algorithm>
 #include <cmath>
 
@@ -67,7 +68,7 @@ PlotSpec qq_plot(const std::vector<std::pair<std::string, const TestReport*>>& r
 }  // namespace
 
 void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                    nlohmann::json& out, std::vector<const TestReport*>& stored) {
+                    std::vector<const TestReport*>& out, std::vector<const TestReport*>& stored) {
   const Design& d = ctx.design;
   Table t;
   t.id = "table-time-ranks";
@@ -82,12 +83,13 @@ void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::s
       const auto& x = ctx.add_test("time", run_rank_test(mk, d, "completion time (ranks)", "s", r->scope,
                                                          ctx.options.seed));
       stored.push_back(&x);
-      out.push_back(to_json(x, d));
+      out.push_back(&x);
       std::vector<std::string> row = {label, factor};
       if (x.wilcoxon) {
         const auto& w = *x.wilcoxon;
-        row.insert(row.end(), {"Wilcoxon signed-rank", std::to_string(w.n), "V = " + stats::apa_number(w.V, w.V == std::floor(w.V) ? 0 : 1),
-                               p_text(w.p), p_text(w.p_exact), "r_rb = " + bounded(rank_biserial(w))});
+        row.insert(row.end(), {"Wilcoxon signed-rank", std::to_string(w.n),
+                               "V = " + stats::apa_number(w.V, w.V == std::floor(w.V) ? 0 : 1), p_text(w.p),
+                               p_text(w.p_exact), "r_rb = " + bounded(rank_biserial(w))});
       } else if (x.friedman) {
         const auto& f = *x.friedman;
         row.insert(row.end(), {"Friedman", std::to_string(f.n), "χ²(" + df_text(f.df) + ") = " + fixed(f.Q, 2),
@@ -133,7 +135,7 @@ void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::st
                  "qqnorm), with the line through the quartiles (qqline).");
 }
 
-void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored) {
+TestRows add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored) {
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
@@ -142,9 +144,9 @@ void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stor
     return std::log(t.completion_s);
   };
   std::vector<std::pair<std::string, const TestReport*>> rows;
-  nlohmann::json jtests = nlohmann::json::array();
   for (const auto& task : d.tasks) {
-    const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.planned.task == task.id; }, mean_of(log_time));
+    const auto& m =
+        ctx.cells(task.factors, [&](const TrialRow& t) { return t.planned.task == task.id; }, mean_of(log_time));
     rows.push_back({task.id, &ctx.add_test("time", run_rm_anova(m, d, "log completion time", "log s", task.id))});
     stored.push_back(rows.back().second);
   }
@@ -165,7 +167,6 @@ void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stor
   t.header.insert(t.header.end(), {"n", "F", "df", "p", "ηp²"});
   if (two) t.header.push_back("ratio " + primary.levels[1] + " / " + primary.levels[0] + " [95% CI]");
   for (const auto& [label, r] : rows) {
-    jtests.push_back(to_json(*r, d));
     std::vector<std::string> row = {label};
     const auto* mg = r->marginal_of(d.primary);
     for (size_t l = 0; l < primary.levels.size(); ++l) row.push_back(mg ? fixed(std::exp((*mg)[l].mean), 2) : kDash);
@@ -191,7 +192,7 @@ void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stor
             "Repeated-measures ANOVA of log completion time over all tasks (participant x condition means of the "
             "per-task mean log times).");
   add_normality(ctx, s, rows, "time-log", true);
-  ctx.json["completion_time_log"] = {{"tests", jtests}};
+  return rows;
 }
 
 }  // namespace dtlab::report::detail

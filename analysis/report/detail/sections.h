@@ -64,10 +64,23 @@ struct Context {
   std::string level_label(int f, int level) const { return design.level_label(f, level); }
 };
 
-// What the completion-time section found, for the sections that build on it (the tests live in ctx.reports).
+// A block of a long means CSV: a participant x cell matrix with its measure's name and its scope
+// (task id, "overall"), one row per participant and cell (matrix_csv_rows).
+struct MeansBlock {
+  const CellMatrix* m = nullptr;
+  std::string measure, scope;
+};
+using TestRows = std::vector<std::pair<std::string, const TestReport*>>;  // a table's row label and its test
+
+// What the completion-time section found, for the sections that build on it and the renderers (the tests
+// live in ctx.reports).
 struct TimeResult {
   std::map<std::string, const TestReport*> by_scope;  // the ANOVA of completion time by scope: task id, "overall"
   std::vector<const TestReport*> tests;               // every test the section stored, in order (planning reads it)
+  TestRows rows;                                      // the ANOVAs per task, then "All tasks"
+  std::vector<MeansBlock> means;                      // their matrices (completion_time_means.csv)
+  std::vector<const TestReport*> rank_tests;          // the rank tests of each row's factors
+  std::optional<TestRows> log_rows;                   // --log-time: the ANOVAs of log times, as `rows`
   // The ANOVA of `scope`, or nullptr.
   const TestReport* of(const std::string& scope) const;
 };
@@ -184,16 +197,16 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
 
 // --- checks beside the completion-time ANOVAs (section_time_checks.cpp) ---------------------------
 // Rank tests of each factor of each row on its marginal means (Wilcoxon for 2 levels, else Friedman);
-// their test objects are appended to `out`, the stored tests to `stored`.
+// the tests are appended to `out` and to `stored`.
 void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                    nlohmann::json& out, std::vector<const TestReport*>& stored);
+                    std::vector<const TestReport*>& out, std::vector<const TestReport*>& stored);
 // Shapiro-Wilk of each row's ANOVA residuals (a table) and their normal Q-Q plots (one figure).
 void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
                    const std::string& measure, bool log_scale);
 
 // --log-time: ANOVAs of log completion times per task and overall, a table beside the seconds'; the stored
-// tests are appended to `stored`.
-void add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored);
+// tests are appended to `stored`. Returns the rows of the table (label, test).
+TestRows add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored);
 // Mean over the condition's tasks of the per-task means of `field`; NaN unless every task of the
 // condition's scenario has a trial (no silent re-weighting). (section_time.cpp)
 Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field);
