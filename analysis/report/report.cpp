@@ -94,7 +94,8 @@ Result<SectionResults> run_sections(store::StudyReader& reader, Context& ctx, co
   r.time = section_time(ctx);
   const TimeResult& time = r.time;
   say("accuracy");
-  const AccuracyResult accuracy = section_errors(ctx);
+  r.accuracy = section_errors(ctx);
+  const AccuracyResult& accuracy = r.accuracy;
   say("mixed models");
   r.mixed = section_mixed_models(ctx, time, accuracy);
   say("speed and accuracy");

@@ -65,6 +65,7 @@ std::map<std::string, std::string> render_csv(const Context& ctx, const SectionR
   std::map<std::string, std::string> files = ctx.csv;
   files["tests.csv"] = tests_csv(ctx);
   files["completion_time_means.csv"] = means_csv(results.time.means, ctx.design);
+  if (!results.accuracy.rows.empty()) files["accuracy_means.csv"] = means_csv(results.accuracy.means, ctx.design);
   if (!results.sample.around.empty()) files["sessions_notes.csv"] = sessions_notes_csv(results.sample);
   if (results.instruments) {
     files["instrument_scores.csv"] = instrument_scores_csv(*results.instruments);

@@ -22,6 +22,7 @@ namespace dtlab::report::detail {
 struct SectionResults {
   ParticipantsResult sample;
   TimeResult time;
+  AccuracyResult accuracy;
   std::vector<MixedModelResult> mixed;
   std::optional<QuestionnaireResults> instruments;  // nullopt: no instruments section
   FramesResult frames;

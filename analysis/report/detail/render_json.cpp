@@ -112,6 +112,20 @@ json time_json(const TimeResult& t, const Design& d) {
   return {{"table", rows}, {"tests", tests_json(t.rows, d)}, {"rank_tests", tests_json(t.rank_tests, d)}};
 }
 
+// The accuracy table's rows (published values where declared) and their tests.
+json accuracy_json(const AccuracyResult& a, const Design& d) {
+  json rows = json::array(), tests = json::array();
+  for (const AccuracyRow& row : a.rows) {
+    const TestReport& r = *row.r;
+    json jr{{"scope", r.scope}, {"label", row.label}, {"measure", row.measure}, {"n", r.kept.size()}};
+    if (const auto* p = row.published.empty() ? nullptr : d.published("accuracy", row.published))
+      jr["published"] = published_json(*p, d);
+    rows.push_back(jr);
+    tests.push_back(to_json(r, d));
+  }
+  return {{"table", rows}, {"tests", tests}};
+}
+
 json sample_json(const ParticipantsResult& r) {
   json j{{"described", r.described}, {"consent_asked", r.consent_asked}, {"consented", r.consented},
          {"declined", r.declined}, {"withdrawn", r.withdrawn}};
@@ -202,6 +216,7 @@ json render_json(const Context& ctx, const SectionResults& results, const Report
   json j = ctx.json;
   j["sample"] = sample_json(results.sample);
   j["completion_time"] = time_json(results.time, ctx.design);
+  if (!results.accuracy.rows.empty()) j["accuracy"] = accuracy_json(results.accuracy, ctx.design);
   if (results.time.log_rows) j["completion_time_log"] = {{"tests", tests_json(*results.time.log_rows, ctx.design)}};
   json mixed = json::array();
   for (const auto& m : results.mixed) mixed.push_back(mixed_json(m));

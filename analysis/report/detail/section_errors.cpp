@@ -17,12 +17,7 @@ using protocol::TaskType;
 
 bool is_count(TaskType t) { return t == TaskType::count_targets || t == TaskType::count_kind; }
 
-struct Row {
-  std::string label, measure, unit;
-  const TestReport* r = nullptr;
-  std::string published;  // the scope of its published row ([reference_results] accuracy), "" = none
-  int decimals = 3;
-};
+using Row = AccuracyRow;
 
 // "F(1, 15) = 1.82" (df Greenhouse-Geisser corrected where ε < 1, as the p beside it) or "χ²(1) = 0.11".
 std::string statistic_text(const TestReport& r, const std::string& factor) {
@@ -47,19 +42,17 @@ std::string effect_size_text(const TestReport& r, const std::string& factor) {
   return kDash;
 }
 
-// The accuracy tests of every task (and of all counting tasks together), computed before any layout.
+// The accuracy tests of every task (and of all counting tasks together), computed before any layout into
+// the section's AccuracyResult; what the layout needs beside.
 struct AccuracyTests {
-  std::vector<Row> rows;
-  nlohmann::json json = nlohmann::json::array();  // each test as report.json records it
-  std::string csv;                                // accuracy_means.csv
   std::vector<std::string> notes;                 // unanswered trials, true counts of 0
   std::vector<const TaskInfo*> count_tasks;
   std::vector<int> count_factors;                 // the factors varying in any counting task
-  void add(AccuracyResult& result, const Design& d, Row row, const CellMatrix& m, const std::string& csv_measure) {
+  // Stores a row and its matrix (`measure`: the matrix's name in accuracy_means.csv).
+  void add(AccuracyResult& result, Row row, const CellMatrix& m, const std::string& measure) {
     result.tests.push_back(row.r);
-    json.push_back(to_json(*row.r, d));
-    csv += matrix_csv_rows(m, d, csv_measure, row.r->scope);
-    rows.push_back(std::move(row));
+    result.means.push_back({&m, measure, row.r->scope});
+    result.rows.push_back(std::move(row));
   }
 };
 
@@ -93,25 +86,25 @@ void task_tests(Context& ctx, const TaskInfo& task, AccuracyTests& out, Accuracy
     const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.scores.rel_error; }));
     const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
     result.by_task[task.id] = &r1;
-    out.add(result, d, {task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
+    out.add(result, {task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
     const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
     const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
-    out.add(result, d, {task.id, "rel. error, aggregated", "", &r2, task.id, 3}, m2, "rel_error_aggregated");
+    out.add(result, {task.id, "rel. error, aggregated", "", &r2, task.id, 3}, m2, "rel_error_aggregated");
     const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
                                  const auto& e = t.scores.signed_error;
                                  return e ? std::optional<double>(static_cast<double>(*e)) : std::nullopt;
                                }));
-    out.csv += matrix_csv_rows(m3, d, "signed_error_mean", task.id);
+    result.means.push_back({&m3, "signed_error_mean", task.id});
   } else if (task.type == TaskType::identify_letter) {
     const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
     const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
     result.by_task[task.id] = &r;
-    out.add(result, d, {task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
+    out.add(result, {task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
   } else if (task.type == TaskType::find_unique) {
     const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.scores.distance; }));
     const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
     result.by_task[task.id] = &r;
-    out.add(result, d, {task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
+    out.add(result, {task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
   }
 }
 
@@ -128,18 +121,17 @@ void pooled_count_tests(Context& ctx, AccuracyTests& out, AccuracyResult& result
   std::sort(out.count_factors.begin(), out.count_factors.end());
   const auto& m1 =
       ctx.cells(out.count_factors, in_count, mean_of([](const TrialRow& t) { return t.scores.rel_error; }));
-  out.add(result, d, {ids, "rel. error, mean of trials", "",
+  out.add(result, {ids, "rel. error, mean of trials", "",
           &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), "", 3},
           m1, "rel_error_mean");
   const auto& m2 = ctx.cells(out.count_factors, in_count, aggregated_relative_error());
-  out.add(result, d, {ids, "rel. error, aggregated", "",
+  out.add(result, {ids, "rel. error, aggregated", "",
           &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), "counting", 3},
           m2, "rel_error_aggregated");
 }
 
 AccuracyTests run_accuracy_tests(Context& ctx, AccuracyResult& result) {
   AccuracyTests out;
-  out.csv = matrix_csv_header(ctx.design);
   for (const auto& task : ctx.design.tasks) {
     answer_notes(ctx, task, out.notes);
     task_tests(ctx, task, out, result);
@@ -149,7 +141,7 @@ AccuracyTests run_accuracy_tests(Context& ctx, AccuracyResult& result) {
 }
 
 // The table's cells of one row: measure, mean (SD) per level, test, p, effect size, difference, published.
-std::vector<std::string> accuracy_cells(const Design& d, const Row& row, nlohmann::json& jrows) {
+std::vector<std::string> accuracy_cells(const Design& d, const Row& row) {
   const auto& primary = d.factor(d.primary);
   const TestReport& r = *row.r;
   std::vector<std::string> cells = {row.label, row.measure};
@@ -164,15 +156,12 @@ std::vector<std::string> accuracy_cells(const Design& d, const Row& row, nlohman
                                    fixed(r.paired->t.ci_high, row.decimals) + "]"
                              : kDash);
   }
-  nlohmann::json jr{{"scope", r.scope}, {"label", row.label}, {"measure", row.measure}, {"n", r.kept.size()}};
   const auto* a = row.published.empty() ? nullptr : d.published("accuracy", row.published);
   for (const auto& c : d.published_cells("accuracy", row.published, row.decimals)) cells.push_back(a ? c : "");
-  if (a) jr["published"] = published_json(*a, d);
-  jrows.push_back(jr);
   return cells;
 }
 
-Table accuracy_table(const Design& d, const AccuracyTests& at, nlohmann::json& jrows) {
+Table accuracy_table(const Design& d, const AccuracyResult& result, const AccuracyTests& at) {
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
   Table t;
@@ -186,13 +175,14 @@ Table accuracy_table(const Design& d, const AccuracyTests& at, nlohmann::json& j
   if (two) t.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
   const size_t ours = t.header.size();
   for (const auto& h : d.published_header()) t.header.push_back(h);
-  for (const auto& row : at.rows) t.rows.push_back(accuracy_cells(d, row, jrows));
+  for (const auto& row : result.rows) t.rows.push_back(accuracy_cells(d, row));
   if (d.reference)
     t.groups = {{"this study", static_cast<int>(ours)},
                 {d.published_group("accuracy"), static_cast<int>(t.header.size() - ours)}};
-  t.notes.push_back(d.tasks_note() + " Relative error is a proportion (0 = exact count); proportion correct is 0..1; distance is in "
-                    "world units. Test: repeated-measures ANOVA (F) or Friedman's test (χ², with the exact "
-                    "permutation p in parentheses when computed). p in APA style (exact values in report.json). Effect size: partial η² (ηp²) or Kendall's W.");
+  t.notes.push_back(d.tasks_note() + " Relative error is a proportion (0 = exact count); proportion correct is 0..1; "
+                    "distance is in world units. Test: repeated-measures ANOVA (F) or Friedman's test (χ², with the "
+                    "exact permutation p in parentheses when computed). p in APA style (exact values in report.json). "
+                    "Effect size: partial η² (ηp²) or Kendall's W.");
   if (!two)
     t.notes.push_back("df and p of F tests are Greenhouse-Geisser corrected where ε < 1 (" +
                       std::to_string(primary.levels.size()) + " levels).");
@@ -225,14 +215,13 @@ AccuracyResult section_errors(Context& ctx) {
          "Euclidean distance between the marked and the true position, in world units. Continuous measures are "
          "tested with repeated-measures ANOVA over the participant x condition means.");
   const AccuracyTests at = run_accuracy_tests(ctx, result);
-  if (at.rows.empty()) {
+  if (result.rows.empty()) {
     s.text("The protocol has no task with an answer key the report scores.");
     ctx.doc.sections.push_back(std::move(s));
     return result;
   }
-  nlohmann::json jrows = nlohmann::json::array();
-  s.add(accuracy_table(d, at, jrows));
-  const auto& rows = at.rows;
+  s.add(accuracy_table(d, result, at));
+  const auto& rows = result.rows;
   for (const auto& row : rows) {
     const TestReport& r = *row.r;
     for (const auto& note : test_notes(r))
@@ -242,8 +231,6 @@ AccuracyResult section_errors(Context& ctx) {
     if (row.r->m->factors.size() > 1 && row.r->anova)
       add_anova(ctx, s, *row.r, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
                         "Repeated-measures ANOVA of " + row.measure + ", " + row.label + ".");
-  ctx.json["accuracy"] = {{"table", jrows}, {"tests", at.json}};
-  ctx.csv["accuracy_means.csv"] = at.csv;
   ctx.doc.sections.push_back(std::move(s));
   return result;
 }

@@ -84,10 +84,19 @@ struct TimeResult {
   // The ANOVA of `scope`, or nullptr.
   const TestReport* of(const std::string& scope) const;
 };
+// A row of the accuracy table: a task (or the counting tasks together) and one of its measures' test.
+struct AccuracyRow {
+  std::string label, measure, unit;
+  const TestReport* r = nullptr;
+  std::string published;  // the scope of its published row ([reference_results] accuracy), "" = none
+  int decimals = 3;
+};
 // What the accuracy section found: per task, the test of its per-trial error measure.
 struct AccuracyResult {
   std::map<std::string, const TestReport*> by_task;
   std::vector<const TestReport*> tests;  // every test the section stored, in order
+  std::vector<AccuracyRow> rows;         // the table's rows, one test each (empty: no task is scored)
+  std::vector<MeansBlock> means;         // the matrices of the rows and the signed errors (accuracy_means.csv)
   // The test of task `id`'s per-trial error measure, or nullptr.
   const TestReport* of(const std::string& id) const;
 };
