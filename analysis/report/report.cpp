@@ -99,7 +99,7 @@ Result<SectionResults> run_sections(store::StudyReader& reader, Context& ctx, co
   say("mixed models");
   r.mixed = section_mixed_models(ctx, time, accuracy);
   say("speed and accuracy");
-  section_speed_accuracy(ctx, time, accuracy);
+  r.speed_accuracy = section_speed_accuracy(ctx, time, accuracy);
   say("questionnaire");
   section_questionnaire(ctx);
   say("instruments and questions per condition");

@@ -24,6 +24,7 @@ struct SectionResults {
   TimeResult time;
   AccuracyResult accuracy;
   std::vector<MixedModelResult> mixed;
+  std::vector<SpeedAccuracyRow> speed_accuracy;
   std::optional<QuestionnaireResults> instruments;  // nullopt: no instruments section
   FramesResult frames;
   PlanningResult planning;

@@ -126,6 +126,27 @@ json accuracy_json(const AccuracyResult& a, const Design& d) {
   return {{"table", rows}, {"tests", tests}};
 }
 
+json speed_accuracy_json(const std::vector<SpeedAccuracyRow>& rows) {
+  json list = json::array();
+  for (const SpeedAccuracyRow& row : rows) {
+    json jr{{"task", row.task}, {"error_measure", row.error_measure}, {"levels", json::array()},
+            {"reading", row.reading}};
+    for (const auto& l : row.levels)
+      jr["levels"].push_back({{"level", l.level}, {"time_s", num(l.time_s)}, {"error", num(l.error)}});
+    if (const auto& x = row.differences) {
+      jr["time_difference_s"] = num(x->time_s);
+      jr["time_difference_p"] = num(x->time_p);
+      jr["error_difference"] = num(x->error);
+      jr["error_difference_p"] = num(x->error_p);
+    }
+    const RmCorr& rc = row.rmcorr;
+    jr["rmcorr"] = {{"n", rc.n}, {"groups", rc.groups}, {"r", num(rc.r)}, {"df", num(rc.df)}, {"p", num(rc.p)},
+                    {"ci_low", num(rc.ci_low)}, {"ci_high", num(rc.ci_high)}, {"slope_per_s", num(rc.slope)}};
+    list.push_back(jr);
+  }
+  return list;
+}
+
 json sample_json(const ParticipantsResult& r) {
   json j{{"described", r.described}, {"consent_asked", r.consent_asked}, {"consented", r.consented},
          {"declined", r.declined}, {"withdrawn", r.withdrawn}};
@@ -217,6 +238,7 @@ json render_json(const Context& ctx, const SectionResults& results, const Report
   j["sample"] = sample_json(results.sample);
   j["completion_time"] = time_json(results.time, ctx.design);
   if (!results.accuracy.rows.empty()) j["accuracy"] = accuracy_json(results.accuracy, ctx.design);
+  if (!results.speed_accuracy.empty()) j["speed_accuracy"] = speed_accuracy_json(results.speed_accuracy);
   if (results.time.log_rows) j["completion_time_log"] = {{"tests", tests_json(*results.time.log_rows, ctx.design)}};
   json mixed = json::array();
   for (const auto& m : results.mixed) mixed.push_back(mixed_json(m));

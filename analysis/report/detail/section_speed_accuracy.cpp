@@ -38,9 +38,9 @@ double error_value(const CellMatrix& m, TaskType type, size_t s, size_t c) {
 }
 
 // The reading of a two-level primary factor, from the paired time difference and the error test ("—" otherwise);
-// the differences and their p go to `jr`.
+// the differences and their p go to `row`.
 std::string reading_of(const Design& d, const TaskInfo& task, const TestReport& tr, const TestReport& ar,
-                       nlohmann::json& jr) {
+                       SpeedAccuracyRow& row) {
   const auto& primary = d.factor(d.primary);
   const auto* tm = tr.marginal_of(d.primary);
   std::string reading = kDash;
@@ -59,7 +59,8 @@ std::string reading_of(const Design& d, const TaskInfo& task, const TestReport& 
     if (faster && worse)
       reading = "trade-off: " + b + " " + fixed(-dt, 1) + " s faster" + pct + " but less accurate";
     else if (faster)
-      reading = b + " " + fixed(-dt, 1) + " s faster" + pct + (better ? " and more accurate" : " at no measurable cost in accuracy");
+      reading = b + " " + fixed(-dt, 1) + " s faster" + pct +
+                (better ? " and more accurate" : " at no measurable cost in accuracy");
     else if (slower && better)
       reading = "trade-off: " + b + " more accurate but " + fixed(dt, 1) + " s slower" + pct;
     else if (slower)
@@ -70,10 +71,7 @@ std::string reading_of(const Design& d, const TaskInfo& task, const TestReport& 
       reading = b + " less accurate, time not reliably different";
     else
       reading = "no reliable difference in time or accuracy";
-    jr["time_difference_s"] = num(dt);
-    jr["time_difference_p"] = num(pt);
-    jr["error_difference"] = num(de);
-    jr["error_difference_p"] = num(pe);
+    row.differences = SpeedAccuracyRow::Differences{dt, pt, de, pe};
   }
   return reading;
 }
@@ -180,9 +178,49 @@ Table rmcorr_table() {
   return c;
 }
 
+// The row of one task from its time and error tests, and its points in the scatter's data.
+SpeedAccuracyRow task_row(const Context& ctx, const TaskInfo& task, const TestReport& tr, const TestReport& ar) {
+  const Design& d = ctx.design;
+  const auto& primary = d.factor(d.primary);
+  const auto* tm = tr.marginal_of(d.primary);
+  const auto* am = ar.marginal_of(d.primary);
+  SpeedAccuracyRow row;
+  row.task = task.id;
+  row.error_measure = error_name(task.type);
+  for (size_t l = 0; l < primary.levels.size(); ++l) {
+    const double mean_time = tm ? (*tm)[l].mean : NAN;
+    double err = am ? (*am)[l].mean : NAN;
+    if (task.type == TaskType::identify_letter) err = 1 - err;
+    row.levels.push_back({primary.levels[l], mean_time, err});
+  }
+  row.reading = reading_of(d, task, tr, ar, row);
+  row.rmcorr = trial_rmcorr(ctx, task);  // within-participant correlation over trials
+  return row;
+}
+
+// The table row of a task: per level, mean time and error, then the reading.
+std::vector<std::string> table_row(const SpeedAccuracyRow& row, TaskType type) {
+  std::vector<std::string> cells = {row.task, row.error_measure};
+  for (const auto& l : row.levels) {
+    cells.push_back(fixed(l.time_s, 2));
+    cells.push_back(fixed(l.error, type == TaskType::find_unique ? 2 : 3));
+  }
+  cells.push_back(row.reading);
+  return cells;
+}
+
+// The correlation table's row of a task.
+std::vector<std::string> rmcorr_row(const SpeedAccuracyRow& row, TaskType type) {
+  const RmCorr& rc = row.rmcorr;
+  return {row.task, row.error_measure, std::to_string(rc.n), std::to_string(rc.groups), bounded(rc.r),
+          std::isfinite(rc.ci_low) ? stats::apa_interval(rc.ci_low, rc.ci_high, true) : kDash, df_text(rc.df),
+          p_text(rc.p), fixed(10 * rc.slope, type == TaskType::find_unique ? 2 : 4)};
+}
+
 }  // namespace
 
-void section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeResult& time,
+                                                     const AccuracyResult& accuracy) {
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   Section s{"speed-accuracy", "Speed and accuracy", 2, {}};
@@ -195,57 +233,30 @@ void section_speed_accuracy(Context& ctx, const TimeResult& time, const Accuracy
 
   Table t = speed_accuracy_table(d);
   Table c = rmcorr_table();
-
-  nlohmann::json jrows = nlohmann::json::array();
+  std::vector<SpeedAccuracyRow> rows;
   std::string scatter;
   std::vector<std::string> panels;
   for (const auto& task : d.tasks) {
     const TestReport* ti = time.of(task.id);
     const TestReport* ai = accuracy.of(task.id);
     if (!ti || !ai) continue;
-    const TestReport& tr = *ti;
-    const TestReport& ar = *ai;
-    const auto* tm = tr.marginal_of(d.primary);
-    const auto* am = ar.marginal_of(d.primary);
-    std::vector<std::string> row = {task.id, error_name(task.type)};
-    nlohmann::json jr{{"task", task.id}, {"error_measure", error_name(task.type)}, {"levels", nlohmann::json::array()}};
-    for (size_t l = 0; l < primary.levels.size(); ++l) {
-      const double mean_time = tm ? (*tm)[l].mean : NAN;
-      double err = am ? (*am)[l].mean : NAN;
-      if (task.type == TaskType::identify_letter) err = 1 - err;
-      row.push_back(fixed(mean_time, 2));
-      row.push_back(fixed(err, task.type == TaskType::find_unique ? 2 : 3));
-      jr["levels"].push_back({{"level", primary.levels[l]}, {"time_s", num(mean_time)}, {"error", num(err)}});
-    }
-    const std::string reading = reading_of(d, task, tr, ar, jr);
-    row.push_back(reading);
-    jr["reading"] = reading;
-    t.rows.push_back(row);
-
-    // Within-participant correlation over trials.
-    const RmCorr rc = trial_rmcorr(ctx, task);
-    c.rows.push_back({task.id, error_name(task.type), std::to_string(rc.n), std::to_string(rc.groups),
-                      bounded(rc.r),
-                      std::isfinite(rc.ci_low) ? stats::apa_interval(rc.ci_low, rc.ci_high, true) : kDash, df_text(rc.df),
-                      p_text(rc.p), fixed(10 * rc.slope, task.type == TaskType::find_unique ? 2 : 4)});
-    jr["rmcorr"] = {{"n", rc.n}, {"groups", rc.groups}, {"r", num(rc.r)}, {"df", num(rc.df)}, {"p", num(rc.p)},
-                    {"ci_low", num(rc.ci_low)}, {"ci_high", num(rc.ci_high)}, {"slope_per_s", num(rc.slope)}};
+    rows.push_back(task_row(ctx, task, *ti, *ai));
+    t.rows.push_back(table_row(rows.back(), task.type));
+    c.rows.push_back(rmcorr_row(rows.back(), task.type));
     ++ctx.tests;
-    jrows.push_back(jr);
-
     // Scatter data: one dataset per primary level, points = participant x cell means.
     bool finite = false;
-    scatter += scatter_data(d, task, tr, ar, finite);
+    scatter += scatter_data(d, task, *ti, *ai, finite);
     panels.push_back(finite ? d.task_label(task) + "|" + error_name(task.type) : "");
   }
   if (t.rows.empty()) {
     s.text("No task has both a completion time and an error measure.");
     ctx.doc.sections.push_back(std::move(s));
-    return;
+    return rows;
   }
-  t.notes.push_back(d.tasks_note() + " Reading: from the paired difference of the participants' mean times (paired t) and the test of "
-                    "the error measure in the Accuracy section; \"reliable\" means p < .05. Percentages are relative "
-                    "to the first level's mean time.");
+  t.notes.push_back(d.tasks_note() + " Reading: from the paired difference of the participants' mean times (paired "
+                    "t) and the test of the error measure in the Accuracy section; \"reliable\" means p < .05. "
+                    "Percentages are relative to the first level's mean time.");
   s.add(t);
   c.notes.push_back("r_rm < 0: within a participant and condition, slower trials had smaller errors (time bought "
                     "accuracy); r_rm > 0: slower trials were also less accurate (difficulty drives both). df = trials − "
@@ -255,8 +266,8 @@ void section_speed_accuracy(Context& ctx, const TimeResult& time, const Accuracy
   const PlotSpec p = scatter_plot(d, scatter, panels);
   ctx.add_figure(s, p, "Speed-accuracy scatter: each point is one participant's mean completion time and mean error "
                        "in one condition of the task, coloured by " + primary.name + ".");
-  ctx.json["speed_accuracy"] = jrows;
   ctx.doc.sections.push_back(std::move(s));
+  return rows;
 }
 
 }  // namespace dtlab::report::detail

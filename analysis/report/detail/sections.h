@@ -26,6 +26,7 @@
 #include "analysis/report/detail/study_data.h"
 #include "analysis/report/detail/inference.h"
 #include "analysis/report/detail/mixed_models.h"
+#include "analysis/report/detail/rmcorr.h"
 #include "analysis/report/planning.h"
 #include "analysis/report/report.h"
 
@@ -144,8 +145,24 @@ TimeResult time_tests(Context& ctx);
 AccuracyResult accuracy_tests(Context& ctx);
 // Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp); every model fitted.
 std::vector<MixedModelResult> section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
-// Time vs error per condition and participant, from the tests of `time` and `accuracy`.
-void section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+// What speed-accuracy found for a task with both a time and an error test.
+struct SpeedAccuracyRow {
+  struct Level {
+    std::string level;
+    double time_s = 0, error = 0;  // means over participants; error lower = better
+  };
+  struct Differences {  // second primary level minus first (error flipped for letters: lower = better)
+    double time_s = 0, time_p = 0, error = 0, error_p = 0;
+  };
+  std::string task, error_measure;
+  std::vector<Level> levels;               // per level of the primary factor
+  std::optional<Differences> differences;  // a two-level primary factor with paired tests of both
+  std::string reading;                     // "trade-off: ...", "—" without differences
+  RmCorr rmcorr;                           // the trials' time against their error, within participants
+};
+// Time vs error per condition and participant, from the tests of `time` and `accuracy`; one row per task
+// with both (none: no section body beyond a sentence).
+std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
 void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test (asked at the end)
 // Position in the session, order rows of the counterbalancing; the overall completion time of `time`.
 void section_position(Context& ctx, const TimeResult& time);
