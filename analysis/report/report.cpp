@@ -105,7 +105,7 @@ Result<SectionResults> run_sections(store::StudyReader& reader, Context& ctx, co
   say("instruments and questions per condition");
   r.instruments = section_instruments(ctx);
   say("position effects");
-  section_position(ctx, time);
+  r.position = section_position(ctx, time);
   say("frame-time audit");
   r.frames = section_frames(ctx);
   warn_at_top(ctx.doc, r.frames);

@@ -25,7 +25,8 @@ struct SectionResults {
   AccuracyResult accuracy;
   std::vector<MixedModelResult> mixed;
   std::vector<SpeedAccuracyRow> speed_accuracy;
-  std::optional<QuestionnaireResults> instruments;  // nullopt: no instruments section
+  std::optional<QuestionnaireResults> instruments;
+  PositionResult position;  // nullopt: no instruments section
   FramesResult frames;
   PlanningResult planning;
   bool with_paths = false;                 // the walked-paths section exists

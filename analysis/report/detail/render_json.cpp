@@ -147,6 +147,22 @@ json speed_accuracy_json(const std::vector<SpeedAccuracyRow>& rows) {
   return list;
 }
 
+json position_json(const PositionResult& p, const Design& d) {
+  json j{{"balance", p.balance}, {"balanced", p.balanced}};
+  for (const auto& split : p.splits) {
+    json levels = json::array();
+    for (const auto& l : split.levels) {
+      json x = to_json(l.relative);
+      x["position"] = l.position;
+      x["time_s"] = to_json(l.time_s);
+      levels.push_back(x);
+    }
+    j[split.key] = {{"levels", levels}, {"test", to_json(*split.test, split.design->design)}};
+  }
+  if (p.order_row) j["order_row"] = to_json(*p.order_row, d);
+  return j;
+}
+
 json sample_json(const ParticipantsResult& r) {
   json j{{"described", r.described}, {"consent_asked", r.consent_asked}, {"consented", r.consented},
          {"declined", r.declined}, {"withdrawn", r.withdrawn}};
@@ -239,6 +255,7 @@ json render_json(const Context& ctx, const SectionResults& results, const Report
   j["completion_time"] = time_json(results.time, ctx.design);
   if (!results.accuracy.rows.empty()) j["accuracy"] = accuracy_json(results.accuracy, ctx.design);
   if (!results.speed_accuracy.empty()) j["speed_accuracy"] = speed_accuracy_json(results.speed_accuracy);
+  j["position"] = position_json(results.position, ctx.design);
   if (results.time.log_rows) j["completion_time_log"] = {{"tests", tests_json(*results.time.log_rows, ctx.design)}};
   json mixed = json::array();
   for (const auto& m : results.mixed) mixed.push_back(mixed_json(m));

@@ -14,22 +14,18 @@
 #include "analysis/report/detail/sections.h"
 
 namespace dtlab::report::detail {
-namespace {
 
-// A one-factor design over positions ("1", "2", ...) for the tests.
-struct PositionDesign {
-  protocol::Protocol protocol;
-  Design design;
-  PositionDesign(const std::string& name, int levels) {
-    protocol::Factor f;
-    f.name = name;
-    for (int l = 1; l <= levels; ++l) f.levels.push_back(std::to_string(l));
-    protocol.factors.push_back(f);
-    design.protocol = &protocol;
-    design.all_factors = {0};
-    design.primary = 0;
-  }
-};
+PositionDesign::PositionDesign(const std::string& name, int levels) {
+  protocol::Factor f;
+  f.name = name;
+  for (int l = 1; l <= levels; ++l) f.levels.push_back(std::to_string(l));
+  protocol.factors.push_back(f);
+  design.protocol = &protocol;
+  design.all_factors = {0};
+  design.primary = 0;
+}
+
+namespace {
 
 std::string condition_of(const Design& d, const TrialRow& t) {
   std::string c;
@@ -64,8 +60,10 @@ RelativeTimes relative_times(const Context& ctx) {
   return rt;
 }
 
-// Balance: how often each condition was at each block position (counts per condition to `jb`).
-Table balance_table(const Context& ctx, int blocks, nlohmann::json& jb, bool& balanced) {
+// Balance: how often each condition was at each block position (counts per condition and whether they are
+// equal to `result`).
+Table balance_table(const Context& ctx, int blocks, PositionResult& result) {
+  bool& balanced = result.balanced;
   const Design& d = ctx.design;
   std::map<std::string, std::vector<int>> balance;
   std::set<std::pair<std::string, int>> seen;
@@ -92,7 +90,7 @@ Table balance_table(const Context& ctx, int blocks, nlohmann::json& jb, bool& ba
       row.push_back(std::to_string(n));
       balanced = balanced && n == counts[0];
     }
-    jb[cond.name] = counts;
+    result.balance[cond.name] = counts;
     bt.rows.push_back(row);
   }
   bt.notes.push_back(balanced ? "Every condition was at every block position equally often: the order is balanced "
@@ -150,9 +148,9 @@ struct PositionPlot {
   std::vector<std::pair<std::string, int>> titles;  // (title or "" when nothing to draw, positions)
 };
 
-// The table of one split (position, n, relative time, its CI, seconds); its levels as JSON to `jl`.
+// The table of one split (position, n, relative time, its CI, seconds); its levels to `split`.
 Table position_table(const TestReport& r, const CellMatrix& raw, bool by_block, int levels, PositionPlot& plot,
-                     nlohmann::json& jl) {
+                     PositionResult::Split& split) {
   Table t;
   t.id = by_block ? "table-position-block" : "table-position-repetition";
   t.caption = by_block ? "Completion time by block position in the session (each block is one condition)."
@@ -167,12 +165,10 @@ Table position_table(const TestReport& r, const CellMatrix& raw, bool by_block, 
     const auto& x = r.cells[static_cast<size_t>(l)];
     t.rows.push_back({std::to_string(l + 1), std::to_string(x.n), mean_sd(x.mean, x.sd, 3),
                       "[" + fixed(x.ci_low, 3) + ", " + fixed(x.ci_high, 3) + "]", mean_sd(rd.mean, rd.sd, 2)});
-    plot.data += std::to_string(l + 1) + " " + gp_value(x.mean) + " " + gp_value(std::isfinite(x.se) ? x.se : 0.0) + "\n";
+    plot.data +=
+        std::to_string(l + 1) + " " + gp_value(x.mean) + " " + gp_value(std::isfinite(x.se) ? x.se : 0.0) + "\n";
     finite = finite || std::isfinite(x.mean);
-    auto jx = to_json(x);
-    jx["position"] = l + 1;
-    jx["time_s"] = to_json(rd);
-    jl.push_back(jx);
+    split.levels.push_back({l + 1, x, rd});
   }
   plot.data += "\n\n";
   plot.titles.push_back({finite ? (by_block ? "Block position" : "Repetition in the task set") : "", levels});
@@ -200,15 +196,16 @@ std::string position_verdict(const std::string& name, const TestReport& r, bool 
 }
 
 // One split (block position or repetition): its ANOVA of relative time, table, verdict and full ANOVA.
-void position_split(Context& ctx, Section& s, const std::string& name, int levels, const RelativeTimes& rt,
-                    bool balanced, PositionPlot& plot, nlohmann::json& jp) {
-  PositionDesign pd(name, levels);
+PositionResult::Split position_split(Context& ctx, Section& s, const std::string& name, int levels,
+                                     const RelativeTimes& rt, bool balanced, PositionPlot& plot) {
   const bool by_block = name == "block position";
+  PositionResult::Split split{by_block ? "block" : "repetition", std::make_shared<PositionDesign>(name, levels),
+                              nullptr, {}};
   PositionMatrices pm = position_matrices(ctx, rt, by_block, levels);
   const auto& km = ctx.keep(std::move(pm.m));
-  const auto& r = ctx.add_test("position", run_rm_anova(km, pd.design, "relative time", "", name));
-  nlohmann::json jl = nlohmann::json::array();
-  const Table t = position_table(r, pm.raw, by_block, levels, plot, jl);
+  const auto& r = ctx.add_test("position", run_rm_anova(km, split.design->design, "relative time", "", name));
+  split.test = &r;
+  const Table t = position_table(r, pm.raw, by_block, levels, plot, split);
   const std::string verdict = position_verdict(name, r, by_block, balanced);
   if (!verdict.empty()) s.text(verdict);
   s.add(t);
@@ -216,7 +213,7 @@ void position_split(Context& ctx, Section& s, const std::string& name, int level
     add_anova(ctx, s, r, by_block ? "table-position-block-anova" : "table-position-repetition-anova",
               std::string("Repeated-measures ANOVA of relative time by ") +
                   (by_block ? "block position." : "repetition inside a task set."));
-  jp[by_block ? "block" : "repetition"] = {{"levels", jl}, {"test", to_json(r, pd.design)}};
+  return split;
 }
 
 // The overall test `ov` rerun with the order row as a between-subject factor.
@@ -245,8 +242,9 @@ TestReport order_row_report(const TestReport& ov, const Design& d, const std::ma
   return r;
 }
 
-// Order row as a between-subject factor (mixed ANOVA) on the overall condition means of `overall`.
-void order_row_test(Context& ctx, Section& s, const TestReport& ov, nlohmann::json& jp) {
+// Order row as a between-subject factor (mixed ANOVA) on the overall condition means of `overall`; the
+// test, or nullptr when there are too few rows or participants.
+const TestReport* order_row_test(Context& ctx, Section& s, const TestReport& ov) {
   std::set<int> rows_seen;
   std::map<std::string, int> row_of;
   for (const auto& p : ctx.data.participants) row_of[p.id] = p.order_row;
@@ -260,12 +258,12 @@ void order_row_test(Context& ctx, Section& s, const TestReport& ov, nlohmann::js
            "remove.");
     add_anova(ctx, s, kr, "table-position-order", "Mixed ANOVA of completion time over all tasks with the order "
                                                       "row as between-subject factor (s).");
-    jp["order_row"] = to_json(kr, ctx.design);
-  } else {
-    s.text("Order rows: not tested (" + std::to_string(rows_seen.size()) + " order row(s) among " +
-           std::to_string(ov.kept.size()) + " complete participants; a between-subject test needs at least two "
-           "rows and more participants than rows).");
+    return &kr;
   }
+  s.text("Order rows: not tested (" + std::to_string(rows_seen.size()) + " order row(s) among " +
+         std::to_string(ov.kept.size()) + " complete participants; a between-subject test needs at least two "
+         "rows and more participants than rows).");
+  return nullptr;
 }
 
 PlotSpec position_figure(const PositionPlot& plot) {
@@ -290,7 +288,7 @@ PlotSpec position_figure(const PositionPlot& plot) {
 
 }  // namespace
 
-void section_position(Context& ctx, const TimeResult& time) {
+PositionResult section_position(Context& ctx, const TimeResult& time) {
   Section s{"position", "Position effects and counterbalancing", 2, {}};
   s.text("A within-subject design is only as good as its counterbalancing: practice and fatigue must not "
          "favour a condition. Relative time below is a trial's completion time divided by the mean time of its task "
@@ -299,23 +297,18 @@ void section_position(Context& ctx, const TimeResult& time) {
          "position (a block is one condition) and per repetition inside a task set, and tested with "
          "repeated-measures ANOVA.");
   const RelativeTimes rt = relative_times(ctx);
-  bool balanced = true;
-  nlohmann::json jb = nlohmann::json::object();
-  s.add(balance_table(ctx, rt.blocks, jb, balanced));
-
-  nlohmann::json jp = nlohmann::json::object();
-  jp["balance"] = jb;
-  jp["balanced"] = balanced;
+  PositionResult result;
+  s.add(balance_table(ctx, rt.blocks, result));
   PositionPlot plot;
   for (const auto& [name, levels] : std::vector<std::pair<std::string, int>>{{"block position", rt.blocks},
                                                                              {"repetition", rt.reps}})
-    if (levels >= 2) position_split(ctx, s, name, levels, rt, balanced, plot, jp);
-  if (const TestReport* overall = time.of("overall")) order_row_test(ctx, s, *overall, jp);
+    if (levels >= 2) result.splits.push_back(position_split(ctx, s, name, levels, rt, result.balanced, plot));
+  if (const TestReport* overall = time.of("overall")) result.order_row = order_row_test(ctx, s, *overall);
   if (!plot.titles.empty())
     ctx.add_figure(s, position_figure(plot), "Mean relative completion time by block position and by repetition "
                                              "inside a task set (error bars: standard error over participants).");
-  ctx.json["position"] = jp;
   ctx.doc.sections.push_back(std::move(s));
+  return result;
 }
 
 }  // namespace dtlab::report::detail

@@ -16,6 +16,7 @@
 
 #include <deque>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -164,8 +165,36 @@ struct SpeedAccuracyRow {
 // with both (none: no section body beyond a sentence).
 std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
 void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test (asked at the end)
+// A one-factor design over positions ("1", "2", ...) for the position tests (not movable: its design
+// points into its protocol).
+struct PositionDesign {
+  protocol::Protocol protocol;
+  Design design;
+  PositionDesign(const std::string& name, int levels);
+  PositionDesign(const PositionDesign&) = delete;
+  PositionDesign& operator=(const PositionDesign&) = delete;
+};
+// What the position section found: the balance of conditions over block positions, the tests of
+// relative time by block position and by repetition, and the order row's mixed ANOVA.
+struct PositionResult {
+  struct Level {
+    int position = 0;                 // 1-based
+    stats::Descriptives relative;     // relative time over the test's participants (the test's cell)
+    stats::Descriptives time_s;       // the same participants' mean times in seconds
+  };
+  struct Split {
+    std::string key;                              // "block" or "repetition"
+    std::shared_ptr<const PositionDesign> design;  // the test's one-factor design
+    const TestReport* test = nullptr;
+    std::vector<Level> levels;
+  };
+  std::map<std::string, std::vector<int>> balance;  // condition -> participants per block position
+  bool balanced = true;
+  std::vector<Split> splits;                        // block position, repetition (those with >= 2 levels)
+  const TestReport* order_row = nullptr;            // nullptr: not tested
+};
 // Position in the session, order rows of the counterbalancing; the overall completion time of `time`.
-void section_position(Context& ctx, const TimeResult& time);
+PositionResult section_position(Context& ctx, const TimeResult& time);
 // What the frame-time audit found, per condition, and the warnings the top of the report repeats.
 struct FramesResult {
   struct Condition {
