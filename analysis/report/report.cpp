@@ -101,7 +101,7 @@ Result<SectionResults> run_sections(store::StudyReader& reader, Context& ctx, co
   say("speed and accuracy");
   r.speed_accuracy = section_speed_accuracy(ctx, time, accuracy);
   say("questionnaire");
-  section_questionnaire(ctx);
+  r.questionnaire = section_questionnaire(ctx);
   say("instruments and questions per condition");
   r.instruments = section_instruments(ctx);
   say("position effects");

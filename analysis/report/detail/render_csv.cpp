@@ -18,6 +18,14 @@ std::string means_csv(const std::vector<MeansBlock>& blocks, const Design& d) {
   return csv;
 }
 
+// Every questionnaire answer as recorded (analysed participants), number or text.
+std::string questionnaire_csv(const StudyData& data) {
+  std::string csv = csv_line({"item", "participant", "scope", "value_number", "value_text"});
+  for (const auto& a : data.answers)
+    csv += csv_line({a.item, a.participant, a.scope, a.number ? csv_number(*a.number) : "NA", a.text ? *a.text : "NA"});
+  return csv;
+}
+
 std::string sessions_notes_csv(const ParticipantsResult& r) {
   std::string csv = csv_line({"participant", "pauses", "paused_s", "note"});
   for (const auto& a : r.around) {
@@ -67,6 +75,7 @@ std::map<std::string, std::string> render_csv(const Context& ctx, const SectionR
   files["completion_time_means.csv"] = means_csv(results.time.means, ctx.design);
   if (!results.accuracy.rows.empty()) files["accuracy_means.csv"] = means_csv(results.accuracy.means, ctx.design);
   if (!results.sample.around.empty()) files["sessions_notes.csv"] = sessions_notes_csv(results.sample);
+  if (results.questionnaire && !results.questionnaire->empty()) files["questionnaire.csv"] = questionnaire_csv(ctx.data);
   if (results.instruments) {
     files["instrument_scores.csv"] = instrument_scores_csv(*results.instruments);
     files["free_text.csv"] = free_text_csv(*results.instruments);

@@ -25,6 +25,7 @@ struct SectionResults {
   AccuracyResult accuracy;
   std::vector<MixedModelResult> mixed;
   std::vector<SpeedAccuracyRow> speed_accuracy;
+  QuestionnaireResult questionnaire;
   std::optional<QuestionnaireResults> instruments;
   PositionResult position;  // nullopt: no instruments section
   FramesResult frames;

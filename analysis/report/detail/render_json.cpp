@@ -163,6 +163,29 @@ json position_json(const PositionResult& p, const Design& d) {
   return j;
 }
 
+// One questionnaire item: its tests (ratings), descriptives (numbers, depth tests) or choices.
+json questionnaire_item_json(const QuestionnaireItemResult& item, const Design& d) {
+  using Kind = QuestionnaireItemResult::Kind;
+  json j{{"type", item.type}, {"prompt", item.prompt}, {"n", item.n}};
+  if (item.kind == Kind::rating) j["tests"] = tests_json(item.tests, d);
+  if (item.kind == Kind::numeric) {
+    j["descriptives"] = to_json(item.descriptives);
+    if (item.proportion_correct) j["proportion_correct"] = num(*item.proportion_correct);
+  }
+  if (item.kind == Kind::choice) {
+    json choices = json::object();
+    for (const auto& [option, c] : item.choices)
+      choices[option] = {{"count", c.count}, {"proportion", num(c.proportion)}, {"sd", num(c.sd)}};
+    j["choices"] = choices;
+    if (const auto& st = item.sign_test)
+      j["sign_test"] = {{"n", st->n}, {"for_" + item.second_option, st->positive},
+                        {"for_" + item.first_option, st->negative}, {"p", num(st->p)}, {"log10_p", num(st->log10_p)}};
+  }
+  if (item.kind == Kind::numeric || item.kind == Kind::choice)
+    if (const auto* a = d.published(item.id, "overall")) j["published"] = published_json(*a, d);
+  return j;
+}
+
 json sample_json(const ParticipantsResult& r) {
   json j{{"described", r.described}, {"consent_asked", r.consent_asked}, {"consented", r.consented},
          {"declined", r.declined}, {"withdrawn", r.withdrawn}};
@@ -256,6 +279,11 @@ json render_json(const Context& ctx, const SectionResults& results, const Report
   if (!results.accuracy.rows.empty()) j["accuracy"] = accuracy_json(results.accuracy, ctx.design);
   if (!results.speed_accuracy.empty()) j["speed_accuracy"] = speed_accuracy_json(results.speed_accuracy);
   j["position"] = position_json(results.position, ctx.design);
+  if (results.questionnaire) {
+    json items = json::object();
+    for (const auto& item : *results.questionnaire) items[item.id] = questionnaire_item_json(item, ctx.design);
+    j["questionnaire"] = items;
+  }
   if (results.time.log_rows) j["completion_time_log"] = {{"tests", tests_json(*results.time.log_rows, ctx.design)}};
   json mixed = json::array();
   for (const auto& m : results.mixed) mixed.push_back(mixed_json(m));

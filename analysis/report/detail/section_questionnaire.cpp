@@ -157,7 +157,7 @@ RatingMatrices rating_matrices(const Context& ctx, const protocol::Questionnaire
 
 // Friedman's test of one rating matrix: a row of the summary table, its notes, a bar of the figure.
 void rating_test(Context& ctx, const protocol::QuestionnaireItem& item, const CellMatrix& m, const std::string& scope,
-                 QuestionnaireTables& q, nlohmann::json& jt) {
+                 QuestionnaireTables& q, std::vector<const TestReport*>& tests) {
   const Design& d = ctx.design;
   const auto& r = ctx.add_test("questionnaire", run_friedman(ctx.keep(m), d, item.id, "rating", scope, ctx.options.seed));
   std::vector<std::string> row = {item.id, scope};
@@ -177,19 +177,19 @@ void rating_test(Context& ctx, const protocol::QuestionnaireItem& item, const Ce
   for (const auto& note : test_notes(r))
     if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) q.summary.notes.push_back(item.id + " " + scope + ": " + note);
   q.fig_rows.push_back({scope, &r});
-  jt.push_back(to_json(r, d));
+  tests.push_back(&r);
 }
 
 // A rating asked per level of the primary factor: a test per combination of its other factors, and overall.
 void rating_item(Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
-                 const std::vector<std::string>& per, QuestionnaireTables& q, nlohmann::json& ji) {
+                 const std::vector<std::string>& per, QuestionnaireTables& q, QuestionnaireItemResult& out) {
   const Design& d = ctx.design;
   std::vector<int> others;
   for (const auto& name : per)
     for (int f : d.all_factors)
       if (d.factor(f).name == name && f != d.primary) others.push_back(f);
   const RatingMatrices rm = rating_matrices(ctx, item, subjects, others);
-  nlohmann::json jt = nlohmann::json::array();
+  out.kind = QuestionnaireItemResult::Kind::rating;
   for (const auto& [key, m] : rm.split) {
     std::string scope;
     bool known = true;
@@ -197,15 +197,14 @@ void rating_item(Context& ctx, const protocol::QuestionnaireItem& item, const st
       if (key[k] < 0) known = false;
       else scope += (scope.empty() ? "" : ", ") + d.factor(others[k]).levels[static_cast<size_t>(key[k])];
     }
-    if (known) rating_test(ctx, item, m, scope.empty() ? "all" : scope, q, jt);
+    if (known) rating_test(ctx, item, m, scope.empty() ? "all" : scope, q, out.tests);
   }
-  if (!others.empty()) rating_test(ctx, item, rm.all, "overall", q, jt);
-  ji["tests"] = jt;
+  if (!others.empty()) rating_test(ctx, item, rm.all, "overall", q, out.tests);
 }
 
 // Per participant: a rating (mean if asked several times) or the depth-test pairs correct (summed); descriptives.
 void numeric_item(const Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
-                  QuestionnaireTables& q, nlohmann::json& ji) {
+                  QuestionnaireTables& q, QuestionnaireItemResult& out) {
   const Design& d = ctx.design;
   const Measure measure = item.type->measure;
   std::vector<double> v;
@@ -223,15 +222,16 @@ void numeric_item(const Context& ctx, const protocol::QuestionnaireItem& item, c
   const bool depth = measure == Measure::correct;
   const int pairs = depth ? static_cast<int>(item.integer("pairs")) : 0;
   const questionnaire::NumberPair b = item.type->bounds ? item.type->bounds(item) : questionnaire::NumberPair{};
-  std::string scope = depth ? "pairs correct of " + std::to_string(pairs) : "scale " + csv_number(b.min) + "–" + csv_number(b.max);
+  const std::string scope =
+      depth ? "pairs correct of " + std::to_string(pairs) : "scale " + csv_number(b.min) + "–" + csv_number(b.max);
   std::vector<std::string> row = {item.id, item.prompt + " (" + scope + ")",
                                   "mean (SD) " + mean_sd(ds.mean, ds.sd, 2) + ", median " + fixed(ds.median, 1) +
                                       (depth ? ", " + percent(ds.mean / pairs) + " of pairs" : ""),
                                   std::to_string(ds.n), kDash, kDash};
-  ji["descriptives"] = to_json(ds);
-  if (depth) ji["proportion_correct"] = num(ds.mean / pairs);
+  out.kind = QuestionnaireItemResult::Kind::numeric;
+  out.descriptives = ds;
+  if (depth) out.proportion_correct = ds.mean / pairs;
   if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
-  if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
   q.others.rows.push_back(row);
 }
 
@@ -282,43 +282,47 @@ ChoiceCounts count_choices(const Context& ctx, const protocol::QuestionnaireItem
 
 // A choice item: counts and proportions per option, and for two options a sign test.
 void choice_item(Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
-                 QuestionnaireTables& q, nlohmann::json& ji) {
+                 QuestionnaireTables& q, QuestionnaireItemResult& out) {
   const Design& d = ctx.design;
   const ChoiceCounts c = count_choices(ctx, item, subjects);
   const auto& options = c.options;
-  nlohmann::json jc = nlohmann::json::object();
+  out.kind = QuestionnaireItemResult::Kind::choice;
   std::string text;
   for (const auto& [option, n] : c.count) {
     const double p = c.answered ? static_cast<double>(n) / c.answered : std::nan("");
     const double sd = c.answered > 1 ? std::sqrt(p * (1 - p) * c.answered / (c.answered - 1)) : std::nan("");
-    jc[option] = {{"count", n}, {"proportion", num(p)}, {"sd", num(sd)}};
+    out.choices[option] = {n, p, sd};
     const std::string label = c.factor >= 0 && option.rfind("other: ", 0) != 0 && option != c.neutral
                                   ? d.level_label(c.factor, static_cast<int>(index_of(options, option)))
                                   : option;
     text += (text.empty() ? "" : "; ") + label + " " + std::to_string(n) + "/" + std::to_string(c.answered) + " = " +
             fixed(p, 2) + " (SD " + fixed(sd, 2) + ")";
   }
-  ji["choices"] = jc;
   std::vector<std::string> row = {item.id, item.prompt, text, std::to_string(c.answered), kDash, kDash};
   if (item.type->measure == Measure::nominal && options.size() == 2 && c.answered > 0) {
     const auto st = stats::sign_test(c.second, c.first);
     row[4] = "sign test: " + std::to_string(st.positive) + " for " + options[1] + ", " +
              std::to_string(st.negative) + " for " + options[0];
     row[5] = p_text(st.p);
-    ji["sign_test"] = {{"n", st.n}, {"for_" + options[1], st.positive}, {"for_" + options[0], st.negative},
-                       {"p", num(st.p)}, {"log10_p", num(st.log10_p)}};
+    out.sign_test = st;
+    out.first_option = options[0];
+    out.second_option = options[1];
     ++ctx.tests;
   }
   if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
-  if (const auto* a = d.published(item.id, "overall")) ji["published"] = published_json(*a, d);
   q.others.rows.push_back(row);
 }
 
-// One item by its measure; its report.json record.
-nlohmann::json questionnaire_item(Context& ctx, const protocol::QuestionnaireItem& item, QuestionnaireTables& q) {
+// One item by its measure.
+QuestionnaireItemResult questionnaire_item(Context& ctx, const protocol::QuestionnaireItem& item,
+                                           QuestionnaireTables& q) {
   const Design& d = ctx.design;
   const auto subjects = answered_by(ctx.data, item.id);
-  nlohmann::json ji{{"type", item.type->name}, {"prompt", item.prompt}, {"n", subjects.size()}};
+  QuestionnaireItemResult ji;
+  ji.id = item.id;
+  ji.type = item.type->name;
+  ji.prompt = item.prompt;
+  ji.n = subjects.size();
   const Measure measure = item.type->measure;
   const std::vector<std::string>& per = strings_or_none(item, "per");
   const bool per_primary = std::find(per.begin(), per.end(), d.factor(d.primary).name) != per.end();
@@ -333,7 +337,7 @@ nlohmann::json questionnaire_item(Context& ctx, const protocol::QuestionnaireIte
 
 }  // namespace
 
-void section_questionnaire(Context& ctx) {
+QuestionnaireResult section_questionnaire(Context& ctx) {
   const Design& d = ctx.design;
   std::vector<protocol::QuestionnaireItem> items;
   for (const auto& item : d.protocol->questionnaire)
@@ -342,31 +346,28 @@ void section_questionnaire(Context& ctx) {
   if (items.empty()) {
     s.text(d.protocol->questionnaire.empty()
                ? "The protocol has no questionnaire."
-               : "The protocol asks nothing at the end of the session apart from instruments and free text (see below).");
+               : "The protocol asks nothing at the end of the session apart from instruments and free text (see "
+                 "below).");
     ctx.doc.sections.push_back(std::move(s));
-    return;
+    return std::nullopt;
   }
   if (ctx.data.answers.empty()) {
     s.text("No questionnaire answer is recorded in the database.");
     ctx.doc.sections.push_back(std::move(s));
-    ctx.json["questionnaire"] = nlohmann::json::object();
-    return;
+    return std::vector<QuestionnaireItemResult>{};
   }
   s.text("Each item as the protocol declares it. Ratings of the levels of " + d.factor(d.primary).name +
          " are compared with Friedman's test (participants as blocks); the overall rating of a "
          "level is a participant's mean over the item's other factors. n counts the participants who rated every "
          "level compared.");
   const int pf = d.primary;
-  nlohmann::json jq = nlohmann::json::object();
-  std::string csv = csv_line({"item", "participant", "scope", "value_number", "value_text"});
-  for (const auto& a : ctx.data.answers)
-    csv += csv_line({a.item, a.participant, a.scope, a.number ? csv_number(*a.number) : "NA", a.text ? *a.text : "NA"});
+  std::vector<QuestionnaireItemResult> results;
   std::vector<std::string> item_ids;
   for (const auto& item : items) item_ids.push_back(item.id);
   size_t ours = 0;
   QuestionnaireTables q = questionnaire_tables(d, item_ids, ours);
   Table &summary = q.summary, &others = q.others;
-  for (const auto& item : items) jq[item.id] = questionnaire_item(ctx, item, q);
+  for (const auto& item : items) results.push_back(questionnaire_item(ctx, item, q));
   if (d.reference)
     summary.groups = {{"this study", static_cast<int>(ours)},
                       {d.published_group(item_ids), static_cast<int>(summary.header.size() - ours)}};
@@ -388,9 +389,8 @@ void section_questionnaire(Context& ctx) {
                    "Average subjective rating per " + d.factor(pf).name +
                        " level (error bars: standard deviation over participants" + d.published_cf() + ").");
   }
-  ctx.json["questionnaire"] = jq;
-  ctx.csv["questionnaire.csv"] = csv;
   ctx.doc.sections.push_back(std::move(s));
+  return results;
 }
 
 }  // namespace dtlab::report::detail

@@ -164,7 +164,27 @@ struct SpeedAccuracyRow {
 // Time vs error per condition and participant, from the tests of `time` and `accuracy`; one row per task
 // with both (none: no section body beyond a sentence).
 std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
-void section_questionnaire(Context& ctx);   // ratings, preference, self-reported depth, depth test (asked at the end)
+// What the questionnaire section found for one item asked at the end of the session.
+struct QuestionnaireItemResult {
+  enum class Kind { other, rating, numeric, choice };
+  struct Share {
+    int count = 0;
+    double proportion = 0, sd = 0;  // of the participants who answered; NaN when none (sd: when < 2)
+  };
+  std::string id, type, prompt;
+  std::size_t n = 0;                // participants who answered
+  Kind kind = Kind::other;
+  std::vector<const TestReport*> tests;       // rating: Friedman per combination of the other factors, overall
+  stats::Descriptives descriptives;           // numeric: over the participants' values
+  std::optional<double> proportion_correct;   // numeric depth test: mean pairs correct / pairs
+  std::map<std::string, Share> choices;       // choice: per option chosen
+  std::optional<stats::SignTestResult> sign_test;  // choice between two options: second against first
+  std::string first_option, second_option;    // those options, when sign_test is set
+};
+// What the questionnaire section found: nullopt when the protocol asks nothing it reports; an empty list
+// when no answer is recorded; else one result per item, in protocol order.
+using QuestionnaireResult = std::optional<std::vector<QuestionnaireItemResult>>;
+QuestionnaireResult section_questionnaire(Context& ctx);  // ratings, preference, self-reported depth, depth test
 // A one-factor design over positions ("1", "2", ...) for the position tests (not movable: its design
 // points into its protocol).
 struct PositionDesign {
