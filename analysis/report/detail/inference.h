@@ -9,8 +9,6 @@
 // cell. A test that cannot run (no complete participant) is reported with
 // its reason, never as an error of the whole report.
 #pragma once
-#include <nlohmann/json.hpp>
-
 #include <map>
 #include <optional>
 #include <string>
@@ -76,11 +74,6 @@ TestReport run_friedman(const CellMatrix& m, const Design& d, std::string measur
 // more levels, Friedman's test.
 TestReport run_rank_test(const CellMatrix& m, const Design& d, std::string measure, std::string unit,
                          std::string scope, std::uint64_t seed);
-
-nlohmann::json to_json(const stats::Descriptives& d);
-nlohmann::json to_json(const stats::Effect& e);
-nlohmann::json to_json(const TestReport& r, const Design& d);
-nlohmann::json to_json(const InteractionFollowUp& f);
 
 // The p the report prints and judges an effect by: Greenhouse-Geisser corrected where ε < 1.
 double reported_p(const stats::Effect& e);

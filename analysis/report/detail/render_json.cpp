@@ -8,6 +8,7 @@
 #include "analysis/report/detail/format.h"
 #include "analysis/report/detail/planning.h"
 #include "analysis/report/detail/render_data.h"
+#include "analysis/stats/json.h"
 #include "analysis/stats/lmm_json.h"
 #include "study/common/version.h"
 
@@ -23,6 +24,166 @@ std::string utc_now() {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
+}
+
+json to_json(const InteractionFollowUp& f);
+
+// A test and its parts as report.json records them (NaN as null).
+json to_json(const stats::Descriptives& d) {
+  return {{"n", d.n},           {"mean", num(d.mean)},     {"sd", num(d.sd)},         {"se", num(d.se)},
+          {"ci_low", num(d.ci_low)}, {"ci_high", num(d.ci_high)}, {"median", num(d.median)},
+          {"q1", num(d.q1)},    {"q3", num(d.q3)},         {"min", num(d.min)},       {"max", num(d.max)}};
+}
+
+json to_json(const stats::Effect& e) {
+  json j = stats::effect_json<json>(e);
+  j["apa"] = effect_sentence(e);
+  return j;
+}
+
+// Descriptives of every cell of the test, with the cell's name and levels.
+json cells_json(const TestReport& r, const Design& d) {
+  const CellMatrix& m = *r.m;
+  json cells = json::array();
+  for (size_t c = 0; c < m.cells(); ++c) {
+    json levels = json::object();
+    for (size_t k = 0; k < m.factors.size(); ++k)
+      levels[d.factor(m.factors[k]).name] = d.factor(m.factors[k]).levels[static_cast<size_t>(m.level(c, k))];
+    json cj = to_json(r.cells[c]);
+    cj["cell"] = m.cell_names[c];
+    cj["levels"] = levels;
+    cells.push_back(cj);
+  }
+  return cells;
+}
+
+// Descriptives per level of each factor of the test.
+json marginals_json(const TestReport& r, const Design& d) {
+  const CellMatrix& m = *r.m;
+  json marg = json::object();
+  for (size_t k = 0; k < m.factors.size(); ++k) {
+    json per = json::array();
+    for (size_t l = 0; l < r.marginals[k].size(); ++l) {
+      json lj = to_json(r.marginals[k][l]);
+      lj["level"] = d.factor(m.factors[k]).levels[l];
+      per.push_back(lj);
+    }
+    marg[d.factor(m.factors[k]).name] = per;
+  }
+  return marg;
+}
+
+json friedman_json(const stats::FriedmanResult& f) {
+  return {{"Q", num(f.Q)},
+          {"df", num(f.df)},
+          {"p", num(f.p)},
+          {"log10_p", num(f.log10_p)},
+          {"p_exact", num(f.p_exact)},
+          {"exact_method", f.exact_method},
+          {"kendall_W", num(f.kendall_W)},
+          {"iman_davenport_F", num(f.iman_davenport_F)},
+          {"p_iman_davenport", num(f.p_iman_davenport)},
+          {"n", f.n},
+          {"k", f.k},
+          {"treatments", f.treatments},
+          {"mean_ranks", f.mean_ranks}};
+}
+
+json to_json(const TestReport& r, const Design& d) {
+  const CellMatrix& m = *r.m;
+  json j{{"measure", r.measure}, {"unit", r.unit}, {"scope", r.scope}, {"test", r.test}};
+  json factors = json::array();
+  for (int f : m.factors) factors.push_back(d.factor(f).name);
+  j["factors"] = factors;
+  j["n"] = r.kept.size();
+  j["excluded"] = r.excluded;
+  j["cells"] = cells_json(r, d);
+  j["marginals"] = marginals_json(r, d);
+  if (r.anova) {
+    json eff = json::array();
+    for (const auto& e : r.anova->effects) eff.push_back(to_json(e));
+    j["effects"] = eff;
+  }
+  if (r.friedman) j["friedman"] = friedman_json(*r.friedman);
+  if (r.wilcoxon) {
+    j["wilcoxon"] = stats::wilcoxon_json<json>(*r.wilcoxon);
+    j["wilcoxon"]["x"] = m.cell_names[0];
+    j["wilcoxon"]["y"] = m.cell_names[1];
+    j["wilcoxon"]["rank_biserial"] = num(rank_biserial(*r.wilcoxon));
+  }
+  if (!r.posthoc.empty()) {
+    json ph = json::object();
+    for (const auto& [factor, list] : r.posthoc) {
+      ph[factor] = stats::comparisons_json<json>(list);
+    }
+    j["posthoc"] = ph;
+  }
+  if (r.paired) {
+    const auto& p = *r.paired;
+    const auto& lv = d.factor(p.factor).levels;
+    j["paired"] = {{"factor", d.factor(p.factor).name},
+                   {"difference", lv[static_cast<size_t>(p.b)] + " - " + lv[static_cast<size_t>(p.a)]},
+                   {"n", p.t.n},
+                   {"mean_difference", num(p.t.mean_difference)},
+                   {"ci_low", num(p.t.ci_low)},
+                   {"ci_high", num(p.t.ci_high)},
+                   {"t", num(p.t.t)},
+                   {"df", num(p.t.df)},
+                   {"p", num(p.t.p)},
+                   {"dz", num(p.dz)}};
+  }
+  if (!r.followups.empty()) {
+    json fj = json::array();
+    for (const auto& f : r.followups) fj.push_back(to_json(f));
+    j["followups"] = fj;
+  }
+  if (r.normality)
+    j["shapiro_wilk_residuals"] = {{"n", r.normality->n}, {"W", num(r.normality->W)}, {"p", num(r.normality->p)},
+                                   {"warnings", r.normality->warnings}};
+  j["not_tested"] = r.not_tested.empty() ? json(nullptr) : json(r.not_tested);
+  j["warnings"] = r.warnings;
+  return j;
+}
+
+json to_json(const InteractionFollowUp& f) {
+  json simple = json::array();
+  for (const auto& se : f.simple.rows) {
+    json row{{"factor", se.factor}, {"at_factor", se.at_factor}, {"at_level", se.at_level},
+             {"test", se.test},     {"n", se.n},                 {"p", num(se.p)},
+             {"p_holm", num(se.p_holm)}};
+    if (se.test == "paired t")
+      row["contrast"] = stats::comparison_json<json>(se.contrast);
+    else
+      row["anova"] = to_json(se.anova);
+    simple.push_back(row);
+  }
+  json cells = json::array();
+  for (const auto& c : f.intervals) {
+    json levels = json::object();
+    for (const auto& [factor, level] : c.levels) levels[factor] = level;
+    cells.push_back({{"levels", levels}, {"n", c.n}, {"mean", num(c.mean)}, {"se_within", num(c.se)},
+                     {"ci95_low", num(c.ci_low)}, {"ci95_high", num(c.ci_high)}});
+  }
+  return {{"effect", f.effect},
+          {"simple_effects", simple},
+          {"cell_means_within_ci", cells},
+          {"ci_method", "Cousineau (2005) with Morey's (2008) correction"}};
+}
+
+
+json published_json(const protocol::ReferenceResult& r, const Design& d) {
+  const auto& rr = *d.protocol->reference_results;
+  json j{{"source", rr.source}, {"label", rr.label}, {"location", r.location}, {"F", r.F}, {"p", r.p}};
+  if (!r.per_level && !r.mean.empty()) {
+    j["mean"] = r.mean[0];
+    j["sd"] = r.sd[0];
+  } else if (!r.mean.empty()) {
+    for (size_t l = 0; l < r.mean.size(); ++l) {
+      j["mean"][d.factor(d.primary).levels[l]] = r.mean[l];
+      j["sd"][d.factor(d.primary).levels[l]] = r.sd[l];
+    }
+  }
+  return j;
 }
 
 json design_json(const Design& d) {
@@ -258,7 +419,7 @@ json frames_json(const FramesResult& fr) {
 
 json planning_json(const PlanningResult& p) {
   json effects = json::array();
-  for (const auto& e : p.effects) effects.push_back(to_json(e));
+  for (const auto& e : p.effects) effects.push_back(detail::to_json(e));  // planning.h's, as `dtlab power`
   return {{"method", "analytic"}, {"sizes", p.sizes}, {"alpha", p.alpha}, {"effects", effects},
           {"not_planned", p.not_planned}};
 }
@@ -273,7 +434,7 @@ json path_figures_json(const std::vector<PathFigure>& figures) {
 }  // namespace
 
 json render_json(const Context& ctx, const SectionResults& results, const ReportSummary& summary) {
-  json j = ctx.json;
+  json j = json::object();
   j["sample"] = sample_json(results.sample);
   j["completion_time"] = time_json(results.time, ctx.design);
   if (!results.accuracy.rows.empty()) j["accuracy"] = accuracy_json(results.accuracy, ctx.design);

@@ -8,12 +8,9 @@
 // and method, completion time, accuracy, mixed models of the trials,
 // speed-accuracy, questionnaire, instruments, position effects, frame-time
 // audit, then planning the next study. report.json and the CSV files are laid
-// out from the results by one renderer each (render_data.h); the sections
-// that still add entries to ctx.json and ctx.csv are being moved there.
-// Sections never write files and never touch the database.
+// out from the results by one renderer each (render_data.h). Sections never
+// build JSON, never write CSV or any file and never touch the database.
 #pragma once
-#include <nlohmann/json.hpp>
-
 #include <deque>
 #include <map>
 #include <memory>
@@ -44,9 +41,7 @@ struct Context {
   long long analysed_trials = 0;
 
   Document doc;
-  nlohmann::json json = nlohmann::json::object();
   std::vector<PlotSpec> plots;
-  std::map<std::string, std::string> csv;  // file name -> content
   std::vector<std::string> warnings;       // data problems, shown at the top
   int tests = 0;                           // statistical tests reported
 
@@ -289,8 +284,6 @@ Reducer overall_time(const Design& d, const std::function<std::optional<double>(
 // --- helpers shared by the sections (section_common.cpp) ---------------------------------------
 // Fills ctx.subjects (participants with analysed trials, enrollment order) and ctx.analysed_trials.
 void collect_subjects(Context& ctx);
-// The tests.csv table: one row per ANOVA effect or Friedman test of every stored TestReport.
-std::string tests_csv(const Context& ctx);
 // An effect's df as a cell: "1, 15", or Greenhouse-Geisser corrected where ε < 1 ("2.39, 35.89").
 std::string df_cell(const stats::Effect& e);
 // F, df, p and ηp² of the effect as table cells (df and p as above); four dashes for nullptr.
@@ -306,12 +299,5 @@ std::vector<std::string> test_notes(const TestReport& r);
 void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string& id, const std::string& caption);
 // "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
 std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
-// report.json's record of a published row: source, label, location, mean and sd per level (or one value), F, p.
-nlohmann::json published_json(const protocol::ReferenceResult& r, const Design& d);
-// A CSV line from fields (quoted as the export quotes them).
-std::string csv_line(const std::vector<std::string>& fields);
-// Participant x cell values of a matrix as long CSV rows (measure, scope, participant, levels..., value, trials).
-std::string matrix_csv_rows(const CellMatrix& m, const Design& d, const std::string& measure, const std::string& scope);
-std::string matrix_csv_header(const Design& d);
 
 }  // namespace dtlab::report::detail
