@@ -133,7 +133,7 @@ Status run_one_trial(Run& r, const design::PlannedTrial& planned, std::optional<
   if (!setup) return setup.error();
   if (!task_set || task_set->first != planned.block || task_set->second != planned.task) {
     TaskSetSpec set{&p, r.participant_id, r.sum.enrollment.index, planned.block, planned.task, &setup.value(),
-                    p.training.time_limit_s, false};
+                    p.training.time_limit_s, false, {}};
     // A set is resumed when a trial of it is already in the file.
     for (const RecordedTrial& t : r.history)
       if (t.planned.block == planned.block && t.planned.task == planned.task) set.resumed = true;

@@ -241,6 +241,8 @@ TEST(ShaderPrograms, AMethodsShaderThatTheDriverRefusesIsAnEnvironmentErrorOfThe
   ASSERT_FALSE(shared.ok());
   EXPECT_EQ(shared.error().kind, ErrorKind::environment);
   EXPECT_TRUE(contains(shared.error().to_string(), "shaders/object.frag")) << shared.error().to_string();
+  EXPECT_EQ(shared.error().field, "render");  // docs/render.md, "Errors": every render.h Error's field
+  EXPECT_EQ(shared.error().message.rfind("Renderer::create: ", 0), 0u) << shared.error().message;
 }
 
 }  // namespace

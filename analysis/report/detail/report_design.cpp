@@ -6,6 +6,7 @@
 #include <set>
 
 #include "analysis/report/detail/format.h"
+#include "study/technique/technique.h"
 
 namespace dtlab::report::detail {
 namespace {
@@ -15,15 +16,21 @@ std::string lower(std::string s) {
   return s;
 }
 
-// The reference study (STUDY.md): a rendering factor {off = standard, on =
-// dt-*}, tasks T1..T4 of the article's types. Other protocols get no article column.
+// The reference study: a rendering factor {off = standard, on = dt-seed or
+// dt-fast}, tasks T1..T4 of the article's types. Other protocols get no article column.
 bool is_reference_design(const protocol::Protocol& p, const Design& d) {
   if (d.primary < 0 || p.factors[static_cast<size_t>(d.primary)].role != protocol::FactorRole::rendering) return false;
   const auto& lv = p.factors[static_cast<size_t>(d.primary)].levels;
   if (lv != std::vector<std::string>{"off", "on"}) return false;
   const auto* off = protocol::find_rendering(p, "off");
   const auto* on = protocol::find_rendering(p, "on");
-  if (!off || !on || off->method != "standard" || on->method.rfind("dt-", 0) != 0) return false;
+  if (!off || !on) return false;
+  // off: the plain rendering; on: the article's dynamic transparency or a method approximating it
+  // (the technique registry says which).
+  const technique::Technique* plain = technique::find(off->method);
+  const technique::Technique* dt = technique::find(on->method);
+  if (!plain || !dt || plain->id != technique::Method::standard) return false;
+  if (dt->id != technique::Method::dt_seed && dt->approximates != technique::Method::dt_seed) return false;
   const std::vector<std::pair<std::string, protocol::TaskType>> want = {
       {"T1", protocol::TaskType::count_targets},
       {"T2", protocol::TaskType::identify_letter},

@@ -66,7 +66,8 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& scene) {
         if (!gpu) return gpu.error();
         impl->gpu = std::move(gpu.value());
         auto programs = detail::compile_programs();
-        if (!programs) return programs.error();
+        if (!programs)  // the field and prefix every error of render.h carries (docs/render.md, "Errors")
+          return detail::render_error("Renderer::create", programs.error().to_string(), ErrorKind::environment);
         impl->programs = std::move(programs.value());
         impl->sorter = std::make_unique<detail::GroupSorter>(impl->gpu->objects());
         return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
