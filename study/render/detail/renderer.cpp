@@ -79,7 +79,7 @@ const std::string& Renderer::last_graphviz() const { return impl_->graphviz; }
 
 Result<double> Renderer::prepare(const FrameSettings& settings) {
   return detail::guarded<Result<double>>("Renderer::prepare", [&]() -> Result<double> {
-    if (!technique::of(settings.method).cullable) return 0.0;  // culls nothing (OcclusionCuller::run)
+    if (!technique::of(settings.method).cullable) return 0.0;  // culls nothing (OcclusionCuller::add_passes)
     detail::OcclusionCuller* culler = impl_->culler_for(settings);
     return culler != nullptr ? culler->prepare() : 0.0;
   });
