@@ -4,9 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 
-#include "study/render/detail/boundary.h"
 #include "study/render/detail/occlusion_culling.h"
 
 namespace dtlab::render::detail {
@@ -21,7 +19,7 @@ OcclusionCuller::OcclusionCuller(const scene::Scene& scene, const std::vector<Ob
     : scene_(scene), objects_(objects), hierarchy_(build_hierarchy(objects)) {}
 
 OcclusionCuller::~OcclusionCuller() {
-  if (reduce_.id != 0) glDeleteProgram(reduce_.id);
+  delete_program(reduce_);
 }
 
 namespace {
@@ -78,18 +76,13 @@ bool OcclusionCuller::add_passes(FrameGraph& fg, FrameView& view, const FrameCon
   // culls nothing: no occluder database, no GPU work.
   if (!technique::of(fc.settings.method).cullable) return false;
   report.preprocess_ms = prepare();
-  if (reduce_.id == 0) {
-    auto p = link_program("fullscreen.vert", "depth_reduce.frag");
-    if (!p) throw GlFailure("occlusion culling: " + p.error().to_string());
-    reduce_ = std::move(p.value());
-  }
+  if (reduce_.id == 0) reduce_ = link_method_program("occlusion culling", "fullscreen.vert", "depth_reduce.frag");
   const std::vector<std::uint32_t>& occluders = database_->nearest(view.camera.eye);
   if (std::none_of(occluders.begin(), occluders.end(), [&](std::uint32_t i) { return !view.rects[i].empty(); }))
     return false;  // no occluder in view: nothing can be hidden, no GPU work
   const int W = view.width, H = view.height;
   const int block = std::max(1, (std::max(W, H) + kMapSide - 1) / kMapSide);
   const int map_w = (W + block - 1) / block, map_h = (H + block - 1) / block;
-  auto started = std::make_shared<Clock::time_point>();  // the culling's wall time, from its first pass
 
   // Step 2: the grid point's occluders in view, depth only, no lighting.
   const auto& depth = fg.add_pass<OccluderDepthData>(
@@ -97,8 +90,8 @@ bool OcclusionCuller::add_passes(FrameGraph& fg, FrameView& view, const FrameCon
       [&](FrameGraph::Builder& b, OccluderDepthData& d) {
         d.depth = b.write(b.create("occluder depth", {W, H, TextureFormat::depth24_stencil8, false}));
       },
-      [&view, &fc, &occluders, &report, started, W, H](const OccluderDepthData& d, PassResources& r) {
-        *started = Clock::now();
+      [this, &view, &fc, &occluders, &report, W, H](const OccluderDepthData& d, PassResources& r) {
+        started_ = Clock::now();
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.depth));
         glViewport(0, 0, W, H);
         glDisable(GL_SCISSOR_TEST);
@@ -149,7 +142,7 @@ bool OcclusionCuller::add_passes(FrameGraph& fg, FrameView& view, const FrameCon
         d.map = b.read(map.map);
         b.side_effect();  // its output is the view's lists, read on the CPU
       },
-      [this, &view, &fc, footprint, &report, started, map_w, map_h, block](const CullTestData& d, PassResources& r) {
+      [this, &view, &fc, footprint, &report, map_w, map_h, block](const CullTestData& d, PassResources& r) {
         std::vector<float> depths(static_cast<std::size_t>(map_w) * map_h);
         const auto t = Clock::now();
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
@@ -164,7 +157,7 @@ bool OcclusionCuller::add_passes(FrameGraph& fg, FrameView& view, const FrameCon
         const OcclusionMap occlusion = make_occlusion_map(std::move(depths), map_w, map_h, block,
                                                           holes(view, fc.settings.method, footprint ? &*footprint : nullptr));
         cull(view, occlusion, uses_transparency(fc.settings.method), report);
-        report.ms = ms_since(*started);
+        report.ms = ms_since(started_);
       });
   return true;
 }

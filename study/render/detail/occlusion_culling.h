@@ -12,6 +12,7 @@
 // targets are never culled). Never: changes the picture, or GL state that the
 // frame's GlStateGuard does not restore.
 #pragma once
+#include <chrono>
 #include <memory>
 #include <optional>
 
@@ -52,6 +53,7 @@ class OcclusionCuller {
   Hierarchy hierarchy_;
   std::unique_ptr<OccluderDatabase> database_;
   Program reduce_;
+  std::chrono::steady_clock::time_point started_;  // when this frame's first culling pass ran (CullingReport::ms)
 
   // Steps 4-5: the hierarchy tested against `map`; hidden objects leave `view`'s rects and lists.
   void cull(FrameView& view, const OcclusionMap& map, bool transparency, CullingReport& report) const;
