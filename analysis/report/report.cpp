@@ -1,8 +1,9 @@
 // write_report: read, analyse, draw, write (report.h). The database is read
 // through one StudyReader snapshot: the tidy table (byte for byte what
 // `dtlab export` writes) and each design revision's data come from it. The
-// sections compute; the Document's three renderers, render_json and
-// render_csv lay their results out; this file writes what they return.
+// sections compute first, all of them; then their layout functions build the
+// Document, which three renderers print, and render_json and render_csv lay
+// the results out; this file writes what they return.
 // Output files are written whole or not at all (write_file_atomically).
 #include "analysis/report/report.h"
 
@@ -22,6 +23,16 @@
 #include "study/store/export.h"
 
 namespace dtlab::report {
+
+std::vector<const detail::Tally*> detail::SectionResults::tallies() const {
+  std::vector<const Tally*> out = {&overview.tally, &sample.tally,          &time.tally,
+                                   &accuracy.tally, &mixed.tally,           &speed_accuracy.tally,
+                                   &questionnaire.tally};
+  if (instruments) out.push_back(&instruments->tally);
+  for (const Tally* t : {&position.tally, &frames.tally, &planning.tally, &paths.tally}) out.push_back(t);
+  return out;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -81,45 +92,60 @@ Result<DrawnPaths> draw_paths(store::StudyReader& reader, const Context& ctx) {
   return out;
 }
 
-// Every section in a paper's order, each handed the declared results it builds on, then the walked paths
-// (their SVG texts to `paths`).
+// Every section computed in a paper's order, each handed the declared results it builds on, then the walked
+// paths (their SVG texts to `paths`). Nothing is laid out yet.
 Result<SectionResults> run_sections(store::StudyReader& reader, Context& ctx, const ProgressFn& say,
                                     DrawnPaths& paths) {
   SectionResults r;
   say("participants and design (" + std::to_string(ctx.subjects.size()) + " participants, " +
       std::to_string(ctx.analysed_trials) + " trials)");
-  section_overview(ctx);
+  r.overview = section_overview(ctx);
   r.sample = section_participants(ctx);
   say("completion time");
   r.time = section_time(ctx);
-  const TimeResult& time = r.time;
   say("accuracy");
   r.accuracy = section_errors(ctx);
-  const AccuracyResult& accuracy = r.accuracy;
   say("mixed models");
-  r.mixed = section_mixed_models(ctx, time, accuracy);
+  r.mixed = section_mixed_models(ctx, r.time, r.accuracy);
   say("speed and accuracy");
-  r.speed_accuracy = section_speed_accuracy(ctx, time, accuracy);
+  r.speed_accuracy = section_speed_accuracy(ctx, r.time, r.accuracy);
   say("questionnaire");
   r.questionnaire = section_questionnaire(ctx);
   say("instruments and questions per condition");
   r.instruments = section_instruments(ctx);
   say("position effects");
-  r.position = section_position(ctx, time);
+  r.position = section_position(ctx, r.time);
   say("frame-time audit");
   r.frames = section_frames(ctx);
-  warn_at_top(ctx.doc, r.frames);
   say("planning the next study");
-  r.planning = section_planning(ctx, time, accuracy);
+  r.planning = section_planning(ctx, r.time, r.accuracy);
   if (ctx.options.path_figure) say("walked paths");
   auto drawn = draw_paths(reader, ctx);
   if (!drawn) return drawn.error();
   paths = std::move(*drawn);
-  for (const auto& [f, svg] : paths.figures) r.path_figures.push_back(f);
-  r.paths_left_out = paths.left_out;
-  r.with_paths = section_paths(ctx, r.path_figures, r.paths_left_out);
-  section_notes(ctx, r.with_paths);
+  std::vector<PathFigure> figures;
+  for (const auto& [f, svg] : paths.figures) figures.push_back(f);
+  r.paths = section_paths(std::move(figures), paths.left_out);
   return r;
+}
+
+// Every section's result laid out in the same order: the Document and the plots its figures draw.
+Layout lay_out(const Context& ctx, const SectionResults& r) {
+  Layout out;
+  lay_out_overview(out, ctx, r.overview, r.frames);
+  lay_out_participants(out, r.sample);
+  lay_out_time(out, ctx, r.time);
+  lay_out_accuracy(out, ctx, r.accuracy);
+  lay_out_mixed_models(out, ctx, r.mixed);
+  lay_out_speed_accuracy(out, ctx, r.speed_accuracy, r.time, r.accuracy);
+  lay_out_questionnaire(out, ctx, r.questionnaire);
+  if (r.instruments) lay_out_instruments(out, ctx, *r.instruments);
+  lay_out_position(out, ctx, r.position);
+  lay_out_frames(out, r.frames);
+  lay_out_planning(out, ctx, r.planning);
+  lay_out_paths(out, r.paths);
+  lay_out_notes(out, ctx, r.paths.shown);
+  return out;
 }
 
 // The report of one design revision into `out`.
@@ -148,8 +174,9 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   DrawnPaths paths;
   auto results = run_sections(reader, ctx, say, paths);
   if (!results) return results.error();
-  say("drawing " + std::to_string(ctx.plots.size()) + " figures with " + gnuplot);
-  auto svg = render_plots(ctx.plots, figures.string(), gnuplot);
+  const Layout layout = lay_out(ctx, *results);
+  say("drawing " + std::to_string(layout.plots.size()) + " figures with " + gnuplot);
+  auto svg = render_plots(layout.plots, figures.string(), gnuplot);
   if (!svg) return svg.error();
 
   ReportSummary sum;
@@ -157,20 +184,22 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
   sum.participants = static_cast<int>(ctx.subjects.size());
   sum.trials = ctx.analysed_trials;
   sum.excluded_trials = data.excluded_trials;
-  sum.tests = ctx.tests;
   sum.simulated = !ctx.simulated.empty() && ctx.simulated.size() == ctx.subjects.size();
   sum.revisions = {data.design_revision};
-  sum.warnings = ctx.warnings;
+  for (const Tally* t : results->tallies()) {
+    sum.tests += t->tests;
+    sum.warnings.insert(sum.warnings.end(), t->warnings.begin(), t->warnings.end());
+  }
 
   say("writing " + out.string());
   std::map<std::string, std::string> csv = render_csv(ctx, *results);
   std::vector<std::pair<std::string, std::string>> files = {
       {"trials.csv", tidy},
       {"tests.csv", csv.extract("tests.csv").mapped()},
-      {"report.json", render_json(ctx, *results, sum).dump(2) + "\n"},
-      {"report.md", render_markdown(ctx.doc)},
-      {"index.html", render_html(ctx.doc, *svg)},
-      {"report.tex", render_latex(ctx.doc)},
+      {"report.json", render_json(ctx, *results, sum, layout.plots).dump(2) + "\n"},
+      {"report.md", render_markdown(layout.doc)},
+      {"index.html", render_html(layout.doc, *svg)},
+      {"report.tex", render_latex(layout.doc)},
   };
   for (auto& [name, content] : csv) files.push_back({name, std::move(content)});
   if (!paths.figures.empty()) {
@@ -182,7 +211,7 @@ Result<ReportSummary> write_one(store::StudyReader& reader, const StudyData& dat
     if (auto s = write_whole(out / name, content); !s) return s.error();
     sum.files.push_back(name);
   }
-  for (const auto& p : ctx.plots)
+  for (const auto& p : layout.plots)
     for (const char* ext : {".svg", ".png", ".pdf"}) sum.files.push_back("figures/" + p.id + ext);
   return sum;
 }

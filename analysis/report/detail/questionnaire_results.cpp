@@ -106,7 +106,7 @@ CellMatrix matrix_of(const Context& ctx, const std::vector<int>& factors, const 
 }
 
 // One measure: its matrix and test (none at the end: each participant's mean described instead).
-ConditionMeasure measure_of(Context& ctx, ConditionMeasure cm, const q::When& when, bool ordinal,
+ConditionMeasure measure_of(Context& ctx, Tally& tally, ConditionMeasure cm, const q::When& when, bool ordinal,
                             const std::vector<const q::TableRow*>& rows) {
   const Design& d = ctx.design;
   std::vector<int> factors = factors_of(d, when);
@@ -118,7 +118,7 @@ ConditionMeasure measure_of(Context& ctx, ConditionMeasure cm, const q::When& wh
   if (factors.empty()) return cm;
   const CellMatrix& m = ctx.keep(matrix_of(ctx, factors, rows));
   if (!ordinal) {
-    cm.test = &ctx.add_test("instruments", run_rm_anova(m, d, cm.id, "", "per condition"));
+    cm.test = &ctx.add_test("instruments", run_rm_anova(m, d, cm.id, "", "per condition"), tally);
     return cm;
   }
   // Points on a scale: Friedman's test across the compared factor's levels (the primary factor
@@ -127,7 +127,8 @@ ConditionMeasure measure_of(Context& ctx, ConditionMeasure cm, const q::When& wh
   for (size_t i = 0; i < factors.size(); ++i)
     if (factors[i] == d.primary) k = i;
   const CellMatrix& one = factors.size() == 1 ? m : ctx.keep(marginal_matrix(m, k));
-  cm.test = &ctx.add_test("instruments", run_friedman(one, d, cm.id, "", "per condition", ctx.options.seed));
+  cm.test = &ctx.add_test("instruments", run_friedman(one, d, cm.id, "", "per condition", ctx.options.seed),
+                          tally);
   return cm;
 }
 
@@ -154,7 +155,7 @@ QuestionnaireResults questionnaire_results(Context& ctx) {
                               condition_text(d, *r), *r->number});
       ConditionMeasure cm{id, use.instrument->title + ": " + scale.label, use.instrument->name, q::to_string(use.when),
                           scale.min, scale.max, nullptr, {}};
-      out.measures.push_back(measure_of(ctx, std::move(cm), use.when, /*ordinal=*/false, rows));
+      out.measures.push_back(measure_of(ctx, out.tally, std::move(cm), use.when, /*ordinal=*/false, rows));
     }
   }
   for (const protocol::QuestionnaireItem& item : p.questionnaire) {
@@ -185,7 +186,7 @@ QuestionnaireResults questionnaire_results(Context& ctx) {
     }
     const q::NumberPair b = item.type->bounds ? item.type->bounds(item) : q::NumberPair{};
     ConditionMeasure cm{item.id, item.prompt, "", q::to_string(item.when), b.min, b.max, nullptr, {}};
-    out.measures.push_back(measure_of(ctx, std::move(cm), item.when, measure == q::Measure::ordinal, rows));
+    out.measures.push_back(measure_of(ctx, out.tally, std::move(cm), item.when, measure == q::Measure::ordinal, rows));
   }
   return out;
 }

@@ -53,13 +53,17 @@ struct QuestionnaireResults {
   std::vector<ConditionCounts> counts;
   std::vector<FreeText> texts;             // non-empty answers, participant order then protocol order
   std::vector<InstrumentScore> scores;     // participant x occasion x scale
+  Tally tally;                             // the measures' tests
 };
 
-// Computes everything above; tests are stored in ctx (ctx.add_test, section "instruments").
+// Computes everything above; tests are stored in ctx (ctx.add_test, section "instruments") and counted in
+// the result's tally.
 QuestionnaireResults questionnaire_results(Context& ctx);
 
-// The section "Instruments and questions per condition" (section_instruments.cpp): lays out
-// questionnaire_results() and returns it; nullopt (no section) when the protocol has nothing of it.
+// The section "Instruments and questions per condition" (section_instruments.cpp): questionnaire_results(),
+// or nullopt (no section) when the protocol has nothing of it.
 std::optional<QuestionnaireResults> section_instruments(Context& ctx);
+// Lays out its result (computes nothing).
+void lay_out_instruments(Layout& out, const Context& ctx, const QuestionnaireResults& res);
 
 }  // namespace dtlab::report::detail

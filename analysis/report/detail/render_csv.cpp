@@ -210,7 +210,8 @@ std::map<std::string, std::string> render_csv(const Context& ctx, const SectionR
   files["completion_time_means.csv"] = means_csv(results.time.means, ctx.design);
   if (!results.accuracy.rows.empty()) files["accuracy_means.csv"] = means_csv(results.accuracy.means, ctx.design);
   if (!results.sample.around.empty()) files["sessions_notes.csv"] = sessions_notes_csv(results.sample);
-  if (results.questionnaire && !results.questionnaire->empty())  // answers recorded: the section tested them
+  // Answers recorded: the section tested them.
+  if (results.questionnaire.items && !results.questionnaire.items->empty())
     files["questionnaire.csv"] = questionnaire_csv(ctx.data);
   if (results.instruments) {
     files["instrument_scores.csv"] = instrument_scores_csv(*results.instruments);

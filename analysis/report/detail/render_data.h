@@ -20,24 +20,26 @@ namespace dtlab::report::detail {
 
 // Every section's result, as report.cpp collects them in a paper's order.
 struct SectionResults {
+  OverviewResult overview;
   ParticipantsResult sample;
   TimeResult time;
   AccuracyResult accuracy;
-  std::vector<MixedModelResult> mixed;
-  std::vector<SpeedAccuracyRow> speed_accuracy;
+  MixedResult mixed;
+  SpeedAccuracyResult speed_accuracy;
   QuestionnaireResult questionnaire;
-  std::optional<QuestionnaireResults> instruments;
-  PositionResult position;  // nullopt: no instruments section
+  std::optional<QuestionnaireResults> instruments;  // nullopt: no instruments section
+  PositionResult position;
   FramesResult frames;
   PlanningResult planning;
-  bool with_paths = false;                 // the walked-paths section exists
-  std::vector<PathFigure> path_figures;
-  std::vector<std::string> paths_left_out;
+  PathsResult paths;
+  // Every section's tally, in the order above (the order of report.json's warnings).
+  std::vector<const Tally*> tallies() const;
 };
 
-// report.json: the study as a whole (protocol, design, participants, exclusions, `summary`'s counts,
-// warnings, figures) and every section's entry.
-nlohmann::json render_json(const Context& ctx, const SectionResults& results, const ReportSummary& summary);
+// report.json: the study as a whole (protocol, design, participants, exclusions, `summary`'s counts and
+// warnings, the figures of `plots`) and every section's entry.
+nlohmann::json render_json(const Context& ctx, const SectionResults& results, const ReportSummary& summary,
+                           const std::vector<PlotSpec>& plots);
 
 // Every CSV file of the report but trials.csv (the export's): file name -> text.
 std::map<std::string, std::string> render_csv(const Context& ctx, const SectionResults& results);

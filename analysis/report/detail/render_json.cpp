@@ -220,7 +220,7 @@ json participants_json(const Context& ctx) {
 }
 
 // The entries about the study as a whole, beside the sections' own.
-void study_json(json& j, const Context& ctx, const ReportSummary& sum) {
+void study_json(json& j, const Context& ctx, const ReportSummary& sum, const std::vector<PlotSpec>& plots) {
   const StudyData& data = ctx.data;
   j["report_format"] = 1;
   j["generated_by"] = std::string(dtlab::version_string());
@@ -240,9 +240,9 @@ void study_json(json& j, const Context& ctx, const ReportSummary& sum) {
   j["summary"] = {{"participants", sum.participants}, {"trials", sum.trials}, {"tests", sum.tests},
                   {"excluded_trials", data.excluded_trials}, {"with_excluded", data.with_excluded},
                   {"simulated", sum.simulated}, {"simulated_participants", ctx.simulated}};
-  j["warnings"] = ctx.warnings;
+  j["warnings"] = sum.warnings;
   std::vector<std::string> figure_files;
-  for (const auto& p : ctx.plots) figure_files.push_back("figures/" + p.id + ".svg");
+  for (const auto& p : plots) figure_files.push_back("figures/" + p.id + ".svg");
   j["figures"] = figure_files;
   j["figure_formats"] = {"svg", "png", "pdf"};  // figures/<id>.<format>, drawn by one gnuplot run
 }
@@ -433,30 +433,31 @@ json path_figures_json(const std::vector<PathFigure>& figures) {
 
 }  // namespace
 
-json render_json(const Context& ctx, const SectionResults& results, const ReportSummary& summary) {
+json render_json(const Context& ctx, const SectionResults& results, const ReportSummary& summary,
+                 const std::vector<PlotSpec>& plots) {
   json j = json::object();
   j["sample"] = sample_json(results.sample);
   j["completion_time"] = time_json(results.time, ctx.design);
   if (!results.accuracy.rows.empty()) j["accuracy"] = accuracy_json(results.accuracy, ctx.design);
-  if (!results.speed_accuracy.empty()) j["speed_accuracy"] = speed_accuracy_json(results.speed_accuracy);
+  if (!results.speed_accuracy.rows.empty()) j["speed_accuracy"] = speed_accuracy_json(results.speed_accuracy.rows);
   j["position"] = position_json(results.position, ctx.design);
-  if (results.questionnaire) {
+  if (results.questionnaire.items) {
     json items = json::object();
-    for (const auto& item : *results.questionnaire) items[item.id] = questionnaire_item_json(item, ctx.design);
+    for (const auto& item : *results.questionnaire.items) items[item.id] = questionnaire_item_json(item, ctx.design);
     j["questionnaire"] = items;
   }
   if (results.time.log_rows) j["completion_time_log"] = {{"tests", tests_json(*results.time.log_rows, ctx.design)}};
   json mixed = json::array();
-  for (const auto& m : results.mixed) mixed.push_back(mixed_json(m));
+  for (const auto& m : results.mixed.models) mixed.push_back(mixed_json(m));
   j["mixed_models"] = mixed;
   if (results.instruments) j["instruments"] = instruments_json(*results.instruments, ctx.design);
   j["frames"] = frames_json(results.frames);
   j["planning"] = planning_json(results.planning);
-  if (results.with_paths) {
-    j["path_figures"] = path_figures_json(results.path_figures);
-    j["path_figures_left_out"] = results.paths_left_out;
+  if (results.paths.shown) {
+    j["path_figures"] = path_figures_json(results.paths.figures);
+    j["path_figures_left_out"] = results.paths.left_out;
   }
-  study_json(j, ctx, summary);
+  study_json(j, ctx, summary, plots);
   return j;
 }
 

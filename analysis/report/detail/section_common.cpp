@@ -1,7 +1,9 @@
-// Helpers shared by the report sections: the Context's bookkeeping, the full
-// ANOVA table in APA style with its sentences, the follow-up of significant
-// interactions (simple-effects table, interaction plot), paired-comparison
-// tables and notes under a test's table. Layout only; the numbers come from
+// Helpers shared by the report sections: the Context's bookkeeping (storing
+// a test and counting it in the section's Tally), the Layout's figures, and
+// for the layout functions the full ANOVA table in APA style with its
+// sentences, the follow-up of significant interactions (simple-effects table,
+// interaction plot), paired-comparison tables and notes under a test's table.
+// The layout helpers compute no statistic; the numbers come from
 // analysis/stats, and report.json and the CSV files from render_data.h.
 #include <algorithm>
 #include <cmath>
@@ -25,7 +27,7 @@ const CellMatrix& Context::cells(const std::vector<int>& factors, const TrialFil
       data, design, subjects, factors, [&](const TrialRow& t) { return analysed(t) && include(t); }, reduce));
 }
 
-void Context::add_figure(Section& s, PlotSpec p, const std::string& caption) {
+void Layout::add_figure(Section& s, PlotSpec p, const std::string& caption) {
   if (p.empty) {
     s.text("(Figure \"" + p.id + "\" is not drawn: there is no finite value to plot.)");
     return;
@@ -53,22 +55,11 @@ const TestReport* AccuracyResult::of(const std::string& id) const {
   return it == by_task.end() ? nullptr : it->second;
 }
 
-void warn_at_top(Document& doc, const FramesResult& frames) {
-  if (frames.warnings.empty()) return;
-  for (auto& sec : doc.sections)
-    if (sec.id == "data") {
-      std::vector<std::string> items = frames.warnings;
-      items.push_back("See the frame-time audit (#frames) before reading completion-time differences as the "
-                      "conditions' effect on the participants.");
-      sec.blocks.insert(sec.blocks.begin(), Callout{"warning", "Render cost may confound completion time", items});
-    }
-}
-
-const TestReport& Context::add_test(const std::string& section, TestReport r) {
+const TestReport& Context::add_test(const std::string& section, TestReport r, Tally& tally) {
   if (r.anova)
-    tests += static_cast<int>(r.anova->effects.size());
+    tally.tests += static_cast<int>(r.anova->effects.size());
   else if (r.friedman || r.wilcoxon)
-    ++tests;
+    ++tally.tests;
   reports.push_back(std::move(r));
   report_section.push_back(section);
   return reports.back();
@@ -221,7 +212,8 @@ PlotSpec interaction_plot(const Design& d, const InteractionFollowUp& f, const s
 
 }  // namespace
 
-void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string& id, const std::string& caption) {
+void add_anova(Layout& out, Section& s, const Design& d, const TestReport& r, const std::string& id,
+               const std::string& caption) {
   s.add(anova_table(r, id, caption));
   if (!r.anova || r.anova->effects.empty()) return;
   Callout c{"note", "In the text (APA style; Greenhouse-Geisser corrected where ε < 1)", {}};
@@ -236,7 +228,7 @@ void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string&
            "), so each factor's effect is tested at each "
            "level of the other (simple effects).");
     s.add(simple_effects_table(f, "table-simple-" + stem.substr(stem.find('-') + 1), what, r.unit));
-    ctx.add_figure(s, interaction_plot(ctx.design, f, "fig-interaction-" + stem.substr(stem.find('-') + 1), ylabel),
+    out.add_figure(s, interaction_plot(d, f, "fig-interaction-" + stem.substr(stem.find('-') + 1), ylabel),
                    "The " + f.a + " × " + f.b + " interaction, " + what + ": cell means with within-subject 95% "
                    "confidence intervals (Cousineau 2005 with Morey's 2008 correction; they show the precision of "
                    "comparisons within participants, not of the means themselves).");

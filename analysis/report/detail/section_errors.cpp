@@ -5,6 +5,8 @@
 // all counting tasks together; letter tasks the proportion correct by
 // Friedman; find-unique tasks the Euclidean distance by RM ANOVA. Trials
 // without an answer are left out of the error measures and counted in a note.
+// section_errors runs the tests into an AccuracyResult; lay_out_accuracy lays
+// it out and computes nothing.
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
@@ -43,9 +45,8 @@ std::string effect_size_text(const TestReport& r, const std::string& factor) {
 }
 
 // The accuracy tests of every task (and of all counting tasks together), computed before any layout into
-// the section's AccuracyResult; what the layout needs beside.
+// the section's AccuracyResult; what computing them needs beside.
 struct AccuracyTests {
-  std::vector<std::string> notes;                 // unanswered trials, true counts of 0
   std::vector<const TaskInfo*> count_tasks;
   std::vector<int> count_factors;                 // the factors varying in any counting task
   // Stores a row and its matrix (`measure`: the matrix's name in accuracy_means.csv).
@@ -84,11 +85,13 @@ void task_tests(Context& ctx, const TaskInfo& task, AccuracyTests& out, Accuracy
       if (std::find(out.count_factors.begin(), out.count_factors.end(), f) == out.count_factors.end())
         out.count_factors.push_back(f);
     const auto& m1 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.scores.rel_error; }));
-    const auto& r1 = ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id));
+    const auto& r1 =
+        ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", task.id), result.tally);
     result.by_task[task.id] = &r1;
     out.add(result, {task.id, "rel. error, mean of trials", "", &r1, "", 3}, m1, "rel_error_mean");
     const auto& m2 = ctx.cells(task.factors, in_task, aggregated_relative_error());
-    const auto& r2 = ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id));
+    const auto& r2 =
+        ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", task.id), result.tally);
     out.add(result, {task.id, "rel. error, aggregated", "", &r2, task.id, 3}, m2, "rel_error_aggregated");
     const auto& m3 = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) {
                                  const auto& e = t.scores.signed_error;
@@ -97,12 +100,13 @@ void task_tests(Context& ctx, const TaskInfo& task, AccuracyTests& out, Accuracy
     result.means.push_back({&m3, "signed_error_mean", task.id});
   } else if (task.type == TaskType::identify_letter) {
     const auto& m = ctx.cells(task.factors, in_task, proportion_correct());
-    const auto& r = ctx.add_test("accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed));
+    const auto& r = ctx.add_test(
+        "accuracy", run_friedman(m, d, "proportion correct", "", task.id, ctx.options.seed), result.tally);
     result.by_task[task.id] = &r;
     out.add(result, {task.id, "proportion correct", "", &r, task.id, 3}, m, "proportion_correct");
   } else if (task.type == TaskType::find_unique) {
     const auto& m = ctx.cells(task.factors, in_task, mean_of([](const TrialRow& t) { return t.scores.distance; }));
-    const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id));
+    const auto& r = ctx.add_test("accuracy", run_rm_anova(m, d, "distance", "world units", task.id), result.tally);
     result.by_task[task.id] = &r;
     out.add(result, {task.id, "distance (world units)", "world units", &r, task.id, 2}, m, "distance_mean");
   }
@@ -122,22 +126,21 @@ void pooled_count_tests(Context& ctx, AccuracyTests& out, AccuracyResult& result
   const auto& m1 =
       ctx.cells(out.count_factors, in_count, mean_of([](const TrialRow& t) { return t.scores.rel_error; }));
   out.add(result, {ids, "rel. error, mean of trials", "",
-          &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids)), "", 3},
+          &ctx.add_test("accuracy", run_rm_anova(m1, d, "relative error (per trial)", "", ids), result.tally), "", 3},
           m1, "rel_error_mean");
   const auto& m2 = ctx.cells(out.count_factors, in_count, aggregated_relative_error());
   out.add(result, {ids, "rel. error, aggregated", "",
-          &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids)), "counting", 3},
-          m2, "rel_error_aggregated");
+          &ctx.add_test("accuracy", run_rm_anova(m2, d, "relative error (aggregated)", "", ids), result.tally),
+          "counting", 3}, m2, "rel_error_aggregated");
 }
 
-AccuracyTests run_accuracy_tests(Context& ctx, AccuracyResult& result) {
+void run_accuracy_tests(Context& ctx, AccuracyResult& result) {
   AccuracyTests out;
   for (const auto& task : ctx.design.tasks) {
-    answer_notes(ctx, task, out.notes);
+    answer_notes(ctx, task, result.notes);
     task_tests(ctx, task, out, result);
   }
   if (out.count_tasks.size() > 1) pooled_count_tests(ctx, out, result);
-  return out;
 }
 
 // The table's cells of one row: measure, mean (SD) per level, test, p, effect size, difference, published.
@@ -161,7 +164,7 @@ std::vector<std::string> accuracy_cells(const Design& d, const Row& row) {
   return cells;
 }
 
-Table accuracy_table(const Design& d, const AccuracyResult& result, const AccuracyTests& at) {
+Table accuracy_table(const Design& d, const AccuracyResult& result) {
   const auto& primary = d.factor(d.primary);
   const bool two = primary.levels.size() == 2;
   Table t;
@@ -191,7 +194,7 @@ Table accuracy_table(const Design& d, const AccuracyResult& result, const Accura
                       " with its 95% CI (paired t); negative = smaller error / fewer correct with " + primary.levels[1] +
                       ".");
   if (d.reference) t.notes.push_back(d.published_note("accuracy"));
-  for (const auto& n : at.notes) t.notes.push_back(n);
+  for (const auto& n : result.notes) t.notes.push_back(n);
   return t;
 }
 
@@ -203,8 +206,9 @@ AccuracyResult accuracy_tests(Context& ctx) {
   return result;
 }
 
-AccuracyResult section_errors(Context& ctx) {
-  AccuracyResult result;
+AccuracyResult section_errors(Context& ctx) { return accuracy_tests(ctx); }
+
+void lay_out_accuracy(Layout& out, const Context& ctx, const AccuracyResult& result) {
   const Design& d = ctx.design;
   Section s{"accuracy", "Accuracy", 2, {}};
   s.text("Accuracy is measured per task type. Counting tasks: the relative error |answer − truth| / truth of each "
@@ -214,13 +218,12 @@ AccuracyResult section_errors(Context& ctx) {
          "participant and condition, tested with Friedman's test. Find-unique tasks: the "
          "Euclidean distance between the marked and the true position, in world units. Continuous measures are "
          "tested with repeated-measures ANOVA over the participant x condition means.");
-  const AccuracyTests at = run_accuracy_tests(ctx, result);
   if (result.rows.empty()) {
     s.text("The protocol has no task with an answer key the report scores.");
-    ctx.doc.sections.push_back(std::move(s));
-    return result;
+    out.doc.sections.push_back(std::move(s));
+    return;
   }
-  s.add(accuracy_table(d, result, at));
+  s.add(accuracy_table(d, result));
   const auto& rows = result.rows;
   for (const auto& row : rows) {
     const TestReport& r = *row.r;
@@ -229,10 +232,9 @@ AccuracyResult section_errors(Context& ctx) {
   }
   for (const auto& row : rows)
     if (row.r->m->factors.size() > 1 && row.r->anova)
-      add_anova(ctx, s, *row.r, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
+      add_anova(out, s, d, *row.r, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
                         "Repeated-measures ANOVA of " + row.measure + ", " + row.label + ".");
-  ctx.doc.sections.push_back(std::move(s));
-  return result;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

@@ -8,7 +8,8 @@
 // conditions whose median rates differ by more than 25%, put a warning at the
 // top of the report, because render cost then may confound completion time.
 // Simulated frames are labelled with their size and renderer. Never claims
-// fluency the numbers do not show.
+// fluency the numbers do not show. section_frames computes the FramesResult;
+// lay_out_frames lays it out and computes nothing.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -110,7 +111,7 @@ Gathered gather(const Context& ctx, double threshold) {
 }
 
 // The sentence that labels simulated frames with their size and renderer.
-std::string simulated_text(const Gathered& g) {
+std::string simulated_text(const FramesResult& g) {
   std::string size_list;
   for (const auto& x : g.simulated_sizes) size_list += (size_list.empty() ? "" : ", ") + x;
   const bool soft = std::any_of(g.renderers.begin(), g.renderers.end(), [](const std::string& r) { return software(r); });
@@ -202,8 +203,9 @@ Table frames_table(const FramesResult& fr) {
 }
 
 // The table with its notes, then what the numbers say (simulated frames, no confound, or the warnings).
-void frames_layout(Section& s, const FramesResult& fr, const Gathered& g, double threshold) {
-  const double min_fps = 1000 / threshold;
+void frames_layout(Section& s, const FramesResult& fr) {
+  const double threshold = fr.threshold_ms;
+  const double min_fps = fr.min_fps;
   Table t = frames_table(fr);
   t.notes.push_back("Display: the kind and framebuffer size the session recorded (window: a participant's screen; "
                     "headless: offscreen, simulated). Median fps: 1000 / the median over trials of each trial's "
@@ -214,16 +216,14 @@ void frames_layout(Section& s, const FramesResult& fr, const Gathered& g, double
                     "p95 above " + fixed(threshold, 1) + " ms (--frame-threshold-ms). Below display: on a display of "
                     "known rate, the median frame took more than " + fixed(100 * kBelowDisplayTolerance, 0) +
                     "% longer than a refresh interval.");
-  if (!g.renderers.empty()) {
+  if (!fr.renderers.empty()) {
     std::string list;
-    for (const auto& r : g.renderers) list += (list.empty() ? "" : "; ") + ("`" + r + "`");
+    for (const auto& r : fr.renderers) list += (list.empty() ? "" : "; ") + ("`" + r + "`");
     t.notes.push_back("Renderer: " + list + ".");
   }
   s.add(std::move(t));
-  if (g.simulated_frames) s.text(simulated_text(g));
-  const bool people =
-      std::any_of(g.conds.begin(), g.conds.end(), [](const ConditionFrames& c) { return !c.people_ms.empty(); });
-  if (!people)
+  if (fr.simulated_frames) s.text(simulated_text(fr));
+  if (!fr.people)
     s.text("Every trial with frames was a simulated participant's: there is no participant's screen to check for a "
            "render-cost confound.");
   else if (fr.warnings.empty())
@@ -237,7 +237,20 @@ void frames_layout(Section& s, const FramesResult& fr, const Gathered& g, double
 
 FramesResult section_frames(Context& ctx) {
   const double threshold = ctx.options.frame_threshold_ms;
-  const double min_fps = 1000 / threshold;
+  const Gathered g = gather(ctx, threshold);
+  FramesResult result = frames_result(ctx, g, threshold);
+  result.renderers.assign(g.renderers.begin(), g.renderers.end());
+  result.simulated_sizes.assign(g.simulated_sizes.begin(), g.simulated_sizes.end());
+  result.simulated_frames = g.simulated_frames;
+  result.people =
+      std::any_of(g.conds.begin(), g.conds.end(), [](const ConditionFrames& c) { return !c.people_ms.empty(); });
+  for (const auto& w : result.warnings) result.tally.warnings.push_back("frame-time audit: " + w);
+  return result;
+}
+
+void lay_out_frames(Layout& out, const FramesResult& result) {
+  const double threshold = result.threshold_ms;
+  const double min_fps = result.min_fps;
   Section s{"frames", "Frame-time audit", 2, {}};
   s.text("Rendering speed per condition, from the frame times recorded with every trial. The median frame rate "
          "is over the trials' median frame time after their first frame; the first frame of a trial (scene upload "
@@ -246,16 +259,12 @@ FramesResult section_frames(Context& ctx) {
          "trial is slow when its 95th-percentile frame time exceeds " + fixed(threshold, 1) + " ms (" +
          fixed(min_fps, 0) + " fps). If conditions render at different speeds, completion time may measure "
          "render cost as well as the condition's effect on the participant.");
-  const Gathered g = gather(ctx, threshold);
-  FramesResult result = frames_result(ctx, g, threshold);
-  for (const auto& w : result.warnings) ctx.warnings.push_back("frame-time audit: " + w);
   if (result.trials_with_frames == 0)
     s.text("No trial in the database recorded frame times (frame_count = 0 everywhere): the trials were not "
            "rendered while they ran. The audit has nothing to check.");
   else
-    frames_layout(s, result, g, threshold);
-  ctx.doc.sections.push_back(std::move(s));
-  return result;
+    frames_layout(s, result);
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

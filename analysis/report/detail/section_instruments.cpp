@@ -6,7 +6,8 @@
 // free-text answer with the condition it followed. report.json's
 // "instruments" and the CSV files instrument_scores.csv and free_text.csv
 // are laid out from the returned results (render_data.h). No section at all
-// when the protocol has none of these.
+// when the protocol has none of these. Computes nothing: questionnaire_results
+// (questionnaire_results.cpp) does.
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
@@ -33,7 +34,7 @@ std::vector<std::vector<std::string>> test_rows(const ConditionMeasure& m, const
 }
 
 // One table of means per set of conditions (the cells of the measures' matrices).
-void mean_tables(Context& ctx, Section& s, const QuestionnaireResults& res) {
+void mean_tables(const Context& ctx, Section& s, const QuestionnaireResults& res) {
   const Design& d = ctx.design;
   std::map<std::vector<std::string>, Table> by_cells;
   for (const ConditionMeasure& m : res.measures) {
@@ -126,6 +127,10 @@ void text_table(Section& s, const QuestionnaireResults& res) {
 std::optional<QuestionnaireResults> section_instruments(Context& ctx) {
   QuestionnaireResults res = questionnaire_results(ctx);
   if (res.measures.empty() && res.counts.empty() && res.texts.empty()) return std::nullopt;
+  return res;
+}
+
+void lay_out_instruments(Layout& out, const Context& ctx, const QuestionnaireResults& res) {
   Section s{"instruments", "Instruments and questions per condition", 2, {}};
   s.text("Instruments are scored from the raw answers by their published scoring (NASA-TLX: the raw TLX, the mean "
          "of the six subscales, and with the pairwise comparisons the weighted score, sum of weight x rating / 15; "
@@ -137,8 +142,7 @@ std::optional<QuestionnaireResults> section_instruments(Context& ctx) {
   end_table(s, res);
   count_table(s, res);
   text_table(s, res);
-  ctx.doc.sections.push_back(std::move(s));
-  return res;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

@@ -78,8 +78,8 @@ std::string sentence(const MixedModelResult& m, const std::string& primary) {
   return m.label + ": " + primary + " " + t + ", " + stats::apa_p(p) + ".";
 }
 
-void lay_out_group(Context& ctx, Section& s, const std::vector<MixedModelResult>& models, const std::string& section,
-                   const std::string& title) {
+void lay_out_group(const Context& ctx, Section& s, const std::vector<MixedModelResult>& models,
+                   const std::string& section, const std::string& title) {
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   std::vector<const MixedModelResult*> group;
@@ -140,8 +140,18 @@ void lay_out_group(Context& ctx, Section& s, const std::vector<MixedModelResult>
 
 }  // namespace
 
-std::vector<MixedModelResult> section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
-  const std::vector<MixedModelResult> models = compute_mixed_models(ctx, time, accuracy);
+MixedResult section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+  MixedResult r;
+  r.models = compute_mixed_models(ctx, time, accuracy);
+  for (const auto& m : r.models)
+    if (m.fit)
+      r.tally.tests += static_cast<int>(m.fit->family == stats::Family::binomial ? m.fit->lrt.size()
+                                                                                 : m.fit->anova.size());
+  return r;
+}
+
+void lay_out_mixed_models(Layout& out, const Context& ctx, const MixedResult& r) {
+  const std::vector<MixedModelResult>& models = r.models;
   Section s{"mixed-models", "Mixed models on trial-level data", 2, {}};
   s.text("The ANOVAs above average each participant's trials per condition first. A mixed model uses the trials "
          "themselves: participants enter as random effects, so an unbalanced participant, a missing or excluded "
@@ -168,12 +178,7 @@ std::vector<MixedModelResult> section_mixed_models(Context& ctx, const TimeResul
            ", then " + calls + "; `summary()`, `anova()` and `emmeans::emmeans()` print what the tables show. "
            "report.json holds every fit in full, with the R code naming each factor's levels.");
   }
-  for (const auto& m : models) {
-    if (m.fit) ctx.tests += static_cast<int>(m.fit->family == stats::Family::binomial ? m.fit->lrt.size()
-                                                                                       : m.fit->anova.size());
-  }
-  ctx.doc.sections.push_back(std::move(s));
-  return models;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

@@ -1,7 +1,9 @@
 // The report's opening and closing: the data as recorded (participants,
 // sessions, trials, who is simulated, what is incomplete and left out), the
 // method paragraph that says how every number is computed, and the closing
-// notes (the files written, what the report does not do).
+// notes (the files written, what the report does not do). section_overview
+// counts and collects the data's warnings; lay_out_overview and
+// lay_out_notes only lay out (they compute no statistic).
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -173,52 +175,63 @@ Section methods_section() {
 
 }  // namespace
 
-void section_overview(Context& ctx) {
+OverviewResult section_overview(Context& ctx) {
+  const StudyData& data = ctx.data;
+  OverviewResult r;
+  for (const auto& pr : data.participants) {
+    r.finished += pr.session_status == store::SessionStatus::finished;
+    r.running += pr.session_status == store::SessionStatus::running;
+    r.abandoned += pr.session_status == store::SessionStatus::abandoned;
+    r.never_started += !pr.session_status;
+    r.planned += pr.planned;
+    r.recorded += pr.recorded;
+  }
+  long long unknown = 0;
+  for (const auto& t : data.trials) {
+    r.practice += t.planned.practice ? 1 : 0;
+    if (!t.planned.practice && !ctx.analysed(t)) ++unknown;
+  }
+  r.tally.warnings = data_warnings(ctx, unknown);
+  return r;
+}
+
+void lay_out_overview(Layout& out, const Context& ctx, const OverviewResult& r, const FramesResult& frames) {
   const StudyData& data = ctx.data;
   const Design& d = ctx.design;
   const auto& p = *d.protocol;
-  ctx.doc.title = "Results: " + p.title;
-  ctx.doc.subtitle = "Protocol `" + p.id + "` (SHA-256 " + p.sha256.substr(0, 12) + "…), database `" + data.path +
+  out.doc.title = "Results: " + p.title;
+  out.doc.subtitle = "Protocol `" + p.id + "` (SHA-256 " + p.sha256.substr(0, 12) + "…), database `" + data.path +
                      "`, recorded with " + data.software_version + ".";
 
   Section s{"data", "Data", 2, {}};
+  // The audit's warnings first, where a reader starts.
+  if (!frames.warnings.empty()) {
+    std::vector<std::string> items = frames.warnings;
+    items.push_back("See the frame-time audit (#frames) before reading completion-time differences as the "
+                    "conditions' effect on the participants.");
+    s.add(Callout{"warning", "Render cost may confound completion time", items});
+  }
   revision_notes(data, s);
   // Who and what is in the file.
-  int finished = 0, running = 0, abandoned = 0, none = 0;
-  long long planned = 0, recorded = 0;
-  for (const auto& pr : data.participants) {
-    finished += pr.session_status == store::SessionStatus::finished;
-    running += pr.session_status == store::SessionStatus::running;
-    abandoned += pr.session_status == store::SessionStatus::abandoned;
-    none += !pr.session_status;
-    planned += pr.planned;
-    recorded += pr.recorded;
-  }
-  long long practice = 0, unknown = 0;
-  for (const auto& t : data.trials) {
-    practice += t.planned.practice ? 1 : 0;
-    if (!t.planned.practice && !ctx.analysed(t)) ++unknown;
-  }
   simulated_callout(ctx, s);
   s.text(dtlab::count(static_cast<long long>(data.participants.size()), "participant") + " enrolled under protocol `" + p.id + "`; sessions: " +
-         std::to_string(finished) + " finished, " + std::to_string(running) + " still running (incomplete), " +
-         std::to_string(abandoned) + " abandoned" + (none ? ", " + std::to_string(none) + " never started" : "") +
-         ". " + std::to_string(recorded) + " of " + std::to_string(planned) + " planned trials are recorded; " +
+         std::to_string(r.finished) + " finished, " + std::to_string(r.running) + " still running (incomplete), " +
+         std::to_string(r.abandoned) + " abandoned" +
+         (r.never_started ? ", " + std::to_string(r.never_started) + " never started" : "") + ". " +
+         std::to_string(r.recorded) + " of " + std::to_string(r.planned) + " planned trials are recorded; " +
          dtlab::count(ctx.analysed_trials, "trial") + " from " + dtlab::count(static_cast<long long>(ctx.subjects.size()), "participant") +
-         " are analysed" + (practice ? " (" + dtlab::count(practice, "practice trial") + " excluded)" : "") +
+         " are analysed" + (r.practice ? " (" + dtlab::count(r.practice, "practice trial") + " excluded)" : "") +
          ".");
   s.text(design_sentence(d));
 
-  const std::vector<std::string> warnings = data_warnings(ctx, unknown);
-  ctx.warnings = warnings;
-  if (!warnings.empty()) s.add(Callout{"warning", "Incomplete or excluded data", warnings});
+  if (!r.tally.warnings.empty()) s.add(Callout{"warning", "Incomplete or excluded data", r.tally.warnings});
   s.add(participants_table(ctx));
   if (!data.exclusions.empty()) s.add(exclusions_table(data));
-  ctx.doc.sections.push_back(std::move(s));
-  ctx.doc.sections.push_back(methods_section());
+  out.doc.sections.push_back(std::move(s));
+  out.doc.sections.push_back(methods_section());
 }
 
-void section_notes(Context& ctx, bool path_figures) {
+void lay_out_notes(Layout& out, const Context& ctx, bool path_figures) {
   Section s{"notes", "Notes and files", 2, {}};
   s.text("No correction for multiple testing is applied across tasks and measures: every task is its own family.");
   if (ctx.design.reference)
@@ -232,7 +245,7 @@ void section_notes(Context& ctx, bool path_figures) {
          "test used), `tests.csv` (one row per test), `questionnaire.csv`, `frames.csv`, and `figures/` (each "
          "figure's SVG, PNG and PDF, its data and the gnuplot script `report.gp` that draws them)" +
          std::string(path_figures ? ", and `paths/` (the walked-path figures)" : "") + ".");
-  ctx.doc.sections.push_back(std::move(s));
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

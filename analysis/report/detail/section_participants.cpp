@@ -111,8 +111,9 @@ std::string consent_text(const ParticipantsResult& r) {
 
 }  // namespace
 
-ParticipantsResult section_participants(Context& ctx) {
-  ParticipantsResult r = participants_result(ctx);
+ParticipantsResult section_participants(Context& ctx) { return participants_result(ctx); }
+
+void lay_out_participants(Layout& out, const ParticipantsResult& r) {
   Section s{"participants", "Participants", 2, {}};
   if (const std::string consent = consent_text(r); !consent.empty()) s.text(consent);
   if (!r.numeric.empty() || !r.choices.empty() || !r.texts.empty()) s.add(demographics_table(r));
@@ -137,8 +138,7 @@ ParticipantsResult section_participants(Context& ctx) {
     for (const std::string& n : r.study_notes) all += (all.empty() ? "" : " ") + n + ".";
     s.text("Notes about the study: " + all);
   }
-  ctx.doc.sections.push_back(std::move(s));
-  return r;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

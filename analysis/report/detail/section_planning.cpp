@@ -4,6 +4,7 @@
 // (analysis/report/planning.h, the same code as `dtlab power`, without the
 // resampling, which the section names as the next step). Costs a few
 // noncentral t / F evaluations per effect: nothing next to the rest.
+// section_planning computes the PlanningResult; lay_out_planning lays it out.
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
@@ -21,14 +22,18 @@ PlanningResult section_planning(Context& ctx, const TimeResult& time, const Accu
   PlanningOptions o;
   o.replications = 0;  // analytic only: `dtlab power` resamples
   o.alpha = 0.05;
-  PlanningResult result{o.sizes, o.alpha, {}, {}};
+  PlanningResult result{o.sizes, o.alpha, {}, {}, {}};
   result.effects = plan_effects(planning_input(ctx.design, ctx.data.protocol, time, accuracy), o, result.not_planned);
-  const std::vector<PlannedEffect>& effects = result.effects;
+  return result;
+}
 
+void lay_out_planning(Layout& out, const Context& ctx, const PlanningResult& result) {
+  const std::vector<PlannedEffect>& effects = result.effects;
+  const std::vector<int>& planned_sizes = result.sizes;
   Section s{"planning", "Planning the next study", 2, {}};
   std::string sizes;
-  for (std::size_t k = 0; k < o.sizes.size(); ++k)
-    sizes += (k ? (k + 1 == o.sizes.size() ? " and " : ", ") : "") + std::to_string(o.sizes[k]);
+  for (std::size_t k = 0; k < planned_sizes.size(); ++k)
+    sizes += (k ? (k + 1 == planned_sizes.size() ? " and " : ", ") : "") + std::to_string(planned_sizes[k]);
   s.text("How many participants would a study of this design need to detect the effects seen here? For every effect "
          "of the repeated-measures ANOVAs above (completion time and accuracy, per task and over all tasks), the "
          "table gives the power of the same test at " + sizes + " participants (α = .05), computed from the effect "
@@ -47,7 +52,7 @@ PlanningResult section_planning(Context& ctx, const TimeResult& time, const Accu
   t.caption = "Power of each ANOVA effect at the planned numbers of participants, from the observed effect "
               "(analytic), and the smallest n for 80% and 90% power.";
   t.header = {"Test", "Effect", "N", "η²p", "ε"};
-  for (int n : o.sizes) t.header.push_back("n = " + std::to_string(n));
+  for (int n : planned_sizes) t.header.push_back("n = " + std::to_string(n));
   t.header.insert(t.header.end(), {"n for 80%", "n for 90%"});
   t.text_columns = 2;
   for (const auto& e : effects) {
@@ -66,8 +71,7 @@ PlanningResult section_planning(Context& ctx, const TimeResult& time, const Accu
   if (effects.empty()) s.text("No ANOVA effect could be planned.");
   else s.add(t);
   for (const auto& why : result.not_planned) s.text("Not planned: " + why + ".");
-  ctx.doc.sections.push_back(std::move(s));
-  return result;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

@@ -6,6 +6,8 @@
 // factor depend on the order the participant had?). Relative time = a
 // trial's time / the mean time of its task and condition over all
 // participants, so tasks and conditions of different length compare.
+// section_position computes the counts and tests into a PositionResult;
+// lay_out_position lays them out and computes nothing.
 #include <cmath>
 #include <map>
 #include <set>
@@ -60,10 +62,9 @@ RelativeTimes relative_times(const Context& ctx) {
   return rt;
 }
 
-// Balance: how often each condition was at each block position (counts per condition and whether they are
-// equal to `result`).
-Table balance_table(const Context& ctx, int blocks, PositionResult& result) {
-  bool& balanced = result.balanced;
+// Balance: how often each condition was at each block position (counts per condition, and whether they
+// are equal, to `result`).
+void count_balance(const Context& ctx, int blocks, PositionResult& result) {
   const Design& d = ctx.design;
   std::map<std::string, std::vector<int>> balance;
   std::set<std::pair<std::string, int>> seen;
@@ -75,29 +76,34 @@ Table balance_table(const Context& ctx, int blocks, PositionResult& result) {
     row.resize(static_cast<size_t>(blocks), 0);
     ++row[static_cast<size_t>(t.planned.block - 1)];
   }
+  result.balanced = true;
+  for (const auto& cond : d.protocol->conditions) {
+    const auto it = balance.find(cond.name);
+    std::vector<int> counts = it == balance.end() ? std::vector<int>(static_cast<size_t>(blocks), 0) : it->second;
+    counts.resize(static_cast<size_t>(blocks), 0);
+    for (int n : counts) result.balanced = result.balanced && n == counts[0];
+    result.balance[cond.name] = counts;
+  }
+}
+
+// The balance's table: a row per protocol condition, a column per block position.
+Table balance_table(const Context& ctx, const PositionResult& result, int blocks) {
   Table bt;
   bt.id = "table-balance";
   bt.caption = "Counterbalancing as run: number of participants who had each condition at each block position.";
   bt.header = {"Condition"};
   for (int b = 1; b <= blocks; ++b) bt.header.push_back("block " + std::to_string(b));
-  balanced = true;
-  for (const auto& cond : d.protocol->conditions) {
-    const auto it = balance.find(cond.name);
-    std::vector<int> counts = it == balance.end() ? std::vector<int>(static_cast<size_t>(blocks), 0) : it->second;
-    counts.resize(static_cast<size_t>(blocks), 0);
+  for (const auto& cond : ctx.design.protocol->conditions) {
     std::vector<std::string> row = {cond.name};
-    for (int n : counts) {
-      row.push_back(std::to_string(n));
-      balanced = balanced && n == counts[0];
-    }
-    result.balance[cond.name] = counts;
+    for (int n : result.balance.at(cond.name)) row.push_back(std::to_string(n));
     bt.rows.push_back(row);
   }
-  bt.notes.push_back(balanced ? "Every condition was at every block position equally often: the order is balanced "
-                                "over the participants analysed."
-                              : "Not every condition was at every position equally often (participants missing from "
-                                "a complete square, or an order scheme that does not balance positions): position "
-                                "effects can bias condition means.");
+  bt.notes.push_back(result.balanced
+                         ? "Every condition was at every block position equally often: the order is balanced "
+                           "over the participants analysed."
+                         : "Not every condition was at every position equally often (participants missing from "
+                           "a complete square, or an order scheme that does not balance positions): position "
+                           "effects can bias condition means.");
   return bt;
 }
 
@@ -148,9 +154,9 @@ struct PositionPlot {
   std::vector<std::pair<std::string, int>> titles;  // (title or "" when nothing to draw, positions)
 };
 
-// The table of one split (position, n, relative time, its CI, seconds); its levels to `split`.
-Table position_table(const TestReport& r, const CellMatrix& raw, bool by_block, int levels, PositionPlot& plot,
-                     PositionResult::Split& split) {
+// The table of one split (position, n, relative time, its CI, seconds) and its data in the figure.
+Table position_table(const PositionResult::Split& split, PositionPlot& plot) {
+  const bool by_block = split.key == "block";
   Table t;
   t.id = by_block ? "table-position-block" : "table-position-repetition";
   t.caption = by_block ? "Completion time by block position in the session (each block is one condition)."
@@ -158,21 +164,19 @@ Table position_table(const TestReport& r, const CellMatrix& raw, bool by_block, 
   t.header = {by_block ? "Block position" : "Repetition", "n", "Relative time, mean (SD)", "95% CI",
               "Time (s), mean (SD)"};
   bool finite = false;
-  for (int l = 0; l < levels; ++l) {
-    std::vector<double> v;
-    for (size_t si : r.kept) v.push_back(raw.value[si][static_cast<size_t>(l)]);
-    const auto rd = stats::describe(v);
-    const auto& x = r.cells[static_cast<size_t>(l)];
-    t.rows.push_back({std::to_string(l + 1), std::to_string(x.n), mean_sd(x.mean, x.sd, 3),
+  for (const PositionResult::Level& level : split.levels) {
+    const auto& x = level.relative;
+    const auto& rd = level.time_s;
+    t.rows.push_back({std::to_string(level.position), std::to_string(x.n), mean_sd(x.mean, x.sd, 3),
                       "[" + fixed(x.ci_low, 3) + ", " + fixed(x.ci_high, 3) + "]", mean_sd(rd.mean, rd.sd, 2)});
-    plot.data +=
-        std::to_string(l + 1) + " " + gp_value(x.mean) + " " + gp_value(std::isfinite(x.se) ? x.se : 0.0) + "\n";
+    plot.data += std::to_string(level.position) + " " + gp_value(x.mean) + " " +
+                 gp_value(std::isfinite(x.se) ? x.se : 0.0) + "\n";
     finite = finite || std::isfinite(x.mean);
-    split.levels.push_back({l + 1, x, rd});
   }
   plot.data += "\n\n";
-  plot.titles.push_back({finite ? (by_block ? "Block position" : "Repetition in the task set") : "", levels});
-  t.notes = test_notes(r);
+  plot.titles.push_back({finite ? (by_block ? "Block position" : "Repetition in the task set") : "",
+                         static_cast<int>(split.levels.size())});
+  t.notes = test_notes(*split.test);
   return t;
 }
 
@@ -195,25 +199,38 @@ std::string position_verdict(const std::string& name, const TestReport& r, bool 
   return verdict;
 }
 
-// One split (block position or repetition): its ANOVA of relative time, table, verdict and full ANOVA.
-PositionResult::Split position_split(Context& ctx, Section& s, const std::string& name, int levels,
-                                     const RelativeTimes& rt, bool balanced, PositionPlot& plot) {
+// One split (block position or repetition): its ANOVA of relative time and its levels.
+PositionResult::Split position_split(Context& ctx, const std::string& name, int levels, const RelativeTimes& rt,
+                                     Tally& tally) {
   const bool by_block = name == "block position";
   PositionResult::Split split{by_block ? "block" : "repetition", std::make_shared<PositionDesign>(name, levels),
                               nullptr, {}};
   PositionMatrices pm = position_matrices(ctx, rt, by_block, levels);
   const auto& km = ctx.keep(std::move(pm.m));
-  const auto& r = ctx.add_test("position", run_rm_anova(km, split.design->design, "relative time", "", name));
+  const auto& r = ctx.add_test("position", run_rm_anova(km, split.design->design, "relative time", "", name), tally);
   split.test = &r;
-  const Table t = position_table(r, pm.raw, by_block, levels, plot, split);
+  for (int l = 0; l < levels; ++l) {
+    std::vector<double> v;
+    for (size_t si : r.kept) v.push_back(pm.raw.value[si][static_cast<size_t>(l)]);
+    split.levels.push_back({l + 1, r.cells[static_cast<size_t>(l)], stats::describe(v)});
+  }
+  return split;
+}
+
+// A split's verdict, table and full ANOVA (more than two positions).
+void lay_out_split(Layout& out, Section& s, const Design& d, const PositionResult::Split& split, bool balanced,
+                   PositionPlot& plot) {
+  const bool by_block = split.key == "block";
+  const std::string name = by_block ? "block position" : "repetition";
+  const TestReport& r = *split.test;
+  const Table t = position_table(split, plot);
   const std::string verdict = position_verdict(name, r, by_block, balanced);
   if (!verdict.empty()) s.text(verdict);
   s.add(t);
-  if (r.effect(name) && levels > 2)
-    add_anova(ctx, s, r, by_block ? "table-position-block-anova" : "table-position-repetition-anova",
+  if (r.effect(name) && split.levels.size() > 2)
+    add_anova(out, s, d, r, by_block ? "table-position-block-anova" : "table-position-repetition-anova",
               std::string("Repeated-measures ANOVA of relative time by ") +
                   (by_block ? "block position." : "repetition inside a task set."));
-  return split;
 }
 
 // The overall test `ov` rerun with the order row as a between-subject factor.
@@ -242,28 +259,33 @@ TestReport order_row_report(const TestReport& ov, const Design& d, const std::ma
   return r;
 }
 
-// Order row as a between-subject factor (mixed ANOVA) on the overall condition means of `overall`; the
-// test, or nullptr when there are too few rows or participants.
-const TestReport* order_row_test(Context& ctx, Section& s, const TestReport& ov) {
+// Order row as a between-subject factor (mixed ANOVA) on the overall condition means of `ov`: the test to
+// result.order_row, or nullptr when there are too few rows or participants (their numbers to `result`).
+void order_row_test(Context& ctx, const TestReport& ov, PositionResult& result) {
   std::set<int> rows_seen;
   std::map<std::string, int> row_of;
   for (const auto& p : ctx.data.participants) row_of[p.id] = p.order_row;
   for (size_t si : ov.kept) rows_seen.insert(row_of[ov.m->subjects[si]]);
-  if (rows_seen.size() >= 2 && ov.kept.size() > rows_seen.size()) {
-    const auto& kr = ctx.add_test("position", order_row_report(ov, ctx.design, row_of));
+  result.order_rows_seen = rows_seen.size();
+  result.order_complete = ov.kept.size();
+  if (rows_seen.size() >= 2 && ov.kept.size() > rows_seen.size())
+    result.order_row = &ctx.add_test("position", order_row_report(ov, ctx.design, row_of), result.tally);
+}
+
+void lay_out_order_row(Layout& out, Section& s, const Design& d, const PositionResult& result) {
+  if (const TestReport* kr = result.order_row) {
     s.text("Order rows: the participants' row of the ordering scheme enters a mixed ANOVA of the overall condition "
            "means as a between-subject factor. An order_row main effect says the groups differ in speed overall "
            "(harmless, it is between participants); an interaction of order_row with a within factor says the "
            "effect of that factor depends on the order (asymmetric transfer), which counterbalancing cannot "
            "remove.");
-    add_anova(ctx, s, kr, "table-position-order", "Mixed ANOVA of completion time over all tasks with the order "
+    add_anova(out, s, d, *kr, "table-position-order", "Mixed ANOVA of completion time over all tasks with the order "
                                                       "row as between-subject factor (s).");
-    return &kr;
+    return;
   }
-  s.text("Order rows: not tested (" + std::to_string(rows_seen.size()) + " order row(s) among " +
-         std::to_string(ov.kept.size()) + " complete participants; a between-subject test needs at least two "
+  s.text("Order rows: not tested (" + std::to_string(result.order_rows_seen) + " order row(s) among " +
+         std::to_string(result.order_complete) + " complete participants; a between-subject test needs at least two "
          "rows and more participants than rows).");
-  return nullptr;
 }
 
 PlotSpec position_figure(const PositionPlot& plot) {
@@ -289,6 +311,18 @@ PlotSpec position_figure(const PositionPlot& plot) {
 }  // namespace
 
 PositionResult section_position(Context& ctx, const TimeResult& time) {
+  const RelativeTimes rt = relative_times(ctx);
+  PositionResult result;
+  result.blocks = rt.blocks;
+  count_balance(ctx, rt.blocks, result);
+  for (const auto& [name, levels] : std::vector<std::pair<std::string, int>>{{"block position", rt.blocks},
+                                                                             {"repetition", rt.reps}})
+    if (levels >= 2) result.splits.push_back(position_split(ctx, name, levels, rt, result.tally));
+  if (const TestReport* overall = time.of("overall")) order_row_test(ctx, *overall, result);
+  return result;
+}
+
+void lay_out_position(Layout& out, const Context& ctx, const PositionResult& result) {
   Section s{"position", "Position effects and counterbalancing", 2, {}};
   s.text("A within-subject design is only as good as its counterbalancing: practice and fatigue must not "
          "favour a condition. Relative time below is a trial's completion time divided by the mean time of its task "
@@ -296,19 +330,14 @@ PositionResult section_position(Context& ctx, const TimeResult& time) {
          "different tasks and conditions compare. Per participant, the relative times are averaged per block "
          "position (a block is one condition) and per repetition inside a task set, and tested with "
          "repeated-measures ANOVA.");
-  const RelativeTimes rt = relative_times(ctx);
-  PositionResult result;
-  s.add(balance_table(ctx, rt.blocks, result));
+  s.add(balance_table(ctx, result, result.blocks));
   PositionPlot plot;
-  for (const auto& [name, levels] : std::vector<std::pair<std::string, int>>{{"block position", rt.blocks},
-                                                                             {"repetition", rt.reps}})
-    if (levels >= 2) result.splits.push_back(position_split(ctx, s, name, levels, rt, result.balanced, plot));
-  if (const TestReport* overall = time.of("overall")) result.order_row = order_row_test(ctx, s, *overall);
+  for (const auto& split : result.splits) lay_out_split(out, s, ctx.design, split, result.balanced, plot);
+  lay_out_order_row(out, s, ctx.design, result);
   if (!plot.titles.empty())
-    ctx.add_figure(s, position_figure(plot), "Mean relative completion time by block position and by repetition "
+    out.add_figure(s, position_figure(plot), "Mean relative completion time by block position and by repetition "
                                              "inside a task set (error bars: standard error over participants).");
-  ctx.doc.sections.push_back(std::move(s));
-  return result;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

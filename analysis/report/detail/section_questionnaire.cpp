@@ -8,6 +8,8 @@
 // Answer scopes read "factor=level;factor=level" (levels matched without
 // regard to case); a depth test's answers are summed per participant (one
 // answer holding the number correct, or one 0/1 answer per pair).
+// section_questionnaire runs the tests and counts the answers into a
+// QuestionnaireResult; lay_out_questionnaire lays it out, computing nothing.
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -155,34 +157,16 @@ RatingMatrices rating_matrices(const Context& ctx, const protocol::Questionnaire
   return out;
 }
 
-// Friedman's test of one rating matrix: a row of the summary table, its notes, a bar of the figure.
+// Friedman's test of one rating matrix (its scope: the combination of the other factors, or "overall").
 void rating_test(Context& ctx, const protocol::QuestionnaireItem& item, const CellMatrix& m, const std::string& scope,
-                 QuestionnaireTables& q, std::vector<const TestReport*>& tests) {
-  const Design& d = ctx.design;
-  const auto& r = ctx.add_test("questionnaire", run_friedman(ctx.keep(m), d, item.id, "rating", scope, ctx.options.seed));
-  std::vector<std::string> row = {item.id, scope};
-  for (const auto& c : primary_cells(r, d, 2)) row.push_back(c);
-  row.push_back(std::to_string(r.kept.size()));
-  row.push_back(r.friedman ? fixed(r.friedman->Q, 2) + " (" + df_text(r.friedman->df) + ")" : kDash);
-  row.push_back(r.friedman ? p_text(r.friedman->p) +
-                                 (std::isfinite(r.friedman->p_exact)
-                                      ? " (exact " + p_text(r.friedman->p_exact) + ")"
-                                      : "")
-                           : kDash);
-  row.push_back(r.friedman ? bounded(r.friedman->kendall_W) : kDash);
-  const auto* a = d.published(item.id, scope);
-  for (const auto& c : d.published_cells(item.id, scope, 2, /*with_f=*/false)) row.push_back(a ? c : "");
-  row.resize(q.width, "");
-  q.summary.rows.push_back(row);
-  for (const auto& note : test_notes(r))
-    if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) q.summary.notes.push_back(item.id + " " + scope + ": " + note);
-  q.fig_rows.push_back({scope, &r});
-  tests.push_back(&r);
+                 QuestionnaireItemResult& out, Tally& tally) {
+  out.tests.push_back(&ctx.add_test(
+      "questionnaire", run_friedman(ctx.keep(m), ctx.design, item.id, "rating", scope, ctx.options.seed), tally));
 }
 
 // A rating asked per level of the primary factor: a test per combination of its other factors, and overall.
 void rating_item(Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
-                 const std::vector<std::string>& per, QuestionnaireTables& q, QuestionnaireItemResult& out) {
+                 const std::vector<std::string>& per, QuestionnaireItemResult& out, Tally& tally) {
   const Design& d = ctx.design;
   std::vector<int> others;
   for (const auto& name : per)
@@ -197,15 +181,14 @@ void rating_item(Context& ctx, const protocol::QuestionnaireItem& item, const st
       if (key[k] < 0) known = false;
       else scope += (scope.empty() ? "" : ", ") + d.factor(others[k]).levels[static_cast<size_t>(key[k])];
     }
-    if (known) rating_test(ctx, item, m, scope.empty() ? "all" : scope, q, out.tests);
+    if (known) rating_test(ctx, item, m, scope.empty() ? "all" : scope, out, tally);
   }
-  if (!others.empty()) rating_test(ctx, item, rm.all, "overall", q, out.tests);
+  if (!others.empty()) rating_test(ctx, item, rm.all, "overall", out, tally);
 }
 
 // Per participant: a rating (mean if asked several times) or the depth-test pairs correct (summed); descriptives.
 void numeric_item(const Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
-                  QuestionnaireTables& q, QuestionnaireItemResult& out) {
-  const Design& d = ctx.design;
+                  QuestionnaireItemResult& out) {
   const Measure measure = item.type->measure;
   std::vector<double> v;
   for (const auto& who : subjects) {
@@ -222,17 +205,11 @@ void numeric_item(const Context& ctx, const protocol::QuestionnaireItem& item, c
   const bool depth = measure == Measure::correct;
   const int pairs = depth ? static_cast<int>(item.integer("pairs")) : 0;
   const questionnaire::NumberPair b = item.type->bounds ? item.type->bounds(item) : questionnaire::NumberPair{};
-  const std::string scope =
+  out.scale =
       depth ? "pairs correct of " + std::to_string(pairs) : "scale " + csv_number(b.min) + "–" + csv_number(b.max);
-  std::vector<std::string> row = {item.id, item.prompt + " (" + scope + ")",
-                                  "mean (SD) " + mean_sd(ds.mean, ds.sd, 2) + ", median " + fixed(ds.median, 1) +
-                                      (depth ? ", " + percent(ds.mean / pairs) + " of pairs" : ""),
-                                  std::to_string(ds.n), kDash, kDash};
   out.kind = QuestionnaireItemResult::Kind::numeric;
   out.descriptives = ds;
   if (depth) out.proportion_correct = ds.mean / pairs;
-  if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
-  q.others.rows.push_back(row);
 }
 
 // The answers of a choice item counted per option ("other: ..." for an answer outside them).
@@ -282,40 +259,30 @@ ChoiceCounts count_choices(const Context& ctx, const protocol::QuestionnaireItem
 
 // A choice item: counts and proportions per option, and for two options a sign test.
 void choice_item(Context& ctx, const protocol::QuestionnaireItem& item, const std::vector<std::string>& subjects,
-                 QuestionnaireTables& q, QuestionnaireItemResult& out) {
+                 QuestionnaireItemResult& out, Tally& tally) {
   const Design& d = ctx.design;
   const ChoiceCounts c = count_choices(ctx, item, subjects);
   const auto& options = c.options;
   out.kind = QuestionnaireItemResult::Kind::choice;
-  std::string text;
+  out.answered = c.answered;
   for (const auto& [option, n] : c.count) {
     const double p = c.answered ? static_cast<double>(n) / c.answered : std::nan("");
     const double sd = c.answered > 1 ? std::sqrt(p * (1 - p) * c.answered / (c.answered - 1)) : std::nan("");
-    out.choices[option] = {n, p, sd};
     const std::string label = c.factor >= 0 && option.rfind("other: ", 0) != 0 && option != c.neutral
                                   ? d.level_label(c.factor, static_cast<int>(index_of(options, option)))
                                   : option;
-    text += (text.empty() ? "" : "; ") + label + " " + std::to_string(n) + "/" + std::to_string(c.answered) + " = " +
-            fixed(p, 2) + " (SD " + fixed(sd, 2) + ")";
+    out.choices[option] = {n, p, sd, label};
   }
-  std::vector<std::string> row = {item.id, item.prompt, text, std::to_string(c.answered), kDash, kDash};
   if (item.type->measure == Measure::nominal && options.size() == 2 && c.answered > 0) {
-    const auto st = stats::sign_test(c.second, c.first);
-    row[4] = "sign test: " + std::to_string(st.positive) + " for " + options[1] + ", " +
-             std::to_string(st.negative) + " for " + options[0];
-    row[5] = p_text(st.p);
-    out.sign_test = st;
+    out.sign_test = stats::sign_test(c.second, c.first);
     out.first_option = options[0];
     out.second_option = options[1];
-    ++ctx.tests;
+    ++tally.tests;
   }
-  if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
-  q.others.rows.push_back(row);
 }
 
 // One item by its measure.
-QuestionnaireItemResult questionnaire_item(Context& ctx, const protocol::QuestionnaireItem& item,
-                                           QuestionnaireTables& q) {
+QuestionnaireItemResult questionnaire_item(Context& ctx, const protocol::QuestionnaireItem& item, Tally& tally) {
   const Design& d = ctx.design;
   const auto subjects = answered_by(ctx.data, item.id);
   QuestionnaireItemResult ji;
@@ -327,47 +294,112 @@ QuestionnaireItemResult questionnaire_item(Context& ctx, const protocol::Questio
   const std::vector<std::string>& per = strings_or_none(item, "per");
   const bool per_primary = std::find(per.begin(), per.end(), d.factor(d.primary).name) != per.end();
   if (measure == Measure::ordinal && per_primary)
-    rating_item(ctx, item, subjects, per, q, ji);
+    rating_item(ctx, item, subjects, per, ji, tally);
   else if (measure == Measure::ordinal || measure == Measure::interval || measure == Measure::correct)
-    numeric_item(ctx, item, subjects, q, ji);
+    numeric_item(ctx, item, subjects, ji);
   else if (measure == Measure::nominal || measure == Measure::multiple)
-    choice_item(ctx, item, subjects, q, ji);
+    choice_item(ctx, item, subjects, ji, tally);
   return ji;
+}
+
+// The summary table's rows of a rating item: one per test (its scope), with its notes and its bar.
+void rating_rows(const Design& d, const QuestionnaireItemResult& item, QuestionnaireTables& q) {
+  for (const TestReport* t : item.tests) {
+    const TestReport& r = *t;
+    const std::string& scope = r.scope;
+    std::vector<std::string> row = {item.id, scope};
+    for (const auto& c : primary_cells(r, d, 2)) row.push_back(c);
+    row.push_back(std::to_string(r.kept.size()));
+    row.push_back(r.friedman ? fixed(r.friedman->Q, 2) + " (" + df_text(r.friedman->df) + ")" : kDash);
+    row.push_back(r.friedman ? p_text(r.friedman->p) + (std::isfinite(r.friedman->p_exact)
+                                                           ? " (exact " + p_text(r.friedman->p_exact) + ")"
+                                                           : "")
+                             : kDash);
+    row.push_back(r.friedman ? bounded(r.friedman->kendall_W) : kDash);
+    const auto* a = d.published(item.id, scope);
+    for (const auto& c : d.published_cells(item.id, scope, 2, /*with_f=*/false)) row.push_back(a ? c : "");
+    row.resize(q.width, "");
+    q.summary.rows.push_back(row);
+    for (const auto& note : test_notes(r))
+      if (note.rfind("n = ", 0) != 0 || !r.excluded.empty())
+        q.summary.notes.push_back(item.id + " " + scope + ": " + note);
+    q.fig_rows.push_back({scope, &r});
+  }
+}
+
+// The other items' table row of a numeric item (a rating described, or a depth test).
+void numeric_row(const Design& d, const QuestionnaireItemResult& item, QuestionnaireTables& q) {
+  const stats::Descriptives& ds = item.descriptives;
+  std::vector<std::string> row = {
+      item.id, item.prompt + " (" + item.scale + ")",
+      "mean (SD) " + mean_sd(ds.mean, ds.sd, 2) + ", median " + fixed(ds.median, 1) +
+          (item.proportion_correct ? ", " + percent(*item.proportion_correct) + " of pairs" : ""),
+      std::to_string(ds.n), kDash, kDash};
+  if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
+  q.others.rows.push_back(row);
+}
+
+// The other items' table row of a choice item: each option's share, and the sign test between two options.
+void choice_row(const Design& d, const QuestionnaireItemResult& item, QuestionnaireTables& q) {
+  std::string text;
+  for (const auto& [option, c] : item.choices)
+    text += (text.empty() ? "" : "; ") + c.label + " " + std::to_string(c.count) + "/" + std::to_string(item.answered) +
+            " = " + fixed(c.proportion, 2) + " (SD " + fixed(c.sd, 2) + ")";
+  std::vector<std::string> row = {item.id, item.prompt, text, std::to_string(item.answered), kDash, kDash};
+  if (const auto& st = item.sign_test) {
+    row[4] = "sign test: " + std::to_string(st->positive) + " for " + item.second_option + ", " +
+             std::to_string(st->negative) + " for " + item.first_option;
+    row[5] = p_text(st->p);
+  }
+  if (d.reference) row.push_back(d.published_summary(item.id, "overall", 2));
+  q.others.rows.push_back(row);
 }
 
 }  // namespace
 
 QuestionnaireResult section_questionnaire(Context& ctx) {
-  const Design& d = ctx.design;
+  QuestionnaireResult result;
   std::vector<protocol::QuestionnaireItem> items;
-  for (const auto& item : d.protocol->questionnaire)
+  for (const auto& item : ctx.design.protocol->questionnaire)
     if (reported_here(item)) items.push_back(item);
+  if (items.empty()) return result;
+  result.items.emplace();
+  if (ctx.data.answers.empty()) return result;
+  for (const auto& item : items) result.items->push_back(questionnaire_item(ctx, item, result.tally));
+  return result;
+}
+
+void lay_out_questionnaire(Layout& out, const Context& ctx, const QuestionnaireResult& result) {
+  const Design& d = ctx.design;
   Section s{"questionnaire", "Questionnaire", 2, {}};
-  if (items.empty()) {
+  if (!result.items) {
     s.text(d.protocol->questionnaire.empty()
                ? "The protocol has no questionnaire."
                : "The protocol asks nothing at the end of the session apart from instruments and free text (see "
                  "below).");
-    ctx.doc.sections.push_back(std::move(s));
-    return std::nullopt;
+    out.doc.sections.push_back(std::move(s));
+    return;
   }
   if (ctx.data.answers.empty()) {
     s.text("No questionnaire answer is recorded in the database.");
-    ctx.doc.sections.push_back(std::move(s));
-    return std::vector<QuestionnaireItemResult>{};
+    out.doc.sections.push_back(std::move(s));
+    return;
   }
   s.text("Each item as the protocol declares it. Ratings of the levels of " + d.factor(d.primary).name +
          " are compared with Friedman's test (participants as blocks); the overall rating of a "
          "level is a participant's mean over the item's other factors. n counts the participants who rated every "
          "level compared.");
   const int pf = d.primary;
-  std::vector<QuestionnaireItemResult> results;
   std::vector<std::string> item_ids;
-  for (const auto& item : items) item_ids.push_back(item.id);
+  for (const auto& item : *result.items) item_ids.push_back(item.id);
   size_t ours = 0;
   QuestionnaireTables q = questionnaire_tables(d, item_ids, ours);
   Table &summary = q.summary, &others = q.others;
-  for (const auto& item : items) results.push_back(questionnaire_item(ctx, item, q));
+  for (const auto& item : *result.items) {
+    if (item.kind == QuestionnaireItemResult::Kind::rating) rating_rows(d, item, q);
+    else if (item.kind == QuestionnaireItemResult::Kind::numeric) numeric_row(d, item, q);
+    else if (item.kind == QuestionnaireItemResult::Kind::choice) choice_row(d, item, q);
+  }
   if (d.reference)
     summary.groups = {{"this study", static_cast<int>(ours)},
                       {d.published_group(item_ids), static_cast<int>(summary.header.size() - ours)}};
@@ -385,12 +417,11 @@ QuestionnaireResult section_questionnaire(Context& ctx) {
     s.add(others);
   }
   if (!q.fig_rows.empty()) {
-    ctx.add_figure(s, bar_plot(ctx, q.fig_rows, "fig-ratings", "Rating"),
+    out.add_figure(s, bar_plot(ctx, q.fig_rows, "fig-ratings", "Rating"),
                    "Average subjective rating per " + d.factor(pf).name +
                        " level (error bars: standard deviation over participants" + d.published_cf() + ").");
   }
-  ctx.doc.sections.push_back(std::move(s));
-  return results;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

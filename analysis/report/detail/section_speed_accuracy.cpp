@@ -4,7 +4,9 @@
 // between levels and what they say (a trade-off or not); within
 // participants, the repeated-measures correlation of a trial's time with its
 // error (does taking longer buy accuracy?); a scatter of the participant x
-// condition means.
+// condition means. section_speed_accuracy computes the rows;
+// lay_out_speed_accuracy lays them out (the scatter's points are the
+// participant x cell means the time and accuracy tests hold).
 #include <algorithm>
 #include <cmath>
 
@@ -219,8 +221,20 @@ std::vector<std::string> rmcorr_row(const SpeedAccuracyRow& row, TaskType type) 
 
 }  // namespace
 
-std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeResult& time,
-                                                     const AccuracyResult& accuracy) {
+SpeedAccuracyResult section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+  SpeedAccuracyResult r;
+  for (const auto& task : ctx.design.tasks) {
+    const TestReport* ti = time.of(task.id);
+    const TestReport* ai = accuracy.of(task.id);
+    if (!ti || !ai) continue;
+    r.rows.push_back(task_row(ctx, task, *ti, *ai));
+    ++r.tally.tests;  // its repeated-measures correlation
+  }
+  return r;
+}
+
+void lay_out_speed_accuracy(Layout& out, const Context& ctx, const SpeedAccuracyResult& r, const TimeResult& time,
+                            const AccuracyResult& accuracy) {
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   Section s{"speed-accuracy", "Speed and accuracy", 2, {}};
@@ -233,26 +247,21 @@ std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeRes
 
   Table t = speed_accuracy_table(d);
   Table c = rmcorr_table();
-  std::vector<SpeedAccuracyRow> rows;
   std::string scatter;
   std::vector<std::string> panels;
-  for (const auto& task : d.tasks) {
-    const TestReport* ti = time.of(task.id);
-    const TestReport* ai = accuracy.of(task.id);
-    if (!ti || !ai) continue;
-    rows.push_back(task_row(ctx, task, *ti, *ai));
-    t.rows.push_back(table_row(rows.back(), task.type));
-    c.rows.push_back(rmcorr_row(rows.back(), task.type));
-    ++ctx.tests;
+  for (const SpeedAccuracyRow& row : r.rows) {
+    const TaskInfo& task = *d.task(row.task);
+    t.rows.push_back(table_row(row, task.type));
+    c.rows.push_back(rmcorr_row(row, task.type));
     // Scatter data: one dataset per primary level, points = participant x cell means.
     bool finite = false;
-    scatter += scatter_data(d, task, *ti, *ai, finite);
+    scatter += scatter_data(d, task, *time.of(task.id), *accuracy.of(task.id), finite);
     panels.push_back(finite ? d.task_label(task) + "|" + error_name(task.type) : "");
   }
   if (t.rows.empty()) {
     s.text("No task has both a completion time and an error measure.");
-    ctx.doc.sections.push_back(std::move(s));
-    return rows;
+    out.doc.sections.push_back(std::move(s));
+    return;
   }
   t.notes.push_back(d.tasks_note() + " Reading: from the paired difference of the participants' mean times (paired "
                     "t) and the test of the error measure in the Accuracy section; \"reliable\" means p < .05. "
@@ -264,10 +273,9 @@ std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeRes
   s.add(c);
 
   const PlotSpec p = scatter_plot(d, scatter, panels);
-  ctx.add_figure(s, p, "Speed-accuracy scatter: each point is one participant's mean completion time and mean error "
+  out.add_figure(s, p, "Speed-accuracy scatter: each point is one participant's mean completion time and mean error "
                        "in one condition of the task, coloured by " + primary.name + ".");
-  ctx.doc.sections.push_back(std::move(s));
-  return rows;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

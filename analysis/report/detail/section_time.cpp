@@ -6,6 +6,8 @@
 // levels, a bar chart with SD error bars and the
 // per-participant lines. Overall, a participant's condition mean is the mean
 // of its per-task means (every task weighs the same, as in a balanced design).
+// section_time runs every test into a TimeResult; lay_out_time lays it out
+// and computes nothing but the figures' geometry.
 #include <cmath>
 #include <set>
 
@@ -145,14 +147,14 @@ const TestReport* run_time_tests(Context& ctx, TimeResult& result) {
   const Design& d = ctx.design;
   for (const auto& task : d.tasks) {
     const auto& m = ctx.cells(task.factors, [&](const TrialRow& t) { return t.planned.task == task.id; }, mean_of(time_of));
-    const auto& r = ctx.add_test("time", run_rm_anova(m, d, "completion time", "s", task.id));
+    const auto& r = ctx.add_test("time", run_rm_anova(m, d, "completion time", "s", task.id), result.tally);
     result.by_scope[task.id] = &r;
     result.tests.push_back(&r);
     result.rows.push_back({task.id, &r});
     result.means.push_back({&m, "completion_time_s", task.id});
   }
   const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, time_of));
-  const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "completion time", "s", "overall"));
+  const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "completion time", "s", "overall"), result.tally);
   result.by_scope["overall"] = &overall;
   result.tests.push_back(&overall);
   result.rows.push_back({"All tasks", &overall});
@@ -225,13 +227,14 @@ void time_sentences(const Design& d, Section& s, const Rows& rows) {
 }
 
 // Full ANOVA tables (over all tasks always; per task when more than one factor varies in it), then post-hoc tests.
-void time_anovas(Context& ctx, Section& s, const Rows& rows, const TestReport& overall) {
-  add_anova(ctx, s, overall, "table-time-anova-overall",
+void time_anovas(Layout& out, Section& s, const Design& d, const Rows& rows, const TestReport& overall) {
+  add_anova(out, s, d, overall, "table-time-anova-overall",
                     "Repeated-measures ANOVA of completion time over all tasks (participant x condition means of the "
                     "per-task means, s).");
   for (const auto& [label, r] : rows) {
     if (r == &overall || r->m->factors.size() < 2) continue;
-    add_anova(ctx, s, *r, "table-time-anova-" + r->scope, "Repeated-measures ANOVA of completion time, " + label + ".");
+    add_anova(out, s, d, *r, "table-time-anova-" + r->scope,
+              "Repeated-measures ANOVA of completion time, " + label + ".");
   }
   for (const auto& [label, r] : rows)
     for (const auto& [factor, list] : r->posthoc)
@@ -270,6 +273,14 @@ TimeResult time_tests(Context& ctx) {
 
 TimeResult section_time(Context& ctx) {
   TimeResult result;
+  run_time_tests(ctx, result);
+  // Robustness and assumptions (section_time_checks.cpp).
+  run_rank_tests(ctx, result);
+  if (ctx.options.log_time) result.log_rows = run_log_time(ctx, result);
+  return result;
+}
+
+void lay_out_time(Layout& out, const Context& ctx, const TimeResult& result) {
   const Design& d = ctx.design;
   const auto& primary = d.factor(d.primary);
   Section s{"time", "Completion time", 2, {}};
@@ -278,25 +289,24 @@ TimeResult section_time(Context& ctx) {
          "condition. These participant x condition means enter a repeated-measures ANOVA over participants "
          "(with n participants and two levels, F has 1 and n − 1 degrees of freedom). Over all tasks, a participant's "
          "condition value is the mean of their per-task means.");
-  const TestReport& overall = *run_time_tests(ctx, result);
   const Rows& rows = result.rows;
+  const TestReport& overall = *rows.back().second;  // "All tasks", the last row
   s.add(time_table(d, rows));
   time_sentences(d, s, rows);
-  ctx.add_figure(s, bar_plot(ctx, rows, "fig-time", "Completion time (s)"),
+  out.add_figure(s, bar_plot(ctx, rows, "fig-time", "Completion time (s)"),
                  "Average completion time per task and over all tasks, by " + primary.name +
                      " (error bars: standard deviation over participants" + d.published_cf() + ").");
-  ctx.add_figure(s, participant_lines(ctx, rows, "fig-time-participants", "Completion time (s)"),
+  out.add_figure(s, participant_lines(ctx, rows, "fig-time-participants", "Completion time (s)"),
                  "Each participant's mean completion time per level of " + primary.name +
                      " (grey lines, one per participant) and the mean over participants (black).");
-  time_anovas(ctx, s, rows, overall);
+  time_anovas(out, s, d, rows, overall);
 
   // Robustness and assumptions (section_time_checks.cpp).
-  add_rank_tests(ctx, s, rows, result.rank_tests, result.tests);
-  add_normality(ctx, s, rows, "time", false);
-  if (ctx.options.log_time) result.log_rows = add_log_time(ctx, s, result.tests);
+  lay_out_rank_tests(s, ctx, result);
+  lay_out_normality(out, s, rows, "time", false);
+  if (result.log_rows) lay_out_log_time(out, s, ctx, *result.log_rows);
   s.add(time_cells_table(rows));
-  ctx.doc.sections.push_back(std::move(s));
-  return result;
+  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

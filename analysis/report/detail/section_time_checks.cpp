@@ -4,8 +4,9 @@
 // into one), Shapiro-Wilk of each ANOVA's residuals with a Q-Q plot per row,
 // and, with --log-time, the ANOVAs of log completion times (reported beside
 // the seconds, never instead of them). Statistics come from analysis/stats;
-// this file only chooses the data and lays out tables and figures (the tests
-// go to the section's TimeResult, from which render_data.h writes report.json).
+// the run_* functions choose the data and store the tests in the section's
+// TimeResult (from which render_data.h writes report.json); the lay_out_*
+// functions lay out tables and figures from it and compute no statistic.
 #include <algorithm>
 #include <cmath>
 
@@ -67,8 +68,18 @@ PlotSpec qq_plot(const std::vector<std::pair<std::string, const TestReport*>>& r
 
 }  // namespace
 
-void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                    std::vector<const TestReport*>& out, std::vector<const TestReport*>& stored) {
+void run_rank_tests(Context& ctx, TimeResult& result) {
+  for (const auto& [label, r] : result.rows)
+    for (size_t k = 0; k < r->m->factors.size(); ++k) {
+      const auto& mk = ctx.keep(marginal_matrix(*r->m, k));
+      const auto& x = ctx.add_test("time", run_rank_test(mk, ctx.design, "completion time (ranks)", "s", r->scope,
+                                                         ctx.options.seed), result.tally);
+      result.tests.push_back(&x);
+      result.rank_tests.push_back(&x);
+    }
+}
+
+void lay_out_rank_tests(Section& s, const Context& ctx, const TimeResult& result) {
   const Design& d = ctx.design;
   Table t;
   t.id = "table-time-ranks";
@@ -76,15 +87,11 @@ void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::s
               "own (no normality or sphericity assumed).";
   t.header = {"Task", "Factor", "Test", "n", "Statistic", "p", "exact p", "Effect size"};
   t.text_columns = 3;
-  for (const auto& [label, r] : rows)
+  size_t next = 0;  // the rank tests, in the order run_rank_tests ran them
+  for (const auto& [label, r] : result.rows)
     for (size_t k = 0; k < r->m->factors.size(); ++k) {
-      const auto& mk = ctx.keep(marginal_matrix(*r->m, k));
-      const std::string factor = d.factor(r->m->factors[k]).name;
-      const auto& x = ctx.add_test("time", run_rank_test(mk, d, "completion time (ranks)", "s", r->scope,
-                                                         ctx.options.seed));
-      stored.push_back(&x);
-      out.push_back(&x);
-      std::vector<std::string> row = {label, factor};
+      const TestReport& x = *result.rank_tests.at(next++);
+      std::vector<std::string> row = {label, d.factor(r->m->factors[k]).name};
       if (x.wilcoxon) {
         const auto& w = *x.wilcoxon;
         row.insert(row.end(), {"Wilcoxon signed-rank", std::to_string(w.n),
@@ -110,8 +117,7 @@ void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::s
   s.add(t);
 }
 
-void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                   const std::string& measure, bool log_scale) {
+void lay_out_normality(Layout& out, Section& s, const TestRows& rows, const std::string& measure, bool log_scale) {
   Table t;
   t.id = "table-" + measure + "-normality";
   t.caption = std::string("Normality of the ANOVA residuals") + (log_scale ? " (log completion time)" : "") +
@@ -129,32 +135,39 @@ void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::st
                     "residuals are not normal: read the rank tests beside the ANOVA (and the log-scale analysis, "
                     "`dtlab analyze --log-time`).");
   s.add(t);
-  ctx.add_figure(s, qq_plot(rows, "fig-" + measure + "-qq", log_scale ? "residual (log s)" : "residual (s)"),
+  out.add_figure(s, qq_plot(rows, "fig-" + measure + "-qq", log_scale ? "residual (log s)" : "residual (s)"),
                  std::string("Normal Q-Q plots of the ANOVA residuals") + (log_scale ? " of log completion time" : "") +
                      " per task: sorted residuals against normal quantiles (R's "
                  "qqnorm), with the line through the quartiles (qqline).");
 }
 
-TestRows add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored) {
+TestRows run_log_time(Context& ctx, TimeResult& result) {
   const Design& d = ctx.design;
-  const auto& primary = d.factor(d.primary);
-  const bool two = primary.levels.size() == 2;
   auto log_time = [](const TrialRow& t) -> std::optional<double> {
     if (!(t.completion_s > 0)) return std::nullopt;  // NaN (no time) or not positive
     return std::log(t.completion_s);
   };
-  std::vector<std::pair<std::string, const TestReport*>> rows;
+  TestRows rows;
   for (const auto& task : d.tasks) {
     const auto& m =
         ctx.cells(task.factors, [&](const TrialRow& t) { return t.planned.task == task.id; }, mean_of(log_time));
-    rows.push_back({task.id, &ctx.add_test("time", run_rm_anova(m, d, "log completion time", "log s", task.id))});
-    stored.push_back(rows.back().second);
+    rows.push_back({task.id, &ctx.add_test("time", run_rm_anova(m, d, "log completion time", "log s", task.id),
+                                           result.tally)});
+    result.tests.push_back(rows.back().second);
   }
   const auto& mo = ctx.cells(d.all_factors, [](const TrialRow&) { return true; }, overall_time(d, log_time));
-  const auto& overall = ctx.add_test("time", run_rm_anova(mo, d, "log completion time", "log s", "overall"));
-  stored.push_back(&overall);
+  const auto& overall =
+      ctx.add_test("time", run_rm_anova(mo, d, "log completion time", "log s", "overall"), result.tally);
+  result.tests.push_back(&overall);
   rows.push_back({"All tasks", &overall});
+  return rows;
+}
 
+void lay_out_log_time(Layout& out, Section& s, const Context& ctx, const TestRows& rows) {
+  const Design& d = ctx.design;
+  const auto& primary = d.factor(d.primary);
+  const bool two = primary.levels.size() == 2;
+  const TestReport& overall = *rows.back().second;
   s.text("Log completion times (--log-time). Completion times are skewed to the right; on the log scale a "
          "difference between conditions is a ratio of times. The same ANOVAs on the participants' mean log times:");
   Table t;
@@ -188,11 +201,10 @@ TestRows add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& 
   for (const auto& [label, r] : rows)
     if (const stats::Effect* e = r->effect(primary.name))
       s.text(label + ", log scale: " + primary.name + " " + effect_sentence(*e) + ".");
-  add_anova(ctx, s, overall, "table-time-log-anova-overall",
+  add_anova(out, s, d, overall, "table-time-log-anova-overall",
             "Repeated-measures ANOVA of log completion time over all tasks (participant x condition means of the "
             "per-task mean log times).");
-  add_normality(ctx, s, rows, "time-log", true);
-  return rows;
+  lay_out_normality(out, s, rows, "time-log", true);
 }
 
 }  // namespace dtlab::report::detail

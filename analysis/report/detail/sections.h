@@ -1,15 +1,19 @@
-// The sections of the report, each a function that reads the study through
-// the Context, runs its tests and returns what it found as a plain result
-// struct (numbers, tables, warnings) beside its part of the Document. A
-// section that a later one builds on returns a declared result (TimeResult,
-// AccuracyResult) and the later one takes it as an argument: no section reads
-// another's output through the Context, so the call order is written in the
-// signatures. The order in report.cpp is the order of a paper's results: data
-// and method, completion time, accuracy, mixed models of the trials,
-// speed-accuracy, questionnaire, instruments, position effects, frame-time
-// audit, then planning the next study. report.json and the CSV files are laid
-// out from the results by one renderer each (render_data.h). Sections never
-// build JSON, never write CSV or any file and never touch the database.
+// The sections of the report. Each section is two functions: one computes
+// what the section found from the study (through the Context, which holds
+// the inputs) into a plain result struct (numbers, tables, the tests it
+// reported and the warnings it raised, its Tally), the other lays that
+// result out as the section's part of the Document (lay_out_*; it takes a
+// const Context and never computes a statistic: a number it prints is in a
+// result). A section that a later one builds on hands over a declared
+// result (TimeResult, AccuracyResult) as an argument: no section reads
+// another's output through the Context, so the order is written in the
+// signatures. report.cpp computes every section first, in a paper's order
+// (data and method, completion time, accuracy, mixed models, speed-accuracy,
+// questionnaire, instruments, position effects, frame-time audit, planning
+// the next study, walked paths), then lays them out in the same order;
+// report.json and the CSV files are laid out from the results by one
+// renderer each (render_data.h). Sections never build JSON, never write CSV
+// or any file and never touch the database.
 #pragma once
 #include <deque>
 #include <map>
@@ -30,6 +34,15 @@
 
 namespace dtlab::report::detail {
 
+// What every section hands back beside its findings: the statistical tests it reported (summed into
+// report.json's summary.tests) and the data problems it found (report.json's warnings, in section order).
+struct Tally {
+  int tests = 0;
+  std::vector<std::string> warnings;
+};
+
+// The inputs every section reads: the study, its design, the options, the analysed participants; and the
+// storage its results point into.
 struct Context {
   Context(const StudyData& d, const Design& g, const ReportOptions& o) : data(d), design(g), options(o) {}
   const StudyData& data;
@@ -40,11 +53,7 @@ struct Context {
   std::vector<std::string> simulated;    // of those, the ones marked simulated
   long long analysed_trials = 0;
 
-  Document doc;
-  std::vector<PlotSpec> plots;
-  std::vector<std::string> warnings;       // data problems, shown at the top
-  int tests = 0;                           // statistical tests reported
-
+  // Storage, not output: the results point into it (their TestReport and CellMatrix pointers).
   std::deque<CellMatrix> matrices;         // stable storage: TestReport points into it
   std::deque<TestReport> reports;          // every test reported, in order (tests.csv)
   std::vector<std::string> report_section; // section id of reports[i]
@@ -54,11 +63,18 @@ struct Context {
   const CellMatrix& keep(CellMatrix m) { matrices.push_back(std::move(m)); return matrices.back(); }
   // Aggregates per subject x cell of `factors` over the analysed trials passing `include`.
   const CellMatrix& cells(const std::vector<int>& factors, const TrialFilter& include, const Reducer& reduce);
+  // Stores a test for tests.csv and adds the tests it reports to `tally`; returns the stored copy.
+  const TestReport& add_test(const std::string& section, TestReport r, Tally& tally);
+  std::string level_label(int f, int level) const { return design.level_label(f, level); }
+};
+
+// The layout the lay_out_* functions build: the Document the text renderers print and the plots its
+// figures draw, in order of appearance.
+struct Layout {
+  Document doc;
+  std::vector<PlotSpec> plots;
   // Adds the figure to `s` and the plot to be drawn, or a note when the plot has nothing to draw.
   void add_figure(Section& s, PlotSpec p, const std::string& caption);
-  // Stores a test for tests.csv and counts its tests; returns the stored copy.
-  const TestReport& add_test(const std::string& section, TestReport r);
-  std::string level_label(int f, int level) const { return design.level_label(f, level); }
 };
 
 // A block of a long means CSV: a participant x cell matrix with its measure's name and its scope
@@ -78,6 +94,7 @@ struct TimeResult {
   std::vector<MeansBlock> means;                      // their matrices (completion_time_means.csv)
   std::vector<const TestReport*> rank_tests;          // the rank tests of each row's factors
   std::optional<TestRows> log_rows;                   // --log-time: the ANOVAs of log times, as `rows`
+  Tally tally;
   // The ANOVA of `scope`, or nullptr.
   const TestReport* of(const std::string& scope) const;
 };
@@ -94,6 +111,8 @@ struct AccuracyResult {
   std::vector<const TestReport*> tests;  // every test the section stored, in order
   std::vector<AccuracyRow> rows;         // the table's rows, one test each (empty: no task is scored)
   std::vector<MeansBlock> means;         // the matrices of the rows and the signed errors (accuracy_means.csv)
+  std::vector<std::string> notes;        // under the table: trials without an answer, true counts of 0
+  Tally tally;
   // The test of task `id`'s per-trial error measure, or nullptr.
   const TestReport* of(const std::string& id) const;
 };
@@ -128,19 +147,40 @@ struct ParticipantsResult {
   std::vector<TextField> texts;
   std::vector<AroundSession> around;
   std::vector<std::string> study_notes;
+  Tally tally;
 };
 
-void section_overview(Context& ctx);        // title, data summary, warnings, methods
+struct FramesResult;
+
+// What the data section found: sessions and trials as recorded (its warnings: incomplete sessions, unknown
+// levels, excluded data, too few participants).
+struct OverviewResult {
+  int finished = 0, running = 0, abandoned = 0, never_started = 0;  // sessions by status
+  long long planned = 0, recorded = 0, practice = 0;                // trials
+  Tally tally;
+};
+OverviewResult section_overview(Context& ctx);  // sessions and trials, the data's warnings
+// Title, data summary, warnings (with the frame-time audit's, where a reader starts), methods.
+void lay_out_overview(Layout& out, const Context& ctx, const OverviewResult& r, const FramesResult& frames);
 ParticipantsResult section_participants(Context& ctx);  // demographics, pauses and notes per participant
-TimeResult section_time(Context& ctx);      // completion time: Table III layout, full ANOVAs, Fig. 9, participants
+void lay_out_participants(Layout& out, const ParticipantsResult& r);
+TimeResult section_time(Context& ctx);      // completion time: ANOVAs, rank tests, --log-time
+// Table III layout, full ANOVAs, Fig. 9, participants, rank tests, normality, log times.
+void lay_out_time(Layout& out, const Context& ctx, const TimeResult& r);
 AccuracyResult section_errors(Context& ctx);  // accuracy: relative error, correctness, distance
-// The tests of section_time and section_errors alone, without their layout (no document section, no
-// report.json entry, no figure; the tests are still stored in ctx): what `dtlab power` plans. A TimeResult
-// from time_tests holds the per-task and overall ANOVAs, not section_time's rank and log-time tests.
+void lay_out_accuracy(Layout& out, const Context& ctx, const AccuracyResult& r);
+// The tests of section_time and section_errors alone (no rank or log-time tests; the tests are still stored
+// in ctx): what `dtlab power` plans. A TimeResult from time_tests holds the per-task and overall ANOVAs.
 TimeResult time_tests(Context& ctx);
 AccuracyResult accuracy_tests(Context& ctx);
-// Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp); every model fitted.
-std::vector<MixedModelResult> section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+// What the mixed models found: every model fitted (tests: one per term of each fit).
+struct MixedResult {
+  std::vector<MixedModelResult> models;
+  Tally tally;
+};
+// Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp).
+MixedResult section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+void lay_out_mixed_models(Layout& out, const Context& ctx, const MixedResult& r);
 // What speed-accuracy found for a task with both a time and an error test.
 struct SpeedAccuracyRow {
   struct Level {
@@ -158,13 +198,21 @@ struct SpeedAccuracyRow {
 };
 // Time vs error per condition and participant, from the tests of `time` and `accuracy`; one row per task
 // with both (none: no section body beyond a sentence).
-std::vector<SpeedAccuracyRow> section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+struct SpeedAccuracyResult {
+  std::vector<SpeedAccuracyRow> rows;
+  Tally tally;  // one test per row (its repeated-measures correlation)
+};
+SpeedAccuracyResult section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
+// The table, the correlations and the scatter (its points: the participant x cell means of `time` and `accuracy`).
+void lay_out_speed_accuracy(Layout& out, const Context& ctx, const SpeedAccuracyResult& r, const TimeResult& time,
+                            const AccuracyResult& accuracy);
 // What the questionnaire section found for one item asked at the end of the session.
 struct QuestionnaireItemResult {
   enum class Kind { other, rating, numeric, choice };
   struct Share {
     int count = 0;
     double proportion = 0, sd = 0;  // of the participants who answered; NaN when none (sd: when < 2)
+    std::string label;              // the option as the table names it (a factor level's label)
   };
   std::string id, type, prompt;
   std::size_t n = 0;                // participants who answered
@@ -172,14 +220,20 @@ struct QuestionnaireItemResult {
   std::vector<const TestReport*> tests;       // rating: Friedman per combination of the other factors, overall
   stats::Descriptives descriptives;           // numeric: over the participants' values
   std::optional<double> proportion_correct;   // numeric depth test: mean pairs correct / pairs
+  std::string scale;                          // numeric: "scale 1–7", "pairs correct of 10"
+  int answered = 0;                           // choice: answers counted (the shares' denominator)
   std::map<std::string, Share> choices;       // choice: per option chosen
   std::optional<stats::SignTestResult> sign_test;  // choice between two options: second against first
   std::string first_option, second_option;    // those options, when sign_test is set
 };
-// What the questionnaire section found: nullopt when the protocol asks nothing it reports; an empty list
-// when no answer is recorded; else one result per item, in protocol order.
-using QuestionnaireResult = std::optional<std::vector<QuestionnaireItemResult>>;
+// What the questionnaire section found: `items` nullopt when the protocol asks nothing it reports; an empty
+// list when no answer is recorded; else one result per item, in protocol order.
+struct QuestionnaireResult {
+  std::optional<std::vector<QuestionnaireItemResult>> items;
+  Tally tally;
+};
 QuestionnaireResult section_questionnaire(Context& ctx);  // ratings, preference, self-reported depth, depth test
+void lay_out_questionnaire(Layout& out, const Context& ctx, const QuestionnaireResult& r);
 // A one-factor design over positions ("1", "2", ...) for the position tests (not movable: its design
 // points into its protocol).
 struct PositionDesign {
@@ -203,13 +257,17 @@ struct PositionResult {
     const TestReport* test = nullptr;
     std::vector<Level> levels;
   };
+  int blocks = 0;                                   // block positions (the largest seen)
   std::map<std::string, std::vector<int>> balance;  // condition -> participants per block position
   bool balanced = true;
   std::vector<Split> splits;                        // block position, repetition (those with >= 2 levels)
   const TestReport* order_row = nullptr;            // nullptr: not tested
+  std::size_t order_rows_seen = 0, order_complete = 0;  // order rows among the complete participants, and they
+  Tally tally;
 };
 // Position in the session, order rows of the counterbalancing; the overall completion time of `time`.
 PositionResult section_position(Context& ctx, const TimeResult& time);
+void lay_out_position(Layout& out, const Context& ctx, const PositionResult& r);
 // What the frame-time audit found, per condition, and the warnings the top of the report repeats.
 struct FramesResult {
   struct Condition {
@@ -230,22 +288,27 @@ struct FramesResult {
   std::vector<Condition> conditions;  // one per protocol condition, in order
   std::vector<std::string> warnings;  // why render cost may confound completion time; empty: no reason
   std::vector<std::string> below;     // conditions below the display's rate
+  std::vector<std::string> renderers;        // every renderer the analysed trials recorded, sorted
+  std::vector<std::string> simulated_sizes;  // "160 × 120": framebuffers of simulated participants' trials
+  bool simulated_frames = false;             // a simulated participant's trial has frames
+  bool people = false;                       // some trial with frames is a person's
+  Tally tally;                               // warnings: `warnings`, each prefixed "frame-time audit: "
 };
 FramesResult section_frames(Context& ctx);  // frame-time audit per condition
-// The audit's warnings also at the top of the report, in the data section (section_overview's), where a
-// reader starts; the report's assembly calls it once both sections exist.
-void warn_at_top(Document& doc, const FramesResult& frames);
+void lay_out_frames(Layout& out, const FramesResult& r);
 // What planning the next study found: the analytic power of each effect at `sizes` participants.
 struct PlanningResult {
   std::vector<int> sizes;
   double alpha = 0.05;
   std::vector<PlannedEffect> effects;
   std::vector<std::string> not_planned;  // tests that could not be planned, with why
+  Tally tally;
 };
 // Planning the next study: analytic power of every ANOVA effect of `time` and `accuracy`.
 PlanningResult section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
-// What the report does not say; files written (`path_figures`: section_paths added its section).
-void section_notes(Context& ctx, bool path_figures);
+void lay_out_planning(Layout& out, const Context& ctx, const PlanningResult& r);
+// What the report does not say; files written (`path_figures`: the walked-paths section exists). Layout only.
+void lay_out_notes(Layout& out, const Context& ctx, bool path_figures);
 
 // A walked-path figure written beside the report (report.cpp draws them through ReportOptions::path_figure).
 struct PathFigure {
@@ -253,9 +316,17 @@ struct PathFigure {
   int trials = 0;    // analysed trials of the task the figure was asked for
   std::string file;  // relative to the report's directory, e.g. "paths/03-P03-T3.svg"
 };
-// The table linking them, and the trials left out of them ("participant trial N: why"; also a warning).
-// Returns whether it added the section (false: no figure and nothing left out).
-bool section_paths(Context& ctx, const std::vector<PathFigure>& figures, const std::vector<std::string>& left_out);
+// The walked-path figures drawn and the trials left out of them ("participant trial N: why").
+struct PathsResult {
+  std::vector<PathFigure> figures;
+  std::vector<std::string> left_out;
+  bool shown = false;  // the section exists: some figure or some trial left out
+  Tally tally;         // a warning when trials were left out
+};
+// The result of drawing `figures` and leaving out `left_out`.
+PathsResult section_paths(std::vector<PathFigure> figures, std::vector<std::string> left_out);
+// The table linking the figures, and the trials left out of them; nothing unless r.shown.
+void lay_out_paths(Layout& out, const PathsResult& r);
 
 // --- plots shared by the sections (section_time.cpp) -------------------------------------------
 // Bars per row (x groups) and primary level (series), SD error bars (the article's Figs. 9 and 10).
@@ -267,16 +338,18 @@ PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::
 
 // --- checks beside the completion-time ANOVAs (section_time_checks.cpp) ---------------------------
 // Rank tests of each factor of each row on its marginal means (Wilcoxon for 2 levels, else Friedman);
-// the tests are appended to `out` and to `stored`.
-void add_rank_tests(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                    std::vector<const TestReport*>& out, std::vector<const TestReport*>& stored);
+// the tests go to result.rank_tests and result.tests, one per factor of each of result.rows.
+void run_rank_tests(Context& ctx, TimeResult& result);
+// Their table: one row per rank test, in the order run_rank_tests ran them.
+void lay_out_rank_tests(Section& s, const Context& ctx, const TimeResult& r);
 // Shapiro-Wilk of each row's ANOVA residuals (a table) and their normal Q-Q plots (one figure).
-void add_normality(Context& ctx, Section& s, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                   const std::string& measure, bool log_scale);
+void lay_out_normality(Layout& out, Section& s, const TestRows& rows, const std::string& measure, bool log_scale);
 
-// --log-time: ANOVAs of log completion times per task and overall, a table beside the seconds'; the stored
-// tests are appended to `stored`. Returns the rows of the table (label, test).
-TestRows add_log_time(Context& ctx, Section& s, std::vector<const TestReport*>& stored);
+// --log-time: ANOVAs of log completion times per task and overall (stored in result.tests); returns the
+// rows of their table (label, test).
+TestRows run_log_time(Context& ctx, TimeResult& result);
+// Their table beside the seconds', sentences, the overall ANOVA and its residuals' normality.
+void lay_out_log_time(Layout& out, Section& s, const Context& ctx, const TestRows& rows);
 // Mean over the condition's tasks of the per-task means of `field`; NaN unless every task of the
 // condition's scenario has a trial (no silent re-weighting). (section_time.cpp)
 Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field);
@@ -296,7 +369,8 @@ std::vector<std::string> test_notes(const TestReport& r);
 // The full ANOVA table of a TestReport (df, GG-corrected where ε < 1, MSE, F, APA p, ηp² with
 // its 90% CI, ηG², Mauchly's W and p, both epsilons), under it one APA sentence per effect, and
 // for each followed-up interaction its simple effects and an interaction plot (within-subject CIs).
-void add_anova(Context& ctx, Section& s, const TestReport& r, const std::string& id, const std::string& caption);
+void add_anova(Layout& out, Section& s, const Design& d, const TestReport& r, const std::string& id,
+               const std::string& caption);
 // "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
 std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
 
