@@ -15,6 +15,7 @@
 
 #include "analysis/report/detail/report_design.h"
 #include "analysis/report/detail/document.h"
+#include "analysis/report/detail/layout.h"
 #include "analysis/report/detail/plots.h"
 #include "analysis/report/detail/render_data.h"
 #include "analysis/report/detail/sections.h"

@@ -143,4 +143,14 @@ std::string r_call(const MixedModelResult& m) {
   return "lmer(" + m.fit->formula + ", data = " + data + ")";
 }
 
+MixedResult section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
+  MixedResult r;
+  r.models = compute_mixed_models(ctx, time, accuracy);
+  for (const auto& m : r.models)
+    if (m.fit)
+      r.tally.tests += static_cast<int>(m.fit->family == stats::Family::binomial ? m.fit->lrt.size()
+                                                                                 : m.fit->anova.size());
+  return r;
+}
+
 }  // namespace dtlab::report::detail

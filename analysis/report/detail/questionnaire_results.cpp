@@ -191,4 +191,10 @@ QuestionnaireResults questionnaire_results(Context& ctx) {
   return out;
 }
 
+std::optional<QuestionnaireResults> section_instruments(Context& ctx) {
+  QuestionnaireResults res = questionnaire_results(ctx);
+  if (res.measures.empty() && res.counts.empty() && res.texts.empty()) return std::nullopt;
+  return res;
+}
+
 }  // namespace dtlab::report::detail

@@ -8,7 +8,7 @@
 // for points on a scale (ratings, Likert items), as the report treats
 // ratings -- counts of the options chosen per condition, and every free-text
 // answer with the condition it followed. A plain struct computed from the
-// Context's data alone; section_instruments.cpp lays it out. No I/O.
+// Context's data alone; layout_instruments.cpp lays it out. No I/O.
 #pragma once
 #include <map>
 #include <optional>
@@ -60,10 +60,8 @@ struct QuestionnaireResults {
 // the result's tally.
 QuestionnaireResults questionnaire_results(Context& ctx);
 
-// The section "Instruments and questions per condition" (section_instruments.cpp): questionnaire_results(),
+// The section "Instruments and questions per condition": questionnaire_results(),
 // or nullopt (no section) when the protocol has nothing of it.
 std::optional<QuestionnaireResults> section_instruments(Context& ctx);
-// Lays out its result (computes nothing).
-void lay_out_instruments(Layout& out, const Context& ctx, const QuestionnaireResults& res);
 
 }  // namespace dtlab::report::detail

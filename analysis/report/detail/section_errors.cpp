@@ -5,8 +5,7 @@
 // all counting tasks together; letter tasks the proportion correct by
 // Friedman; find-unique tasks the Euclidean distance by RM ANOVA. Trials
 // without an answer are left out of the error measures and counted in a note.
-// section_errors runs the tests into an AccuracyResult; lay_out_accuracy lays
-// it out and computes nothing.
+// Computes the AccuracyResult only; layout_accuracy.cpp lays it out.
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
@@ -20,29 +19,6 @@ using protocol::TaskType;
 bool is_count(TaskType t) { return t == TaskType::count_targets || t == TaskType::count_kind; }
 
 using Row = AccuracyRow;
-
-// "F(1, 15) = 1.82" (df Greenhouse-Geisser corrected where ε < 1, as the p beside it) or "χ²(1) = 0.11".
-std::string statistic_text(const TestReport& r, const std::string& factor) {
-  if (const stats::Effect* e = r.effect(factor)) return "F(" + df_cell(*e) + ") = " + f_text(e->F);
-  if (r.friedman) return "χ²(" + df_text(r.friedman->df) + ") = " + fixed(r.friedman->Q, 2);
-  return kDash;
-}
-
-std::string p_of(const TestReport& r, const std::string& factor) {
-  if (const stats::Effect* e = r.effect(factor)) return p_text(reported_p(*e));
-  if (r.friedman) {
-    std::string s = p_text(r.friedman->p);
-    if (std::isfinite(r.friedman->p_exact)) s += " (exact " + p_text(r.friedman->p_exact) + ")";
-    return s;
-  }
-  return kDash;
-}
-
-std::string effect_size_text(const TestReport& r, const std::string& factor) {
-  if (const stats::Effect* e = r.effect(factor)) return "ηp² = " + bounded(e->eta_p2);
-  if (r.friedman) return "W = " + bounded(r.friedman->kendall_W);
-  return kDash;
-}
 
 // The accuracy tests of every task (and of all counting tasks together), computed before any layout into
 // the section's AccuracyResult; what computing them needs beside.
@@ -143,61 +119,6 @@ void run_accuracy_tests(Context& ctx, AccuracyResult& result) {
   if (out.count_tasks.size() > 1) pooled_count_tests(ctx, out, result);
 }
 
-// The table's cells of one row: measure, mean (SD) per level, test, p, effect size, difference, published.
-std::vector<std::string> accuracy_cells(const Design& d, const Row& row) {
-  const auto& primary = d.factor(d.primary);
-  const TestReport& r = *row.r;
-  std::vector<std::string> cells = {row.label, row.measure};
-  for (const auto& c : primary_cells(r, d, row.decimals)) cells.push_back(c);
-  cells.push_back(std::to_string(r.kept.size()));
-  cells.push_back(statistic_text(r, primary.name));
-  cells.push_back(p_of(r, primary.name));
-  cells.push_back(effect_size_text(r, primary.name));
-  if (primary.levels.size() == 2) {
-    cells.push_back(r.paired ? fixed(r.paired->t.mean_difference, row.decimals) + " [" +
-                                   fixed(r.paired->t.ci_low, row.decimals) + ", " +
-                                   fixed(r.paired->t.ci_high, row.decimals) + "]"
-                             : kDash);
-  }
-  const auto* a = row.published.empty() ? nullptr : d.published("accuracy", row.published);
-  for (const auto& c : d.published_cells("accuracy", row.published, row.decimals)) cells.push_back(a ? c : "");
-  return cells;
-}
-
-Table accuracy_table(const Design& d, const AccuracyResult& result) {
-  const auto& primary = d.factor(d.primary);
-  const bool two = primary.levels.size() == 2;
-  Table t;
-  t.id = "table-accuracy";
-  t.caption = "Accuracy per task: mean (SD) over participants of the participant x condition values, and the test "
-              "of " + primary.name + ".";
-  t.header = {"Task", "Measure"};
-  t.text_columns = 2;
-  for (size_t l = 0; l < primary.levels.size(); ++l) t.header.push_back(d.level_label(d.primary, static_cast<int>(l)));
-  t.header.insert(t.header.end(), {"n", "Test", "p", "Effect size"});
-  if (two) t.header.push_back("Δ " + primary.levels[1] + " − " + primary.levels[0] + " [95% CI]");
-  const size_t ours = t.header.size();
-  for (const auto& h : d.published_header()) t.header.push_back(h);
-  for (const auto& row : result.rows) t.rows.push_back(accuracy_cells(d, row));
-  if (d.reference)
-    t.groups = {{"this study", static_cast<int>(ours)},
-                {d.published_group("accuracy"), static_cast<int>(t.header.size() - ours)}};
-  t.notes.push_back(d.tasks_note() + " Relative error is a proportion (0 = exact count); proportion correct is 0..1; "
-                    "distance is in world units. Test: repeated-measures ANOVA (F) or Friedman's test (χ², with the "
-                    "exact permutation p in parentheses when computed). p in APA style (exact values in report.json). "
-                    "Effect size: partial η² (ηp²) or Kendall's W.");
-  if (!two)
-    t.notes.push_back("df and p of F tests are Greenhouse-Geisser corrected where ε < 1 (" +
-                      std::to_string(primary.levels.size()) + " levels).");
-  else
-    t.notes.push_back("Δ: mean paired difference " + primary.levels[1] + " − " + primary.levels[0] +
-                      " with its 95% CI (paired t); negative = smaller error / fewer correct with " + primary.levels[1] +
-                      ".");
-  if (d.reference) t.notes.push_back(d.published_note("accuracy"));
-  for (const auto& n : result.notes) t.notes.push_back(n);
-  return t;
-}
-
 }  // namespace
 
 AccuracyResult accuracy_tests(Context& ctx) {
@@ -207,34 +128,5 @@ AccuracyResult accuracy_tests(Context& ctx) {
 }
 
 AccuracyResult section_errors(Context& ctx) { return accuracy_tests(ctx); }
-
-void lay_out_accuracy(Layout& out, const Context& ctx, const AccuracyResult& result) {
-  const Design& d = ctx.design;
-  Section s{"accuracy", "Accuracy", 2, {}};
-  s.text("Accuracy is measured per task type. Counting tasks: the relative error |answer − truth| / truth of each "
-         "trial, averaged per participant and condition; and the aggregated form, |sum of the true "
-         "counts − sum of the answers| / sum of the true counts over a participant's trials in a condition (an "
-         "over-count and an under-count cancel in it). Letter tasks: the proportion of correct answers per "
-         "participant and condition, tested with Friedman's test. Find-unique tasks: the "
-         "Euclidean distance between the marked and the true position, in world units. Continuous measures are "
-         "tested with repeated-measures ANOVA over the participant x condition means.");
-  if (result.rows.empty()) {
-    s.text("The protocol has no task with an answer key the report scores.");
-    out.doc.sections.push_back(std::move(s));
-    return;
-  }
-  s.add(accuracy_table(d, result));
-  const auto& rows = result.rows;
-  for (const auto& row : rows) {
-    const TestReport& r = *row.r;
-    for (const auto& note : test_notes(r))
-      if (note.rfind("n = ", 0) != 0 || !r.excluded.empty()) s.text(row.label + ", " + row.measure + ": " + note);
-  }
-  for (const auto& row : rows)
-    if (row.r->m->factors.size() > 1 && row.r->anova)
-      add_anova(out, s, d, *row.r, "table-accuracy-anova-" + row.r->scope + "-" + std::to_string(&row - &rows[0]),
-                        "Repeated-measures ANOVA of " + row.measure + ", " + row.label + ".");
-  out.doc.sections.push_back(std::move(s));
-}
 
 }  // namespace dtlab::report::detail

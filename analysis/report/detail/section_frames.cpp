@@ -5,11 +5,11 @@
 // median frame rate, the share of late frames, the warm-up frame, the p95
 // and the trials whose p95 exceeded --frame-threshold-ms. It speaks up: a
 // condition rendered below the threshold's rate (30 fps by default), or
-// conditions whose median rates differ by more than 25%, put a warning at the
-// top of the report, because render cost then may confound completion time.
-// Simulated frames are labelled with their size and renderer. Never claims
-// fluency the numbers do not show. section_frames computes the FramesResult;
-// lay_out_frames lays it out and computes nothing.
+// conditions whose median rates differ by more than 25%, give a warning (the
+// top of the report repeats it), because render cost then may confound
+// completion time. Computes the FramesResult only, with every threshold the
+// layout prints (layout_frames.cpp); never claims fluency the numbers do not
+// show.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -110,18 +110,6 @@ Gathered gather(const Context& ctx, double threshold) {
   return g;
 }
 
-// The sentence that labels simulated frames with their size and renderer.
-std::string simulated_text(const FramesResult& g) {
-  std::string size_list;
-  for (const auto& x : g.simulated_sizes) size_list += (size_list.empty() ? "" : ", ") + x;
-  const bool soft = std::any_of(g.renderers.begin(), g.renderers.end(), [](const std::string& r) { return software(r); });
-  return "Simulated frames: the simulated participants' trials were rendered offscreen" +
-         (size_list.empty() ? std::string() : " at " + size_list + " pixels") +
-         (soft ? ", by a software rasterizer on the CPU" : "") +
-         ". Their frame rates measure this machine's rendering at that size, not what a participant's screen "
-         "would show; they say nothing about fluency in a real session.";
-}
-
 // One condition's row of the audit, from its frames gathered (`known_hz`: some trial recorded its display's rate).
 FramesResult::Condition condition_row(const ConditionFrames& c, bool known_hz) {
   FramesResult::Condition r;
@@ -153,6 +141,8 @@ FramesResult frames_result(const Context& ctx, const Gathered& g, double thresho
   out.threshold_ms = threshold;
   out.min_fps = 1000 / threshold;
   out.rate_spread = kRateSpread;
+  out.below_tolerance = kBelowDisplayTolerance;
+  out.assumed_hz = kAssumedHz;
   const bool known_hz = std::any_of(ctx.data.trials.begin(), ctx.data.trials.end(),
                                     [](const TrialRow& tr) { return tr.frames.refresh_hz.has_value(); });
   const ConditionFrames* fastest = nullptr;
@@ -182,57 +172,6 @@ FramesResult frames_result(const Context& ctx, const Gathered& g, double thresho
   return out;
 }
 
-// The per-condition table of the audit (without its notes).
-Table frames_table(const FramesResult& fr) {
-  Table t;
-  t.id = "table-frames";
-  t.caption = "Frame times per condition: median frame rate, late frames, the warm-up frame and the 95th percentile.";
-  t.header = {"Condition", "Method", "Display", "Trials", "Frames", "Display Hz", "Median fps", "Late frames",
-              "First frame (ms)", "p95 (ms)", "Slow trials"};
-  t.text_columns = 3;
-  for (const auto& c : fr.conditions)
-    t.rows.push_back({c.condition, c.method, c.display.empty() ? kDash : c.display, integer(c.trials),
-                      integer(c.frames),
-                      c.trials_with_frames == 0 ? kDash   // no trial with frames: no rate
-                                                : fixed(c.display_hz, 0) + (c.display_hz_known ? "" : " (assumed)"),
-                      fixed(c.median_fps, 1) + (c.below_display ? " (below display)" : ""),
-                      c.steady_frames > 0 ? integer(c.late_frames) + " (" + percent(c.late_share) + ")" : kDash,
-                      fixed(c.median_first_ms, 1), fixed(c.median_p95_ms, 1),
-                      c.p95_trials == 0 ? kDash : integer(c.slow_trials) + " (" + percent(c.slow_share) + ")"});
-  return t;
-}
-
-// The table with its notes, then what the numbers say (simulated frames, no confound, or the warnings).
-void frames_layout(Section& s, const FramesResult& fr) {
-  const double threshold = fr.threshold_ms;
-  const double min_fps = fr.min_fps;
-  Table t = frames_table(fr);
-  t.notes.push_back("Display: the kind and framebuffer size the session recorded (window: a participant's screen; "
-                    "headless: offscreen, simulated). Median fps: 1000 / the median over trials of each trial's "
-                    "median frame time after its first frame (its mean in databases written before frame timing "
-                    "was split). Late frames: frames after the first that took more than 1.5 display intervals, "
-                    "share of those frames. First frame: median over trials (warm-up, not in the other columns). "
-                    "p95: median over trials of each trial's 95th-percentile frame time (all frames). Slow trials: "
-                    "p95 above " + fixed(threshold, 1) + " ms (--frame-threshold-ms). Below display: on a display of "
-                    "known rate, the median frame took more than " + fixed(100 * kBelowDisplayTolerance, 0) +
-                    "% longer than a refresh interval.");
-  if (!fr.renderers.empty()) {
-    std::string list;
-    for (const auto& r : fr.renderers) list += (list.empty() ? "" : "; ") + ("`" + r + "`");
-    t.notes.push_back("Renderer: " + list + ".");
-  }
-  s.add(std::move(t));
-  if (fr.simulated_frames) s.text(simulated_text(fr));
-  if (!fr.people)
-    s.text("Every trial with frames was a simulated participant's: there is no participant's screen to check for a "
-           "render-cost confound.");
-  else if (fr.warnings.empty())
-    s.text("Every condition rendered at a median of at least " + fixed(min_fps, 0) + " fps and the conditions' "
-           "median frame rates are within " + fixed(100 * (kRateSpread - 1), 0) + "% of each other.");
-  else
-    s.add(Callout{"warning", "Render cost may confound completion time", fr.warnings});
-}
-
 }  // namespace
 
 FramesResult section_frames(Context& ctx) {
@@ -242,29 +181,12 @@ FramesResult section_frames(Context& ctx) {
   result.renderers.assign(g.renderers.begin(), g.renderers.end());
   result.simulated_sizes.assign(g.simulated_sizes.begin(), g.simulated_sizes.end());
   result.simulated_frames = g.simulated_frames;
+  result.software_renderer =
+      std::any_of(g.renderers.begin(), g.renderers.end(), [](const std::string& r) { return software(r); });
   result.people =
       std::any_of(g.conds.begin(), g.conds.end(), [](const ConditionFrames& c) { return !c.people_ms.empty(); });
   for (const auto& w : result.warnings) result.tally.warnings.push_back("frame-time audit: " + w);
   return result;
-}
-
-void lay_out_frames(Layout& out, const FramesResult& result) {
-  const double threshold = result.threshold_ms;
-  const double min_fps = result.min_fps;
-  Section s{"frames", "Frame-time audit", 2, {}};
-  s.text("Rendering speed per condition, from the frame times recorded with every trial. The median frame rate "
-         "is over the trials' median frame time after their first frame; the first frame of a trial (scene upload "
-         "and first present: warm-up) is reported apart. A frame is late when it took more than 1.5 display "
-         "intervals, i.e. missed a refresh (" + fixed(kAssumedHz, 0) + " Hz where the display's rate is unknown). A "
-         "trial is slow when its 95th-percentile frame time exceeds " + fixed(threshold, 1) + " ms (" +
-         fixed(min_fps, 0) + " fps). If conditions render at different speeds, completion time may measure "
-         "render cost as well as the condition's effect on the participant.");
-  if (result.trials_with_frames == 0)
-    s.text("No trial in the database recorded frame times (frame_count = 0 everywhere): the trials were not "
-           "rendered while they ran. The audit has nothing to check.");
-  else
-    frames_layout(s, result);
-  out.doc.sections.push_back(std::move(s));
 }
 
 }  // namespace dtlab::report::detail

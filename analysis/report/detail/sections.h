@@ -1,19 +1,18 @@
-// The sections of the report. Each section is two functions: one computes
-// what the section found from the study (through the Context, which holds
-// the inputs) into a plain result struct (numbers, tables, the tests it
-// reported and the warnings it raised, its Tally), the other lays that
-// result out as the section's part of the Document (lay_out_*; it takes a
-// const Context and never computes a statistic: a number it prints is in a
-// result). A section that a later one builds on hands over a declared
-// result (TimeResult, AccuracyResult) as an argument: no section reads
-// another's output through the Context, so the order is written in the
-// signatures. report.cpp computes every section first, in a paper's order
-// (data and method, completion time, accuracy, mixed models, speed-accuracy,
-// questionnaire, instruments, position effects, frame-time audit, planning
-// the next study, walked paths), then lays them out in the same order;
-// report.json and the CSV files are laid out from the results by one
-// renderer each (render_data.h). Sections never build JSON, never write CSV
-// or any file and never touch the database.
+// The sections of the report, as computations. Each section is a function
+// that computes what the section found from the study (through the Context,
+// which holds the inputs) into a plain result struct: numbers, the tests it
+// reported, and its Tally (how many tests, which warnings). Its layout, the
+// section's part of the Document, is a separate function (layout.h) that
+// takes the result and computes nothing. A section that a later one builds
+// on hands over a declared result (TimeResult, AccuracyResult) as an
+// argument: no section reads another's output through the Context, so the
+// order is written in the signatures. report.cpp computes every section
+// first, in a paper's order (data and method, completion time, accuracy,
+// mixed models, speed-accuracy, questionnaire, instruments, position
+// effects, frame-time audit, planning the next study, walked paths), then
+// lays them out in the same order; report.json and the CSV files are laid
+// out from the results by one renderer each (render_data.h). Sections never
+// build JSON, never write CSV or any file and never touch the database.
 #pragma once
 #include <deque>
 #include <map>
@@ -66,15 +65,6 @@ struct Context {
   // Stores a test for tests.csv and adds the tests it reports to `tally`; returns the stored copy.
   const TestReport& add_test(const std::string& section, TestReport r, Tally& tally);
   std::string level_label(int f, int level) const { return design.level_label(f, level); }
-};
-
-// The layout the lay_out_* functions build: the Document the text renderers print and the plots its
-// figures draw, in order of appearance.
-struct Layout {
-  Document doc;
-  std::vector<PlotSpec> plots;
-  // Adds the figure to `s` and the plot to be drawn, or a note when the plot has nothing to draw.
-  void add_figure(Section& s, PlotSpec p, const std::string& caption);
 };
 
 // A block of a long means CSV: a participant x cell matrix with its measure's name and its scope
@@ -160,15 +150,9 @@ struct OverviewResult {
   Tally tally;
 };
 OverviewResult section_overview(Context& ctx);  // sessions and trials, the data's warnings
-// Title, data summary, warnings (with the frame-time audit's, where a reader starts), methods.
-void lay_out_overview(Layout& out, const Context& ctx, const OverviewResult& r, const FramesResult& frames);
 ParticipantsResult section_participants(Context& ctx);  // demographics, pauses and notes per participant
-void lay_out_participants(Layout& out, const ParticipantsResult& r);
 TimeResult section_time(Context& ctx);      // completion time: ANOVAs, rank tests, --log-time
-// Table III layout, full ANOVAs, Fig. 9, participants, rank tests, normality, log times.
-void lay_out_time(Layout& out, const Context& ctx, const TimeResult& r);
 AccuracyResult section_errors(Context& ctx);  // accuracy: relative error, correctness, distance
-void lay_out_accuracy(Layout& out, const Context& ctx, const AccuracyResult& r);
 // The tests of section_time and section_errors alone (no rank or log-time tests; the tests are still stored
 // in ctx): what `dtlab power` plans. A TimeResult from time_tests holds the per-task and overall ANOVAs.
 TimeResult time_tests(Context& ctx);
@@ -180,7 +164,6 @@ struct MixedResult {
 };
 // Mixed models of the trials beside the ANOVAs of `time` and `accuracy` (section_mixed.cpp).
 MixedResult section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
-void lay_out_mixed_models(Layout& out, const Context& ctx, const MixedResult& r);
 // What speed-accuracy found for a task with both a time and an error test.
 struct SpeedAccuracyRow {
   struct Level {
@@ -203,9 +186,6 @@ struct SpeedAccuracyResult {
   Tally tally;  // one test per row (its repeated-measures correlation)
 };
 SpeedAccuracyResult section_speed_accuracy(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
-// The table, the correlations and the scatter (its points: the participant x cell means of `time` and `accuracy`).
-void lay_out_speed_accuracy(Layout& out, const Context& ctx, const SpeedAccuracyResult& r, const TimeResult& time,
-                            const AccuracyResult& accuracy);
 // What the questionnaire section found for one item asked at the end of the session.
 struct QuestionnaireItemResult {
   enum class Kind { other, rating, numeric, choice };
@@ -233,7 +213,6 @@ struct QuestionnaireResult {
   Tally tally;
 };
 QuestionnaireResult section_questionnaire(Context& ctx);  // ratings, preference, self-reported depth, depth test
-void lay_out_questionnaire(Layout& out, const Context& ctx, const QuestionnaireResult& r);
 // A one-factor design over positions ("1", "2", ...) for the position tests (not movable: its design
 // points into its protocol).
 struct PositionDesign {
@@ -267,7 +246,6 @@ struct PositionResult {
 };
 // Position in the session, order rows of the counterbalancing; the overall completion time of `time`.
 PositionResult section_position(Context& ctx, const TimeResult& time);
-void lay_out_position(Layout& out, const Context& ctx, const PositionResult& r);
 // What the frame-time audit found, per condition, and the warnings the top of the report repeats.
 struct FramesResult {
   struct Condition {
@@ -284,6 +262,8 @@ struct FramesResult {
     double slow_share = 0;                 // NaN without a p95
   };
   double threshold_ms = 0, min_fps = 0, rate_spread = 0;
+  double below_tolerance = 0;  // below the display: the median frame longer than (1 + this) x a refresh interval
+  double assumed_hz = 0;       // the display rate late frames are counted against where it is unknown
   long long trials_with_frames = 0;
   std::vector<Condition> conditions;  // one per protocol condition, in order
   std::vector<std::string> warnings;  // why render cost may confound completion time; empty: no reason
@@ -291,11 +271,11 @@ struct FramesResult {
   std::vector<std::string> renderers;        // every renderer the analysed trials recorded, sorted
   std::vector<std::string> simulated_sizes;  // "160 × 120": framebuffers of simulated participants' trials
   bool simulated_frames = false;             // a simulated participant's trial has frames
+  bool software_renderer = false;            // some renderer is a software rasterizer (llvmpipe, ...)
   bool people = false;                       // some trial with frames is a person's
   Tally tally;                               // warnings: `warnings`, each prefixed "frame-time audit: "
 };
 FramesResult section_frames(Context& ctx);  // frame-time audit per condition
-void lay_out_frames(Layout& out, const FramesResult& r);
 // What planning the next study found: the analytic power of each effect at `sizes` participants.
 struct PlanningResult {
   std::vector<int> sizes;
@@ -306,9 +286,6 @@ struct PlanningResult {
 };
 // Planning the next study: analytic power of every ANOVA effect of `time` and `accuracy`.
 PlanningResult section_planning(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy);
-void lay_out_planning(Layout& out, const Context& ctx, const PlanningResult& r);
-// What the report does not say; files written (`path_figures`: the walked-paths section exists). Layout only.
-void lay_out_notes(Layout& out, const Context& ctx, bool path_figures);
 
 // A walked-path figure written beside the report (report.cpp draws them through ReportOptions::path_figure).
 struct PathFigure {
@@ -325,53 +302,21 @@ struct PathsResult {
 };
 // The result of drawing `figures` and leaving out `left_out`.
 PathsResult section_paths(std::vector<PathFigure> figures, std::vector<std::string> left_out);
-// The table linking the figures, and the trials left out of them; nothing unless r.shown.
-void lay_out_paths(Layout& out, const PathsResult& r);
 
-// --- plots shared by the sections (section_time.cpp) -------------------------------------------
-// Bars per row (x groups) and primary level (series), SD error bars (the article's Figs. 9 and 10).
-PlotSpec bar_plot(const Context& ctx, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                  const std::string& id, const std::string& ylabel);
-// One panel per row: each participant's marginal means per primary level (grey lines), the mean (black).
-PlotSpec participant_lines(const Context& ctx, const std::vector<std::pair<std::string, const TestReport*>>& rows,
-                           const std::string& id, const std::string& ylabel);
-
-// --- checks beside the completion-time ANOVAs (section_time_checks.cpp) ---------------------------
+// --- the tests beside the completion-time ANOVAs (section_time_checks.cpp) ------------------------
 // Rank tests of each factor of each row on its marginal means (Wilcoxon for 2 levels, else Friedman);
 // the tests go to result.rank_tests and result.tests, one per factor of each of result.rows.
 void run_rank_tests(Context& ctx, TimeResult& result);
-// Their table: one row per rank test, in the order run_rank_tests ran them.
-void lay_out_rank_tests(Section& s, const Context& ctx, const TimeResult& r);
-// Shapiro-Wilk of each row's ANOVA residuals (a table) and their normal Q-Q plots (one figure).
-void lay_out_normality(Layout& out, Section& s, const TestRows& rows, const std::string& measure, bool log_scale);
 
 // --log-time: ANOVAs of log completion times per task and overall (stored in result.tests); returns the
 // rows of their table (label, test).
 TestRows run_log_time(Context& ctx, TimeResult& result);
-// Their table beside the seconds', sentences, the overall ANOVA and its residuals' normality.
-void lay_out_log_time(Layout& out, Section& s, const Context& ctx, const TestRows& rows);
 // Mean over the condition's tasks of the per-task means of `field`; NaN unless every task of the
 // condition's scenario has a trial (no silent re-weighting). (section_time.cpp)
 Reducer overall_time(const Design& d, const std::function<std::optional<double>(const TrialRow&)>& field);
 
-// --- helpers shared by the sections (section_common.cpp) ---------------------------------------
+// --- (section_common.cpp) ----------------------------------------------------------------------
 // Fills ctx.subjects (participants with analysed trials, enrollment order) and ctx.analysed_trials.
 void collect_subjects(Context& ctx);
-// An effect's df as a cell: "1, 15", or Greenhouse-Geisser corrected where ε < 1 ("2.39, 35.89").
-std::string df_cell(const stats::Effect& e);
-// F, df, p and ηp² of the effect as table cells (df and p as above); four dashes for nullptr.
-std::vector<std::string> effect_cells(const stats::Effect* e);
-// Paired comparisons (post-hoc or simple effects): n, mean difference, SE, 95% CI, t, df, p, Holm p, d_z.
-Table comparison_table(const std::vector<stats::Comparison>& list, const std::string& id, const std::string& caption,
-                       const std::string& unit);
-// Notes for a test's table: n, excluded participants, warnings of the statistics library.
-std::vector<std::string> test_notes(const TestReport& r);
-// The full ANOVA table of a TestReport (df, GG-corrected where ε < 1, MSE, F, APA p, ηp² with
-// its 90% CI, ηG², Mauchly's W and p, both epsilons), under it one APA sentence per effect, and
-// for each followed-up interaction its simple effects and an interaction plot (within-subject CIs).
-void add_anova(Layout& out, Section& s, const Design& d, const TestReport& r, const std::string& id,
-               const std::string& caption);
-// "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
-std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
 
 }  // namespace dtlab::report::detail

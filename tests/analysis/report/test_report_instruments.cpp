@@ -1,4 +1,4 @@
-// The report's "Instruments and questions per condition" (section_instruments.cpp):
+// The report's "Instruments and questions per condition" (questionnaire_results.cpp, layout_instruments.cpp):
 // NASA-TLX asked after every block is scored (raw TLX) and compared across the
 // conditions with a repeated-measures ANOVA, a Likert item asked after each
 // transparency level with Friedman's test, both checked against R on the same

@@ -1,4 +1,4 @@
-// The report's mixed-model section (section_mixed.cpp) on the statsmodels
+// The report's mixed-model section (mixed_models.cpp computes, layout_models.cpp lays out) on the statsmodels
 // 2 x 2 study (studies.h: 8 participants, times = statsmodels' anova-rm DV,
 // both tasks of a scenario the same times, letter answers as studies.cpp
 // sets them): its models equal lme4 / lmerTest / emmeans fitted in R on the
@@ -100,8 +100,11 @@ TEST_F(ReportMixed, SectionIsInTheReportWithPasteableCalls) {
             std::string::npos);
   EXPECT_NE(md->find("T1: on trials took "), std::string::npos);
   // every model is compared with the report's test by decision at .05
-  for (const auto& m : (*report)["mixed_models"])
-    if (m.contains("fit")) EXPECT_FALSE(m["decisions"].empty()) << m["scope"];
+  for (const auto& m : (*report)["mixed_models"]) {
+    if (m.contains("fit")) {
+      EXPECT_FALSE(m["decisions"].empty()) << m["scope"];
+    }
+  }
 }
 
 // dtlab power --mixed: every fitted mixed model's primary factor planned by simulation

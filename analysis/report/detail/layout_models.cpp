@@ -1,22 +1,26 @@
-// "Mixed models on trial-level data": lays out compute_mixed_models()'s
-// results beside the ANOVAs of the completion-time and accuracy sections:
-// per measure a table (the primary factor's test, its ratio or difference
-// with a 95% CI, the ANOVA's p beside and whether both decide alike at
-// alpha = .05), one APA sentence per model, the lme4 call of each model a
-// reader can paste into R, and a note listing every effect on which the two
-// analyses disagree. report.json gets every fit in full from the returned
-// models (render_data.h, through lmm_json.h).
+// The layout of the two model sections (layout.h). "Mixed models on
+// trial-level data": section_mixed_models()'s results beside the ANOVAs of
+// the completion-time and accuracy sections, per measure a table (the
+// primary factor's test, its ratio or difference with a 95% CI, the ANOVA's
+// p beside and whether both decide alike at alpha = .05), one APA sentence
+// per model, the lme4 call of each model a reader can paste into R, and a
+// note listing every effect on which the two analyses disagree. "Planning
+// the next study": the power of each ANOVA effect at the planned numbers of
+// participants (section_planning). Computes no statistic; report.json gets
+// every fit in full from the results (render_data.h, through lmm_json.h).
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
+#include "analysis/report/detail/layout.h"
 #include "analysis/report/detail/mixed_models.h"
-#include "analysis/report/detail/sections.h"
 #include "analysis/stats/apa.h"
 
 namespace dtlab::report::detail {
 namespace {
 
 const char* kAlphaText = "α = .05";
+
+std::string n_text(double n) { return std::isfinite(n) ? integer(static_cast<long long>(n)) : std::string("> 10⁷"); }
 
 std::string model_name(const stats::LmmFit& f) {
   if (f.family == stats::Family::binomial) return "GLMM (logit)";
@@ -140,16 +144,6 @@ void lay_out_group(const Context& ctx, Section& s, const std::vector<MixedModelR
 
 }  // namespace
 
-MixedResult section_mixed_models(Context& ctx, const TimeResult& time, const AccuracyResult& accuracy) {
-  MixedResult r;
-  r.models = compute_mixed_models(ctx, time, accuracy);
-  for (const auto& m : r.models)
-    if (m.fit)
-      r.tally.tests += static_cast<int>(m.fit->family == stats::Family::binomial ? m.fit->lrt.size()
-                                                                                 : m.fit->anova.size());
-  return r;
-}
-
 void lay_out_mixed_models(Layout& out, const Context& ctx, const MixedResult& r) {
   const std::vector<MixedModelResult>& models = r.models;
   Section s{"mixed-models", "Mixed models on trial-level data", 2, {}};
@@ -178,6 +172,53 @@ void lay_out_mixed_models(Layout& out, const Context& ctx, const MixedResult& r)
            ", then " + calls + "; `summary()`, `anova()` and `emmeans::emmeans()` print what the tables show. "
            "report.json holds every fit in full, with the R code naming each factor's levels.");
   }
+  out.doc.sections.push_back(std::move(s));
+}
+
+void lay_out_planning(Layout& out, const Context& ctx, const PlanningResult& result) {
+  const std::vector<PlannedEffect>& effects = result.effects;
+  const std::vector<int>& planned_sizes = result.sizes;
+  Section s{"planning", "Planning the next study", 2, {}};
+  std::string sizes;
+  for (std::size_t k = 0; k < planned_sizes.size(); ++k)
+    sizes += (k ? (k + 1 == planned_sizes.size() ? " and " : ", ") : "") + std::to_string(planned_sizes[k]);
+  s.text("How many participants would a study of this design need to detect the effects seen here? For every effect "
+         "of the repeated-measures ANOVAs above (completion time and accuracy, per task and over all tasks), the "
+         "table gives the power of the same test at " + sizes + " participants (α = .05), computed from the effect "
+         "observed in these data. An effect with one degree of freedom is a paired comparison: its power is that of "
+         "the paired t test with the observed standardized difference d_z = √(F / N) (noncentral t). An effect with "
+         "more degrees of freedom uses the noncentral F distribution with noncentrality λ = F · df1 · n / N, the "
+         "observed Greenhouse-Geisser ε applied to λ and both df (as G*Power does). The last columns give the "
+         "smallest number of participants that reaches 80% and 90% power.");
+  s.text("These numbers take the observed effect as the true one. An effect estimated from few participants is "
+         "uncertain, and effects noticed because they were significant tend to be overestimated, so treat the "
+         "powers as optimistic for small effects. `dtlab power " + ctx.data.path +
+         " --participants 8,12,16,24,32` adds the power found by resampling these participants with replacement "
+         "and rerunning the same tests, with a Monte Carlo 95% interval.");
+  Table t;
+  t.id = "table-planning";
+  t.caption = "Power of each ANOVA effect at the planned numbers of participants, from the observed effect "
+              "(analytic), and the smallest n for 80% and 90% power.";
+  t.header = {"Test", "Effect", "N", "η²p", "ε"};
+  for (int n : planned_sizes) t.header.push_back("n = " + std::to_string(n));
+  t.header.insert(t.header.end(), {"n for 80%", "n for 90%"});
+  t.text_columns = 2;
+  for (const auto& e : effects) {
+    std::vector<std::string> row = {(e.scope == "overall" ? std::string("All tasks") : e.scope) + ", " + e.measure,
+                                    e.effect, std::to_string(e.pilot_n), fixed(e.eta_p2, 3),
+                                    e.df1 > 1 ? fixed(e.epsilon, 3) : kDash};
+    for (const auto& a : e.at) row.push_back(fixed(a.analytic, 3));
+    const bool finite = std::isfinite(e.F);
+    row.push_back(finite ? n_text(e.n80) : kDash);
+    row.push_back(finite ? n_text(e.n90) : kDash);
+    t.rows.push_back(std::move(row));
+  }
+  t.notes.push_back("N: participants in the test. Power: probability that the test (two-sided, α = .05; "
+                    "Greenhouse-Geisser corrected for effects with more than one df) rejects the null hypothesis when "
+                    "the true effect equals the observed one. —: no finite F (e.g. no error variance).");
+  if (effects.empty()) s.text("No ANOVA effect could be planned.");
+  else s.add(t);
+  for (const auto& why : result.not_planned) s.text("Not planned: " + why + ".");
   out.doc.sections.push_back(std::move(s));
 }
 

@@ -1,17 +1,16 @@
-// The report's section "Instruments and questions per condition": lays out
-// questionnaire_results() -- per measure (an instrument's scale, an item
-// asked after a block, task set or level) the mean (SD) per condition and
-// its test (RM-ANOVA effects, or Friedman's test), the measures asked only
-// at the end as descriptives, the options chosen per condition, and every
-// free-text answer with the condition it followed. report.json's
-// "instruments" and the CSV files instrument_scores.csv and free_text.csv
-// are laid out from the returned results (render_data.h). No section at all
-// when the protocol has none of these. Computes nothing: questionnaire_results
-// (questionnaire_results.cpp) does.
+// The layout of the section "Instruments and questions per condition"
+// (layout.h), from questionnaire_results() (questionnaire_results.cpp): per
+// measure (an instrument's scale, an item asked after a block, task set or
+// level) the mean (SD) per condition and its test (RM-ANOVA effects, or
+// Friedman's test), the measures asked only at the end as descriptives, the
+// options chosen per condition, and every free-text answer with the
+// condition it followed. report.json's "instruments" and the CSV files
+// instrument_scores.csv and free_text.csv are laid out from the same result
+// (render_data.h). Computes nothing.
 #include <cmath>
 
 #include "analysis/report/detail/format.h"
-#include "analysis/report/detail/questionnaire_results.h"
+#include "analysis/report/detail/layout.h"
 
 namespace dtlab::report::detail {
 
@@ -123,12 +122,6 @@ void text_table(Section& s, const QuestionnaireResults& res) {
 }
 
 }  // namespace
-
-std::optional<QuestionnaireResults> section_instruments(Context& ctx) {
-  QuestionnaireResults res = questionnaire_results(ctx);
-  if (res.measures.empty() && res.counts.empty() && res.texts.empty()) return std::nullopt;
-  return res;
-}
 
 void lay_out_instruments(Layout& out, const Context& ctx, const QuestionnaireResults& res) {
   Section s{"instruments", "Instruments and questions per condition", 2, {}};
