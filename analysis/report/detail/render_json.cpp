@@ -73,22 +73,6 @@ json marginals_json(const TestReport& r, const Design& d) {
   return marg;
 }
 
-json friedman_json(const stats::FriedmanResult& f) {
-  return {{"Q", num(f.Q)},
-          {"df", num(f.df)},
-          {"p", num(f.p)},
-          {"log10_p", num(f.log10_p)},
-          {"p_exact", num(f.p_exact)},
-          {"exact_method", f.exact_method},
-          {"kendall_W", num(f.kendall_W)},
-          {"iman_davenport_F", num(f.iman_davenport_F)},
-          {"p_iman_davenport", num(f.p_iman_davenport)},
-          {"n", f.n},
-          {"k", f.k},
-          {"treatments", f.treatments},
-          {"mean_ranks", f.mean_ranks}};
-}
-
 json to_json(const TestReport& r, const Design& d) {
   const CellMatrix& m = *r.m;
   json j{{"measure", r.measure}, {"unit", r.unit}, {"scope", r.scope}, {"test", r.test}};
@@ -104,7 +88,7 @@ json to_json(const TestReport& r, const Design& d) {
     for (const auto& e : r.anova->effects) eff.push_back(to_json(e));
     j["effects"] = eff;
   }
-  if (r.friedman) j["friedman"] = friedman_json(*r.friedman);
+  if (r.friedman) j["friedman"] = stats::friedman_json<json>(*r.friedman);  // the fields `dtlab stats friedman` prints
   if (r.wilcoxon) {
     j["wilcoxon"] = stats::wilcoxon_json<json>(*r.wilcoxon);
     j["wilcoxon"]["x"] = m.cell_names[0];

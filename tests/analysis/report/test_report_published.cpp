@@ -359,6 +359,15 @@ TEST(ReportPublished, OneFactorThreeLevelsMatchesPingouinAndFriedmanMatchesR) {
   EXPECT_EQ(f.at("n"), 22);
   expect_rel(num(f.at("Q")), 11.143, 1e-4);
   expect_rel(num(f.at("p")), 0.003805, 1e-3);
+  // The entry holds the fields `dtlab stats friedman --json` prints (stats/json.h), the Iman-Davenport test
+  // among them. R (r/friedman_iman_davenport.R): Q <- unname(friedman.test(RoundingTimes)$statistic);
+  // F <- 21 * Q / (22 * 2 - Q) = 7.12173913043478; pf(F, 2, 42, lower.tail = FALSE) = 0.00217129838761;
+  // rows 7, 15, 17 and 22 hold ties.
+  EXPECT_EQ(num(f.at("iman_davenport_df1")), 2);
+  EXPECT_EQ(num(f.at("iman_davenport_df2")), 42);
+  expect_rel(num(f.at("iman_davenport_F")), 7.12173913043478, 1e-10);
+  expect_rel(num(f.at("p_iman_davenport")), 0.00217129838761, 1e-9);
+  EXPECT_TRUE(f.at("ties").get<bool>());
   EXPECT_EQ(q[0].at("posthoc").at("month").size(), 3u);
 }
 
