@@ -29,11 +29,7 @@ std::string utc_now() {
 json to_json(const InteractionFollowUp& f);
 
 // A test and its parts as report.json records them (NaN as null).
-json to_json(const stats::Descriptives& d) {
-  return {{"n", d.n},           {"mean", num(d.mean)},     {"sd", num(d.sd)},         {"se", num(d.se)},
-          {"ci_low", num(d.ci_low)}, {"ci_high", num(d.ci_high)}, {"median", num(d.median)},
-          {"q1", num(d.q1)},    {"q3", num(d.q3)},         {"min", num(d.min)},       {"max", num(d.max)}};
-}
+json to_json(const stats::Descriptives& d) { return stats::descriptives_json<json>(d); }
 
 json to_json(const stats::Effect& e) {
   json j = stats::effect_json<json>(e);
@@ -105,16 +101,10 @@ json to_json(const TestReport& r, const Design& d) {
   if (r.paired) {
     const auto& p = *r.paired;
     const auto& lv = d.factor(p.factor).levels;
-    j["paired"] = {{"factor", d.factor(p.factor).name},
-                   {"difference", lv[static_cast<size_t>(p.b)] + " - " + lv[static_cast<size_t>(p.a)]},
-                   {"n", p.t.n},
-                   {"mean_difference", num(p.t.mean_difference)},
-                   {"ci_low", num(p.t.ci_low)},
-                   {"ci_high", num(p.t.ci_high)},
-                   {"t", num(p.t.t)},
-                   {"df", num(p.t.df)},
-                   {"p", num(p.t.p)},
-                   {"dz", num(p.dz)}};
+    j["paired"] = stats::paired_t_json<json>(p.t);  // as `dtlab stats wilcoxon --json` prints it, and:
+    j["paired"]["factor"] = d.factor(p.factor).name;
+    j["paired"]["difference"] = lv[static_cast<size_t>(p.b)] + " - " + lv[static_cast<size_t>(p.a)];
+    j["paired"]["dz"] = num(p.dz);  // the report's d_z: null, not t, where the differences do not vary
   }
   if (!r.followups.empty()) {
     json fj = json::array();
