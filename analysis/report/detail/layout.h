@@ -89,5 +89,7 @@ void add_anova(Layout& out, Section& s, const Design& d, const TestReport& r, co
                const std::string& caption);
 // "mean (SD)" per level of the design's primary factor, or "—" when it is not among the factors.
 std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int decimals);
+// The paired difference of a two-level primary factor with its 95% CI, "0.31 [0.12, 0.50]", or "—".
+std::string difference_text(const TestReport& r, int decimals);
 
 }  // namespace dtlab::report::detail

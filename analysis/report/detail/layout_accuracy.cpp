@@ -49,12 +49,7 @@ std::vector<std::string> accuracy_cells(const Design& d, const Row& row) {
   cells.push_back(statistic_text(r, primary.name));
   cells.push_back(p_of(r, primary.name));
   cells.push_back(effect_size_text(r, primary.name));
-  if (primary.levels.size() == 2) {
-    cells.push_back(r.paired ? fixed(r.paired->t.mean_difference, row.decimals) + " [" +
-                                   fixed(r.paired->t.ci_low, row.decimals) + ", " +
-                                   fixed(r.paired->t.ci_high, row.decimals) + "]"
-                             : kDash);
-  }
+  if (primary.levels.size() == 2) cells.push_back(difference_text(r, row.decimals));
   const auto* a = row.published.empty() ? nullptr : d.published("accuracy", row.published);
   for (const auto& c : d.published_cells("accuracy", row.published, row.decimals)) cells.push_back(a ? c : "");
   return cells;

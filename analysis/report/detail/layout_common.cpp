@@ -242,4 +242,11 @@ std::vector<std::string> primary_cells(const TestReport& r, const Design& d, int
   return out;
 }
 
+std::string difference_text(const TestReport& r, int decimals) {
+  if (!r.paired) return kDash;
+  const auto& t = r.paired->t;
+  return fixed(t.mean_difference, decimals) + " [" + fixed(t.ci_low, decimals) + ", " + fixed(t.ci_high, decimals) +
+         "]";
+}
+
 }  // namespace dtlab::report::detail

@@ -18,13 +18,6 @@ namespace {
 
 using Rows = TestRows;
 
-std::string difference_text(const TestReport& r, int decimals) {
-  if (!r.paired) return kDash;
-  const auto& t = r.paired->t;
-  return fixed(t.mean_difference, decimals) + " [" + fixed(t.ci_low, decimals) + ", " + fixed(t.ci_high, decimals) +
-         "]";
-}
-
 // One row per task and one over all tasks, published values beside (when the protocol declares them).
 Table time_table(const Design& d, const Rows& rows) {
   const auto& primary = d.factor(d.primary);
